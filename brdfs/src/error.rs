@@ -1,0 +1,66 @@
+//! The error type of BRDF constructors.
+
+use core::fmt;
+
+/// A BRDF parameter outside its domain. Returned by every validating
+/// constructor in this crate; `Display` names the parameter, the value and
+/// the accepted range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BrdfError {
+    /// A parameter is NaN or infinite.
+    NotFinite {
+        /// Parameter name.
+        name: &'static str,
+    },
+    /// A parameter lies outside `[min, max]`.
+    OutOfRange {
+        /// Parameter name.
+        name: &'static str,
+        /// The rejected value.
+        value: f32,
+        /// Smallest accepted value.
+        min: f32,
+        /// Largest accepted value.
+        max: f32,
+    },
+    /// A combination of parameters violates a constraint (e.g. `kd + ks ≤ 1`).
+    Constraint {
+        /// What is violated.
+        what: &'static str,
+    },
+}
+
+impl fmt::Display for BrdfError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BrdfError::NotFinite { name } => write!(f, "parameter `{name}` must be finite"),
+            BrdfError::OutOfRange {
+                name,
+                value,
+                min,
+                max,
+            } => {
+                write!(f, "parameter `{name}` = {value} is outside [{min}, {max}]")
+            }
+            BrdfError::Constraint { what } => write!(f, "invalid parameters: {what}"),
+        }
+    }
+}
+
+impl core::error::Error for BrdfError {}
+
+/// Checks `min ≤ value ≤ max` (and finiteness), naming the parameter.
+pub fn check_range(name: &'static str, value: f32, min: f32, max: f32) -> Result<f32, BrdfError> {
+    if !value.is_finite() {
+        return Err(BrdfError::NotFinite { name });
+    }
+    if value < min || value > max {
+        return Err(BrdfError::OutOfRange {
+            name,
+            value,
+            min,
+            max,
+        });
+    }
+    Ok(value)
+}

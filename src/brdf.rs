@@ -1,0 +1,171 @@
+//! The [`Brdf`] trait: what every reflectance plugin implements.
+//!
+//! The bidirectional reflectance distribution function is
+//! `f_r(ωi→ωo) = dL_o(ωo) / (L_i(ωi) cos θi dωi)` [sr⁻¹] (Nicodemus et al.
+//! 1977, NBS Monograph 160), and the reflection equation
+//! `L_r(ωo) = ∫_H f_r(ωi→ωo) L_i(ωi) cos θi dωi` uses it.
+//!
+//! A plugin needs only [`Brdf::eval`]; [`Brdf::sample`] and [`Brdf::pdf`]
+//! default to cosine-weighted hemisphere sampling, which is exact (if not
+//! efficient) for any BRDF.
+
+use crate::frame::{cos_theta, spherical_direction};
+use crate::spectrum::Spectrum;
+use crate::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use glam::Vec3;
+
+/// One importance sample of a BRDF, for a fixed `wo`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BrdfSample<S> {
+    /// The sampled incident direction (unit, local frame).
+    pub wi: Vec3,
+    /// Its density with respect to solid angle [sr⁻¹]; always `> 0` and finite.
+    pub pdf: f32,
+    /// `f_r(wi, wo) · cos θi / pdf`: the Monte Carlo weight.
+    pub weight: S,
+}
+
+/// A bidirectional reflectance distribution function in the local shading
+/// frame (normal `+Z`).
+///
+/// # Contract
+/// * `eval(wi, wo)` is `f_r` in sr⁻¹: finite, `≥ 0`, and zero when either
+///   direction is at or below the horizon (`cos θ ≤ 0`).
+/// * `sample(wo, u)` for `u ∈ [0,1)²` returns `wi` with density `pdf`
+///   (solid angle) and `weight = eval(wi, wo)·cos θi / pdf`, or `None` when
+///   no valid direction results (e.g. `wo` below the horizon, or a
+///   sampled microfacet reflects below the horizon). The returned `pdf`
+///   equals `self.pdf(wi, wo)`.
+/// * `pdf(wi, wo)` is the density `sample` uses; it is `≥ 0` and finite.
+///   Its integral over the upper hemisphere is ≤ 1 (the deficit is the
+///   probability that `sample` returns `None`).
+/// * No method panics, or returns NaN or ∞, for any finite input, including
+///   non-unit vectors and `wi = −wo`.
+pub trait Brdf {
+    /// The spectrum type of `f_r` (`f32`, `Vec3` or a sampled spectrum).
+    type Spectrum: Spectrum;
+
+    /// `f_r(wi → wo)` [sr⁻¹].
+    fn eval(&self, wi: Vec3, wo: Vec3) -> Self::Spectrum;
+
+    /// Importance-samples `wi` for the given `wo`. The default is
+    /// cosine-weighted hemisphere sampling (density `cos θi/π`).
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<Self::Spectrum>> {
+        if cos_theta(wo) <= 0.0 {
+            return None;
+        }
+        let wi = square_to_cosine_hemisphere(u);
+        let pdf = cosine_hemisphere_pdf(wi);
+        if pdf.is_nan() || pdf <= 0.0 {
+            return None;
+        }
+        let f = self.eval(wi, wo);
+        Some(BrdfSample {
+            wi,
+            pdf,
+            weight: f * (cos_theta(wi) / pdf),
+        })
+    }
+
+    /// Density of [`Brdf::sample`] [sr⁻¹]. The default matches the default
+    /// `sample`: `cos θi / π` when both directions are above the horizon.
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if cos_theta(wo) <= 0.0 {
+            return 0.0;
+        }
+        cosine_hemisphere_pdf(wi)
+    }
+
+    /// Evaluates `out[k] = eval(wi[k], wo[k])` for `k < min(len)`; extra
+    /// elements of the longer slices are left untouched.
+    ///
+    /// The default loops over [`Brdf::eval`]; plugins may override it with a
+    /// vectorised kernel (see the `simd` feature).
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [Self::Spectrum]) {
+        for ((o, &a), &b) in out.iter_mut().zip(wi).zip(wo) {
+            *o = self.eval(a, b);
+        }
+    }
+}
+
+/// A BRDF invariant under rotation about the normal: `f_r` depends only on
+/// `(θi, θo, φo − φi)`.
+///
+/// Implementing it is a promise (tested for every plugin in
+/// `tests/isotropy.rs`); the provided 3-parameter form builds the two
+/// directions and calls [`Brdf::eval`].
+pub trait IsotropicBrdf: Brdf {
+    /// `f_r(θi, θo, Δφ)` with angles in radians and `Δφ = φo − φi`.
+    ///
+    /// ```
+    /// use radiometry::{Brdf, IsotropicBrdf, glam::Vec3};
+    /// struct Flat;
+    /// impl Brdf for Flat {
+    ///     type Spectrum = f32;
+    ///     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 { if wi.z > 0.0 && wo.z > 0.0 { 0.1 } else { 0.0 } }
+    /// }
+    /// impl IsotropicBrdf for Flat {}
+    /// assert_eq!(Flat.eval_isotropic(0.2, 0.4, 1.0), 0.1);
+    /// ```
+    fn eval_isotropic(&self, theta_i: f32, theta_o: f32, delta_phi: f32) -> Self::Spectrum {
+        let wi = spherical_direction(theta_i, 0.0);
+        let wo = spherical_direction(theta_o, delta_phi);
+        self.eval(wi, wo)
+    }
+}
+
+impl<B: Brdf + ?Sized> Brdf for &B {
+    type Spectrum = B::Spectrum;
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3) -> Self::Spectrum {
+        (**self).eval(wi, wo)
+    }
+    #[inline]
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<Self::Spectrum>> {
+        (**self).sample(wo, u)
+    }
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        (**self).pdf(wi, wo)
+    }
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [Self::Spectrum]) {
+        (**self).eval_batch(wi, wo, out)
+    }
+}
+
+impl<B: IsotropicBrdf + ?Sized> IsotropicBrdf for &B {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Const;
+    impl Brdf for Const {
+        type Spectrum = f32;
+        fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+            if wi.z > 0.0 && wo.z > 0.0 { 0.25 } else { 0.0 }
+        }
+    }
+
+    #[test]
+    fn default_sampling_is_consistent() {
+        let wo = Vec3::new(0.0, 0.6, 0.8);
+        for &u in &[[0.1, 0.2], [0.5, 0.5], [0.9, 0.3]] {
+            let s = Const.sample(wo, u).unwrap();
+            assert!((s.pdf - Const.pdf(s.wi, wo)).abs() < 1e-6);
+            let expect = 0.25 * s.wi.z / s.pdf;
+            assert!((s.weight - expect).abs() < 1e-5);
+        }
+        assert!(Const.sample(-wo, [0.5, 0.5]).is_none());
+    }
+
+    #[test]
+    fn batch_matches_scalar() {
+        let wi = [Vec3::Z, Vec3::new(0.0, 0.0, -1.0)];
+        let wo = [Vec3::Z, Vec3::Z];
+        let mut out = [9.0f32; 3];
+        Const.eval_batch(&wi, &wo, &mut out);
+        assert_eq!(out, [0.25, 0.0, 9.0]);
+    }
+}

@@ -1,0 +1,308 @@
+//! The local shading frame: normal on `+Z`, directions pointing away from
+//! the surface.
+//!
+//! Spherical coordinates follow the usual convention (Pharr, Jakob &
+//! Humphreys, *Physically Based Rendering* 4th ed., §3.8): θ is measured
+//! from `+Z`, φ from `+X` toward `+Y`, and
+//! `ω = (sin θ cos φ, sin θ sin φ, cos θ)`. The solid-angle element is
+//! `dω = sin θ dθ dφ`.
+//!
+//! Every helper here is total: for any finite input, including non-unit
+//! vectors and the zero vector, it returns finite values.
+
+use crate::math::{safe_sqrt, sqr};
+use glam::Vec3;
+
+/// `cos θ = ω·n = ω.z` in the local frame.
+#[inline]
+pub fn cos_theta(w: Vec3) -> f32 {
+    w.z
+}
+
+/// `cos² θ`.
+#[inline]
+pub fn cos2_theta(w: Vec3) -> f32 {
+    w.z * w.z
+}
+
+/// `sin² θ = max(0, 1 − cos² θ)`.
+#[inline]
+pub fn sin2_theta(w: Vec3) -> f32 {
+    (1.0 - cos2_theta(w)).max(0.0)
+}
+
+/// `sin θ = sqrt(max(0, 1 − cos² θ))`.
+#[inline]
+pub fn sin_theta(w: Vec3) -> f32 {
+    safe_sqrt(1.0 - cos2_theta(w))
+}
+
+/// `tan² θ = sin² θ / cos² θ`.
+///
+/// Returns `f32::INFINITY` when `cos θ = 0` (a grazing direction); callers in
+/// this crate and in `radiometry-brdfs` treat an infinite `tan² θ` as the
+/// limit it is (for instance Smith `Λ → ∞`, `G1 → 0`).
+#[inline]
+pub fn tan2_theta(w: Vec3) -> f32 {
+    let c2 = cos2_theta(w);
+    if c2 == 0.0 {
+        f32::INFINITY
+    } else {
+        sin2_theta(w) / c2
+    }
+}
+
+/// `tan θ`, with the same grazing convention as [`tan2_theta`].
+#[inline]
+pub fn tan_theta(w: Vec3) -> f32 {
+    let c = cos_theta(w);
+    if c == 0.0 {
+        f32::INFINITY
+    } else {
+        sin_theta(w) / c
+    }
+}
+
+/// `cos φ = x / sin θ`, and `1` when `sin θ = 0` (φ is then arbitrary).
+#[inline]
+pub fn cos_phi(w: Vec3) -> f32 {
+    let s = sin_theta(w);
+    if s == 0.0 {
+        1.0
+    } else {
+        (w.x / s).clamp(-1.0, 1.0)
+    }
+}
+
+/// `sin φ = y / sin θ`, and `0` when `sin θ = 0`.
+#[inline]
+pub fn sin_phi(w: Vec3) -> f32 {
+    let s = sin_theta(w);
+    if s == 0.0 {
+        0.0
+    } else {
+        (w.y / s).clamp(-1.0, 1.0)
+    }
+}
+
+/// Whether `w` lies in the upper hemisphere (`cos θ > 0`).
+#[inline]
+pub fn is_upper(w: Vec3) -> bool {
+    w.z > 0.0
+}
+
+/// Whether `a` and `b` are on the same side of the surface.
+#[inline]
+pub fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}
+
+/// Unit direction from spherical angles (radians):
+/// `ω = (sin θ cos φ, sin θ sin φ, cos θ)`.
+#[inline]
+pub fn spherical_direction(theta: f32, phi: f32) -> Vec3 {
+    let (st, ct) = libm::sincosf(theta);
+    let (sp, cp) = libm::sincosf(phi);
+    Vec3::new(st * cp, st * sp, ct)
+}
+
+/// Unit direction from `sin θ`, `cos θ` and φ (avoids a trigonometric call
+/// when the cosine is already known, and keeps precision near the pole).
+#[inline]
+pub fn spherical_direction_sc(sin_theta: f32, cos_theta: f32, phi: f32) -> Vec3 {
+    let (sp, cp) = libm::sincosf(phi);
+    Vec3::new(
+        sin_theta.clamp(-1.0, 1.0) * cp,
+        sin_theta.clamp(-1.0, 1.0) * sp,
+        cos_theta.clamp(-1.0, 1.0),
+    )
+}
+
+/// θ of a direction, in `[0, π]`. Uses `atan2(|xy|, z)`, which is accurate
+/// at the pole and at the horizon (unlike `acos(z)`).
+#[inline]
+pub fn spherical_theta(w: Vec3) -> f32 {
+    libm::atan2f(libm::hypotf(w.x, w.y), w.z)
+}
+
+/// φ of a direction, in `[0, 2π)`; `0` at the poles.
+#[inline]
+pub fn spherical_phi(w: Vec3) -> f32 {
+    let p = libm::atan2f(w.y, w.x);
+    if p < 0.0 {
+        p + core::f32::consts::TAU
+    } else {
+        p
+    }
+}
+
+/// Mirror reflection of `w` about the normal `n`: `2(w·n)n − w`.
+///
+/// Both point away from the surface (PBR 4th ed., eq. 9.1).
+#[inline]
+pub fn reflect(w: Vec3, n: Vec3) -> Vec3 {
+    2.0 * w.dot(n) * n - w
+}
+
+/// Mirror reflection about the local normal `+Z`: `(−x, −y, z)`.
+#[inline]
+pub fn reflect_z(w: Vec3) -> Vec3 {
+    Vec3::new(-w.x, -w.y, w.z)
+}
+
+/// The reflection half vector `h = (ωi + ωo)/|ωi + ωo|`, oriented into the
+/// upper hemisphere, or `None` when it is undefined.
+///
+/// It is undefined when `ωi + ωo` is (nearly) the zero vector, i.e.
+/// `ωi = −ωo`, or when either input is not finite. Such configurations
+/// contribute nothing to a reflection BRDF (they are a set of measure zero
+/// for which `D(h)` has no meaning), so BRDFs return 0 there.
+#[inline]
+pub fn half_vector(wi: Vec3, wo: Vec3) -> Option<Vec3> {
+    let h = wi + wo;
+    let len2 = h.length_squared();
+    // 1e-14 ≈ (1e-7)²: below this the direction of h is dominated by
+    // rounding in the inputs.
+    if len2.is_nan() || len2 <= 1e-14 || !len2.is_finite() {
+        return None;
+    }
+    let h = h / libm::sqrtf(len2);
+    Some(if h.z < 0.0 { -h } else { h })
+}
+
+/// Normalises `w`, returning `None` for the zero vector and non-finite input.
+#[inline]
+pub fn try_normalize(w: Vec3) -> Option<Vec3> {
+    let l2 = w.length_squared();
+    if l2 > 0.0 && l2.is_finite() {
+        Some(w / libm::sqrtf(l2))
+    } else {
+        None
+    }
+}
+
+/// An orthonormal basis `(s, t, n)`: converts between world space and the
+/// local shading frame in which `n` is `+Z`.
+///
+/// Built with the branchless construction of Duff et al. 2017, "Building an
+/// Orthonormal Basis, Revisited" (JCGT 6(1)), which is continuous except at
+/// `n.z = −1` and exact to rounding everywhere.
+///
+/// ```
+/// use radiometry::{Frame, glam::Vec3};
+/// let n = Vec3::new(1.0, 2.0, 3.0).normalize();
+/// let f = Frame::from_normal(n).unwrap();
+/// let local = f.to_local(n);
+/// assert!((local - Vec3::Z).length() < 1e-6);
+/// let w = Vec3::new(0.3, -0.2, 0.9).normalize();
+/// assert!((f.to_world(f.to_local(w)) - w).length() < 1e-6);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// First tangent (local `+X`).
+    pub s: Vec3,
+    /// Second tangent (local `+Y`).
+    pub t: Vec3,
+    /// Normal (local `+Z`).
+    pub n: Vec3,
+}
+
+impl Frame {
+    /// The identity frame: local == world.
+    pub const IDENTITY: Frame = Frame {
+        s: Vec3::X,
+        t: Vec3::Y,
+        n: Vec3::Z,
+    };
+
+    /// Builds a frame around `n` (normalised here). Returns `None` if `n` is
+    /// zero or not finite.
+    pub fn from_normal(n: Vec3) -> Option<Frame> {
+        let n = try_normalize(n)?;
+        let sign = if n.z >= 0.0 { 1.0 } else { -1.0 };
+        let a = -1.0 / (sign + n.z);
+        let b = n.x * n.y * a;
+        let s = Vec3::new(1.0 + sign * sqr(n.x) * a, sign * b, -sign * n.x);
+        let t = Vec3::new(b, sign + sqr(n.y) * a, -n.y);
+        Some(Frame { s, t, n })
+    }
+
+    /// World → local: `(w·s, w·t, w·n)`.
+    #[inline]
+    pub fn to_local(&self, w: Vec3) -> Vec3 {
+        Vec3::new(w.dot(self.s), w.dot(self.t), w.dot(self.n))
+    }
+
+    /// Local → world: `x s + y t + z n`.
+    #[inline]
+    pub fn to_world(&self, w: Vec3) -> Vec3 {
+        w.x * self.s + w.y * self.t + w.z * self.n
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spherical_round_trip() {
+        for &(t, p) in &[(0.3f32, 1.0f32), (1.5, 5.0), (0.01, 3.0), (1.2, 0.0)] {
+            let w = spherical_direction(t, p);
+            assert!((w.length() - 1.0).abs() < 1e-6);
+            assert!((spherical_theta(w) - t).abs() < 1e-5);
+            assert!((spherical_phi(w) - p).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn trig_helpers_are_total_at_grazing_and_pole() {
+        let graze = Vec3::new(1.0, 0.0, 0.0);
+        assert_eq!(tan2_theta(graze), f32::INFINITY);
+        assert_eq!(cos_phi(Vec3::Z), 1.0);
+        assert_eq!(sin_phi(Vec3::Z), 0.0);
+        let w = Vec3::new(0.0, 1.0, 1e-7);
+        assert!(tan2_theta(w).is_finite());
+        assert!(sin_theta(Vec3::new(0.0, 0.0, 1.0000001)) == 0.0);
+    }
+
+    #[test]
+    fn half_vector_degenerate() {
+        let w = Vec3::new(0.6, 0.0, 0.8);
+        assert!(half_vector(w, -w).is_none());
+        assert!(half_vector(w, Vec3::new(f32::NAN, 0.0, 1.0)).is_none());
+        let h = half_vector(w, reflect_z(w)).unwrap();
+        assert!((h - Vec3::Z).length() < 1e-6);
+        // Grazing pair below the horizon still gives an upper-hemisphere h.
+        let h = half_vector(Vec3::new(1.0, 0.0, -0.1), Vec3::new(0.0, 1.0, -0.1)).unwrap();
+        assert!(h.z > 0.0);
+    }
+
+    #[test]
+    fn frame_orthonormal_everywhere() {
+        for n in [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.0, 1e-8, -1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ] {
+            let f = Frame::from_normal(n).unwrap();
+            assert!((f.s.length() - 1.0).abs() < 1e-5);
+            assert!((f.t.length() - 1.0).abs() < 1e-5);
+            assert!(f.s.dot(f.t).abs() < 1e-5);
+            assert!(f.s.dot(f.n).abs() < 1e-5);
+            assert!(
+                (f.s.cross(f.t) - f.n).length() < 1e-5,
+                "right-handed for {n:?}"
+            );
+        }
+        assert!(Frame::from_normal(Vec3::ZERO).is_none());
+        assert!(Frame::from_normal(Vec3::splat(f32::NAN)).is_none());
+    }
+
+    #[test]
+    fn reflect_matches_reflect_z() {
+        let w = Vec3::new(0.3, -0.4, 0.866).normalize();
+        assert!((reflect(w, Vec3::Z) - reflect_z(w)).length() < 1e-6);
+    }
+}
