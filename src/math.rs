@@ -90,7 +90,7 @@ mod tests {
 
     #[test]
     fn one_minus_epsilon_is_largest_below_one() {
-        assert!(ONE_MINUS_EPSILON < 1.0);
+        const { assert!(ONE_MINUS_EPSILON < 1.0) };
         assert_eq!(f32::from_bits(ONE_MINUS_EPSILON.to_bits() + 1), 1.0);
     }
 
