@@ -35,10 +35,16 @@ pub use glam;
 
 pub mod brdf;
 pub mod frame;
+pub mod integrator;
+pub mod light;
 pub mod math;
+pub mod radiometric;
+pub mod sensor;
+pub mod spectral;
 pub mod spectrum;
 pub mod warp;
 
 pub use brdf::{Brdf, BrdfSample, IsotropicBrdf};
 pub use frame::Frame;
-pub use spectrum::{SampledSpectrum, Spectrum};
+pub use integrator::{Estimate, Integrand, IntegrateError, Integrator};
+pub use spectrum::{SampledSpectrum, Spectrum, WideSpectrum};

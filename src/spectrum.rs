@@ -15,7 +15,7 @@
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Sub};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// A per-channel quantity: radiance, irradiance, reflectance, …
 ///
@@ -37,6 +37,22 @@ pub trait Spectrum:
 {
     /// Number of channels.
     const CHANNELS: usize;
+
+    /// The `f64` counterpart used for accumulation and results of
+    /// integrators (`f64`, `DVec3`, `[f64; N]`).
+    type Wide: WideSpectrum;
+
+    /// Widens every channel to `f64` (exact).
+    #[inline]
+    fn to_wide(self) -> Self::Wide {
+        Self::Wide::from_fn(|i| self.channel(i) as f64)
+    }
+
+    /// Rounds every channel of a wide value to `f32`.
+    #[inline]
+    fn from_wide(w: Self::Wide) -> Self {
+        Self::from_fn(|i| w.channel(i) as f32)
+    }
 
     /// Every channel equal to `v`.
     fn splat(v: f32) -> Self;
@@ -104,6 +120,7 @@ pub trait Spectrum:
 
 impl Spectrum for f32 {
     const CHANNELS: usize = 1;
+    type Wide = f64;
     #[inline]
     fn splat(v: f32) -> Self {
         v
@@ -120,6 +137,7 @@ impl Spectrum for f32 {
 
 impl Spectrum for Vec3 {
     const CHANNELS: usize = 3;
+    type Wide = DVec3;
     #[inline]
     fn splat(v: f32) -> Self {
         Vec3::splat(v)
@@ -139,6 +157,83 @@ impl Spectrum for Vec3 {
     }
 }
 
+/// The `f64` counterpart of a [`Spectrum`]: what integrators accumulate
+/// into and report.
+pub trait WideSpectrum: Copy + Debug + PartialEq + 'static {
+    /// Number of channels.
+    const CHANNELS: usize;
+    /// Builds a value channel by channel.
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
+    /// Channel `i`; `0.0` when out of range.
+    fn channel(&self, i: usize) -> f64;
+    /// Every channel equal to `v`.
+    #[inline]
+    fn splat(v: f64) -> Self {
+        Self::from_fn(|_| v)
+    }
+    /// Applies `f` channel-wise.
+    #[inline]
+    fn map(self, mut f: impl FnMut(f64) -> f64) -> Self {
+        Self::from_fn(|i| f(self.channel(i)))
+    }
+    /// Channel-wise combination of two values.
+    #[inline]
+    fn zip(self, other: Self, mut f: impl FnMut(f64, f64) -> f64) -> Self {
+        Self::from_fn(|i| f(self.channel(i), other.channel(i)))
+    }
+    /// Largest channel.
+    #[inline]
+    fn max_channel(&self) -> f64 {
+        (1..Self::CHANNELS).fold(self.channel(0), |m, i| m.max(self.channel(i)))
+    }
+    /// Whether every channel is finite.
+    #[inline]
+    fn is_finite(&self) -> bool {
+        (0..Self::CHANNELS).all(|i| self.channel(i).is_finite())
+    }
+}
+
+impl WideSpectrum for f64 {
+    const CHANNELS: usize = 1;
+    #[inline]
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        f(0)
+    }
+    #[inline]
+    fn channel(&self, i: usize) -> f64 {
+        if i == 0 { *self } else { 0.0 }
+    }
+}
+
+impl WideSpectrum for DVec3 {
+    const CHANNELS: usize = 3;
+    #[inline]
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        DVec3::new(f(0), f(1), f(2))
+    }
+    #[inline]
+    fn channel(&self, i: usize) -> f64 {
+        match i {
+            0 => self.x,
+            1 => self.y,
+            2 => self.z,
+            _ => 0.0,
+        }
+    }
+}
+
+impl<const N: usize> WideSpectrum for [f64; N] {
+    const CHANNELS: usize = N;
+    #[inline]
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
+        core::array::from_fn(f)
+    }
+    #[inline]
+    fn channel(&self, i: usize) -> f64 {
+        self.get(i).copied().unwrap_or(0.0)
+    }
+}
+
 /// A spectrum sampled at `N` wavelengths (which wavelengths is up to the
 /// caller: a fixed grid, or hero-wavelength samples).
 ///
@@ -154,6 +249,7 @@ impl<const N: usize> Default for SampledSpectrum<N> {
 
 impl<const N: usize> Spectrum for SampledSpectrum<N> {
     const CHANNELS: usize = N;
+    type Wide = [f64; N];
     #[inline]
     fn splat(v: f32) -> Self {
         Self([v; N])

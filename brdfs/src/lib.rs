@@ -8,6 +8,14 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod blinn_phong;
 pub mod error;
+pub mod lambertian;
+pub mod microfacet;
+pub mod phong;
 
 pub use error::BrdfError;
+// -- re-exports: Lambertian / Phong family (keep this block for those modules)
+// -- end Lambertian / Phong family
+// -- re-exports: microfacet (keep this block for that module)
+// -- end microfacet

@@ -1,0 +1,1 @@
+//! Microfacet BRDFs (in progress).

@@ -1,0 +1,192 @@
+//! Hemisphere integrators: estimate `∫_H g(ω) dω` and report an honest
+//! error.
+//!
+//! An [`Integrand`] is a [`Spectrum`]-valued function on the upper
+//! hemisphere that may offer an importance-sampling map. An
+//! [`Integrator`] turns an integrand and an evaluation budget into an
+//! [`Estimate`]: the value, an error estimate (standard error for Monte
+//! Carlo, an a-posteriori bound for quadrature), and the number of
+//! integrand evaluations actually spent. Integrators are deterministic for
+//! a given configuration (including its seed), never allocate, and
+//! accumulate in `f64` with compensated summation.
+//!
+//! [`DirectionalAlbedo`] adapts a [`Brdf`] and an outgoing direction into
+//! the integrand `g(ωi) = f_r(ωi, ωo) cos θi`, whose integral is the
+//! directional albedo `ρ(ωo)`.
+
+use crate::brdf::Brdf;
+use crate::frame::cos_theta;
+use crate::spectrum::{Spectrum, WideSpectrum};
+use core::fmt;
+use glam::Vec3;
+
+/// One draw from an integrand's importance-sampling map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntegrandSample<S> {
+    /// The sampled direction (unit, upper hemisphere).
+    pub w: Vec3,
+    /// Its density w.r.t. solid angle, `> 0`.
+    pub pdf: f32,
+    /// `g(w)`: the integrand at the sample (so a sample costs one evaluation).
+    pub value: S,
+}
+
+/// A function on the upper hemisphere to integrate with respect to solid
+/// angle.
+pub trait Integrand {
+    /// The value type.
+    type Spectrum: Spectrum;
+
+    /// `g(ω)` for a unit `ω` with `ω.z ≥ 0`.
+    fn eval(&self, w: Vec3) -> Self::Spectrum;
+
+    /// Whether [`Integrand::sample`] and [`Integrand::pdf`] provide an
+    /// importance-sampling map. Integrators that need one (importance
+    /// sampling, MIS, warped quadrature) return
+    /// [`IntegrateError::NoSamplingMap`] when this is `false`.
+    fn has_sampling_map(&self) -> bool {
+        false
+    }
+
+    /// Maps `u ∈ [0,1)²` to a direction with its density and the integrand
+    /// value there, or `None` where the map produces no valid direction
+    /// (a zero-contribution sample). Default: `None`.
+    fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<Self::Spectrum>> {
+        let _ = u;
+        None
+    }
+
+    /// Density of [`Integrand::sample`] at `w` [sr⁻¹]. Default: `0`.
+    fn pdf(&self, w: Vec3) -> f32 {
+        let _ = w;
+        0.0
+    }
+}
+
+/// The result of an integration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate<W> {
+    /// The estimate of `∫_H g dω`, per channel.
+    pub value: W,
+    /// Error estimate per channel: the standard error for Monte Carlo and
+    /// randomized QMC, an a-posteriori estimate for quadrature.
+    pub error: W,
+    /// Integrand evaluations spent (sampling-map draws count as one each).
+    pub evaluations: u64,
+}
+
+/// Why an integration could not produce an estimate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegrateError {
+    /// The budget is too small for this integrator (e.g. zero); `minimum`
+    /// is the smallest budget it accepts.
+    BudgetTooSmall {
+        /// Smallest accepted budget.
+        minimum: u32,
+    },
+    /// The integrator needs an importance-sampling map and the integrand
+    /// has none.
+    NoSamplingMap,
+    /// The integrand returned NaN or ±∞ at some point; no estimate is
+    /// reported (a NaN never leaks into a result).
+    NonFiniteIntegrand,
+    /// The configuration is invalid (message names the field).
+    InvalidConfig(&'static str),
+}
+
+impl fmt::Display for IntegrateError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            IntegrateError::BudgetTooSmall { minimum } => {
+                write!(
+                    f,
+                    "budget too small: this integrator needs at least {minimum} evaluations"
+                )
+            }
+            IntegrateError::NoSamplingMap => {
+                write!(
+                    f,
+                    "this integrator needs an integrand with an importance-sampling map"
+                )
+            }
+            IntegrateError::NonFiniteIntegrand => {
+                write!(f, "the integrand returned NaN or infinity")
+            }
+            IntegrateError::InvalidConfig(m) => write!(f, "invalid integrator configuration: {m}"),
+        }
+    }
+}
+
+impl core::error::Error for IntegrateError {}
+
+/// The wide (f64) value type of an integrand's spectrum.
+pub type WideOf<I> = <<I as Integrand>::Spectrum as Spectrum>::Wide;
+
+/// Estimates `∫_H g(ω) dω` within an evaluation budget.
+pub trait Integrator {
+    /// Integrates `g` spending at most `budget` evaluations (an integrator
+    /// may spend fewer, e.g. a product rule rounds down to a square; the
+    /// spent count is in [`Estimate::evaluations`]).
+    fn integrate<I: Integrand>(
+        &self,
+        g: &I,
+        budget: u32,
+    ) -> Result<Estimate<WideOf<I>>, IntegrateError>;
+
+    /// A short, stable name for reports (`"gauss-legendre"`, `"mc-cosine"`, …).
+    fn name(&self) -> &'static str;
+}
+
+/// The integrand `g(ωi) = f_r(ωi, ωo) cos θi` whose integral over the
+/// hemisphere is the directional albedo `ρ(ωo) = ∫_H f_r(ωi,ωo) cos θi dωi`
+/// (reflectance for uniform incident radiance). Its sampling map is the
+/// BRDF's own [`Brdf::sample`].
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionalAlbedo<B> {
+    /// The BRDF.
+    pub brdf: B,
+    /// The outgoing (viewing) direction, local frame.
+    pub wo: Vec3,
+}
+
+impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
+    type Spectrum = B::Spectrum;
+
+    #[inline]
+    fn eval(&self, w: Vec3) -> B::Spectrum {
+        let c = cos_theta(w);
+        if c <= 0.0 {
+            return B::Spectrum::zero();
+        }
+        self.brdf.eval(w, self.wo) * c
+    }
+
+    fn has_sampling_map(&self) -> bool {
+        true
+    }
+
+    #[inline]
+    fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<B::Spectrum>> {
+        let s = self.brdf.sample(self.wo, u)?;
+        Some(IntegrandSample {
+            w: s.wi,
+            pdf: s.pdf,
+            value: s.weight * s.pdf,
+        })
+    }
+
+    #[inline]
+    fn pdf(&self, w: Vec3) -> f32 {
+        self.brdf.pdf(w, self.wo)
+    }
+}
+
+/// Checks that every channel of `v` is finite.
+#[inline]
+pub fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(IntegrateError::NonFiniteIntegrand)
+    }
+}

@@ -1,0 +1,1 @@
+//! Radiometric closed forms (in progress).

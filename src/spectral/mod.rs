@@ -1,0 +1,1 @@
+//! Spectral data tables and photometry (in progress).
