@@ -56,33 +56,21 @@ pub fn tan2_theta(w: Vec3) -> f32 {
 #[inline]
 pub fn tan_theta(w: Vec3) -> f32 {
     let c = cos_theta(w);
-    if c == 0.0 {
-        f32::INFINITY
-    } else {
-        sin_theta(w) / c
-    }
+    if c == 0.0 { f32::INFINITY } else { sin_theta(w) / c }
 }
 
 /// `cos φ = x / sin θ`, and `1` when `sin θ = 0` (φ is then arbitrary).
 #[inline]
 pub fn cos_phi(w: Vec3) -> f32 {
     let s = sin_theta(w);
-    if s == 0.0 {
-        1.0
-    } else {
-        (w.x / s).clamp(-1.0, 1.0)
-    }
+    if s == 0.0 { 1.0 } else { (w.x / s).clamp(-1.0, 1.0) }
 }
 
 /// `sin φ = y / sin θ`, and `0` when `sin θ = 0`.
 #[inline]
 pub fn sin_phi(w: Vec3) -> f32 {
     let s = sin_theta(w);
-    if s == 0.0 {
-        0.0
-    } else {
-        (w.y / s).clamp(-1.0, 1.0)
-    }
+    if s == 0.0 { 0.0 } else { (w.y / s).clamp(-1.0, 1.0) }
 }
 
 /// Whether `w` lies in the upper hemisphere (`cos θ > 0`).
@@ -129,11 +117,7 @@ pub fn spherical_theta(w: Vec3) -> f32 {
 #[inline]
 pub fn spherical_phi(w: Vec3) -> f32 {
     let p = libm::atan2f(w.y, w.x);
-    if p < 0.0 {
-        p + core::f32::consts::TAU
-    } else {
-        p
-    }
+    if p < 0.0 { p + core::f32::consts::TAU } else { p }
 }
 
 /// Mirror reflection of `w` about the normal `n`: `2(w·n)n − w`.
@@ -291,10 +275,7 @@ mod tests {
             assert!((f.t.length() - 1.0).abs() < 1e-5);
             assert!(f.s.dot(f.t).abs() < 1e-5);
             assert!(f.s.dot(f.n).abs() < 1e-5);
-            assert!(
-                (f.s.cross(f.t) - f.n).length() < 1e-5,
-                "right-handed for {n:?}"
-            );
+            assert!((f.s.cross(f.t) - f.n).length() < 1e-5, "right-handed for {n:?}");
         }
         assert!(Frame::from_normal(Vec3::ZERO).is_none());
         assert!(Frame::from_normal(Vec3::splat(f32::NAN)).is_none());

@@ -42,11 +42,7 @@ pub fn square_to_concentric_disk(u: [f32; 2]) -> Vec2 {
 /// Density of [`square_to_concentric_disk`] w.r.t. area: `1/π` inside the disk.
 #[inline]
 pub fn concentric_disk_pdf(p: Vec2) -> f32 {
-    if p.length_squared() <= 1.0 {
-        FRAC_1_PI
-    } else {
-        0.0
-    }
+    if p.length_squared() <= 1.0 { FRAC_1_PI } else { 0.0 }
 }
 
 /// Uniform direction on the upper hemisphere:

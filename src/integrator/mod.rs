@@ -127,11 +127,7 @@ pub trait Integrator {
     /// Integrates `g` spending at most `budget` evaluations (an integrator
     /// may spend fewer, e.g. a product rule rounds down to a square; the
     /// spent count is in [`Estimate::evaluations`]).
-    fn integrate<I: Integrand>(
-        &self,
-        g: &I,
-        budget: u32,
-    ) -> Result<Estimate<WideOf<I>>, IntegrateError>;
+    fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError>;
 
     /// A short, stable name for reports (`"gauss-legendre"`, `"mc-cosine"`, …).
     fn name(&self) -> &'static str;
