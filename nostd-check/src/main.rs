@@ -6,6 +6,14 @@ use core::hint::black_box;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, Frame};
 
+// Link the C runtime (for `__libc_start_main`, `memcpy`, `memset`) so the
+// release build links and runs on x86_64 Linux.
+#[link(name = "c")]
+unsafe extern "C" {}
+
+#[unsafe(no_mangle)]
+extern "C" fn rust_eh_personality() {}
+
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
     loop {}
