@@ -186,3 +186,9 @@ pub fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
         Err(IntegrateError::NonFiniteIntegrand)
     }
 }
+
+mod acc;
+pub mod gauss_legendre;
+pub mod points;
+
+pub use gauss_legendre::{GaussLegendre, WarpedGaussLegendre};

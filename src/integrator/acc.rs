@@ -1,0 +1,210 @@
+//! Shared internals of the integrators: channel-wise compensated sums,
+//! shifted-data moment accumulators, and the two ways of turning a point of
+//! the unit square into an integrand value (the hemisphere parameterisation
+//! and the integrand's own sampling map).
+
+use super::{Integrand, IntegrateError, WideOf, check_finite};
+use crate::spectrum::{Spectrum, WideSpectrum};
+use core::f64::consts::TAU;
+use glam::Vec3;
+
+/// Channel-wise Neumaier compensated sum of wide spectra
+/// (Neumaier 1974, ZAMM 54; same scheme as [`crate::math::CompensatedSum`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WideSum<W> {
+    sum: W,
+    c: W,
+}
+
+impl<W: WideSpectrum> WideSum<W> {
+    #[inline]
+    pub(crate) fn new() -> Self {
+        Self {
+            sum: W::splat(0.0),
+            c: W::splat(0.0),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn add(&mut self, x: W) {
+        let s = self.sum;
+        let t = s.zip(x, |a, b| a + b);
+        let c = W::from_fn(|i| {
+            let (a, b, ti) = (s.channel(i), x.channel(i), t.channel(i));
+            let d = if a.abs() >= b.abs() {
+                (a - ti) + b
+            } else {
+                (b - ti) + a
+            };
+            self.c.channel(i) + d
+        });
+        self.sum = t;
+        self.c = c;
+    }
+
+    #[inline]
+    pub(crate) fn value(&self) -> W {
+        self.sum.zip(self.c, |a, b| a + b)
+    }
+}
+
+/// Sample moments with the shifted-data algorithm: with a fixed shift `K`
+/// (the first observation), `mean = K + Σd/n` and
+/// `s² = (Σd² − (Σd)²/n)/(n − 1)` where `d = x − K` (Chan, Golub & LeVeque
+/// 1983, "Algorithms for computing the sample variance", Am. Stat. 37(3)).
+/// Both sums are compensated.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Moments<W> {
+    shift: W,
+    d: WideSum<W>,
+    d2: WideSum<W>,
+    n: u64,
+}
+
+impl<W: WideSpectrum> Moments<W> {
+    #[inline]
+    pub(crate) fn new() -> Self {
+        Self {
+            shift: W::splat(0.0),
+            d: WideSum::new(),
+            d2: WideSum::new(),
+            n: 0,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn push(&mut self, x: W) {
+        if self.n == 0 {
+            self.shift = x;
+        }
+        let d = x.zip(self.shift, |a, k| a - k);
+        self.d.add(d);
+        self.d2.add(d.map(|v| v * v));
+        self.n += 1;
+    }
+
+    #[inline]
+    pub(crate) fn count(&self) -> u64 {
+        self.n
+    }
+
+    /// The sample mean (zero when empty).
+    pub(crate) fn mean(&self) -> W {
+        if self.n == 0 {
+            return W::splat(0.0);
+        }
+        let n = self.n as f64;
+        self.shift.zip(self.d.value(), |k, d| k + d / n)
+    }
+
+    /// The standard error of the mean, `s/√n` (zero for `n < 2`).
+    pub(crate) fn standard_error(&self) -> W {
+        if self.n < 2 {
+            return W::splat(0.0);
+        }
+        let n = self.n as f64;
+        let sd = self.d.value();
+        let sd2 = self.d2.value();
+        W::from_fn(|i| {
+            let a = sd.channel(i);
+            let var = ((sd2.channel(i) - a * a / n) / (n - 1.0)).max(0.0);
+            libm::sqrt(var / n)
+        })
+    }
+}
+
+/// The integrand at a direction, widened and checked for NaN/∞.
+#[inline]
+pub(crate) fn eval_wide<I: Integrand>(g: &I, w: Vec3) -> Result<WideOf<I>, IntegrateError> {
+    check_finite(g.eval(w).to_wide())
+}
+
+/// Direction for `cos θ = mu`, azimuth `phi` (PBRT 4th ed. §3.8.3):
+/// `(sin θ cos φ, sin θ sin φ, cos θ)` with `sin θ = √(1 − μ²)`.
+#[inline]
+pub(crate) fn direction(mu: f64, phi: f64) -> Vec3 {
+    let mu = mu.clamp(0.0, 1.0);
+    let s = libm::sqrt((1.0 - mu * mu).max(0.0));
+    let (sp, cp) = libm::sincos(phi);
+    Vec3::new((s * cp) as f32, (s * sp) as f32, mu as f32)
+}
+
+/// The hemisphere in coordinates `(a, b) ∈ [0,1]²`: `μ = cos θ = a`,
+/// `φ = 2π b`, `dω = dμ dφ = 2π da db`. Returns `g(ω(a, b)) · 2π`.
+#[inline]
+pub(crate) fn hemisphere_point<I: Integrand>(g: &I, a: f64, b: f64) -> Result<WideOf<I>, IntegrateError> {
+    Ok(eval_wide(g, direction(a, TAU * b))?.map(|v| v * TAU))
+}
+
+/// One draw of the integrand's sampling map at `u`, as the importance weight
+/// `g(ω)/p(ω)` in `f64` together with the direction and density.
+///
+/// * `None` from [`Integrand::sample`] is a zero-contribution sample.
+/// * A non-finite value or density is [`IntegrateError::NonFiniteIntegrand`].
+/// * A density `≤ 0` (outside the trait contract) contributes zero if the
+///   value is black, and is reported as `NonFiniteIntegrand` otherwise (the
+///   weight would be infinite).
+#[inline]
+pub(crate) fn sampled_point<I: Integrand>(
+    g: &I,
+    u: [f32; 2],
+) -> Result<Option<(Vec3, f64, WideOf<I>)>, IntegrateError> {
+    let Some(s) = g.sample(u) else {
+        return Ok(None);
+    };
+    let v = check_finite(s.value.to_wide())?;
+    if !s.pdf.is_finite() {
+        return Err(IntegrateError::NonFiniteIntegrand);
+    }
+    if s.pdf <= 0.0 {
+        return if s.value.is_black() {
+            Ok(None)
+        } else {
+            Err(IntegrateError::NonFiniteIntegrand)
+        };
+    }
+    let p = s.pdf as f64;
+    Ok(Some((s.w, p, v.map(|x| x / p))))
+}
+
+/// `value/pdf` of the sampling map at `(a, b) ∈ [0,1]²` (zero where the map
+/// has no direction). See [`sampled_point`].
+#[inline]
+pub(crate) fn warped_point<I: Integrand>(g: &I, a: f64, b: f64) -> Result<WideOf<I>, IntegrateError> {
+    let u = [to_unit_f32(a), to_unit_f32(b)];
+    Ok(match sampled_point(g, u)? {
+        Some((_, _, w)) => w,
+        None => WideOf::<I>::splat(0.0),
+    })
+}
+
+/// Rounds `x ∈ [0, 1]` to an `f32` in `[0, 1)` (at most `1 − 2⁻²⁴`).
+#[inline]
+pub(crate) fn to_unit_f32(x: f64) -> f32 {
+    let v = x.clamp(0.0, 1.0) as f32;
+    v.min(crate::math::ONE_MINUS_EPSILON)
+}
+
+/// Channel-wise `|a − b|`.
+#[inline]
+pub(crate) fn abs_diff<W: WideSpectrum>(a: W, b: W) -> W {
+    a.zip(b, |x, y| (x - y).abs())
+}
+
+/// Channel-wise sum.
+#[inline]
+pub(crate) fn add<W: WideSpectrum>(a: W, b: W) -> W {
+    a.zip(b, |x, y| x + y)
+}
+
+/// Largest channel of `|w|`.
+#[inline]
+pub(crate) fn max_abs<W: WideSpectrum>(w: W) -> f64 {
+    (0..W::CHANNELS).fold(0.0f64, |m, i| m.max(w.channel(i).abs()))
+}
+
+/// Relative accuracy of the `f32` integrand values and directions: the
+/// integrand is evaluated in single precision, so a quadrature sum
+/// `Σ wₖ g(ωₖ)` cannot be trusted below about `2⁻²³ Σ |wₖ g(ωₖ)|`
+/// (unit roundoff of the value plus that of the rounded node direction).
+pub(crate) const F32_FLOOR: f64 = f32::EPSILON as f64;
