@@ -1,1 +1,128 @@
-//! (in progress)
+//! The Lambertian (ideal diffuse) BRDF.
+//!
+//! # Formula
+//!
+//! ```text
+//! f_r(ωi, ωo) = ρ/π      for cos θi > 0 and cos θo > 0,
+//!             = 0        otherwise,
+//! ```
+//!
+//! with albedo `ρ`. The directional albedo `∫_H f_r cos θi dωi = ρ` for
+//! every `ωo`, because `∫_H cos θ dω = π`. Source: J. H. Lambert,
+//! *Photometria* (1760); in BRDF form e.g. Nicodemus et al. 1977 (NBS
+//! Monograph 160) and Pharr, Jakob & Humphreys, *Physically Based
+//! Rendering* 4th ed., §9.2.
+//!
+//! # Parameters and domain
+//!
+//! * `albedo` ρ: a spectrum with every channel in `[0, 1]`.
+//! * Directions: any finite vectors (only the sign of `cos θ` matters for
+//!   `eval`; `pdf` normalises `ωi`).
+//!
+//! # Sampling
+//!
+//! Cosine-weighted hemisphere sampling (Malley's method,
+//! [`square_to_cosine_hemisphere`]), density `cos θi/π`, which is exactly
+//! proportional to `f_r cos θi`: every sample has weight `ρ`. Samples on
+//! the horizon (`cos θi = 0`, only at the edge `u` of the square) are
+//! rejected.
+//!
+//! # Example
+//!
+//! ```
+//! use radiometry::{Brdf, glam::Vec3};
+//! use radiometry_brdfs::Lambertian;
+//!
+//! let white = Lambertian::new(0.8f32)?;
+//! assert!((white.eval(Vec3::Z, Vec3::new(0.6, 0.0, 0.8)) - 0.8 / core::f32::consts::PI).abs() < 1e-7);
+//! let s = white.sample(Vec3::Z, [0.25, 0.5]).unwrap();
+//! assert!((s.weight - 0.8).abs() < 1e-6);
+//! assert!(Lambertian::new(1.5f32).is_err());
+//! # Ok::<(), radiometry_brdfs::BrdfError>(())
+//! ```
+
+use crate::error::{BrdfError, check_range};
+use core::f32::consts::FRAC_1_PI;
+use radiometry::frame::try_normalize;
+use radiometry::glam::Vec3;
+use radiometry::warp::square_to_cosine_hemisphere;
+use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
+
+/// The Lambertian BRDF `f_r = ρ/π`; see the [module documentation](self).
+///
+/// ```
+/// use radiometry::{Brdf, glam::Vec3};
+/// use radiometry_brdfs::Lambertian;
+///
+/// let rgb = Lambertian::new(Vec3::new(0.9, 0.5, 0.1))?;
+/// assert_eq!(rgb.albedo(), Vec3::new(0.9, 0.5, 0.1));
+/// assert_eq!(rgb.eval(Vec3::Z, -Vec3::Z), Vec3::ZERO);
+/// # Ok::<(), radiometry_brdfs::BrdfError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lambertian<S: Spectrum = f32> {
+    albedo: S,
+}
+
+impl<S: Spectrum> Lambertian<S> {
+    /// Builds the BRDF.
+    ///
+    /// # Errors
+    /// [`BrdfError::NotFinite`] for a NaN/infinite channel,
+    /// [`BrdfError::OutOfRange`] for a channel outside `[0, 1]`.
+    pub fn new(albedo: S) -> Result<Self, BrdfError> {
+        for i in 0..S::CHANNELS {
+            check_range("albedo", albedo.channel(i), 0.0, 1.0)?;
+        }
+        Ok(Self { albedo })
+    }
+
+    /// The albedo ρ (equal to the directional albedo for every `ωo`).
+    pub fn albedo(&self) -> S {
+        self.albedo
+    }
+}
+
+impl<S: Spectrum> Brdf for Lambertian<S> {
+    type Spectrum = S;
+
+    /// `ρ/π` when both `cos θ > 0`, else 0.
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        if wi.z > 0.0 && wo.z > 0.0 && wi.is_finite() && wo.is_finite() {
+            self.albedo * FRAC_1_PI
+        } else {
+            S::zero()
+        }
+    }
+
+    /// Cosine-weighted sampling; `weight = ρ`. `None` when `wo` is at or
+    /// below the horizon (or not finite) or `wi` lands on the horizon.
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        if !wo.is_finite() || wo.z <= 0.0 {
+            return None;
+        }
+        let wi = square_to_cosine_hemisphere(u);
+        let pdf = self.pdf(wi, wo);
+        (pdf > 0.0).then_some(BrdfSample {
+            wi,
+            pdf,
+            weight: self.albedo,
+        })
+    }
+
+    /// `cos θi/π` (of the normalised `wi`) when both directions are above
+    /// the horizon, else 0.
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if !wo.is_finite() || wo.z <= 0.0 {
+            return 0.0;
+        }
+        match try_normalize(wi) {
+            Some(w) if w.z > 0.0 => w.z * FRAC_1_PI,
+            _ => 0.0,
+        }
+    }
+}
+
+impl<S: Spectrum> IsotropicBrdf for Lambertian<S> {}

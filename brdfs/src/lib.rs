@@ -16,6 +16,9 @@ pub mod phong;
 
 pub use error::BrdfError;
 // -- re-exports: Lambertian / Phong family (keep this block for those modules)
+pub use blinn_phong::BlinnPhong;
+pub use lambertian::Lambertian;
+pub use phong::ModifiedPhong;
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 // -- end microfacet
