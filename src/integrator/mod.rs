@@ -192,3 +192,7 @@ pub mod gauss_legendre;
 pub mod points;
 
 pub use gauss_legendre::{GaussLegendre, WarpedGaussLegendre};
+pub mod monte_carlo;
+
+pub use monte_carlo::{Heuristic, MonteCarlo, Strategy};
+pub use points::PointSet;

@@ -1,0 +1,430 @@
+//! Monte Carlo and randomized quasi-Monte Carlo integrators: uniform,
+//! cosine-weighted and integrand importance sampling, and multiple
+//! importance sampling (MIS) of cosine + integrand sampling with the
+//! balance or power heuristic, over any [`PointSet`].
+
+use super::acc::{self, Moments};
+use super::points::{
+    Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed, sobol_point,
+    square_to_cosine_hemisphere_polar,
+};
+use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
+use crate::spectrum::WideSpectrum;
+use crate::warp::{square_to_cosine_hemisphere, square_to_uniform_hemisphere};
+use core::f64::consts::{FRAC_1_PI, TAU};
+
+/// The MIS weighting heuristic (Veach 1997, PhD thesis, §9.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Heuristic {
+    /// Balance heuristic `wᵢ = pᵢ / Σⱼ pⱼ` (Veach 1997, Eq. 9.10).
+    Balance,
+    /// Power heuristic with exponent β = 2, `wᵢ = pᵢ² / Σⱼ pⱼ²`
+    /// (Veach 1997, Eq. 9.13).
+    Power,
+}
+
+/// How directions are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Strategy {
+    /// Uniform over the hemisphere, `p = 1/(2π)`; estimator `2π g(ω)`.
+    Uniform,
+    /// Cosine-weighted, `p = cos θ/π` (Malley's method, PBRT 4th ed.
+    /// §A.5.3); estimator `π g(ω)/cos θ` (0 at `cos θ = 0`, a null set).
+    Cosine,
+    /// The integrand's own sampling map ([`Integrand::sample`]); estimator
+    /// `g(ω)/p(ω)`, 0 where the map returns `None`.
+    Integrand,
+    /// Multi-sample MIS of [`Strategy::Cosine`] and [`Strategy::Integrand`]
+    /// with one sample from each per draw (Veach 1997, Eq. 9.4 with
+    /// `n₁ = n₂ = 1`): `F = w₁(X₁) g(X₁)/p₁(X₁) + w₂(X₂) g(X₂)/p₂(X₂)`.
+    /// Each draw costs two evaluations.
+    Mis(Heuristic),
+}
+
+impl Strategy {
+    /// All strategies, in a fixed order.
+    pub const ALL: [Strategy; 5] = [
+        Strategy::Uniform,
+        Strategy::Cosine,
+        Strategy::Integrand,
+        Strategy::Mis(Heuristic::Balance),
+        Strategy::Mis(Heuristic::Power),
+    ];
+
+    fn index(self) -> usize {
+        match self {
+            Strategy::Uniform => 0,
+            Strategy::Cosine => 1,
+            Strategy::Integrand => 2,
+            Strategy::Mis(Heuristic::Balance) => 3,
+            Strategy::Mis(Heuristic::Power) => 4,
+        }
+    }
+
+    const fn cost(self) -> u32 {
+        if let Strategy::Mis(_) = self { 2 } else { 1 }
+    }
+}
+
+const NAMES: [[&str; 4]; 5] = [
+    [
+        "mc-uniform-prng",
+        "mc-uniform-stratified",
+        "mc-uniform-sobol",
+        "mc-uniform-fibonacci",
+    ],
+    [
+        "mc-cosine-prng",
+        "mc-cosine-stratified",
+        "mc-cosine-sobol",
+        "mc-cosine-fibonacci",
+    ],
+    [
+        "mc-integrand-prng",
+        "mc-integrand-stratified",
+        "mc-integrand-sobol",
+        "mc-integrand-fibonacci",
+    ],
+    [
+        "mis-balance-prng",
+        "mis-balance-stratified",
+        "mis-balance-sobol",
+        "mis-balance-fibonacci",
+    ],
+    [
+        "mis-power-prng",
+        "mis-power-stratified",
+        "mis-power-sobol",
+        "mis-power-fibonacci",
+    ],
+];
+
+fn point_index(p: PointSet) -> usize {
+    match p {
+        PointSet::Prng => 0,
+        PointSet::Stratified => 1,
+        PointSet::Sobol => 2,
+        PointSet::Fibonacci => 3,
+    }
+}
+
+/// Most evaluations any [`MonteCarlo`] run spends (`2²²` = 4,194,304);
+/// larger budgets are capped (and `evaluations` says what was spent).
+pub const MAX_MC_EVALUATIONS: u32 = 1 << 22;
+
+/// Default number of independent randomizations for RQMC point sets.
+pub const DEFAULT_REPLICATES: u32 = 16;
+
+/// Monte Carlo / randomized QMC estimator of `∫_H g dω`.
+///
+/// * `PointSet::Prng`: `N` i.i.d. draws; value = sample mean of the
+///   estimator `F` (see [`Strategy`]), error = the standard error `s/√N`
+///   (Owen, *Monte Carlo theory, methods and examples*, 2013, §2.1).
+/// * `Stratified`, `Sobol`, `Fibonacci` (randomized QMC): `K` independent
+///   randomizations (fresh jitter / Owen scramble seed / toroidal shift;
+///   default `K = 16`), each with `⌊N/K⌋` points; value = mean of the `K`
+///   replicate means, error = their standard error `s_K/√K` (Owen 2013,
+///   §17.2; L'Ecuyer & Lemieux 2002). With `K = 16` the ratio
+///   (true error)/(error) follows roughly Student's t with 15 degrees of
+///   freedom, so `|error| ≤ 3σ` holds ≈ 99.1 % of the time (vs 99.7 % for
+///   the normal limit of `Prng`).
+///
+/// Sobol: one scramble holds at most `2¹⁶` points (`sobol_burley`), so when
+/// `⌊N/K⌋ > 2¹⁶` the number of scrambles grows to `⌈N/2¹⁶⌉` (≤ 64 under
+/// the cap). Jittered grids use `⌊√n⌋ × ⌊n/⌊√n⌋⌋ ≤ n` cells per replicate.
+/// Cosine sampling uses the concentric map of [`crate::warp`] except with
+/// the Fibonacci lattice, which uses the polar map (making it the
+/// spherical Fibonacci set of Marques et al. 2013).
+///
+/// Budget: each draw costs 1 evaluation (2 for MIS); at most
+/// [`MAX_MC_EVALUATIONS`] are spent. Minimum budget: 2 draws for `Prng`,
+/// `K` draws otherwise ([`IntegrateError::BudgetTooSmall`] below). A NaN/∞
+/// integrand value, sampled value or density gives
+/// [`IntegrateError::NonFiniteIntegrand`]. Deterministic for
+/// `(strategy, points, seed, replicates)`.
+///
+/// ```
+/// use radiometry::integrator::{Integrand, Integrator, MonteCarlo, PointSet, Strategy};
+/// use radiometry::glam::Vec3;
+/// struct Cos2;
+/// impl Integrand for Cos2 {
+///     type Spectrum = f32;
+///     fn eval(&self, w: Vec3) -> f32 { w.z * w.z }
+/// }
+/// let mc = MonteCarlo::new(Strategy::Cosine, PointSet::Sobol, 7);
+/// assert_eq!(mc.name(), "mc-cosine-sobol");
+/// let e = mc.integrate(&Cos2, 4096).unwrap();
+/// let exact = 2.0 * core::f64::consts::PI / 3.0;
+/// assert!((e.value - exact).abs() < 5.0 * e.error + 1e-9);
+/// assert_eq!(e.evaluations, 4096);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MonteCarlo {
+    /// Sampling strategy.
+    pub strategy: Strategy,
+    /// Point set on the unit square.
+    pub points: PointSet,
+    /// Seed of every random choice.
+    pub seed: u64,
+    replicates: u32,
+}
+
+impl MonteCarlo {
+    /// A Monte Carlo integrator with [`DEFAULT_REPLICATES`] randomizations
+    /// for RQMC point sets.
+    pub const fn new(strategy: Strategy, points: PointSet, seed: u64) -> Self {
+        Self {
+            strategy,
+            points,
+            seed,
+            replicates: DEFAULT_REPLICATES,
+        }
+    }
+
+    /// Sets the number `K` of independent randomizations used by RQMC
+    /// point sets (ignored by `Prng`). Valid: `2 ≤ K ≤ 64`, else
+    /// [`IntegrateError::InvalidConfig`].
+    pub const fn with_replicates(mut self, k: u32) -> Result<Self, IntegrateError> {
+        if k < 2 || k > 64 {
+            return Err(IntegrateError::InvalidConfig("replicates must be in 2..=64"));
+        }
+        self.replicates = k;
+        Ok(self)
+    }
+
+    /// The number of RQMC randomizations `K`.
+    pub const fn replicates(&self) -> u32 {
+        self.replicates
+    }
+
+    /// Smallest accepted budget.
+    pub const fn min_budget(&self) -> u32 {
+        let draws = match self.points {
+            PointSet::Prng => 2,
+            _ => self.replicates,
+        };
+        draws * self.strategy.cost()
+    }
+}
+
+/// The estimator `F` for one draw with unit-square points `u1` (first
+/// strategy) and `u2` (second, MIS only).
+#[inline]
+fn draw<I: Integrand>(
+    g: &I,
+    strategy: Strategy,
+    polar: bool,
+    u1: [f32; 2],
+    u2: [f32; 2],
+) -> Result<WideOf<I>, IntegrateError> {
+    let zero = WideOf::<I>::splat(0.0);
+    let cosine_dir = |u: [f32; 2]| {
+        if polar {
+            square_to_cosine_hemisphere_polar(u)
+        } else {
+            square_to_cosine_hemisphere(u)
+        }
+    };
+    match strategy {
+        Strategy::Uniform => {
+            let w = square_to_uniform_hemisphere(u1);
+            Ok(acc::eval_wide(g, w)?.map(|v| v * TAU))
+        }
+        Strategy::Cosine => {
+            let w = cosine_dir(u1);
+            let p = w.z as f64 * FRAC_1_PI;
+            if p <= 0.0 {
+                return Ok(zero);
+            }
+            Ok(acc::eval_wide(g, w)?.map(|v| v / p))
+        }
+        Strategy::Integrand => Ok(match acc::sampled_point(g, u1)? {
+            Some((_, _, weight)) => weight,
+            None => zero,
+        }),
+        Strategy::Mis(h) => {
+            let pw = |p: f64| match h {
+                Heuristic::Balance => p,
+                Heuristic::Power => p * p,
+            };
+            let other_pdf = |w| {
+                let p = g.pdf(w);
+                if p.is_finite() {
+                    Ok((p as f64).max(0.0))
+                } else {
+                    Err(IntegrateError::NonFiniteIntegrand)
+                }
+            };
+            // Strategy 1: cosine.
+            let w1 = cosine_dir(u1);
+            let p1 = w1.z as f64 * FRAC_1_PI;
+            let mut total = zero;
+            if p1 > 0.0 {
+                let f = acc::eval_wide(g, w1)?;
+                let q = other_pdf(w1)?;
+                // w₁ f/p₁ = f · pw(p₁)/p₁ / (pw(p₁) + pw(q))
+                let k = (pw(p1) / p1) / (pw(p1) + pw(q));
+                total = f.map(|v| v * k);
+            }
+            // Strategy 2: the integrand's map.
+            if let Some((w2, p2, weight)) = acc::sampled_point(g, u2)? {
+                let c = (w2.z as f64 * FRAC_1_PI).max(0.0);
+                let k = pw(p2) / (pw(p2) + pw(c));
+                total = acc::add(total, weight.map(|v| v * k));
+            }
+            Ok(total)
+        }
+    }
+}
+
+impl Integrator for MonteCarlo {
+    fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
+        if matches!(self.strategy, Strategy::Integrand | Strategy::Mis(_)) && !g.has_sampling_map() {
+            return Err(IntegrateError::NoSamplingMap);
+        }
+        if budget < self.min_budget() {
+            return Err(IntegrateError::BudgetTooSmall {
+                minimum: self.min_budget(),
+            });
+        }
+        let cost = self.strategy.cost();
+        let draws = budget.min(MAX_MC_EVALUATIONS) / cost;
+        let polar = self.points == PointSet::Fibonacci;
+        let s = self.strategy;
+
+        if self.points == PointSet::Prng {
+            let mut rng = Pcg32::new(self.seed, 0x5851_f42d);
+            let mut m = Moments::<WideOf<I>>::new();
+            for _ in 0..draws {
+                let u1 = [rng.next_f32(), rng.next_f32()];
+                let u2 = if cost == 2 {
+                    [rng.next_f32(), rng.next_f32()]
+                } else {
+                    [0.0; 2]
+                };
+                m.push(draw(g, s, polar, u1, u2)?);
+            }
+            return Ok(Estimate {
+                value: m.mean(),
+                error: m.standard_error(),
+                evaluations: m.count() * cost as u64,
+            });
+        }
+
+        let mut k = self.replicates;
+        if self.points == PointSet::Sobol {
+            k = k.max(draws.div_ceil(SOBOL_MAX_POINTS));
+        }
+        let n = draws / k;
+        let mut reps = Moments::<WideOf<I>>::new();
+        let mut spent = 0u64;
+        for r in 0..k {
+            let rseed = mix_seed(self.seed, r as u64);
+            let mut rng = Pcg32::new(rseed, 0xda3e_39cb);
+            let mut m = Moments::<WideOf<I>>::new();
+            match self.points {
+                PointSet::Stratified => {
+                    let (nx, ny) = jitter_grid(n);
+                    for i in 0..nx * ny {
+                        let u1 = jittered_point(i, nx, ny, [rng.next_f32(), rng.next_f32()]);
+                        let u2 = if cost == 2 {
+                            jittered_point(i, nx, ny, [rng.next_f32(), rng.next_f32()])
+                        } else {
+                            [0.0; 2]
+                        };
+                        m.push(draw(g, s, polar, u1, u2)?);
+                    }
+                }
+                PointSet::Sobol => {
+                    let sseed = (rseed ^ (rseed >> 32)) as u32;
+                    for i in 0..n.min(SOBOL_MAX_POINTS) {
+                        let u1 = sobol_point(i, 0, sseed);
+                        let u2 = if cost == 2 {
+                            sobol_point(i, 1, sseed)
+                        } else {
+                            [0.0; 2]
+                        };
+                        m.push(draw(g, s, polar, u1, u2)?);
+                    }
+                }
+                PointSet::Fibonacci | PointSet::Prng => {
+                    let sh1 = [rng.next_f64(), rng.next_f64()];
+                    let sh2 = [rng.next_f64(), rng.next_f64()];
+                    for i in 0..n {
+                        let u1 = fibonacci_point(i, n, sh1);
+                        let u2 = if cost == 2 {
+                            fibonacci_point(i, n, sh2)
+                        } else {
+                            [0.0; 2]
+                        };
+                        m.push(draw(g, s, polar, u1, u2)?);
+                    }
+                }
+            }
+            spent += m.count() * cost as u64;
+            reps.push(m.mean());
+        }
+        Ok(Estimate {
+            value: reps.mean(),
+            error: reps.standard_error(),
+            evaluations: spent,
+        })
+    }
+
+    fn name(&self) -> &'static str {
+        NAMES[self.strategy.index()][point_index(self.points)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    struct Poly;
+    impl Integrand for Poly {
+        type Spectrum = f32;
+        fn eval(&self, w: Vec3) -> f32 {
+            1.0 + w.x * w.x + 2.0 * w.z * w.z * w.z
+        }
+    }
+
+    #[test]
+    fn names_are_unique_and_budgets_respected() {
+        let mut seen = [""; 20];
+        let mut c = 0;
+        for s in Strategy::ALL {
+            for p in PointSet::ALL {
+                let mc = MonteCarlo::new(s, p, 1);
+                let n = mc.name();
+                assert!(!seen[..c].contains(&n), "{n}");
+                seen[c] = n;
+                c += 1;
+                if matches!(s, Strategy::Uniform | Strategy::Cosine) {
+                    let e = mc.integrate(&Poly, 1000).unwrap();
+                    assert!(
+                        e.evaluations <= 1000 && e.evaluations >= 500,
+                        "{n} {}",
+                        e.evaluations
+                    );
+                    // ∫(1 + x² + 2z³) dω = 2π + 2π/3 + π
+                    let exact = TAU + TAU / 3.0 + core::f64::consts::PI;
+                    assert!((e.value - exact).abs() < 6.0 * e.error + 1e-9, "{n} {e:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn deterministic_per_seed() {
+        let mc = MonteCarlo::new(Strategy::Uniform, PointSet::Sobol, 3);
+        assert_eq!(mc.integrate(&Poly, 256), mc.integrate(&Poly, 256));
+        let other = MonteCarlo::new(Strategy::Uniform, PointSet::Sobol, 4);
+        assert_ne!(mc.integrate(&Poly, 256), other.integrate(&Poly, 256));
+        assert!(
+            MonteCarlo::new(Strategy::Uniform, PointSet::Sobol, 4)
+                .with_replicates(1)
+                .is_err()
+        );
+    }
+}
