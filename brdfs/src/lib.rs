@@ -21,4 +21,8 @@ pub use lambertian::Lambertian;
 pub use phong::ModifiedPhong;
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
+pub use microfacet::{
+    Beckmann, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, Microfacet, MicrofacetDistribution,
+    NoFresnel, Schlick, Separable, ShadowingMasking,
+};
 // -- end microfacet

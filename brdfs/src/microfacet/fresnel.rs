@@ -1,0 +1,302 @@
+//! Fresnel reflectance terms, chosen by type.
+
+use crate::error::{BrdfError, check_range};
+use radiometry::Spectrum;
+use radiometry::math::safe_sqrt;
+
+/// Smallest accepted (real part of the) relative index of refraction `η`.
+pub const MIN_ETA: f32 = 1e-3;
+/// Largest accepted (real part of the) relative index of refraction `η`.
+pub const MAX_ETA: f32 = 1e3;
+/// Largest accepted extinction coefficient `k` of a [`Conductor`].
+pub const MAX_K: f32 = 1e3;
+
+/// The Fresnel factor `F(cos θd)` of a microfacet BRDF, where `θd` is the
+/// angle between `ωi` and the microfacet normal `h`.
+///
+/// `cos_theta_d` is clamped to `[0, 1]` (NaN → 0, i.e. grazing); every
+/// implementor returns values in `[0, 1]` per channel, `F → 1` at grazing.
+///
+/// ```
+/// use radiometry_brdfs::microfacet::{Fresnel, NoFresnel, Schlick};
+/// assert_eq!(NoFresnel.eval(0.3), 1.0);
+/// assert!((Schlick::new(0.04f32).unwrap().eval(1.0) - 0.04).abs() < 1e-7);
+/// ```
+pub trait Fresnel {
+    /// The spectrum type of the reflectance.
+    type Spectrum: Spectrum;
+    /// `F(cos θd)` per channel.
+    fn eval(&self, cos_theta_d: f32) -> Self::Spectrum;
+}
+
+#[inline]
+fn clamp_cos(c: f32) -> f32 {
+    if c > 0.0 { c.min(1.0) } else { 0.0 }
+}
+
+/// No Fresnel effect: `F = 1` (zero-sized; costs nothing).
+///
+/// ```
+/// use radiometry_brdfs::microfacet::{Fresnel, NoFresnel};
+/// assert_eq!(NoFresnel.eval(0.0), 1.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct NoFresnel;
+
+impl Fresnel for NoFresnel {
+    type Spectrum = f32;
+    #[inline(always)]
+    fn eval(&self, _cos_theta_d: f32) -> f32 {
+        1.0
+    }
+}
+
+/// Schlick's approximation `F = f0 + (1 − f0)(1 − cos θd)⁵` (Schlick 1994,
+/// "An Inexpensive BRDF Model for Physically-based Rendering", CGF 13(3),
+/// eq. 15). Domain: every channel of `f0` in `[0, 1]`.
+///
+/// ```
+/// use radiometry::glam::Vec3;
+/// use radiometry_brdfs::microfacet::{Fresnel, Schlick};
+/// let f = Schlick::new(Vec3::new(0.9, 0.6, 0.3)).unwrap();
+/// assert_eq!(f.eval(0.0), Vec3::ONE);
+/// assert!(Schlick::new(1.5f32).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Schlick<S = f32> {
+    f0: S,
+}
+
+impl<S: Spectrum> Schlick<S> {
+    /// Validates `f0 ∈ [0, 1]` per channel.
+    pub fn new(f0: S) -> Result<Self, BrdfError> {
+        for i in 0..S::CHANNELS {
+            check_range("f0", f0.channel(i), 0.0, 1.0)?;
+        }
+        Ok(Schlick { f0 })
+    }
+
+    /// The normal-incidence reflectance `f0`.
+    pub fn f0(&self) -> S {
+        self.f0
+    }
+}
+
+impl<S: Spectrum> Fresnel for Schlick<S> {
+    type Spectrum = S;
+    #[inline]
+    fn eval(&self, cos_theta_d: f32) -> S {
+        let m = 1.0 - clamp_cos(cos_theta_d);
+        let m2 = m * m;
+        let w = m2 * m2 * m;
+        self.f0 + (S::splat(1.0) - self.f0) * w
+    }
+}
+
+/// Exact unpolarised Fresnel reflectance of a dielectric interface with
+/// relative index of refraction `η = η_t/η_i` (PBR 4th ed., §9.3, eq. 9.4–9.5;
+/// Born & Wolf, *Principles of Optics*, §1.5):
+///
+/// ```text
+/// cos θt = sqrt(1 − sin²θi/η²),
+/// r∥ = (η cos θi − cos θt)/(η cos θi + cos θt),  r⊥ = (cos θi − η cos θt)/(cos θi + η cos θt),
+/// F = (r∥² + r⊥²)/2,
+/// ```
+///
+/// and `F = 1` under total internal reflection (`sin²θi/η² ≥ 1`, only for
+/// `η < 1`). Domain: `η ∈ [MIN_ETA, MAX_ETA]`.
+///
+/// ```
+/// use radiometry_brdfs::microfacet::{Dielectric, Fresnel};
+/// let glass = Dielectric::new(1.5).unwrap();
+/// assert!((glass.eval(1.0) - 0.04).abs() < 1e-6);
+/// assert_eq!(Dielectric::new(1.0 / 1.5).unwrap().eval(0.3), 1.0); // TIR
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dielectric {
+    eta: f32,
+}
+
+impl Dielectric {
+    /// Validates `η ∈ [1e-3, 1e3]`.
+    pub fn new(eta: f32) -> Result<Self, BrdfError> {
+        Ok(Dielectric {
+            eta: check_range("eta", eta, MIN_ETA, MAX_ETA)?,
+        })
+    }
+
+    /// The relative index of refraction `η`.
+    pub fn eta(&self) -> f32 {
+        self.eta
+    }
+}
+
+impl Fresnel for Dielectric {
+    type Spectrum = f32;
+    #[inline]
+    fn eval(&self, cos_theta_d: f32) -> f32 {
+        let ci = clamp_cos(cos_theta_d);
+        let eta = self.eta;
+        let sin2_t = (1.0 - ci * ci) / (eta * eta);
+        if sin2_t >= 1.0 {
+            return 1.0;
+        }
+        let ct = safe_sqrt(1.0 - sin2_t);
+        let (np, dp) = (eta * ci - ct, eta * ci + ct);
+        let (ns, ds) = (ci - eta * ct, ci + eta * ct);
+        if dp <= 0.0 || ds <= 0.0 {
+            // η = 1 at exact grazing: the 0/0 limit is taken as 1.
+            return 1.0;
+        }
+        let (rp, rs) = (np / dp, ns / ds);
+        (0.5 * (rp * rp + rs * rs)).clamp(0.0, 1.0)
+    }
+}
+
+/// Exact unpolarised Fresnel reflectance of a conductor with complex
+/// relative index of refraction `η + i k` (PBR 4th ed., §9.4, `FrComplex`;
+/// Born & Wolf §14.2): the dielectric formula evaluated in complex
+/// arithmetic, `F = (|r∥|² + |r⊥|²)/2`. Domain: each channel of `η` in
+/// `[MIN_ETA, MAX_ETA]`, of `k` in `[0, MAX_K]`.
+///
+/// ```
+/// use radiometry_brdfs::microfacet::{Conductor, Fresnel};
+/// let gold_ish = Conductor::new(0.2f32, 3.0).unwrap();
+/// let f0 = (0.8f32 * 0.8 + 9.0) / (1.2 * 1.2 + 9.0);
+/// assert!((gold_ish.eval(1.0) - f0).abs() < 1e-5);
+/// assert!(Conductor::new(1.0f32, -1.0).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Conductor<S = f32> {
+    eta: S,
+    k: S,
+}
+
+impl<S: Spectrum> Conductor<S> {
+    /// Validates `η ∈ [1e-3, 1e3]` and `k ∈ [0, 1e3]` per channel.
+    pub fn new(eta: S, k: S) -> Result<Self, BrdfError> {
+        for i in 0..S::CHANNELS {
+            check_range("eta", eta.channel(i), MIN_ETA, MAX_ETA)?;
+            check_range("k", k.channel(i), 0.0, MAX_K)?;
+        }
+        Ok(Conductor { eta, k })
+    }
+
+    /// The real part `η` of the index.
+    pub fn eta(&self) -> S {
+        self.eta
+    }
+
+    /// The extinction coefficient `k`.
+    pub fn k(&self) -> S {
+        self.k
+    }
+}
+
+/// A minimal complex number for [`Conductor`].
+#[derive(Clone, Copy, Debug)]
+struct Cx {
+    re: f32,
+    im: f32,
+}
+
+impl Cx {
+    #[inline]
+    fn add(self, o: Cx) -> Cx {
+        Cx {
+            re: self.re + o.re,
+            im: self.im + o.im,
+        }
+    }
+    #[inline]
+    fn sub(self, o: Cx) -> Cx {
+        Cx {
+            re: self.re - o.re,
+            im: self.im - o.im,
+        }
+    }
+    #[inline]
+    fn mul(self, o: Cx) -> Cx {
+        Cx {
+            re: self.re * o.re - self.im * o.im,
+            im: self.re * o.im + self.im * o.re,
+        }
+    }
+    #[inline]
+    fn scale(self, s: f32) -> Cx {
+        Cx {
+            re: self.re * s,
+            im: self.im * s,
+        }
+    }
+    #[inline]
+    fn norm2(self) -> f32 {
+        self.re * self.re + self.im * self.im
+    }
+    /// Principal square root (Re ≥ 0), in the cancellation-free form
+    /// (Kahan 1987, "Branch cuts for complex elementary functions").
+    #[inline]
+    fn sqrt(self) -> Cx {
+        let r = libm::hypotf(self.re, self.im);
+        if r == 0.0 {
+            return Cx { re: 0.0, im: 0.0 };
+        }
+        if self.re >= 0.0 {
+            let t = libm::sqrtf(0.5 * (r + self.re));
+            Cx {
+                re: t,
+                im: self.im / (2.0 * t),
+            }
+        } else {
+            let t = libm::sqrtf(0.5 * (r - self.re));
+            Cx {
+                re: self.im.abs() / (2.0 * t),
+                im: libm::copysignf(t, self.im),
+            }
+        }
+    }
+}
+
+/// `|a/b|²` with the convention `1` when `b = 0` (grazing limit).
+#[inline]
+fn ratio_norm2(a: Cx, b: Cx) -> f32 {
+    let nb = b.norm2();
+    if nb.is_nan() || nb <= 0.0 {
+        return 1.0;
+    }
+    (a.norm2() / nb).clamp(0.0, 1.0)
+}
+
+/// `FrComplex(cos θi, η + ik)` for one channel.
+fn fr_complex(ci: f32, eta: f32, k: f32) -> f32 {
+    let e = Cx { re: eta, im: k };
+    let sin2_i = (1.0 - ci * ci).max(0.0);
+    // sin²θt = sin²θi / η² = sin²θi · conj(η²)/|η²|²
+    let e2 = e.mul(e);
+    let inv_e2 = Cx {
+        re: e2.re,
+        im: -e2.im,
+    }
+    .scale(1.0 / e2.norm2());
+    let sin2_t = inv_e2.scale(sin2_i);
+    let ct = Cx {
+        re: 1.0 - sin2_t.re,
+        im: -sin2_t.im,
+    }
+    .sqrt();
+    let c = Cx { re: ci, im: 0.0 };
+    let ec = e.scale(ci);
+    let ect = e.mul(ct);
+    let rp = ratio_norm2(ec.sub(ct), ec.add(ct));
+    let rs = ratio_norm2(c.sub(ect), c.add(ect));
+    (0.5 * (rp + rs)).clamp(0.0, 1.0)
+}
+
+impl<S: Spectrum> Fresnel for Conductor<S> {
+    type Spectrum = S;
+    #[inline]
+    fn eval(&self, cos_theta_d: f32) -> S {
+        let ci = clamp_cos(cos_theta_d);
+        S::from_fn(|i| fr_complex(ci, self.eta.channel(i), self.k.channel(i)))
+    }
+}
