@@ -196,3 +196,6 @@ pub mod monte_carlo;
 
 pub use monte_carlo::{Heuristic, MonteCarlo, Strategy};
 pub use points::PointSet;
+pub mod adaptive;
+
+pub use adaptive::Adaptive;

@@ -1,0 +1,371 @@
+//! Globally adaptive cubature on the unit square with the embedded
+//! Genz–Malik degree-7/degree-5 rule ([`Adaptive`]).
+
+use super::acc::{self, F32_FLOOR, WideSum};
+use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
+use crate::spectrum::WideSpectrum;
+
+/// Most live regions kept on the stack. When the table is full, the region
+/// with the smallest error estimate is retired ("frozen": its value and
+/// error are added to fixed totals and it is never split again).
+pub const MAX_REGIONS: usize = 512;
+
+/// Most evaluations an [`Adaptive`] run spends (`2²²`).
+pub const MAX_ADAPTIVE_EVALUATIONS: u32 = 1 << 22;
+
+/// Points of the 2-D Genz–Malik rule.
+const GM_POINTS: usize = 17;
+
+// Genz & Malik (1980), "An adaptive algorithm for numerical integration over
+// an N-dimensional rectangular region", J. Comput. Appl. Math. 6(4),
+// Eqs. (3.2)–(3.4), with n = 2 dimensions. Generators on [-1,1]^2:
+// λ₂² = 9/70, λ₃² = λ₄² = 9/10, λ₅² = 9/19.
+// Degree-7 weights (normalised so that Σ = 1 over the 17 points):
+//   w₁ = (12824 − 9120n + 400n²)/19683, w₂ = 980/6561,
+//   w₃ = (1820 − 400n)/19683, w₄ = 200/19683, w₅ = 6859/19683/2ⁿ.
+// Embedded degree-5 weights:
+//   w₁' = (729 − 950n + 50n²)/729, w₂' = 245/486,
+//   w₃' = (265 − 100n)/1458, w₄' = 25/729.
+const N: f64 = 2.0;
+const W7: [f64; 5] = [
+    (12824.0 - 9120.0 * N + 400.0 * N * N) / 19683.0,
+    980.0 / 6561.0,
+    (1820.0 - 400.0 * N) / 19683.0,
+    200.0 / 19683.0,
+    6859.0 / 19683.0 / 4.0,
+];
+const W5: [f64; 4] = [
+    (729.0 - 950.0 * N + 50.0 * N * N) / 729.0,
+    245.0 / 486.0,
+    (265.0 - 100.0 * N) / 1458.0,
+    25.0 / 729.0,
+];
+
+/// The generators `(t₀, t₁, class)` of the 17 points on `[-1,1]²`.
+fn gm_points() -> [(f64, f64, usize); GM_POINTS] {
+    let l2 = libm::sqrt(9.0 / 70.0);
+    let l3 = libm::sqrt(9.0 / 10.0);
+    let l4 = l3;
+    let l5 = libm::sqrt(9.0 / 19.0);
+    [
+        (0.0, 0.0, 0),
+        (l2, 0.0, 1),
+        (-l2, 0.0, 1),
+        (0.0, l2, 1),
+        (0.0, -l2, 1),
+        (l3, 0.0, 2),
+        (-l3, 0.0, 2),
+        (0.0, l3, 2),
+        (0.0, -l3, 2),
+        (l4, l4, 3),
+        (l4, -l4, 3),
+        (-l4, l4, 3),
+        (-l4, -l4, 3),
+        (l5, l5, 4),
+        (l5, -l5, 4),
+        (-l5, l5, 4),
+        (-l5, -l5, 4),
+    ]
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Region<W> {
+    c: [f64; 2],
+    h: [f64; 2],
+    value: W,
+    error: W,
+    /// Channel-wise Σ|w f| (for the f32 rounding floor).
+    abs: W,
+    /// Scalar priority: largest channel of `error`.
+    key: f64,
+    /// Axis with the larger fourth difference (split here).
+    axis: u8,
+}
+
+/// Applies the rule to the rectangle `c ± h`.
+fn rule<W: WideSpectrum>(
+    c: [f64; 2],
+    h: [f64; 2],
+    f: &mut impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+) -> Result<Region<W>, IntegrateError> {
+    let pts = gm_points();
+    let mut vals = [W::splat(0.0); GM_POINTS];
+    for (k, &(t0, t1, _)) in pts.iter().enumerate() {
+        vals[k] = f(c[0] + h[0] * t0, c[1] + h[1] * t1)?;
+    }
+    let vol = 4.0 * h[0] * h[1];
+    let mut i7 = WideSum::<W>::new();
+    let mut i5 = WideSum::<W>::new();
+    let mut ab = WideSum::<W>::new();
+    for (k, &(_, _, cls)) in pts.iter().enumerate() {
+        let v = vals[k];
+        i7.add(v.map(|x| x * W7[cls] * vol));
+        ab.add(v.map(|x| (x * W7[cls] * vol).abs()));
+        if cls < 4 {
+            i5.add(v.map(|x| x * W5[cls] * vol));
+        }
+    }
+    let (i7, i5) = (i7.value(), i5.value());
+    // Fourth divided differences along each axis (Genz & Malik 1980, §4):
+    // D_i = |f(λ₂eᵢ)+f(−λ₂eᵢ)−2f₀ − (λ₂²/λ₃²)(f(λ₃eᵢ)+f(−λ₃eᵢ)−2f₀)|.
+    let ratio = (9.0 / 70.0) / (9.0 / 10.0);
+    let fourth = |a: usize, b: usize, p: usize, q: usize| -> f64 {
+        (0..W::CHANNELS)
+            .map(|i| {
+                let f0 = vals[0].channel(i);
+                let d2 = vals[a].channel(i) + vals[b].channel(i) - 2.0 * f0;
+                let d3 = vals[p].channel(i) + vals[q].channel(i) - 2.0 * f0;
+                (d2 - ratio * d3).abs()
+            })
+            .sum()
+    };
+    let dx = fourth(1, 2, 5, 6);
+    let dy = fourth(3, 4, 7, 8);
+    let error = acc::abs_diff(i7, i5);
+    Ok(Region {
+        c,
+        h,
+        value: i7,
+        error,
+        abs: ab.value(),
+        key: acc::max_abs(error),
+        axis: if dy > dx { 1 } else { 0 },
+    })
+}
+
+/// Globally adaptive Genz–Malik cubature over `[0,1]²` — by default the
+/// hemisphere in `(μ = cos θ, φ/2π)` (so `∫_H g dω = 2π ∫∫ g da db`), or,
+/// with `warped`, the unit square of the integrand's sampling map
+/// (`∫ g/p du`, see [`super::WarpedGaussLegendre`]).
+///
+/// Each region gets the 17-point degree-7 Genz–Malik rule with its
+/// embedded degree-5 rule; the region error is `|I₇ − I₅|` (Genz & Malik
+/// 1980, J. Comput. Appl. Math. 6(4); the scheme of van Dooren & de
+/// Ridder 1976 and of HCubature/`cubature`). The region with the largest
+/// error is halved along the axis with the larger fourth difference, until
+///
+/// `Σ errors ≤ max(abs_tol, rel_tol · |Σ values|)` (largest channel), or
+/// the budget cannot pay for another split (34 evaluations).
+///
+/// Start: a 2 × 2 grid of regions (68 evaluations = minimum budget).
+/// Reported error = `Σ region errors + 2⁻²³ Σ|w g|` (the `f32` rounding
+/// floor), channel-wise. Memory: at most [`MAX_REGIONS`] live regions on
+/// the stack; beyond that the smallest-error region is frozen (its error
+/// stays in the total, so the estimate remains honest). At most
+/// [`MAX_ADAPTIVE_EVALUATIONS`] are spent. NaN/∞ → `NonFiniteIntegrand`.
+/// `warped` without a sampling map → `NoSamplingMap`.
+///
+/// ```
+/// use radiometry::integrator::{Adaptive, Integrand, Integrator};
+/// use radiometry::glam::Vec3;
+/// struct Cos8;
+/// impl Integrand for Cos8 {
+///     type Spectrum = f32;
+///     fn eval(&self, w: Vec3) -> f32 { w.z.powi(8) }
+/// }
+/// let a = Adaptive::new(1e-6, 0.0).unwrap();
+/// let e = a.integrate(&Cos8, 100_000).unwrap();
+/// let exact = 2.0 * core::f64::consts::PI / 9.0;
+/// assert!((e.value - exact).abs() <= e.error);
+/// assert!(e.error <= 1e-6 * exact * 1.01);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptive {
+    rel_tol: f64,
+    abs_tol: f64,
+    warped: bool,
+}
+
+impl Adaptive {
+    /// Smallest accepted budget (4 regions × 17 points).
+    pub const MIN_BUDGET: u32 = 4 * GM_POINTS as u32;
+
+    /// Adaptive cubature over the hemisphere stopping at relative
+    /// tolerance `rel_tol` or absolute tolerance `abs_tol`, whichever is
+    /// looser. Both must be finite and `≥ 0`
+    /// (else [`IntegrateError::InvalidConfig`]); `0, 0` refines until the
+    /// budget is spent.
+    pub fn new(rel_tol: f64, abs_tol: f64) -> Result<Self, IntegrateError> {
+        if !(rel_tol.is_finite() && rel_tol >= 0.0) {
+            return Err(IntegrateError::InvalidConfig("rel_tol must be finite and >= 0"));
+        }
+        if !(abs_tol.is_finite() && abs_tol >= 0.0) {
+            return Err(IntegrateError::InvalidConfig("abs_tol must be finite and >= 0"));
+        }
+        Ok(Self {
+            rel_tol,
+            abs_tol,
+            warped: false,
+        })
+    }
+
+    /// The same rule applied on the integrand's sampling-map square.
+    pub const fn warped(mut self) -> Self {
+        self.warped = true;
+        self
+    }
+
+    /// Whether this runs on the sampling-map square.
+    pub const fn is_warped(&self) -> bool {
+        self.warped
+    }
+
+    /// `(rel_tol, abs_tol)`.
+    pub const fn tolerances(&self) -> (f64, f64) {
+        (self.rel_tol, self.abs_tol)
+    }
+
+    fn run<W: WideSpectrum>(
+        &self,
+        budget: u32,
+        mut f: impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+    ) -> Result<Estimate<W>, IntegrateError> {
+        if budget < Self::MIN_BUDGET {
+            return Err(IntegrateError::BudgetTooSmall {
+                minimum: Self::MIN_BUDGET,
+            });
+        }
+        let budget = budget.min(MAX_ADAPTIVE_EVALUATIONS) as u64;
+        let zero = W::splat(0.0);
+        let empty = Region {
+            c: [0.0; 2],
+            h: [0.0; 2],
+            value: zero,
+            error: zero,
+            abs: zero,
+            key: 0.0,
+            axis: 0,
+        };
+        let mut regions = [empty; MAX_REGIONS];
+        let mut live = 0usize;
+        for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            regions[live] = rule(
+                [0.25 + 0.5 * i as f64, 0.25 + 0.5 * j as f64],
+                [0.25, 0.25],
+                &mut f,
+            )?;
+            live += 1;
+        }
+        let mut evals = 4 * GM_POINTS as u64;
+        let mut frozen_val = WideSum::<W>::new();
+        let mut frozen_err = WideSum::<W>::new();
+        let mut frozen_abs = WideSum::<W>::new();
+        let mut frozen_key = 0.0f64;
+        loop {
+            // Totals and the worst region.
+            let mut worst = 0usize;
+            let mut err_sum = frozen_key;
+            let mut val = frozen_val;
+            for (k, r) in regions[..live].iter().enumerate() {
+                err_sum += r.key;
+                val.add(r.value);
+                if r.key > regions[worst].key {
+                    worst = k;
+                }
+            }
+            let target = self.abs_tol.max(self.rel_tol * acc::max_abs(val.value()));
+            if err_sum <= target || evals + 2 * GM_POINTS as u64 > budget {
+                break;
+            }
+            let r = regions[worst];
+            let ax = r.axis as usize;
+            let mut h = r.h;
+            h[ax] *= 0.5;
+            let mut c1 = r.c;
+            let mut c2 = r.c;
+            c1[ax] -= h[ax];
+            c2[ax] += h[ax];
+            let a = rule(c1, h, &mut f)?;
+            let b = rule(c2, h, &mut f)?;
+            evals += 2 * GM_POINTS as u64;
+            regions[worst] = a;
+            if live == MAX_REGIONS {
+                // Freeze the smallest-error region to make room.
+                let mut best = 0usize;
+                for (k, q) in regions[..live].iter().enumerate() {
+                    if q.key < regions[best].key {
+                        best = k;
+                    }
+                }
+                let q = regions[best];
+                frozen_val.add(q.value);
+                frozen_err.add(q.error);
+                frozen_abs.add(q.abs);
+                frozen_key += q.key;
+                regions[best] = b;
+            } else {
+                regions[live] = b;
+                live += 1;
+            }
+        }
+        let (mut val, mut err, mut abs) = (frozen_val, frozen_err, frozen_abs);
+        for r in &regions[..live] {
+            val.add(r.value);
+            err.add(r.error);
+            abs.add(r.abs);
+        }
+        Ok(Estimate {
+            value: val.value(),
+            error: acc::add(err.value(), abs.value().map(|a| a * F32_FLOOR)),
+            evaluations: evals,
+        })
+    }
+}
+
+impl Integrator for Adaptive {
+    fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
+        if self.warped {
+            if !g.has_sampling_map() {
+                return Err(IntegrateError::NoSamplingMap);
+            }
+            self.run(budget, |a, b| acc::warped_point(g, a, b))
+        } else {
+            self.run(budget, |a, b| acc::hemisphere_point(g, a, b))
+        }
+    }
+
+    fn name(&self) -> &'static str {
+        if self.warped {
+            "adaptive-warped"
+        } else {
+            "adaptive"
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn genz_malik_degrees() {
+        // Degree-7 rule exact for x^a y^b, a+b ≤ 7; degree-5 for a+b ≤ 5.
+        let pts = gm_points();
+        for a in 0..8i32 {
+            for b in 0..(8 - a) {
+                let exact = |k: i32| if k % 2 == 1 { 0.0 } else { 2.0 / (k as f64 + 1.0) };
+                let ex = exact(a) * exact(b);
+                let q7: f64 = pts
+                    .iter()
+                    .map(|&(x, y, c)| 4.0 * W7[c] * libm::pow(x, a as f64) * libm::pow(y, b as f64))
+                    .sum();
+                assert!((q7 - ex).abs() < 1e-14, "deg7 {a} {b}: {q7} vs {ex}");
+                if a + b <= 5 {
+                    let q5: f64 = pts
+                        .iter()
+                        .filter(|p| p.2 < 4)
+                        .map(|&(x, y, c)| 4.0 * W5[c] * libm::pow(x, a as f64) * libm::pow(y, b as f64))
+                        .sum();
+                    assert!((q5 - ex).abs() < 1e-14, "deg5 {a} {b}: {q5} vs {ex}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rejects_bad_config() {
+        assert!(Adaptive::new(f64::NAN, 0.0).is_err());
+        assert!(Adaptive::new(0.0, -1.0).is_err());
+        assert!(Adaptive::new(0.0, 0.0).is_ok());
+    }
+}
