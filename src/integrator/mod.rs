@@ -199,3 +199,6 @@ pub use points::PointSet;
 pub mod adaptive;
 
 pub use adaptive::Adaptive;
+mod tolerance;
+
+pub use tolerance::{DEFAULT_MAX_BUDGET, StopReason, ToleranceOutcome, integrate_to_tolerance};
