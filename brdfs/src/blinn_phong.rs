@@ -245,3 +245,268 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
 }
 
 impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::phong::test_support::*;
+    use core::f64::consts::{FRAC_PI_2, PI as PI64, TAU};
+    use std::string::ToString;
+
+    fn bp(kd: f32, ks: f32, n: f32) -> BlinnPhong {
+        BlinnPhong::new(kd, ks, n).unwrap()
+    }
+
+    /// Reference normalisation, typed in f64 from the closed form
+    /// `(n+2)(n+4)/(8π(n + 2^{−n/2}))`.
+    fn norm_ref(n: f64) -> f64 {
+        (n + 2.0) * (n + 4.0) / (8.0 * PI64 * (n + libm::pow(2.0, -n / 2.0)))
+    }
+
+    #[test]
+    fn normalization_closed_form_and_limits() {
+        assert!((BlinnPhong::<f32>::normalization(0.0) as f64 - 1.0 / PI64).abs() < 1e-7);
+        for &n in &[0.5f32, 1.0, 11.0, 1e3, 1e6, MAX_EXPONENT] {
+            let (got, e) = (BlinnPhong::<f32>::normalization(n) as f64, norm_ref(n as f64));
+            assert!((got - e).abs() <= 1e-6 * e, "{n}: {got} vs {e}");
+        }
+        // Large-n asymptote (n + 6)/(8π) and finiteness at the maximum.
+        let n = 1e6f64;
+        assert!((norm_ref(n) - (n + 6.0) / (8.0 * PI64)).abs() < 1e-5);
+        assert!(BlinnPhong::<f32>::normalization(f32::NAN).is_finite());
+    }
+
+    /// f = kd/π + ks N(n) cos^n θh with θh known in closed form for
+    /// in-plane directions: wo at +a, wi at −b (polar angles) → θh = |a − b|/2.
+    #[test]
+    fn formula_spot_checks() {
+        for &n in &[0.0f32, 1.0, 50.0, 1e6, MAX_EXPONENT] {
+            let b = bp(0.1, 0.9, n);
+            let expect = 0.1 / PI64 + 0.9 * norm_ref(n as f64);
+            for &(wi, wo) in &[(Vec3::Z, Vec3::Z), (dir_xz(-0.8), dir_xz(0.8))] {
+                let f = b.eval(wi, wo) as f64;
+                assert!((f - expect).abs() <= 1e-5 * expect, "{n}: {f} vs {expect}");
+            }
+        }
+        for &(a, bb, n) in &[
+            (0.8f64, 0.5f64, 10.0f32),
+            (0.3, 0.0, 2.5),
+            (1.2, 1.0, 300.0),
+            (0.4, -0.4, 1.0),
+        ] {
+            let b = bp(0.2, 0.8, n);
+            let th = 0.5 * (a - bb).abs();
+            let expect = 0.2 / PI64 + 0.8 * norm_ref(n as f64) * libm::pow(libm::cos(th), n as f64);
+            let f = b.eval(dir_xz(-bb), dir_xz(a)) as f64;
+            assert!(
+                (f - expect).abs() <= 1e-4 * expect,
+                "{a} {bb} {n}: {f} vs {expect}"
+            );
+        }
+        // n = 0: a constant (kd + ks)/π in the upper hemisphere.
+        let f = bp(0.25, 0.5, 0.0).eval(dir_xz(1.3), dir_xz(1.4)) as f64;
+        assert!((f - 0.75 / PI64).abs() < 1e-7);
+    }
+
+    #[test]
+    fn constructor_validation_and_messages() {
+        let e = BlinnPhong::new(0.1f32, f32::NAN, 1.0).unwrap_err();
+        assert_eq!(e.to_string(), "parameter `ks` must be finite");
+        let e = BlinnPhong::new(-0.5f32, 0.1, 1.0).unwrap_err();
+        assert_eq!(e.to_string(), "parameter `kd` = -0.5 is outside [0, 1]");
+        let e = BlinnPhong::new(0.7f32, 0.7, 1.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid parameters: kd + ks must not exceed 1 in any channel (energy conservation)"
+        );
+        let e = BlinnPhong::new(0.1f32, 0.1, 1.5e7).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "parameter `exponent` = 15000000 is outside [0, 10000000]"
+        );
+        assert!(BlinnPhong::new(0.1f32, 0.1, f32::NAN).is_err());
+        assert!(BlinnPhong::new(Vec3::new(0.1, 0.6, 0.1), Vec3::new(0.1, 0.6, 0.1), 1.0).is_err());
+        assert!(BlinnPhong::new(0.3f32, 0.7, 0.0).is_ok());
+        assert!(BlinnPhong::new(0.0f32, 1.0, MAX_EXPONENT).is_ok());
+    }
+
+    /// The lobe albedo at normal incidence is 1 for ks = 1 (independent
+    /// f64 quadrature over ωi), which is what N(n) is derived for.
+    #[test]
+    fn lobe_albedo_is_one_at_normal_incidence() {
+        for &n in &[0.0f32, 0.5, 1.0, 11.0, 100.0, 1000.0] {
+            let a = albedo(&bp(0.0, 1.0, n), Vec3::Z, 0, 4000, 16);
+            std::eprintln!("blinn lobe albedo n={n}: {a:.9} (err {:.2e})", a - 1.0);
+            assert!((a - 1.0).abs() < 1e-4, "n={n}: {a}");
+        }
+    }
+
+    /// Energy conservation: albedo ≤ 1 at every θo (it peaks at normal
+    /// incidence), for ks = 1 and for kd + ks = 1.
+    #[test]
+    fn energy_at_most_one() {
+        for &n in &[0.3f32, 1.0, 4.0, 11.0, 30.0, 100.0] {
+            let mut prev = 1.0 + 1e-4;
+            for &t in &[0.0f64, 0.1, 0.3, 0.6, 1.0, 1.4, 1.55] {
+                let a = albedo(&bp(0.0, 1.0, n), dir_xz(t), 0, 1500, 512);
+                std::eprintln!("blinn albedo n={n} θo={t}: {a:.6}");
+                assert!(a <= 1.0 + 1e-4 && a > 0.0, "n={n} θo={t}: {a}");
+                assert!(
+                    a <= prev + 1e-4,
+                    "not decreasing in θo: n={n} θo={t}: {a} > {prev}"
+                );
+                prev = a;
+            }
+            let a = albedo(&bp(0.4, 0.6, n), dir_xz(0.2), 0, 1500, 512);
+            assert!(a <= 1.0 + 1e-4, "{a}");
+        }
+        let a = albedo(&bp(0.0, 1.0, 1000.0), dir_xz(0.5), 0, 3000, 4096);
+        assert!(a <= 1.0 + 1e-4 && a > 0.7, "{a}");
+    }
+
+    #[test]
+    fn sampling_matches_pdf_and_weight_on_grid() {
+        let params = [
+            (0.5f32, 0.5f32, 10.0f32),
+            (0.0, 1.0, 0.0),
+            (1.0, 0.0, 5.0),
+            (0.2, 0.8, 1e6),
+            (0.0, 1.0, MAX_EXPONENT),
+        ];
+        for &(kd, ks, n) in &params {
+            let b = bp(kd, ks, n);
+            for &t in &[0.0f64, 0.5, 1.2, 1.5706, FRAC_PI_2 - 1e-7] {
+                let (some, ep, ew) = check_sampling(&b, dir_xz(t));
+                std::eprintln!(
+                    "blinn sampling {kd} {ks} n={n} θo={t}: {some}/121 some, pdf err {ep:.1e}, weight err {ew:.1e}"
+                );
+                assert!(some > 0, "no sample for {kd} {ks} {n} {t}");
+            }
+        }
+        let b = bp(0.0, 0.0, 3.0);
+        assert!(b.sample(Vec3::Z, [0.5, 0.5]).is_none());
+        assert_eq!(b.pdf(Vec3::Z, Vec3::Z), 0.0);
+    }
+
+    /// Mass of half vectors h (density (n+1)/(2π) cos^n θh) whose
+    /// reflection of ωo = (sin θo, 0, cos θo) is at or below the horizon;
+    /// f64 midpoint quadrature over h written here (in h-space, so it also
+    /// checks the 1/(4 ωo·h) Jacobian of the code under test).
+    fn rejected_lobe_mass(n: f64, theta_o: f64) -> f64 {
+        let (n_t, n_p) = (3000, 2048);
+        let wo = [libm::sin(theta_o), 0.0, libm::cos(theta_o)];
+        let mut sum = 0.0;
+        for i in 0..n_t {
+            let th = (i as f64 + 0.5) / n_t as f64 * FRAC_PI_2;
+            let (st, ct) = (libm::sin(th), libm::cos(th));
+            let mut ring = 0.0;
+            for j in 0..n_p {
+                let ph = (j as f64 + 0.5) / n_p as f64 * TAU;
+                let h = [st * libm::cos(ph), st * libm::sin(ph), ct];
+                let d = wo[0] * h[0] + wo[1] * h[1] + wo[2] * h[2];
+                let wi_z = 2.0 * d * h[2] - wo[2];
+                if d <= 0.0 || wi_z <= 0.0 {
+                    ring += 1.0;
+                }
+            }
+            sum +=
+                ring / n_p as f64 * TAU * (n + 1.0) / TAU * libm::pow(ct, n) * st * (FRAC_PI_2 / n_t as f64);
+        }
+        sum
+    }
+
+    /// ∫_H pdf = pd + ps (1 − rejected lobe mass); at normal incidence the
+    /// rejected mass is 2^{−(n+1)/2} in closed form.
+    #[test]
+    fn pdf_integrates_to_expected_mass() {
+        for &n in &[0.0f32, 1.0, 10.0, 1000.0] {
+            for &(kd, ks) in &[(0.0f32, 1.0f32), (0.5, 0.5)] {
+                let pd = kd as f64 / (kd + ks) as f64;
+                let expect = pd + (1.0 - pd) * (1.0 - libm::pow(2.0, -(n as f64 + 1.0) / 2.0));
+                let m = pdf_mass(&bp(kd, ks, n), Vec3::Z, 4000, 16);
+                std::eprintln!("blinn pdf mass n={n} kd={kd} normal: {m:.7} expect {expect:.7}");
+                assert!((m - expect).abs() < 1e-4, "n={n} kd={kd}: {m} vs {expect}");
+            }
+        }
+        for &n in &[1.0f32, 10.0, 100.0] {
+            for &t in &[0.5f64, 1.0, 1.4] {
+                let (kd, ks) = (0.3f32, 0.6f32);
+                let pd = kd as f64 / (kd + ks) as f64;
+                let expect = pd + (1.0 - pd) * (1.0 - rejected_lobe_mass(n as f64, t));
+                let m = pdf_mass(&bp(kd, ks, n), dir_xz(t), 1500, 512);
+                std::eprintln!(
+                    "blinn pdf mass n={n} θo={t}: {m:.6} expect {expect:.6} err {:.2e}",
+                    m - expect
+                );
+                assert!((m - expect).abs() < 5e-4, "n={n} θo={t}: {m} vs {expect}");
+            }
+        }
+    }
+
+    /// E[weight] over stratified samples equals the quadrature albedo.
+    #[test]
+    fn sampling_is_unbiased() {
+        for &(kd, ks, n, t) in &[
+            (0.3f32, 0.6f32, 10.0f32, 0.8f64),
+            (0.0, 1.0, 100.0, 1.2),
+            (0.5, 0.5, 1.0, 0.0),
+        ] {
+            let b = bp(kd, ks, n);
+            let wo = dir_xz(t);
+            let reference = albedo(&b, wo, 0, 1500, 512);
+            let mc = sampled_albedo(&b, wo, 1024);
+            std::eprintln!(
+                "blinn MC albedo {kd} {ks} n={n} θo={t}: {mc:.6} vs {reference:.6} rel {:.2e}",
+                mc / reference - 1.0
+            );
+            assert!(
+                (mc - reference).abs() < 5e-3 * reference,
+                "{kd} {ks} {n} {t}: {mc} vs {reference}"
+            );
+        }
+    }
+
+    #[test]
+    fn stability_hard_cases() {
+        let cases = [
+            (Vec3::Z, -Vec3::Z),
+            (Vec3::new(1.0, 0.0, 1e-7), Vec3::new(-1.0, 0.0, 1e-7)),
+            (Vec3::new(1.0, 0.0, 1e-7), Vec3::new(1.0, 0.0, 1e-7)),
+            (Vec3::new(1.0, 0.0, 0.0), Vec3::new(-1.0, 0.0, 0.0)),
+            (Vec3::new(1.0, 0.0, 1e-20), Vec3::new(-1.0, 0.0, 1e-20)),
+            (Vec3::ZERO, Vec3::Z),
+            (Vec3::new(3.0, 1.0, 2.0), Vec3::new(-0.001, 0.0, 0.002)),
+        ];
+        for bb in [bp(0.2, 0.8, MAX_EXPONENT), bp(0.0, 1.0, 0.0), bp(0.5, 0.5, 1e6)] {
+            for &(wi, wo) in &cases {
+                for (x, y) in [(wi, wo), (wo, wi)] {
+                    let (f, p) = (bb.eval(x, y), bb.pdf(x, y));
+                    assert!(
+                        f.is_finite() && f >= 0.0 && p.is_finite() && p >= 0.0,
+                        "{x:?} {y:?} {f} {p}"
+                    );
+                    assert_eq!(bb.eval(x, y), bb.eval(y, x));
+                }
+            }
+            for &u in &[[0.0, 0.0], [ONE, ONE], [0.0, ONE], [ONE, 0.0]] {
+                for wo in [
+                    Vec3::Z,
+                    Vec3::new(1.0, 0.0, 1e-7),
+                    Vec3::new(0.3, 0.1, 0.0),
+                    Vec3::new(0.0, 0.0, -1.0),
+                ] {
+                    if let Some(s) = bb.sample(wo, u) {
+                        assert!(s.pdf.is_finite() && s.pdf > 0.0 && s.weight.is_finite() && s.wi.z > 0.0);
+                    }
+                }
+            }
+        }
+        let (wi, wo) = (dir_xz(-0.45), dir_xz(0.5));
+        let b = bp(0.2, 0.8, 50.0);
+        let (f1, f2) = (b.eval(wi, wo), b.eval(wi * 7.0, wo * 0.01));
+        assert!((f1 - f2).abs() <= 1e-4 * f1, "{f1} {f2}");
+    }
+
+    const ONE: f32 = radiometry::math::ONE_MINUS_EPSILON;
+}

@@ -126,3 +126,98 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
 }
 
 impl<S: Spectrum> IsotropicBrdf for Lambertian<S> {}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::phong::test_support::*;
+    use core::f64::consts::PI as PI64;
+    use std::string::ToString;
+
+    #[test]
+    fn eval_is_albedo_over_pi_above_horizon_only() {
+        let b = Lambertian::new(Vec3::new(0.9, 0.5, 0.0)).unwrap();
+        for &(ti, to) in &[
+            (0.0f64, 0.0f64),
+            (0.3, -1.2),
+            (1.5, 1.5),
+            (core::f64::consts::FRAC_PI_2 - 1e-7, 0.1),
+        ] {
+            let f = b.eval(dir_xz(ti), dir_xz(to));
+            for (c, rho) in [0.9f64, 0.5, 0.0].into_iter().enumerate() {
+                assert!((f.channel(c) as f64 - rho / PI64).abs() < 1e-7, "{ti} {to} {c}");
+            }
+        }
+        for &(wi, wo) in &[
+            (Vec3::new(1.0, 0.0, 0.0), Vec3::Z),
+            (Vec3::Z, Vec3::new(0.6, 0.0, -0.8)),
+            (Vec3::Z, -Vec3::Z),
+            (Vec3::ZERO, Vec3::Z),
+            (Vec3::new(0.0, 0.0, -1e-30), Vec3::Z),
+        ] {
+            assert_eq!(b.eval(wi, wo), Vec3::ZERO, "{wi:?} {wo:?}");
+            assert_eq!(b.eval(wo, wi), Vec3::ZERO, "{wi:?} {wo:?}");
+            assert_eq!(b.pdf(wi, wo), 0.0);
+        }
+        // Non-unit and grazing-but-above inputs.
+        assert_eq!(
+            b.eval(Vec3::new(5.0, 0.0, 1e-7), Vec3::Z * 0.01),
+            b.albedo() * FRAC_1_PI
+        );
+    }
+
+    #[test]
+    fn constructor_validation_and_messages() {
+        let e = Lambertian::new(f32::NAN).unwrap_err();
+        assert_eq!(e.to_string(), "parameter `albedo` must be finite");
+        let e = Lambertian::new(-0.25f32).unwrap_err();
+        assert_eq!(e.to_string(), "parameter `albedo` = -0.25 is outside [0, 1]");
+        assert!(matches!(
+            Lambertian::new(1.0001f32),
+            Err(BrdfError::OutOfRange { .. })
+        ));
+        assert!(Lambertian::new(Vec3::new(0.5, 0.5, f32::INFINITY)).is_err());
+        assert!(Lambertian::new(Vec3::new(0.5, -0.0001, 0.5)).is_err());
+        assert!(Lambertian::new(0.0f32).is_ok() && Lambertian::new(1.0f32).is_ok());
+    }
+
+    /// Directional albedo = ρ for every ωo, by independent f64 quadrature.
+    #[test]
+    fn albedo_equals_rho_by_quadrature() {
+        let b = Lambertian::new(Vec3::new(0.8, 0.45, 0.1)).unwrap();
+        for &t in &[0.0f64, 0.7, 1.4, 1.5706] {
+            for (c, rho) in [0.8f64, 0.45, 0.1].into_iter().enumerate() {
+                let a = albedo(&b, dir_xz(t), c, 2000, 16);
+                assert!((a - rho).abs() < 1e-6, "θo={t} c={c}: {a}");
+            }
+        }
+    }
+
+    /// ∫_H pdf = 1 (cosine sampling never leaves the hemisphere).
+    #[test]
+    fn pdf_integrates_to_one() {
+        let b = Lambertian::new(0.5f32).unwrap();
+        for &t in &[0.0f64, 1.0, 1.55] {
+            let m = pdf_mass(&b, dir_xz(t), 2000, 16);
+            assert!((m - 1.0).abs() < 1e-6, "{m}");
+        }
+    }
+
+    #[test]
+    fn sampling_matches_pdf_and_weight_on_grid() {
+        let b = Lambertian::new(Vec3::new(0.3, 0.6, 0.9)).unwrap();
+        for &t in &[0.0f64, 0.9, core::f64::consts::FRAC_PI_2 - 1e-7] {
+            let wo = dir_xz(t);
+            let (some, _, _) = check_sampling(&b, wo);
+            // Only the border of the square maps to the horizon (u0 or u1 = 0).
+            assert!(some >= 100, "{some}");
+            let s = b.sample(wo, [0.4, 0.8]).unwrap();
+            assert_eq!(s.weight, b.albedo());
+        }
+        assert!(b.sample(Vec3::new(0.6, 0.0, -0.8), [0.5, 0.5]).is_none());
+        assert!(b.sample(Vec3::new(1.0, 0.0, 0.0), [0.5, 0.5]).is_none());
+        let mc = sampled_albedo(&b, dir_xz(0.4), 256);
+        assert!((mc - 0.3).abs() < 1e-3, "{mc}");
+    }
+}

@@ -573,7 +573,7 @@ mod tests {
         ];
         for &(kd, ks, n) in &params {
             let b = phong(kd, ks, n);
-            for &t in &[0.0f64, 0.5, 1.2, 1.5707, core::f64::consts::FRAC_PI_2 - 1e-7] {
+            for &t in &[0.0f64, 0.5, 1.2, 1.5706, core::f64::consts::FRAC_PI_2 - 1e-7] {
                 let wo = dir_xz(t);
                 let (some, ep, ew) = check_sampling(&b, wo);
                 std::eprintln!(
