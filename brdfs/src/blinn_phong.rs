@@ -444,6 +444,42 @@ mod tests {
         }
     }
 
+    /// The half vectors of lobe samples follow cos^n θh even for huge n:
+    /// KS distance of `δ = 1 − cos θh` (recomputed in f64 from the returned
+    /// ωi and ωo) to the closed-form CDF `1 − (1 − δ)^{n+1}`.
+    #[test]
+    fn half_vectors_follow_closed_form_cdf() {
+        let m = 4000;
+        for &n in &[1.0f32, 100.0, 1e4, 1e6, MAX_EXPONENT] {
+            let b = bp(0.0, 1.0, n);
+            let wo = dir_xz(0.3);
+            let mut deltas = std::vec::Vec::with_capacity(m);
+            let mut rejected = 0;
+            for i in 0..m {
+                let u = [(i as f32 + 0.5) / m as f32, 0.37];
+                let Some(s) = b.sample(wo, u) else {
+                    rejected += 1;
+                    continue;
+                };
+                let h = [
+                    (s.wi.x + wo.x) as f64,
+                    (s.wi.y + wo.y) as f64,
+                    (s.wi.z + wo.z) as f64,
+                ];
+                let l = libm::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                let (hx, hy, hz) = (h[0] / l, h[1] / l, h[2] / l);
+                deltas.push((hx * hx + hy * hy) / (1.0 + hz));
+            }
+            // Only the broad n = 1 lobe can reflect below the horizon at θo = 0.3.
+            assert!(n <= 1.0 || rejected == 0, "{n}: {rejected}");
+            if rejected == 0 {
+                let d = ks_distance_cos_power(&mut deltas, n as f64);
+                std::eprintln!("blinn half-vector KS n={n}: D = {d:.2e}");
+                assert!(d < 5e-4, "n={n}: D = {d}");
+            }
+        }
+    }
+
     /// E[weight] over stratified samples equals the quadrature albedo.
     #[test]
     fn sampling_is_unbiased() {
