@@ -220,4 +220,19 @@ mod tests {
         let mc = sampled_albedo(&b, dir_xz(0.4), 256);
         assert!((mc - 0.3).abs() < 1e-3, "{mc}");
     }
+
+    /// Any `Spectrum` works: a sampled spectrum behaves channel-wise.
+    #[test]
+    fn sampled_spectrum_channels() {
+        use radiometry::SampledSpectrum;
+        let rho = SampledSpectrum([0.1, 0.4, 0.7, 1.0]);
+        let b = Lambertian::new(rho).unwrap();
+        let s = b.sample(Vec3::Z, [0.2, 0.9]).unwrap();
+        assert_eq!(s.weight, rho);
+        let f = b.eval(Vec3::Z, Vec3::Z);
+        for c in 0..4 {
+            assert!((f.0[c] as f64 - rho.0[c] as f64 / PI64).abs() < 1e-7);
+        }
+        assert!(Lambertian::new(SampledSpectrum([0.1, 0.4, 1.7, 1.0])).is_err());
+    }
 }
