@@ -76,17 +76,23 @@ mod tests {
         0.5 * (lo + hi)
     }
 
+    /// The error is measured against the conditioning of the problem: an
+    /// `f32` evaluation of `erfc` has relative error ~ε, which moves the root
+    /// by `ε·erfc(y)/|erfc'(y)|`; we require at most 8 such units (plus
+    /// 4 ulp of `y`).
     #[test]
     fn erfinv_matches_bisection() {
+        let eps = f32::EPSILON as f64;
         let mut worst = 0.0f64;
-        for i in 1..2000 {
-            let p = i as f32 / 2000.0;
+        for i in 1..4000 {
+            let p = i as f32 / 4000.0;
             let y = erfinv_2p_minus_1(p) as f64;
             let r = erfinv_ref(2.0 * p as f64 - 1.0);
-            let err = (y - r).abs() / r.abs().max(1e-3);
-            worst = worst.max(err);
+            let slope = 2.0 / libm::sqrt(core::f64::consts::PI) * libm::exp(-r * r);
+            let unit = eps * libm::erfc(r.abs()) / slope + 4.0 * eps * r.abs();
+            worst = worst.max((y - r).abs() / unit);
         }
-        assert!(worst < 2e-6, "worst relative error {worst}");
+        assert!(worst < 8.0, "worst error {worst} conditioning units");
     }
 
     #[test]
