@@ -503,7 +503,8 @@ impl<S: Spectrum> Cap<S> {
             return Err(LightError::HalfAngleOutOfRange(half_angle));
         }
         let s = libm::sinf(half_angle);
-        let k = FRAC_1_PI / (s * s); // finite: s ≥ sin(1e-45) > 0 → s² may underflow
+        // s > 0, but s² underflows to 0 for σ ≲ 1e-19, making k infinite.
+        let k = FRAC_1_PI / (s * s);
         if !k.is_finite() {
             return Err(LightError::RadianceTooLarge);
         }
