@@ -1,9 +1,358 @@
-//! `radiometry` command-line tool.
+//! `radiometry` command-line tool: the accuracy-vs-time report of the
+//! hemisphere integrators (`tradeoff`), directional albedo, irradiance and
+//! BRDF queries.
+//!
+//! Exit codes: 0 success, 1 runtime failure (e.g. an integrator error or an
+//! unwritable output folder), 2 invalid command line or spec.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+mod model;
+mod reference;
 mod spec;
+mod tradeoff;
 
-fn main() {
-    println!("radiometry CLI: see `radiometry --help` (commands arrive with issue 3)");
+use clap::{Parser, Subcommand, ValueEnum};
+use radiometry::Brdf;
+use radiometry::glam::Vec3;
+use radiometry::integrator::{
+    DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, StopReason, integrate_to_tolerance,
+};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Output format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Format {
+    /// Human-readable text.
+    Text,
+    /// One JSON object.
+    Json,
+}
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "radiometry",
+    version,
+    about = "Radiometry and BRDF tool: what integration accuracy costs in time, albedo, irradiance, f_r",
+    long_about = "Radiometry and BRDF tool.\n\nStart with `radiometry tradeoff` (accuracy-vs-time report of every \
+hemisphere integrator against independent references). Angles are in degrees everywhere on the command line. \
+Exit codes: 0 success, 1 runtime failure, 2 invalid command line or spec."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Accuracy-vs-time report: every integrator over a ladder of budgets on a standard suite of directional
+    /// albedos, against independent f64 references (summary table on stdout; CSV, SVG plots and summary.md in
+    /// the output folder).
+    Tradeoff {
+        /// CI-sized run: a few cases, budgets ≤ 4096, one timing repeat.
+        #[arg(long)]
+        quick: bool,
+        /// Output folder (created if missing).
+        #[arg(long, default_value = "target/tradeoff")]
+        out: std::path::PathBuf,
+        /// Worker threads (default: available parallelism).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Seed of the Monte Carlo integrators.
+        #[arg(long, default_value_t = model::DEFAULT_SEED)]
+        seed: u64,
+        /// Hide the progress bar on stderr.
+        #[arg(long)]
+        no_progress: bool,
+    },
+    /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi of a BRDF.
+    Albedo {
+        /// BRDF spec, e.g. `ggx(alpha=0.1, g=separable, fresnel=schlick(f0=0.04))`. See `radiometry eval --help`.
+        spec: String,
+        /// Outgoing polar angle θo in degrees, in [0, 90].
+        #[arg(long = "theta-o", allow_negative_numbers = true)]
+        theta_o: f64,
+        /// Integrator name (list: `radiometry integrators`).
+        #[arg(long, default_value = "gauss-legendre-warped")]
+        integrator: String,
+        /// Evaluation budget of a single run (default 4096).
+        #[arg(long, conflicts_with = "tol")]
+        budget: Option<u32>,
+        /// Absolute error tolerance: the budget is doubled from 64 until the integrator's error estimate is ≤ X,
+        /// up to a maximum budget of 4194304 (2^22) evaluations for the last run; the output says which
+        /// happened ("stopped": "tolerance reached" | "max budget reached" | "integrator cap reached").
+        #[arg(long)]
+        tol: Option<f64>,
+        /// Seed of Monte Carlo integrators.
+        #[arg(long, default_value_t = model::DEFAULT_SEED)]
+        seed: u64,
+        /// Output format (json keys: value, error, evaluations, seconds, integrator, budget, stopped).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+    /// Evaluate f_r(ωi → ωo) [1/sr] of a BRDF.
+    #[command(after_help = spec::BRDF_SPEC_HELP)]
+    Eval {
+        /// BRDF spec (see below).
+        spec: String,
+        /// Incident direction THETA,PHI in degrees.
+        #[arg(long, allow_hyphen_values = true)]
+        wi: String,
+        /// Outgoing direction THETA,PHI in degrees.
+        #[arg(long, allow_hyphen_values = true)]
+        wo: String,
+        /// Output format (json keys: value, wi, wo).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+    /// Irradiance E on a surface with normal +Z from a light spec (sum of lights), in closed form.
+    #[command(after_help = spec::LIGHT_SPEC_HELP)]
+    Irradiance {
+        /// Light spec, e.g. `cap(axis_theta=95, half_angle=10, radiance=1) + sky(radiance=0.1)`.
+        light: String,
+        /// Output format (json keys: value, lights).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+    /// List the integrator names.
+    Integrators,
+}
+
+fn spec_error(e: spec::SpecError) -> ExitCode {
+    eprintln!("error: {e}");
+    ExitCode::from(2)
+}
+
+fn usage_error(msg: &str) -> ExitCode {
+    eprintln!("error: {msg}");
+    ExitCode::from(2)
+}
+
+fn dir(theta_deg: f64, phi_deg: f64) -> Vec3 {
+    let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+    Vec3::new(
+        (t.sin() * p.cos()) as f32,
+        (t.sin() * p.sin()) as f32,
+        t.cos() as f32,
+    )
+}
+
+fn json_num(x: f64) -> serde_json::Value {
+    serde_json::Number::from_f64(x).map_or(serde_json::Value::Null, serde_json::Value::Number)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Eval { spec, wi, wo, format } => {
+            let parsed = match spec::parse_brdf(&spec) {
+                Ok(p) => p,
+                Err(e) => return spec_error(e),
+            };
+            let brdf = match model::build_brdf(&spec, &parsed) {
+                Ok(b) => b,
+                Err(e) => return spec_error(e),
+            };
+            let (ti, pi) = match spec::parse_angles(&wi) {
+                Ok(a) => a,
+                Err(e) => return spec_error(e),
+            };
+            let (to, po) = match spec::parse_angles(&wo) {
+                Ok(a) => a,
+                Err(e) => return spec_error(e),
+            };
+            let f = brdf.eval(dir(ti, pi), dir(to, po));
+            match format {
+                Format::Text => println!("{f}"),
+                Format::Json => println!(
+                    "{}",
+                    serde_json::json!({"value": json_num(f as f64), "wi": [ti, pi], "wo": [to, po]})
+                ),
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Albedo {
+            spec,
+            theta_o,
+            integrator,
+            budget,
+            tol,
+            seed,
+            format,
+        } => {
+            let parsed = match spec::parse_brdf(&spec) {
+                Ok(p) => p,
+                Err(e) => return spec_error(e),
+            };
+            let brdf = match model::build_brdf(&spec, &parsed) {
+                Ok(b) => b,
+                Err(e) => return spec_error(e),
+            };
+            if !(0.0..=90.0).contains(&theta_o) {
+                return usage_error(&format!("--theta-o {theta_o} is outside [0, 90] degrees"));
+            }
+            if let Some(t) = tol
+                && !(t.is_finite() && t > 0.0)
+            {
+                return usage_error(&format!("--tol {t} must be a positive finite number"));
+            }
+            let Some(integ) = model::integrator_by_name(&integrator, seed, tol.unwrap_or(0.0)) else {
+                let names: Vec<_> = model::all_integrators(seed, 0.0)
+                    .iter()
+                    .map(|i| i.name())
+                    .collect();
+                return usage_error(&format!(
+                    "unknown integrator `{integrator}`; expected one of: {}",
+                    names.join(", ")
+                ));
+            };
+            let g = DirectionalAlbedo {
+                brdf: &brdf,
+                wo: dir(theta_o, 0.0),
+            };
+            let t0 = Instant::now();
+            let (est, used_budget, stopped, total) = if let Some(t) = tol {
+                match integrate_to_tolerance(&integ, &g, t, 64, DEFAULT_MAX_BUDGET) {
+                    Ok(o) => {
+                        let s = match o.stop {
+                            StopReason::ToleranceReached => "tolerance reached",
+                            StopReason::MaxBudget => "max budget reached",
+                            StopReason::IntegratorCap => "integrator cap reached",
+                        };
+                        (o.estimate, o.budget, Some(s), o.total_evaluations)
+                    }
+                    Err(e) => {
+                        eprintln!("error: {}: {e}", integ.name());
+                        return ExitCode::from(1);
+                    }
+                }
+            } else {
+                let b = budget.unwrap_or(4096);
+                match integ.integrate(&g, b) {
+                    Ok(e) => (e, b, None, e.evaluations),
+                    Err(e) => {
+                        eprintln!("error: {}: {e}", integ.name());
+                        return ExitCode::from(1);
+                    }
+                }
+            };
+            let secs = t0.elapsed().as_secs_f64();
+            match format {
+                Format::Text => {
+                    print!(
+                        "albedo = {} ± {}  ({} evaluations, {:.3e} s, {}, budget {})",
+                        est.value,
+                        est.error,
+                        total,
+                        secs,
+                        integ.name(),
+                        used_budget
+                    );
+                    if let Some(s) = stopped {
+                        print!(", stopped: {s}");
+                    }
+                    println!();
+                }
+                Format::Json => {
+                    let mut j = serde_json::json!({
+                        "value": json_num(est.value),
+                        "error": json_num(est.error),
+                        "evaluations": total,
+                        "seconds": json_num(secs),
+                        "integrator": integ.name(),
+                        "budget": used_budget,
+                        "final_run_evaluations": est.evaluations,
+                    });
+                    if let Some(s) = stopped {
+                        j["stopped"] = serde_json::Value::String(s.into());
+                        j["tol"] = json_num(tol.unwrap_or(0.0));
+                        j["max_budget"] = serde_json::Value::from(DEFAULT_MAX_BUDGET);
+                    }
+                    println!("{j}");
+                }
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Irradiance { light, format } => {
+            let lights = match spec::parse_lights(&light) {
+                Ok(l) => l,
+                Err(e) => return spec_error(e),
+            };
+            let mut total = 0.0f64;
+            let mut parts = Vec::new();
+            for l in &lights {
+                let (kind, e) = irradiance_of(l);
+                total += e as f64;
+                parts.push(serde_json::json!({"kind": kind, "irradiance": json_num(e as f64)}));
+            }
+            match format {
+                Format::Text => println!("{total}"),
+                Format::Json => println!(
+                    "{}",
+                    serde_json::json!({"value": json_num(total), "lights": parts})
+                ),
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Integrators => {
+            for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
+                println!("{}", i.name());
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Tradeoff {
+            quick,
+            out,
+            threads,
+            seed,
+            no_progress,
+        } => {
+            let threads = threads
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+                .max(1);
+            match tradeoff::run(&tradeoff::Options {
+                quick,
+                out,
+                threads,
+                seed,
+                progress: !no_progress,
+            }) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+    }
+}
+
+/// Irradiance on a surface with normal +Z from one light, by the closed forms
+/// of `radiometry::radiometric` (sky: πL; directional: E⊥ max(0, cos θ);
+/// cap: L Ω⊥ with the horizon-clipped projected solid angle).
+fn irradiance_of(l: &spec::LightSpec) -> (&'static str, f32) {
+    use radiometry::radiometric::{cap_irradiance, directional_irradiance, sky_irradiance};
+    match *l {
+        spec::LightSpec::Sky { radiance } => ("sky", sky_irradiance(radiance as f32)),
+        spec::LightSpec::Directional {
+            theta, irradiance, ..
+        } => (
+            "directional",
+            directional_irradiance(irradiance as f32, theta.to_radians().cos() as f32),
+        ),
+        spec::LightSpec::Cap {
+            axis_theta,
+            half_angle,
+            radiance,
+            ..
+        } => (
+            "cap",
+            cap_irradiance(
+                radiance as f32,
+                axis_theta.to_radians().cos() as f32,
+                half_angle.to_radians() as f32,
+            ),
+        ),
+    }
 }

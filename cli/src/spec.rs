@@ -597,7 +597,7 @@ exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
 pub const LIGHT_SPEC_HELP: &str = "Light spec (angles in degrees; `+` sums lights), e.g. \
 `cap(axis_theta=95, axis_phi=0, half_angle=10, radiance=1)`, `sky(radiance=1)`, \
 `directional(theta=30, phi=0, irradiance=1)`, `sky(radiance=0.2) + directional(theta=30, irradiance=3)`. \
-Defaults: phi/axis_phi=0, radiance/irradiance=1; theta/axis_theta ∈ [0, 180] and half_angle ∈ (0, 180) are required.";
+Defaults: phi/axis_phi=0, radiance/irradiance=1; theta/axis_theta ∈ [0, 180] and half_angle ∈ (0, 90] are required.";
 
 /// Parses and validates a BRDF spec.
 pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
@@ -749,7 +749,7 @@ pub fn parse_lights(spec: &str) -> Result<Vec<LightSpec>, SpecError> {
                 LightSpec::Cap {
                     axis_theta: a.num("axis_theta", None, 0.0, 180.0, false)?,
                     axis_phi: a.num("axis_phi", Some(0.0), -360.0, 360.0, false)?,
-                    half_angle: a.num("half_angle", None, 0.0, 180.0, true)?,
+                    half_angle: a.num("half_angle", None, 0.0, 90.0, true)?,
                     radiance: a.num("radiance", Some(1.0), 0.0, 1e30, false)?,
                 }
             }

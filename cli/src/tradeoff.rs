@@ -1,0 +1,696 @@
+//! `radiometry tradeoff`: what accuracy costs in time.
+//!
+//! For a standard suite of directional albedos (Lambertian; modified Phong
+//! n ∈ {1, 10, 100, 1000}; GGX and Beckmann α ∈ {0.01, 0.05, 0.3, 1}, all
+//! with F = 1 and the height-correlated Smith G2; θo ∈ {0°, 60°, 85°, 89.5°})
+//! every integrator runs over a ladder of budgets. Each estimate is compared
+//! with an independent f64 reference ([`crate::reference`]) that carries
+//! its own error bound; wall time is the median of a few repeats for small
+//! budgets. Outputs: a summary table (stdout and `summary.md`), the raw
+//! `tradeoff.csv`, `references.csv`, and log-log SVG plots.
+
+use crate::model::{AnyBrdf, AnyIntegrator, all_integrators, build_brdf};
+use crate::reference::{self, RefModel, Reference};
+use crate::spec::parse_brdf;
+use radiometry::glam::Vec3;
+use radiometry::integrator::{DirectionalAlbedo, Integrator};
+use std::fmt::Write as _;
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// Options of a run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// CI-sized run.
+    pub quick: bool,
+    /// Output folder.
+    pub out: PathBuf,
+    /// Worker threads.
+    pub threads: usize,
+    /// Monte Carlo seed.
+    pub seed: u64,
+    /// Show a progress bar on stderr.
+    pub progress: bool,
+}
+
+/// The exact CSV header (a contract).
+pub const CSV_HEADER: &str =
+    "case,integrator,budget,evaluations,estimate,reference,abs_error,rel_error,error_estimate,seconds";
+
+/// Relative-error targets of the summary.
+pub const TARGETS: [f64; 3] = [1e-2, 1e-4, 1e-6];
+
+/// Budget ladder of the full run: 16·4^k up to 4^10 = 1,048,576.
+pub const FULL_BUDGETS: [u32; 9] = [16, 64, 256, 1024, 4096, 16384, 65536, 262_144, 1_048_576];
+/// Budget ladder of `--quick`.
+pub const QUICK_BUDGETS: [u32; 5] = [16, 64, 256, 1024, 4096];
+
+/// One case of the suite.
+#[derive(Clone, Debug)]
+pub struct Case {
+    /// Name used in the CSV (no commas).
+    pub name: String,
+    /// Family: lambertian, phong, ggx, beckmann.
+    pub family: &'static str,
+    /// BRDF spec given to the plugins.
+    pub spec: String,
+    /// The independent f64 model.
+    pub model: RefModel,
+    /// θo in degrees.
+    pub theta_o: f64,
+}
+
+fn fmt_num(x: f64) -> String {
+    let s = format!("{x}");
+    s.trim_end_matches(".0").to_string()
+}
+
+/// The standard suite (or the `--quick` subset).
+pub fn suite(quick: bool) -> Vec<Case> {
+    let thetas = [0.0, 60.0, 85.0, 89.5];
+    let mut v = Vec::new();
+    let mut push = |family: &'static str, param: String, spec: String, model: RefModel, t: f64| {
+        v.push(Case {
+            name: format!("{family}{param}-to{}", fmt_num(t)),
+            family,
+            spec,
+            model,
+            theta_o: t,
+        });
+    };
+    for &t in &thetas {
+        push(
+            "lambertian",
+            String::new(),
+            "lambertian(albedo=1)".into(),
+            RefModel::Lambertian { albedo: 1.0 },
+            t,
+        );
+    }
+    for n in [1.0, 10.0, 100.0, 1000.0] {
+        for &t in &thetas {
+            push(
+                "phong",
+                format!("-n{}", fmt_num(n)),
+                format!("phong(exponent={n}, ks=1, kd=0)"),
+                RefModel::Phong { n, ks: 1.0, kd: 0.0 },
+                t,
+            );
+        }
+    }
+    for (family, ggx) in [("ggx", true), ("beckmann", false)] {
+        for a in [0.01, 0.05, 0.3, 1.0] {
+            for &t in &thetas {
+                push(
+                    family,
+                    format!("-a{}", fmt_num(a)),
+                    format!("{family}(alpha={a}, g=height-correlated, fresnel=none)"),
+                    RefModel::Microfacet {
+                        ggx,
+                        alpha: a,
+                        height_correlated: true,
+                    },
+                    t,
+                );
+            }
+        }
+    }
+    if quick {
+        let keep = [
+            "lambertian-to60",
+            "phong-n100-to60",
+            "ggx-a0.3-to60",
+            "ggx-a0.01-to89.5",
+            "beckmann-a0.05-to85",
+        ];
+        v.retain(|c| keep.contains(&c.name.as_str()));
+    }
+    v
+}
+
+/// One measured row of the CSV.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// Case index.
+    pub case: usize,
+    /// Integrator index.
+    pub integ: usize,
+    /// Budget given.
+    pub budget: u32,
+    /// Evaluations spent.
+    pub evaluations: u64,
+    /// The estimate.
+    pub estimate: f64,
+    /// The integrator's error estimate.
+    pub error_estimate: f64,
+    /// Median wall time [s].
+    pub seconds: f64,
+}
+
+struct Progress {
+    enabled: bool,
+    tty: bool,
+    total: usize,
+    done: AtomicUsize,
+    start: Instant,
+    last_pct: AtomicUsize,
+}
+
+impl Progress {
+    fn new(enabled: bool, total: usize) -> Self {
+        Progress {
+            enabled,
+            tty: std::io::stderr().is_terminal(),
+            total,
+            done: AtomicUsize::new(0),
+            start: Instant::now(),
+            last_pct: AtomicUsize::new(usize::MAX),
+        }
+    }
+
+    fn tick(&self, what: &str) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        if !self.enabled {
+            return;
+        }
+        let frac = done as f64 / self.total.max(1) as f64;
+        let pct = (frac * 100.0) as usize;
+        if !self.tty {
+            // Non-interactive: one line per 10 %.
+            let step = pct / 10;
+            if self.last_pct.swap(step, Ordering::Relaxed) == step && done != self.total {
+                return;
+            }
+        }
+        let el = self.start.elapsed().as_secs_f64();
+        let eta = if frac > 0.0 { el / frac - el } else { 0.0 };
+        let width = 30;
+        let filled = ((frac * width as f64) as usize).min(width);
+        let bar: String = "#".repeat(filled) + &"-".repeat(width - filled);
+        let mut err = std::io::stderr().lock();
+        let end = if self.tty { "\r" } else { "\n" };
+        let _ = write!(
+            err,
+            "[{bar}] {done}/{} {pct:3}% {el:6.1}s elapsed, ~{eta:5.0}s left  {what:<40.40}{end}",
+            self.total
+        );
+        let _ = err.flush();
+    }
+
+    fn finish(&self) {
+        if self.enabled && self.tty {
+            eprintln!();
+        }
+    }
+}
+
+fn repeats(quick: bool, budget: u32) -> usize {
+    if quick {
+        1
+    } else if budget <= 4096 {
+        5
+    } else if budget <= 65536 {
+        3
+    } else {
+        1
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+fn measure(
+    brdf: &AnyBrdf,
+    theta_o: f64,
+    integ: &AnyIntegrator,
+    budgets: &[u32],
+    quick: bool,
+) -> (Vec<(u32, u64, f64, f64, f64)>, Vec<String>) {
+    let t = theta_o.to_radians();
+    let g = DirectionalAlbedo {
+        brdf,
+        wo: Vec3::new(t.sin() as f32, 0.0, t.cos() as f32),
+    };
+    let mut out = Vec::new();
+    let mut refused = Vec::new();
+    for &b in budgets {
+        let mut times = Vec::new();
+        let mut first = None;
+        for _ in 0..repeats(quick, b) {
+            let t0 = Instant::now();
+            let r = integ.integrate(&g, b);
+            times.push(t0.elapsed().as_secs_f64());
+            match r {
+                Ok(e) => {
+                    if first.is_none() {
+                        first = Some(e);
+                    }
+                }
+                Err(e) => {
+                    refused.push(format!("{} at budget {b}: {e}", integ.name()));
+                    break;
+                }
+            }
+        }
+        if let Some(e) = first {
+            out.push((b, e.evaluations, e.value, e.error, median(times)));
+        }
+    }
+    (out, refused)
+}
+
+/// Runs the report.
+pub fn run(opt: &Options) -> Result<(), String> {
+    let wall = Instant::now();
+    std::fs::create_dir_all(&opt.out).map_err(|e| format!("cannot create {}: {e}", opt.out.display()))?;
+    let cases = suite(opt.quick);
+    let budgets: &[u32] = if opt.quick { &QUICK_BUDGETS } else { &FULL_BUDGETS };
+    let integs = all_integrators(opt.seed, 0.0);
+    let mut brdfs = Vec::new();
+    for c in &cases {
+        let spec = parse_brdf(&c.spec).map_err(|e| e.to_string())?;
+        brdfs.push(build_brdf(&c.spec, &spec).map_err(|e| e.to_string())?);
+    }
+    let jobs = cases.len() * integs.len();
+    let progress = Progress::new(opt.progress, cases.len() + jobs);
+
+    // 1. References (independent of the integrators), in parallel over cases.
+    let refs: Vec<Mutex<Option<Reference>>> = cases.iter().map(|_| Mutex::new(None)).collect();
+    let next = AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        for _ in 0..opt.threads {
+            s.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= cases.len() {
+                        break;
+                    }
+                    let r = reference::albedo(&cases[i].model, cases[i].theta_o.to_radians());
+                    *refs[i].lock().expect("no poison") = Some(r);
+                    progress.tick(&format!("reference {}", cases[i].name));
+                }
+            });
+        }
+    });
+    let refs: Vec<Reference> = refs
+        .into_iter()
+        .map(|m| m.into_inner().expect("no poison").expect("computed"))
+        .collect();
+
+    // 2. Every (case, integrator) over the budget ladder.
+    let rows: Mutex<Vec<Row>> = Mutex::new(Vec::new());
+    let refused: Mutex<Vec<String>> = Mutex::new(Vec::new());
+    let next = AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        for _ in 0..opt.threads {
+            s.spawn(|| {
+                loop {
+                    let j = next.fetch_add(1, Ordering::Relaxed);
+                    if j >= jobs {
+                        break;
+                    }
+                    let (ci, ii) = (j / integs.len(), j % integs.len());
+                    let (m, r) = measure(&brdfs[ci], cases[ci].theta_o, &integs[ii], budgets, opt.quick);
+                    {
+                        let mut rows = rows.lock().expect("no poison");
+                        for (budget, evaluations, estimate, error_estimate, seconds) in m {
+                            rows.push(Row {
+                                case: ci,
+                                integ: ii,
+                                budget,
+                                evaluations,
+                                estimate,
+                                error_estimate,
+                                seconds,
+                            });
+                        }
+                    }
+                    if ci == 0 {
+                        refused.lock().expect("no poison").extend(r);
+                    }
+                    progress.tick(&format!("{} {}", cases[ci].name, integs[ii].name()));
+                }
+            });
+        }
+    });
+    progress.finish();
+    let mut rows = rows.into_inner().expect("no poison");
+    rows.sort_by_key(|r| (r.case, r.integ, r.budget));
+    let refused = refused.into_inner().expect("no poison");
+
+    let report = Report {
+        cases: &cases,
+        refs: &refs,
+        integs: &integs,
+        rows: &rows,
+        budgets,
+    };
+    write_csv(opt, &report)?;
+    crate::tradeoff::plot::write_plots(&opt.out, &report)?;
+    let elapsed = wall.elapsed().as_secs_f64();
+    let (text, md) = report.summary(opt, elapsed, &refused);
+    print!("{text}");
+    std::fs::write(opt.out.join("summary.md"), md).map_err(|e| format!("cannot write summary.md: {e}"))?;
+    println!(
+        "\nWrote {}/tradeoff.csv, references.csv, summary.md and SVG plots ({:.1} s).",
+        opt.out.display(),
+        elapsed
+    );
+    Ok(())
+}
+
+/// Everything measured, for tables and plots.
+pub struct Report<'a> {
+    /// The cases.
+    pub cases: &'a [Case],
+    /// Their references.
+    pub refs: &'a [Reference],
+    /// The integrators.
+    pub integs: &'a [AnyIntegrator],
+    /// The rows, sorted by (case, integrator, budget).
+    pub rows: &'a [Row],
+    /// The budget ladder.
+    pub budgets: &'a [u32],
+}
+
+impl Report<'_> {
+    /// Relative error of a row.
+    pub fn rel_error(&self, r: &Row) -> f64 {
+        let reference = self.refs[r.case].value;
+        (r.estimate - reference).abs() / reference.abs().max(f64::MIN_POSITIVE)
+    }
+
+    fn rows_of(&self, case: usize, integ: usize) -> Vec<&Row> {
+        self.rows
+            .iter()
+            .filter(|r| r.case == case && r.integ == integ)
+            .collect()
+    }
+
+    /// The first row from which on every larger budget meets `target`.
+    fn reach(&self, case: usize, integ: usize, target: f64) -> Option<&Row> {
+        let rows = self.rows_of(case, integ);
+        let mut found = None;
+        for r in rows.iter().rev() {
+            if self.rel_error(r) <= target {
+                found = Some(*r);
+            } else {
+                break;
+            }
+        }
+        found
+    }
+
+    fn summary(&self, opt: &Options, elapsed: f64, refused: &[String]) -> (String, String) {
+        let mut families: Vec<&str> = Vec::new();
+        for c in self.cases {
+            if !families.contains(&c.family) {
+                families.push(c.family);
+            }
+        }
+        let mut text = String::new();
+        let mut md = String::new();
+        let run_kind = if opt.quick { "quick" } else { "full" };
+        let _ = writeln!(
+            md,
+            "### Accuracy vs. time ({run_kind} run: {} cases × {} integrators × budgets {}–{}, {:.0} s on {} thread(s))\n",
+            self.cases.len(),
+            self.integs.len(),
+            self.budgets[0],
+            self.budgets[self.budgets.len() - 1],
+            elapsed,
+            opt.threads
+        );
+        let _ = writeln!(
+            md,
+            "Each cell: the worst case of the family — evaluations / wall time needed for the relative error to \
+             stay ≤ the target at that budget and every larger one of the ladder; `not reached (k/N)`: only k of \
+             the family's N cases got there within {} evaluations. Directional albedo with F = 1 and the \
+             height-correlated Smith G2 for microfacets; θo ∈ {{0°, 60°, 85°, 89.5°}}.\n",
+            self.budgets[self.budgets.len() - 1]
+        );
+        let _ = writeln!(
+            md,
+            "| family | integrator | rel. err 1e-2 | rel. err 1e-4 | rel. err 1e-6 |"
+        );
+        let _ = writeln!(md, "|---|---|---|---|---|");
+        let _ = writeln!(
+            text,
+            "{:<11} {:<26} {:>22} {:>22} {:>22}",
+            "family", "integrator", "rel.err 1e-2", "rel.err 1e-4", "rel.err 1e-6"
+        );
+        for fam in &families {
+            let idx: Vec<usize> = (0..self.cases.len())
+                .filter(|&i| self.cases[i].family == *fam)
+                .collect();
+            for (ii, integ) in self.integs.iter().enumerate() {
+                let mut cells = Vec::new();
+                for &t in &TARGETS {
+                    let hits: Vec<&Row> = idx.iter().filter_map(|&ci| self.reach(ci, ii, t)).collect();
+                    if hits.len() == idx.len() {
+                        let ev = hits.iter().map(|r| r.evaluations).max().unwrap_or(0);
+                        let s = hits.iter().map(|r| r.seconds).fold(0.0, f64::max);
+                        cells.push(format!("{ev} / {}", fmt_time(s)));
+                    } else {
+                        cells.push(format!("not reached ({}/{})", hits.len(), idx.len()));
+                    }
+                }
+                let _ = writeln!(
+                    text,
+                    "{:<11} {:<26} {:>22} {:>22} {:>22}",
+                    fam,
+                    integ.name(),
+                    cells[0],
+                    cells[1],
+                    cells[2]
+                );
+                let _ = writeln!(
+                    md,
+                    "| {fam} | {} | {} | {} | {} |",
+                    integ.name(),
+                    cells[0],
+                    cells[1],
+                    cells[2]
+                );
+            }
+        }
+
+        // Goal check: best deterministic integrator per case.
+        let _ = writeln!(
+            md,
+            "\n#### Best deterministic integrator per case (goal: rel. err ≤ 1e-4 with ≤ 4,096 and ≤ 1e-6 with ≤ 65,536 evaluations)\n"
+        );
+        let _ = writeln!(
+            md,
+            "| case | reference ρ | reference bound | best for 1e-4 (evals) | best for 1e-6 (evals) | goal |"
+        );
+        let _ = writeln!(md, "|---|---|---|---|---|---|");
+        let mut met = 0;
+        let mut fails = Vec::new();
+        for (ci, c) in self.cases.iter().enumerate() {
+            let best = |t: f64| {
+                (0..self.integs.len())
+                    .filter(|&ii| self.integs[ii].is_deterministic())
+                    .filter_map(|ii| {
+                        self.reach(ci, ii, t)
+                            .map(|r| (r.evaluations, self.integs[ii].name()))
+                    })
+                    .min()
+            };
+            let (b4, b6) = (best(1e-4), best(1e-6));
+            let ok = b4.is_some_and(|b| b.0 <= 4096) && b6.is_some_and(|b| b.0 <= 65536);
+            if ok {
+                met += 1;
+            } else {
+                fails.push(c.name.clone());
+            }
+            let show =
+                |b: Option<(u64, &str)>| b.map_or("not reached".to_string(), |(e, n)| format!("{n} ({e})"));
+            let _ = writeln!(
+                md,
+                "| {} | {:.12} | {:.1e} | {} | {} | {} |",
+                c.name,
+                self.refs[ci].value,
+                self.refs[ci].bound,
+                show(b4),
+                show(b6),
+                if ok { "met" } else { "missed" }
+            );
+        }
+        let goal = format!(
+            "Goal (best deterministic integrator: ≤ 1e-4 within 4,096 and ≤ 1e-6 within 65,536 evaluations): met for {met} of {} cases{}",
+            self.cases.len(),
+            if fails.is_empty() {
+                String::new()
+            } else {
+                format!("; missed: {}", fails.join(", "))
+            }
+        );
+        let _ = writeln!(md, "\n{goal}.\n");
+        let _ = writeln!(text, "\n{goal}.");
+
+        // Honesty of the error estimates.
+        let _ = writeln!(md, "#### Honesty of the error estimates\n");
+        let _ = writeln!(
+            md,
+            "Quadrature: share of rows with true error ≤ estimate, and the worst understatement (true / \
+             estimate); Monte Carlo: share of rows with true error ≤ 3σ. Rows whose true error is below 10× the \
+             reference bound are not counted.\n"
+        );
+        let _ = writeln!(md, "| integrator | rows | covered | worst true/estimate |");
+        let _ = writeln!(md, "|---|---|---|---|");
+        let max_ref_bound = |ci: usize| self.refs[ci].bound;
+        let mut ref_worst = 0.0f64;
+        for (ci, r) in self.refs.iter().enumerate() {
+            ref_worst = ref_worst.max(r.bound / r.value.abs().max(f64::MIN_POSITIVE));
+            let _ = ci;
+        }
+        for (ii, integ) in self.integs.iter().enumerate() {
+            let (mut n, mut cov, mut worst) = (0usize, 0usize, 0.0f64);
+            for r in self.rows.iter().filter(|r| r.integ == ii) {
+                let abs = (r.estimate - self.refs[r.case].value).abs();
+                if abs <= 10.0 * max_ref_bound(r.case) {
+                    continue;
+                }
+                n += 1;
+                let k = if integ.is_deterministic() { 1.0 } else { 3.0 };
+                if abs <= k * r.error_estimate {
+                    cov += 1;
+                }
+                worst = worst.max(abs / r.error_estimate.max(f64::MIN_POSITIVE));
+            }
+            let share = if n > 0 {
+                cov as f64 / n as f64 * 100.0
+            } else {
+                100.0
+            };
+            let _ = writeln!(md, "| {} | {n} | {share:.1} % | {worst:.3} |", integ.name());
+        }
+        let refs_line = format!(
+            "References: nested adaptive Gauss–Kronrod (7,15) in f64, independent of the integrators and plugins; \
+             worst relative reference bound {ref_worst:.1e}."
+        );
+        let _ = writeln!(md, "\n{refs_line}");
+        let _ = writeln!(text, "{refs_line}");
+        if !refused.is_empty() {
+            let _ = writeln!(md, "\nBudgets refused (no row written):\n");
+            for r in refused {
+                let _ = writeln!(md, "- {r}");
+            }
+        }
+        let _ = writeln!(
+            md,
+            "\nRegenerate with `cargo run --release -p radiometry-cli -- tradeoff{}` (output in `{}`).",
+            if opt.quick { " --quick" } else { "" },
+            opt.out.display()
+        );
+        (text, md)
+    }
+}
+
+fn fmt_time(s: f64) -> String {
+    if s < 1e-3 {
+        format!("{:.0} µs", s * 1e6)
+    } else if s < 1.0 {
+        format!("{:.1} ms", s * 1e3)
+    } else {
+        format!("{s:.2} s")
+    }
+}
+
+fn write_csv(opt: &Options, rep: &Report<'_>) -> Result<(), String> {
+    let mut s = String::with_capacity(rep.rows.len() * 160);
+    s.push_str(CSV_HEADER);
+    s.push('\n');
+    for r in rep.rows {
+        let reference = rep.refs[r.case].value;
+        let abs = (r.estimate - reference).abs();
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{:e},{:e},{:e},{:e}",
+            rep.cases[r.case].name,
+            rep.integs[r.integ].name(),
+            r.budget,
+            r.evaluations,
+            r.estimate,
+            reference,
+            abs,
+            rep.rel_error(r),
+            r.error_estimate,
+            r.seconds
+        );
+    }
+    std::fs::write(opt.out.join("tradeoff.csv"), s).map_err(|e| format!("cannot write tradeoff.csv: {e}"))?;
+    let mut s = String::from("case,theta_o,spec,reference,bound,reference_evaluations\n");
+    for (c, r) in rep.cases.iter().zip(rep.refs) {
+        let _ = writeln!(
+            s,
+            "{},{},\"{}\",{},{},{}",
+            c.name, c.theta_o, c.spec, r.value, r.bound, r.evaluations
+        );
+    }
+    std::fs::write(opt.out.join("references.csv"), s).map_err(|e| format!("cannot write references.csv: {e}"))
+}
+
+pub mod plot;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suite_has_the_issue_cases() {
+        let s = suite(false);
+        assert_eq!(s.len(), 4 + 16 + 16 + 16);
+        assert!(s.iter().all(|c| !c.name.contains(',')));
+        let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), s.len());
+        assert_eq!(suite(true).len(), 5);
+        for c in &s {
+            assert!(parse_brdf(&c.spec).is_ok(), "{}", c.spec);
+        }
+    }
+
+    #[test]
+    fn reach_requires_all_larger_budgets() {
+        let cases = suite(true)[..1].to_vec();
+        let refs = vec![Reference {
+            value: 1.0,
+            bound: 1e-15,
+            evaluations: 0,
+        }];
+        let integs = all_integrators(1, 0.0)[..1].to_vec();
+        let mk = |budget, est| Row {
+            case: 0,
+            integ: 0,
+            budget,
+            evaluations: budget as u64,
+            estimate: est,
+            error_estimate: 0.0,
+            seconds: 0.0,
+        };
+        let rows = vec![
+            mk(16, 1.0),
+            mk(64, 1.1),
+            mk(256, 1.0 + 1e-5),
+            mk(1024, 1.0 + 1e-7),
+        ];
+        let rep = Report {
+            cases: &cases,
+            refs: &refs,
+            integs: &integs,
+            rows: &rows,
+            budgets: &QUICK_BUDGETS,
+        };
+        assert_eq!(rep.reach(0, 0, 1e-2).map(|r| r.budget), Some(256));
+        assert_eq!(rep.reach(0, 0, 1e-6).map(|r| r.budget), Some(1024));
+        assert_eq!(rep.reach(0, 0, 1e-8).map(|r| r.budget), None);
+    }
+}
