@@ -1,1 +1,277 @@
-//! Radiometric calibration.
+//! Radiometric calibration: recover the inverse response `g = R⁻¹` from
+//! readings of a static scene at several known exposures.
+//!
+//! Method: Mitsunaga & Nayar 1999, "Radiometric self calibration",
+//! CVPR, §3 (eqs. 3–8) with *known* exposure ratios. The inverse response
+//! is a polynomial `g(M) = Σ_{n<N} c_n Mⁿ` of normalised readings
+//! `M ∈ [0, 1]`, normalised by `g(1) = 1`. For a static scene, pixel `p`
+//! read at exposures `t_q` and `t_{q+1}` satisfies
+//! `g(M_{p,q}) = (t_q / t_{q+1}) g(M_{p,q+1})`; the coefficients minimise
+//!
+//! `ε = Σ_p Σ_q [g(M_{p,q}) − R_q g(M_{p,q+1})]²`,  `R_q = t_q/t_{q+1}`,
+//!
+//! subject to `g(1) = Σ c_n = 1` (eliminating `c_{N−1}`) and `g(0) = c_0 = 0`
+//! (readings must be black-level corrected: zero exposure reads zero), a
+//! linear least-squares problem of `N−2` unknowns solved by normal equations with Gaussian
+//! elimination and partial pivoting in fixed-size arrays (no allocation).
+//! The accumulation and the solve use `f64` (documented: the monomial
+//! normal equations are ill-conditioned in `f32` for `N ≥ 5`); the fitted
+//! curve is evaluated in `f32`.
+//!
+//! Pairs where either reading lies outside `[lo, hi]` (under-exposed or
+//! clipped) are skipped, as Mitsunaga & Nayar recommend.
+//!
+//! Use exposure ratios that are not all equal: with a single repeated
+//! ratio the data cannot distinguish `g` from a "fractal" family of
+//! alternatives (Grossberg & Nayar 2003, "Determining the camera response
+//! from images: what is knowable?", PAMI 25(11)).
+//!
+//! ```
+//! use radiometry::sensor::calibration::mitsunaga_nayar;
+//! use radiometry::sensor::response::{Gamma, Response};
+//! let r = Gamma::new(2.2).unwrap();
+//! let exposures = [0.05f32, 0.08, 0.2, 0.35, 1.0];
+//! let mut readings = [0.0f32; 60 * 5];
+//! for p in 0..60 {
+//!     let e = libm::powf(10.0, -3.0 + 3.0 * p as f32 / 59.0);
+//!     for (q, t) in exposures.iter().enumerate() {
+//!         readings[p * 5 + q] = r.apply(e * t);
+//!     }
+//! }
+//! let g = mitsunaga_nayar::<6>(&readings, &exposures, 0.02, 0.98).unwrap();
+//! assert!((g.inverse(0.5) - r.inverse(0.5)).abs() < 5e-3);
+//! ```
+
+use super::SensorError;
+use super::response::Response;
+
+/// A polynomial inverse response `g(M) = Σ c_n Mⁿ` (`N` coefficients) on
+/// the calibrated range `[m_lo, 1]`, where it is strictly increasing and
+/// positive (checked on construction); below `m_lo` — where the data did
+/// not constrain the fit — it is continued linearly through the origin,
+/// `g(M) = g(m_lo) M / m_lo`.
+/// As a [`Response`]: `inverse(y) = g(y)`, and `apply(x)` solves
+/// `g(M) = x` by bisection (exact to f32 resolution).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PolynomialInverseResponse<const N: usize> {
+    coeffs: [f32; N],
+    m_lo: f32,
+}
+
+impl<const N: usize> PolynomialInverseResponse<N> {
+    /// Wraps coefficients `c_0..c_{N−1}` valid on `[m_lo, 1]`,
+    /// `0 ≤ m_lo < 1`. Errors: non-finite input
+    /// ([`SensorError::NotFinite`]); `m_lo` out of range
+    /// ([`SensorError::BadParameter`]); the polynomial not strictly
+    /// increasing at 1025 points of `[m_lo, 1]`, or `g(m_lo) ≤ 0` when
+    /// `m_lo > 0` ([`SensorError::NotMonotonic`]).
+    pub fn new(coeffs: [f32; N], m_lo: f32) -> Result<Self, SensorError> {
+        if N == 0 || coeffs.iter().any(|c| !c.is_finite()) || !m_lo.is_finite() {
+            return Err(SensorError::NotFinite);
+        }
+        if !(0.0..1.0).contains(&m_lo) {
+            return Err(SensorError::BadParameter("m_lo must be in [0, 1)"));
+        }
+        let g = Self { coeffs, m_lo };
+        let mut prev = g.poly(m_lo);
+        if m_lo > 0.0 && prev <= 0.0 {
+            return Err(SensorError::NotMonotonic);
+        }
+        for i in 1..=1024 {
+            let v = g.poly(m_lo + (1.0 - m_lo) * i as f32 / 1024.0);
+            if v <= prev {
+                return Err(SensorError::NotMonotonic);
+            }
+            prev = v;
+        }
+        Ok(g)
+    }
+
+    /// Start of the calibrated range.
+    pub fn m_lo(&self) -> f32 {
+        self.m_lo
+    }
+
+    #[inline]
+    fn poly(&self, m: f32) -> f32 {
+        self.coeffs.iter().rev().fold(0.0, |acc, &c| acc * m + c)
+    }
+
+    /// The coefficients `c_n`.
+    pub fn coeffs(&self) -> [f32; N] {
+        self.coeffs
+    }
+
+    /// `g(M)`: Horner's rule on `[m_lo, ∞)`, the linear continuation
+    /// below `m_lo` (no clamping).
+    #[inline]
+    pub fn eval(&self, m: f32) -> f32 {
+        if m < self.m_lo {
+            self.poly(self.m_lo) * (m / self.m_lo)
+        } else {
+            self.poly(m)
+        }
+    }
+}
+
+impl<const N: usize> Response for PolynomialInverseResponse<N> {
+    /// `R(x) = g⁻¹(x)`: bisection on `[0, 1]`; `x` is clamped to
+    /// `[g(0), g(1)]`, NaN → `g(0)`.
+    fn apply(&self, x: f32) -> f32 {
+        let (g0, g1) = (self.eval(0.0), self.eval(1.0));
+        let x = if x.is_nan() { g0 } else { x.clamp(g0, g1) };
+        let (mut lo, mut hi) = (0.0f32, 1.0f32);
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if self.eval(mid) < x {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+    /// `g(y)`, `y` clamped to `[0, 1]`, NaN → 0.
+    fn inverse(&self, y: f32) -> f32 {
+        let y = if y.is_nan() { 0.0 } else { y.clamp(0.0, 1.0) };
+        self.eval(y)
+    }
+}
+
+/// Largest number of polynomial coefficients [`mitsunaga_nayar`] accepts.
+pub const MAX_COEFFS: usize = 12;
+
+/// Fits the inverse response (see the module docs).
+///
+/// * `readings[p · Q + q]`: normalised reading of pixel `p` at exposure
+///   `q`, `Q = exposures.len() ≥ 2`; `readings.len()` must be a multiple
+///   of `Q`.
+/// * `exposures`: strictly positive, finite exposure times (any order —
+///   ratios are taken between consecutive entries).
+/// * `[lo, hi]`: readings used (e.g. `[0.02, 0.98]`); the result is a
+///   polynomial on `[lo, 1]`, continued linearly below `lo`.
+/// * `N`: number of coefficients, `2 ≤ N ≤` [`MAX_COEFFS`].
+///
+/// Errors: [`SensorError::BadBuffer`] for inconsistent lengths,
+/// [`SensorError::NotFinite`] / [`SensorError::BadParameter`] for invalid
+/// exposures or range, [`SensorError::Singular`] when too few usable
+/// pairs, and [`SensorError::NotMonotonic`] when the fitted `g` is not
+/// increasing (the data do not determine a response).
+pub fn mitsunaga_nayar<const N: usize>(
+    readings: &[f32],
+    exposures: &[f32],
+    lo: f32,
+    hi: f32,
+) -> Result<PolynomialInverseResponse<N>, SensorError> {
+    if !(2..=MAX_COEFFS).contains(&N) {
+        return Err(SensorError::BadParameter(
+            "number of coefficients must be in 2..=12",
+        ));
+    }
+    let q = exposures.len();
+    if q < 2 || readings.is_empty() || !readings.len().is_multiple_of(q) {
+        return Err(SensorError::BadBuffer);
+    }
+    if exposures.iter().any(|t| !t.is_finite()) || !(lo.is_finite() && hi.is_finite()) {
+        return Err(SensorError::NotFinite);
+    }
+    if exposures.iter().any(|&t| t <= 0.0) || !(0.0..hi).contains(&lo) || hi > 1.0 {
+        return Err(SensorError::BadParameter(
+            "exposures must be > 0 and 0 ≤ lo < hi ≤ 1",
+        ));
+    }
+    let k = N - 1; // unknowns c_1..c_{N−2} (stored at 0..k−1 shifted by one); c_0 = 0
+    let mut ata = [[0.0f64; MAX_COEFFS]; MAX_COEFFS];
+    let mut atb = [0.0f64; MAX_COEFFS];
+    let mut pairs = 0usize;
+    for px in readings.chunks_exact(q) {
+        for j in 0..q - 1 {
+            let (m0, m1) = (px[j], px[j + 1]);
+            if !(m0 >= lo && m0 <= hi && m1 >= lo && m1 <= hi) {
+                continue;
+            }
+            let r = exposures[j] as f64 / exposures[j + 1] as f64;
+            // a_n = M0ⁿ − r M1ⁿ; residual = Σ_{n<k} c_n (a_n − a_k) + a_k.
+            let mut a = [0.0f64; MAX_COEFFS];
+            let (mut p0, mut p1) = (1.0f64, 1.0f64);
+            for an in a.iter_mut().take(N) {
+                *an = p0 - r * p1;
+                p0 *= m0 as f64;
+                p1 *= m1 as f64;
+            }
+            let ak = a[k];
+            for i in 1..k {
+                let di = a[i] - ak;
+                for jj in 1..k {
+                    ata[i - 1][jj - 1] += di * (a[jj] - ak);
+                }
+                atb[i - 1] -= di * ak;
+            }
+            pairs += 1;
+        }
+    }
+    if pairs < k {
+        return Err(SensorError::Singular);
+    }
+    let c = if k > 1 {
+        solve::<MAX_COEFFS>(&mut ata, &mut atb, k - 1)?
+    } else {
+        [0.0; MAX_COEFFS]
+    };
+    let mut coeffs = [0.0f32; N];
+    let mut sum = 0.0f64;
+    for i in 1..k {
+        coeffs[i] = c[i - 1] as f32;
+        sum += c[i - 1];
+    }
+    coeffs[k] = (1.0 - sum) as f32;
+    PolynomialInverseResponse::new(coeffs, lo)
+}
+
+/// Solves the leading `n × n` block of `a x = b` by Gaussian elimination
+/// with partial pivoting (Golub & Van Loan, *Matrix Computations*, 4th
+/// ed., Alg. 3.4.1), in place, without allocation. Relative pivot
+/// threshold 1e-14 → [`SensorError::Singular`].
+#[allow(clippy::needless_range_loop)]
+pub fn solve<const M: usize>(
+    a: &mut [[f64; M]; M],
+    b: &mut [f64; M],
+    n: usize,
+) -> Result<[f64; M], SensorError> {
+    let n = n.min(M);
+    let scale = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .fold(0.0f64, |m, (i, j)| m.max(a[i][j].abs()));
+    if !(scale.is_finite() && scale > 0.0) {
+        return Err(SensorError::Singular);
+    }
+    for col in 0..n {
+        let piv = (col..n)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap_or(col);
+        if a[piv][col].abs() <= 1e-14 * scale {
+            return Err(SensorError::Singular);
+        }
+        a.swap(col, piv);
+        b.swap(col, piv);
+        for r in col + 1..n {
+            let f = a[r][col] / a[col][col];
+            for c in col..n {
+                a[r][c] -= f * a[col][c];
+            }
+            b[r] -= f * b[col];
+        }
+    }
+    let mut x = [0.0f64; M];
+    for r in (0..n).rev() {
+        let mut s = b[r];
+        for c in r + 1..n {
+            s -= a[r][c] * x[c];
+        }
+        x[r] = s / a[r][r];
+    }
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(SensorError::Singular);
+    }
+    Ok(x)
+}
