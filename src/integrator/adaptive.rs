@@ -10,8 +10,8 @@ use crate::spectrum::WideSpectrum;
 /// error are added to fixed totals and it is never split again).
 pub const MAX_REGIONS: usize = 512;
 
-/// Most evaluations an [`Adaptive`] run spends (`2²²`).
-pub const MAX_ADAPTIVE_EVALUATIONS: u32 = 1 << 22;
+/// Most evaluations an [`Adaptive`] run spends (`2²⁰`).
+pub const MAX_ADAPTIVE_EVALUATIONS: u32 = 1 << 20;
 
 /// Points of the 2-D Genz–Malik rule.
 const GM_POINTS: usize = 17;

@@ -140,32 +140,90 @@ fn product_square<W: WideSpectrum>(
     Ok((sum.value(), abs.value()))
 }
 
-/// Runs the rule of order `(na, nb)` and the comparison rule of order
-/// `(⌈na/2⌉, ⌈nb/2⌉)`; the error estimate is
-/// `|Q_high − Q_low| + 2⁻²³ Σ|w g|`.
-fn with_half_order_check<W: WideSpectrum>(
+/// The orders of the rule and its comparison rules: `(na, nb)`, then
+/// repeated halving `(⌈na/2ᵏ⌉, ⌈nb/2ᵏ⌉)`, `k = 1, 2, 3`, stopping early once
+/// the orders no longer shrink. Returns the levels and their count.
+fn levels(na: usize, nb: usize) -> ([(usize, usize); 4], usize) {
+    let mut out = [(na, nb); 4];
+    let mut count = 1;
+    while count < 4 {
+        let (a, b) = out[count - 1];
+        let next = (a.div_ceil(2), b.div_ceil(2));
+        if next == (a, b) {
+            break;
+        }
+        out[count] = next;
+        count += 1;
+    }
+    (out, count)
+}
+
+/// Total evaluations of [`levels`].
+fn levels_cost(na: usize, nb: usize) -> usize {
+    let (l, c) = levels(na, nb);
+    l[..c].iter().map(|&(a, b)| a * b).sum()
+}
+
+/// Runs the rule `Q₀` of order `(na, nb)` and the comparison rules
+/// `Q₁, Q₂, Q₃` of [`levels`], with differences `e₁ = |Q₀ − Q₁|`,
+/// `e₂ = |Q₁ − Q₂|`, `e₃ = |Q₂ − Q₃|` (channel-wise). Error estimate:
+///
+/// * `e₁` when the coarse levels converge fast (`e₂ ≤ e₃/16`: faster than
+///   `O(n⁻⁴)` per halving, the smooth/spectral regime, in which `e₁`
+///   — really the error of `Q₁` — already overstates the error of `Q₀`);
+/// * otherwise (algebraic convergence, e.g. a discontinuity where the
+///   sampling map returns `None`, where a single difference can be
+///   accidentally small) `max(e₁, e₂·min(1, e₂/e₃))`: the error of `Q₁`
+///   extrapolated from the observed rate `e₂/e₃`;
+///
+/// plus the `f32` rounding floor `2⁻²³ Σ|w g|`. (A rate-based safeguard
+/// in the spirit of QUADPACK's error heuristics, Piessens et al. 1983,
+/// §2.2.) The comparison rules cost ≈ 33 % extra.
+fn with_comparison_rules<W: WideSpectrum>(
     na: usize,
     nb: usize,
     mut f: impl FnMut(f64, f64) -> Result<W, IntegrateError>,
 ) -> Result<Estimate<W>, IntegrateError> {
-    let (hi, abs) = product_square(na, nb, &mut f)?;
-    let (ma, mb) = (na.div_ceil(2), nb.div_ceil(2));
-    let (lo, _) = product_square(ma, mb, &mut f)?;
-    let error = acc::add(acc::abs_diff(hi, lo), abs.map(|a| a * F32_FLOOR));
+    let (lv, count) = levels(na, nb);
+    let (q0, abs) = product_square(na, nb, &mut f)?;
+    let mut q = [q0; 4];
+    for k in 1..count {
+        q[k] = product_square(lv[k].0, lv[k].1, &mut f)?.0;
+    }
+    let error = W::from_fn(|i| {
+        let c = |k: usize| q[k].channel(i);
+        let e1 = if count > 1 {
+            (c(0) - c(1)).abs()
+        } else {
+            c(0).abs()
+        };
+        let e2 = if count > 2 { (c(1) - c(2)).abs() } else { e1 };
+        let e = if count > 3 {
+            let e3 = (c(2) - c(3)).abs();
+            if e2 <= e3 / 16.0 {
+                e1
+            } else {
+                let rate = if e3 > 0.0 { (e2 / e3).min(1.0) } else { 1.0 };
+                e1.max(e2 * rate)
+            }
+        } else {
+            e1.max(e2)
+        };
+        e + abs.channel(i) * F32_FLOOR
+    });
     Ok(Estimate {
-        value: hi,
+        value: q0,
         error,
-        evaluations: (na * nb + ma * mb) as u64,
+        evaluations: levels_cost(na, nb) as u64,
     })
 }
 
-/// Largest `n` with `n·(k n) + ⌈n/2⌉·⌈k n/2⌉ ≤ budget` and `k n ≤ MAX_ORDER`.
+/// Largest `n` with `levels_cost(n, k n) ≤ budget` and `k n ≤ MAX_ORDER`.
 fn order_for_budget(budget: u32, k: usize) -> usize {
-    let cost = |n: usize| n * k * n + n.div_ceil(2) * (k * n).div_ceil(2);
     let b = budget as usize;
-    let mut n = libm::sqrt(b as f64 / (1.25 * k as f64)) as usize + 1;
+    let mut n = libm::sqrt(b as f64 / (1.3 * k as f64)) as usize + 1;
     n = n.min(MAX_ORDER / k);
-    while n > 0 && cost(n) > b {
+    while n > 0 && levels_cost(n, k * n) > b {
         n -= 1;
     }
     n
@@ -183,19 +241,20 @@ fn order_for_budget(budget: u32, k: usize) -> usize {
 /// spectrally convergent for integrands smooth in `(μ, φ)`, slow for narrow
 /// lobes (use [`WarpedGaussLegendre`] there).
 ///
-/// **Error estimate** (a-posteriori): `|Q(n_θ, n_φ) − Q(⌈n_θ/2⌉, ⌈n_φ/2⌉)|
-/// + 2⁻²³ Σ|wₖ gₖ|` — the difference from the half-order rule (which is an
-/// estimate of the *lower* rule's error, hence conservative while the rule
-/// converges) plus the `f32` rounding floor of the integrand. Like any
-/// quadrature estimate it cannot see a feature that falls between all
-/// nodes of both rules (a lobe narrower than the node spacing).
+/// **Error estimate** (a-posteriori, see the private `with_comparison_rules`):
+/// differences from the rules of half, quarter and eighth order,
+/// `e₁ = |Q(n) − Q(n/2)|` (an estimate of the *lower* rule's error, hence
+/// conservative while the rule converges), safeguarded by the observed
+/// convergence rate when it is algebraic, plus the `f32` rounding floor
+/// `2⁻²³ Σ|wₖ gₖ|` of the integrand. Like any quadrature estimate it cannot
+/// see a feature that falls between all nodes of all rules (a lobe
+/// narrower than the node spacing).
 ///
-/// **Budget**: the largest `n_θ` with
-/// `2n_θ² + ⌈n_θ/2⌉·n_θ ≤ budget` is used (the comparison rule costs
-/// ≈ 25 % extra). Minimum budget 10 (`n_θ = 2`); capped at
-/// `n_θ = 512`, `n_φ = 1024` ([`MAX_ORDER`]), i.e. 655,360 evaluations,
-/// whatever the budget. Node storage: two stack arrays of `MAX_ORDER` f64
-/// per axis (32 KiB).
+/// **Budget**: the largest `n_θ` whose rule plus comparison rules
+/// (`n_θ·2n_θ + ⌈n_θ/2⌉·n_θ + …`, ≈ 33 % extra) fit the budget. Minimum
+/// budget 11 (`n_θ = 2`); capped at `n_θ = 512`, `n_φ = 1024`
+/// ([`MAX_ORDER`]), i.e. 696,320 evaluations, whatever the budget. Node
+/// storage: two stack arrays of `MAX_ORDER` f64 per axis (32 KiB).
 ///
 /// A NaN/∞ integrand value gives [`IntegrateError::NonFiniteIntegrand`].
 ///
@@ -223,7 +282,7 @@ impl GaussLegendre {
     }
 
     /// Smallest accepted budget.
-    pub const MIN_BUDGET: u32 = 10;
+    pub const MIN_BUDGET: u32 = 11;
 
     /// `(n_θ, n_φ)` used for a budget (`(0, 0)` below [`Self::MIN_BUDGET`]).
     pub fn orders(budget: u32) -> (usize, usize) {
@@ -240,7 +299,7 @@ impl Integrator for GaussLegendre {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        with_half_order_check(nt, np, |a, b| acc::hemisphere_point(g, a, b))
+        with_comparison_rules(nt, np, |a, b| acc::hemisphere_point(g, a, b))
     }
 
     fn name(&self) -> &'static str {
@@ -261,15 +320,15 @@ impl Integrator for GaussLegendre {
 /// the sample square. Narrow lobes become smooth functions of `u`, so few
 /// nodes suffice.
 ///
-/// `n × n` nodes plus an `⌈n/2⌉ × ⌈n/2⌉` comparison rule; error estimate
-/// `|Q_n − Q_{⌈n/2⌉}| + 2⁻²³ Σ|w g/p|` as for [`GaussLegendre`]. Where the
+/// `n × n` nodes plus the comparison rules of half, quarter and eighth
+/// order; the error estimate is built as for [`GaussLegendre`]. Where the
 /// map returns `None` on part of the square (e.g. grazing microfacet
 /// reflections below the horizon) the warped integrand is discontinuous and
 /// convergence is only algebraic.
 ///
 /// Needs [`Integrand::has_sampling_map`] (else
 /// [`IntegrateError::NoSamplingMap`]). Minimum budget 5 (`n = 2`); capped
-/// at `n = 1024` ([`MAX_ORDER`]): 1,310,720 evaluations. Sample draws count
+/// at `n = 1024` ([`MAX_ORDER`]): 1,392,640 evaluations. Sample draws count
 /// as evaluations. A NaN/∞ value or density gives
 /// [`IntegrateError::NonFiniteIntegrand`].
 ///
@@ -319,7 +378,7 @@ impl Integrator for WarpedGaussLegendre {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        with_half_order_check(n, n, |a, b| acc::warped_point(g, a, b))
+        with_comparison_rules(n, n, |a, b| acc::warped_point(g, a, b))
     }
 
     fn name(&self) -> &'static str {
@@ -369,13 +428,15 @@ mod tests {
     fn orders_fit_budget() {
         for b in [0u32, 9, 10, 11, 100, 4096, 65536, 1 << 20, u32::MAX] {
             let (nt, np) = GaussLegendre::orders(b);
-            let cost = nt * np + nt.div_ceil(2) * np.div_ceil(2);
-            assert!(cost as u64 <= b as u64, "{b}");
+            assert!(levels_cost(nt, np) as u64 <= b as u64, "{b}");
             assert!(np <= MAX_ORDER);
             let n = WarpedGaussLegendre::order(b);
-            assert!((n * n + n.div_ceil(2).pow(2)) as u64 <= b as u64);
+            assert!(levels_cost(n, n) as u64 <= b as u64);
         }
-        assert_eq!(GaussLegendre::orders(10), (2, 4));
+        assert_eq!(GaussLegendre::orders(11), (2, 4));
+        assert_eq!(GaussLegendre::orders(10), (0, 0));
+        assert_eq!(levels_cost(512, 1024), 696_320);
+        assert_eq!(levels_cost(1024, 1024), 1_392_640);
         assert_eq!(GaussLegendre::orders(u32::MAX), (512, 1024));
     }
 }

@@ -30,6 +30,10 @@ pub enum Strategy {
     Uniform,
     /// Cosine-weighted, `p = cos θ/π` (Malley's method, PBRT 4th ed.
     /// §A.5.3); estimator `π g(ω)/cos θ` (0 at `cos θ = 0`, a null set).
+    /// Its variance is infinite when `g` does not vanish at the horizon
+    /// (the weight grows like `1/cos θ`): the standard error is then not
+    /// reliable (measured: 94 % of runs within 3σ for `g = 1 + …` at 256
+    /// samples); use it for integrands carrying a `cos θ` factor.
     Cosine,
     /// The integrand's own sampling map ([`Integrand::sample`]); estimator
     /// `g(ω)/p(ω)`, 0 where the map returns `None`.
@@ -108,9 +112,9 @@ fn point_index(p: PointSet) -> usize {
     }
 }
 
-/// Most evaluations any [`MonteCarlo`] run spends (`2²²` = 4,194,304);
+/// Most evaluations any [`MonteCarlo`] run spends (`2²⁰` = 1,048,576);
 /// larger budgets are capped (and `evaluations` says what was spent).
-pub const MAX_MC_EVALUATIONS: u32 = 1 << 22;
+pub const MAX_MC_EVALUATIONS: u32 = 1 << 20;
 
 /// Default number of independent randomizations for RQMC point sets.
 pub const DEFAULT_REPLICATES: u32 = 16;
@@ -130,7 +134,7 @@ pub const DEFAULT_REPLICATES: u32 = 16;
 ///   the normal limit of `Prng`).
 ///
 /// Sobol: one scramble holds at most `2¹⁶` points (`sobol_burley`), so when
-/// `⌊N/K⌋ > 2¹⁶` the number of scrambles grows to `⌈N/2¹⁶⌉` (≤ 64 under
+/// `⌊N/K⌋ > 2¹⁶` the number of scrambles grows to `⌈N/2¹⁶⌉` (≤ 16 under
 /// the cap). Jittered grids use `⌊√n⌋ × ⌊n/⌊√n⌋⌋ ≤ n` cells per replicate.
 /// Cosine sampling uses the concentric map of [`crate::warp`] except with
 /// the Fibonacci lattice, which uses the polar map (making it the
