@@ -626,14 +626,24 @@ impl<S: Spectrum> Light for Cap<S> {
 /// `[α_lo(β), α_hi(β)] ⊆ [0, σ]` (the horizon `ω_z = 0` is
 /// `cos θa cos α − sin θa cos β sin α = 0`, solved for α with `atan2`).
 /// A hemisphere direction `ω' = (sin θ' cos φ', sin θ' sin φ', cos θ')`
-/// maps to `β = φ'`, `v = v_lo + (1 − cos θ')(v_hi − v_lo)`, so
+/// maps to `β = φ'` (unclipped cap; see below for the clipped case) and
+/// `v = v_lo + (1 − cos θ')(v_hi − v_lo)`, so
 /// `dω = J dω'` with `J(β) = v_hi(β) − v_lo(β)` and
 ///
 /// `∫_H g'(ω') dω' = ∫_{cap ∩ H} f_r L cos θ dω`, `g'(ω') = J f_r(ω(ω'), ωo) L cos θ(ω')`.
 ///
-/// `g'` is smooth in `cos θ'` and piecewise smooth (kinks where the
-/// clipping starts) in φ'. Its sampling map is uniform on the hemisphere
-/// (density `1/2π`), i.e. uniform over the visible cap. Using `v`
+/// `g'` is smooth in `cos θ'`. In φ' it is smooth and periodic when the
+/// cap is entirely above the horizon (`β = φ'`). When the horizon clips
+/// the cap, `J(β)` has kinks at `β = ±β*`, `cos β* = cot σ cos θa / sin θa`
+/// (where the horizon starts to cut the radial segments), and for an axis
+/// at or below the horizon `J = 0` on `|β| < β*`. Then φ' is mapped
+/// piecewise onto the visible β-pieces (`[−β*, β*]` on `φ' ∈ [0, π)`, the
+/// rest on `[π, 2π)`; or only `|β| > β*` over all of φ'), each through
+/// Sidi's sin²-transform (Sidi 1993), whose Jacobian vanishes to second
+/// order at the piece ends, so the kinks no longer slow quadrature down
+/// and no node is spent on the invisible part. The Jacobian `dβ/dφ'`
+/// multiplies `g'`. Its sampling map is uniform on the hemisphere
+/// (density `1/2π`). Using `v`
 /// instead of `cos α` keeps full precision for tiny caps (the sun).
 ///
 /// ```
@@ -665,6 +675,33 @@ pub struct CapIntegrand<B: Brdf> {
     sigma: f32,
     sin_sigma: f32,
     v_sigma: f32,
+    azimuth: Azimuth,
+}
+
+/// How the hemisphere azimuth φ' maps to the cap azimuth β.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Azimuth {
+    /// Cap fully above the horizon: `β = φ'`.
+    Full,
+    /// Axis above the horizon, cap partly below: `|β| < β*` is clipped from
+    /// above, `|β| > β*` is whole; each half of φ' covers one piece.
+    Split(f32),
+    /// Axis at or below the horizon: only `|β| > β*` is visible (clipped
+    /// from below); all of φ' covers it.
+    Lower(f32),
+}
+
+/// Sidi's sin²-transform `S(t) = t − sin(2πt)/(2π)` on `[0, 1]` and its
+/// derivative `S'(t) = 2 sin²(πt)` (Sidi 1993, "A new variable
+/// transformation for numerical integration", Int. Ser. Numer. Math. 112):
+/// it flattens the integrand at both ends of a piece, so a kink at a piece
+/// boundary becomes a jump in a high derivative only.
+#[inline]
+fn sidi(t: f32) -> (f32, f32) {
+    let t = t.clamp(0.0, 1.0);
+    let (s2, _) = libm::sincosf(TAU * t);
+    let s1 = libm::sinf(core::f32::consts::PI * t);
+    ((t - s2 / TAU).clamp(0.0, 1.0), 2.0 * s1 * s1)
 }
 
 /// `v(α) = 1 − cos α = 2 sin²(α/2)` without cancellation.
@@ -684,6 +721,21 @@ impl<B: Brdf> CapIntegrand<B> {
         let (cp, sp) = if s > 0.0 { (a.x / s, a.y / s) } else { (1.0, 0.0) };
         let e1 = Vec3::new(c * cp, c * sp, -s);
         let e2 = Vec3::new(-sp, cp, 0.0);
+        let (ss, cs) = libm::sincosf(cap.half_angle);
+        let (ss, cs) = (ss.clamp(0.0, 1.0), cs.clamp(0.0, 1.0));
+        let azimuth = if c >= ss || s <= 0.0 {
+            Azimuth::Full
+        } else {
+            // The azimuth where clipping starts: cos β* = −y, with
+            // y = −cot σ · cos θa / sin θa (see radiometric::cap_projected_solid_angle).
+            let y = (-(c / ss) * (cs / s)).clamp(-1.0, 1.0);
+            let beta_star = libm::acosf(-y);
+            if c > 0.0 {
+                Azimuth::Split(beta_star)
+            } else {
+                Azimuth::Lower(beta_star)
+            }
+        };
         Self {
             brdf,
             wo,
@@ -696,6 +748,7 @@ impl<B: Brdf> CapIntegrand<B> {
             sigma: cap.half_angle,
             sin_sigma: libm::sinf(cap.half_angle),
             v_sigma: versine(cap.half_angle),
+            azimuth,
         }
     }
 
@@ -732,7 +785,43 @@ impl<B: Brdf> CapIntegrand<B> {
         }
     }
 
-    /// `g'` at parameters `u0 = 1 − cos θ' ∈ [0,1]` and azimuth `(cos β, sin β)`.
+    /// Cap azimuth β and `dβ/dφ'` for the hemisphere azimuth `φ' ∈ [0, 2π]`.
+    #[inline]
+    fn beta(&self, phi: f32) -> (f32, f32) {
+        let pi = core::f32::consts::PI;
+        match self.azimuth {
+            Azimuth::Full => (phi, 1.0),
+            Azimuth::Lower(bs) => {
+                let width = TAU - 2.0 * bs;
+                let (st, ds) = sidi(phi / TAU);
+                (bs + width * st, width * ds / TAU)
+            }
+            Azimuth::Split(bs) => {
+                if phi < pi {
+                    let (st, ds) = sidi(phi / pi);
+                    (-bs + 2.0 * bs * st, 2.0 * bs * ds / pi)
+                } else {
+                    let width = TAU - 2.0 * bs;
+                    let (st, ds) = sidi((phi - pi) / pi);
+                    (bs + width * st, width * ds / pi)
+                }
+            }
+        }
+    }
+
+    /// `g'` at `u0 = 1 − cos θ' ∈ [0,1]` and hemisphere azimuth `φ'`.
+    #[inline]
+    fn eval_at(&self, u0: f32, phi: f32) -> B::Spectrum {
+        let (beta, dbeta) = self.beta(phi);
+        if dbeta <= 0.0 {
+            return B::Spectrum::zero();
+        }
+        let (sb, cb) = libm::sincosf(beta);
+        self.eval_param(u0, cb, sb) * dbeta
+    }
+
+    /// `g'` (without the azimuth Jacobian) at `u0 = 1 − cos θ' ∈ [0,1]` and
+    /// cap azimuth `(cos β, sin β)`.
     #[inline]
     fn eval_param(&self, u0: f32, cos_b: f32, sin_b: f32) -> B::Spectrum {
         let Some((v_lo, v_hi)) = self.v_range(cos_b) else {
@@ -759,13 +848,18 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
 
     #[inline]
     fn eval(&self, w: Vec3) -> B::Spectrum {
-        let r = libm::hypotf(w.x, w.y);
-        let (cb, sb) = if r > 0.0 && r.is_finite() {
-            (w.x / r, w.y / r)
-        } else {
-            (1.0, 0.0)
-        };
-        self.eval_param(1.0 - w.z.clamp(0.0, 1.0), cb, sb)
+        let u0 = 1.0 - w.z.clamp(0.0, 1.0);
+        if self.azimuth == Azimuth::Full {
+            // β = φ': no trigonometry needed.
+            let r = libm::hypotf(w.x, w.y);
+            let (cb, sb) = if r > 0.0 && r.is_finite() {
+                (w.x / r, w.y / r)
+            } else {
+                (1.0, 0.0)
+            };
+            return self.eval_param(u0, cb, sb);
+        }
+        self.eval_at(u0, crate::frame::spherical_phi(w))
     }
 
     fn has_sampling_map(&self) -> bool {
@@ -778,11 +872,10 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<B::Spectrum>> {
         let u0 = u[0].clamp(0.0, 1.0);
         let w = square_to_uniform_hemisphere([1.0 - u0, u[1]]);
-        let (sb, cb) = libm::sincosf(TAU * u[1].clamp(0.0, 1.0));
         Some(IntegrandSample {
             w,
             pdf: 0.5 * FRAC_1_PI,
-            value: self.eval_param(u0, cb, sb),
+            value: self.eval_at(u0, TAU * u[1].clamp(0.0, 1.0)),
         })
     }
 
