@@ -397,14 +397,17 @@ mod tests {
     fn rejected_lobe_mass(n: f64, theta_o: f64) -> f64 {
         let (n_t, n_p) = (3000, 2048);
         let wo = [libm::sin(theta_o), 0.0, libm::cos(theta_o)];
+        let cos_phi: std::vec::Vec<f64> = (0..n_p)
+            .map(|j| libm::cos((j as f64 + 0.5) / n_p as f64 * TAU))
+            .collect();
         let mut sum = 0.0;
         for i in 0..n_t {
             let th = (i as f64 + 0.5) / n_t as f64 * FRAC_PI_2;
             let (st, ct) = (libm::sin(th), libm::cos(th));
             let mut ring = 0.0;
-            for j in 0..n_p {
-                let ph = (j as f64 + 0.5) / n_p as f64 * TAU;
-                let h = [st * libm::cos(ph), st * libm::sin(ph), ct];
+            for &cp in &cos_phi {
+                // h = (st cos φ, st sin φ, ct); wo has no y component.
+                let h = [st * cp, 0.0, ct];
                 let d = wo[0] * h[0] + wo[1] * h[1] + wo[2] * h[2];
                 let wi_z = 2.0 * d * h[2] - wo[2];
                 if d <= 0.0 || wi_z <= 0.0 {

@@ -329,6 +329,7 @@ pub(crate) fn finish_sample<B: Brdf>(brdf: &B, wi: Vec3, wo: Vec3) -> Option<Brd
 /// (f64, own spherical parameterisation) and a sampling checker.
 #[cfg(test)]
 pub(crate) mod test_support {
+    extern crate std;
     use core::f64::consts::{FRAC_PI_2, TAU};
     use radiometry::glam::Vec3;
     use radiometry::math::ONE_MINUS_EPSILON;
@@ -340,20 +341,20 @@ pub(crate) mod test_support {
     pub fn hemisphere_integral(n_s: usize, n_phi: usize, mut g: impl FnMut(Vec3) -> f64) -> f64 {
         let mut total = 0.0f64;
         let dphi = TAU / n_phi as f64;
+        let trig: std::vec::Vec<(f64, f64)> = (0..n_phi)
+            .map(|j| {
+                let phi = (j as f64 + 0.5) * dphi;
+                (libm::cos(phi), libm::sin(phi))
+            })
+            .collect();
         for i in 0..n_s {
             let s = (i as f64 + 0.5) / n_s as f64;
             let theta = FRAC_PI_2 * s * s;
             let dtheta = 2.0 * FRAC_PI_2 * s / n_s as f64;
             let (st, ct) = (libm::sin(theta), libm::cos(theta));
             let mut ring = 0.0f64;
-            for j in 0..n_phi {
-                let phi = (j as f64 + 0.5) * dphi;
-                let w = Vec3::new(
-                    (st * libm::cos(phi)) as f32,
-                    (st * libm::sin(phi)) as f32,
-                    ct as f32,
-                );
-                ring += g(w);
+            for &(cp, sp) in &trig {
+                ring += g(Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32));
             }
             total += ring * dphi * st * dtheta;
         }
