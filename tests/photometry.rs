@@ -146,14 +146,14 @@ fn srgb_matrix_maps_d65_white_to_one_and_matches_primaries() {
     let d = det3(pm);
     let s: [f64; 3] = core::array::from_fn(|j| {
         let mut a = pm;
-        for r in 0..3 {
-            a[r][j] = wv[r];
+        for (row, w) in a.iter_mut().zip(wv) {
+            row[j] = w;
         }
         det3(a) / d
     });
     // M_rgb→xyz = P diag(s); check M_xyz→rgb · M_rgb→xyz ≈ I.
-    for j in 0..3 {
-        let xyz = [m(0, j) * s[j], m(1, j) * s[j], m(2, j) * s[j]];
+    for (j, sj) in s.iter().enumerate() {
+        let xyz = [m(0, j) * sj, m(1, j) * sj, m(2, j) * sj];
         let rgb = photometry::xyz_to_linear_srgb(xyz.map(|v| v as f32));
         for (i, v) in rgb.iter().enumerate() {
             let want = if i == j { 1.0 } else { 0.0 };
