@@ -1,0 +1,347 @@
+//! Integration tests: run the `radiometry` binary and check exit codes and
+//! output shapes. Expected values are closed forms, not outputs of the code.
+
+use std::f64::consts::PI;
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_radiometry"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn json(o: &Output) -> serde_json::Value {
+    serde_json::from_str(stdout(o).trim()).unwrap_or_else(|e| panic!("not JSON ({e}): {}", stdout(o)))
+}
+
+/// The caret line sits under `token` in the echoed spec line.
+fn assert_caret_under(err: &str, token: &str) {
+    let lines: Vec<&str> = err.lines().collect();
+    let k = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with('^'))
+        .unwrap_or_else(|| panic!("no caret line in:\n{err}"));
+    assert!(k > 0, "{err}");
+    let col = lines[k].find('^').expect("caret");
+    let width = lines[k].trim().len();
+    let spec_line: Vec<char> = lines[k - 1].chars().collect();
+    let under: String = spec_line[col..col + width].iter().collect();
+    assert_eq!(under, token, "caret not under `{token}`:\n{err}");
+}
+
+#[test]
+fn help_lists_the_commands() {
+    let o = run(&["--help"]);
+    assert!(o.status.success());
+    let s = stdout(&o);
+    for c in ["tradeoff", "albedo", "eval", "irradiance"] {
+        assert!(s.contains(c), "{s}");
+    }
+    let o = run(&["albedo", "--help"]);
+    assert!(stdout(&o).contains("4194304"), "max budget for --tol documented");
+}
+
+#[test]
+fn eval_lambertian_is_albedo_over_pi() {
+    let o = run(&["eval", "lambertian(albedo=0.5)", "--wi", "30,0", "--wo", "45,90"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: f64 = stdout(&o).trim().parse().expect("a number");
+    assert!((v - 0.5 / PI).abs() < 1e-7, "{v}");
+    // Below the horizon: zero.
+    let o = run(&["eval", "lambertian(albedo=0.5)", "--wi", "100,0", "--wo", "45,90"]);
+    assert_eq!(stdout(&o).trim().parse::<f64>().unwrap(), 0.0);
+}
+
+#[test]
+fn eval_phong_and_json_shape() {
+    // Mirror configuration: cos α = 1, f = ks (n+2)/(2π).
+    let o = run(&[
+        "eval",
+        "phong(exponent=100, ks=1, kd=0)",
+        "--wi",
+        "30,180",
+        "--wo",
+        "30,0",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    let v = j["value"].as_f64().unwrap();
+    let want = 102.0 / (2.0 * PI);
+    assert!((v - want).abs() < 1e-3 * want, "{v} vs {want}");
+    assert!(j["wi"].is_array() && j["wo"].is_array());
+}
+
+#[test]
+fn albedo_json_keys_and_closed_forms() {
+    let o = run(&[
+        "albedo",
+        "lambertian(albedo=0.5)",
+        "--theta-o",
+        "60",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    for k in ["value", "error", "evaluations", "seconds"] {
+        assert!(j.get(k).is_some(), "missing {k}: {j}");
+    }
+    assert!((j["value"].as_f64().unwrap() - 0.5).abs() < 1e-5);
+    assert!(j["evaluations"].as_u64().unwrap() <= 4096);
+
+    // GGX α = 1 at normal incidence: ρ = 1 − ln 2 (closed form).
+    let o = run(&[
+        "albedo",
+        "ggx(alpha=1)",
+        "--theta-o",
+        "0",
+        "--integrator",
+        "adaptive",
+        "--budget",
+        "100000",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    let v = j["value"].as_f64().unwrap();
+    let e = j["error"].as_f64().unwrap();
+    let exact = 1.0 - std::f64::consts::LN_2;
+    assert!((v - exact).abs() < 1e-5, "{v} vs {exact}");
+    assert!(
+        (v - exact).abs() <= e.max(1e-6),
+        "error estimate {e} vs true {}",
+        (v - exact).abs()
+    );
+    assert_eq!(j["integrator"], "adaptive");
+}
+
+#[test]
+fn albedo_tol_reports_why_it_stopped() {
+    let o = run(&[
+        "albedo",
+        "phong(exponent=10)",
+        "--theta-o",
+        "0",
+        "--tol",
+        "1e-6",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["stopped"], "tolerance reached", "{j}");
+    assert!(j["error"].as_f64().unwrap() <= 1e-6);
+    assert!((j["value"].as_f64().unwrap() - 1.0).abs() < 1e-5, "{j}");
+
+    // An unreachable tolerance for Monte Carlo stops at the maximum budget.
+    let o = run(&[
+        "albedo",
+        "ggx(alpha=0.3)",
+        "--theta-o",
+        "30",
+        "--integrator",
+        "mc-uniform-prng",
+        "--tol",
+        "1e-12",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    let stopped = j["stopped"].as_str().unwrap();
+    assert!(
+        stopped == "max budget reached" || stopped == "integrator cap reached",
+        "{j}"
+    );
+
+    // Text output says it too.
+    let o = run(&["albedo", "lambertian", "--theta-o", "10", "--tol", "1e-3"]);
+    assert!(
+        stdout(&o).contains("stopped: tolerance reached"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn albedo_usage_errors_exit_2() {
+    let o = run(&[
+        "albedo",
+        "lambertian",
+        "--theta-o",
+        "10",
+        "--budget",
+        "10",
+        "--tol",
+        "1e-3",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&["albedo", "lambertian", "--theta-o", "95"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&["albedo", "lambertian", "--theta-o", "10", "--integrator", "magic"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("gauss-legendre"), "{}", stderr(&o));
+    let o = run(&["albedo", "lambertian", "--theta-o", "10", "--tol", "-1"]);
+    assert_eq!(o.status.code(), Some(2));
+    // Budget below the integrator's minimum: a runtime error, exit 1, no panic.
+    let o = run(&["albedo", "lambertian", "--theta-o", "10", "--budget", "0"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("panicked"));
+}
+
+#[test]
+fn bad_specs_exit_2_with_a_caret() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["eval", "ggx(alpha=0.1, g=sep)", "--wi", "0,0", "--wo", "0,0"],
+            "sep",
+        ),
+        (
+            &["eval", "lambertain(albedo=0.5)", "--wi", "0,0", "--wo", "0,0"],
+            "lambertain",
+        ),
+        (
+            &["eval", "lambertian(albedo=2)", "--wi", "0,0", "--wo", "0,0"],
+            "2",
+        ),
+        (&["eval", "lambertian", "--wi", "0,x", "--wo", "0,0"], "x"),
+        (
+            &["albedo", "phong(exponent=10, ks=1, kd=0, q=3)", "--theta-o", "0"],
+            "q",
+        ),
+        (
+            &[
+                "albedo",
+                "ggx(alpha=0.1, fresnel=schlick(f0=1.5))",
+                "--theta-o",
+                "0",
+            ],
+            "1.5",
+        ),
+        (
+            &[
+                "irradiance",
+                "cap(axis_theta=95, half_angle=10, radiance=1) + lamp",
+            ],
+            "lamp",
+        ),
+        (&["irradiance", "sky(radiance=-1)"], "-1"),
+    ];
+    for (args, token) in cases {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(!err.contains("panicked"), "{err}");
+        assert_caret_under(&err, token);
+    }
+}
+
+#[test]
+fn irradiance_closed_forms() {
+    let o = run(&["irradiance", "sky(radiance=1)"]);
+    assert_eq!(o.status.code(), Some(0));
+    let v: f64 = stdout(&o).trim().parse().unwrap();
+    assert!((v - PI).abs() < 1e-5);
+
+    let o = run(&[
+        "irradiance",
+        "directional(theta=60, irradiance=2) + sky(radiance=0.5)",
+    ]);
+    let v: f64 = stdout(&o).trim().parse().unwrap();
+    assert!((v - (1.0 + 0.5 * PI)).abs() < 1e-5, "{v}");
+
+    // Cap fully above the horizon: E = π L sin²σ cos θa.
+    let o = run(&[
+        "irradiance",
+        "cap(axis_theta=30, half_angle=10, radiance=2)",
+        "--format",
+        "json",
+    ]);
+    let j = json(&o);
+    let s = 10f64.to_radians().sin();
+    let want = PI * 2.0 * s * s * 30f64.to_radians().cos();
+    assert!((j["value"].as_f64().unwrap() - want).abs() < 1e-5 * want, "{j}");
+    assert_eq!(j["lights"].as_array().unwrap().len(), 1);
+    assert_eq!(j["lights"][0]["kind"], "cap");
+
+    // Partly below the horizon (axis 95°, σ = 10°): positive, and less than
+    // the same cap's unclipped normal irradiance π L sin²σ.
+    let o = run(&["irradiance", "cap(axis_theta=95, half_angle=10, radiance=1)"]);
+    assert_eq!(o.status.code(), Some(0));
+    let v: f64 = stdout(&o).trim().parse().unwrap();
+    assert!(v > 0.0 && v < PI * s * s * 0.5, "{v}");
+    // Fully below: zero.
+    let o = run(&["irradiance", "cap(axis_theta=120, half_angle=10)"]);
+    assert_eq!(stdout(&o).trim().parse::<f64>().unwrap(), 0.0);
+}
+
+#[test]
+fn tradeoff_quick_writes_csv_svg_and_summary() {
+    let dir = std::env::temp_dir().join(format!("radiometry-tradeoff-test-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let o = run(&["tradeoff", "--quick", "--out", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("tradeoff.csv")).expect("csv written");
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "case,integrator,budget,evaluations,estimate,reference,abs_error,rel_error,error_estimate,seconds"
+        )
+    );
+    let mut n = 0;
+    for l in lines {
+        let f: Vec<&str> = l.split(',').collect();
+        assert_eq!(f.len(), 10, "{l}");
+        let budget: u32 = f[2].parse().unwrap();
+        assert!(budget <= 4096, "quick budgets ≤ 4096: {l}");
+        let evals: u64 = f[3].parse().unwrap();
+        assert!(evals <= budget as u64, "{l}");
+        for x in &f[4..] {
+            let v: f64 = x.parse().unwrap_or_else(|_| panic!("{l}"));
+            assert!(v.is_finite(), "{l}");
+        }
+        let (est, refv, abs): (f64, f64, f64) = (
+            f[4].parse().unwrap(),
+            f[5].parse().unwrap(),
+            f[6].parse().unwrap(),
+        );
+        assert!(
+            ((est - refv).abs() - abs).abs() <= 1e-12 * refv.abs().max(1.0),
+            "{l}"
+        );
+        n += 1;
+    }
+    assert!(n > 50, "{n} rows");
+    let svgs: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().extension().is_some_and(|x| x == "svg"))
+        .collect();
+    assert!(svgs.len() >= 2, "{} svg files", svgs.len());
+    for e in &svgs {
+        let s = std::fs::read_to_string(e.path()).unwrap();
+        assert!(s.contains("<svg") && s.contains("</svg>"), "{:?}", e.path());
+    }
+    let md = std::fs::read_to_string(dir.join("summary.md")).expect("summary.md");
+    assert!(md.contains("| family | integrator |"));
+    let out = stdout(&o);
+    assert!(
+        out.contains("rel.err 1e-4") && out.contains("gauss-legendre-warped"),
+        "{out}"
+    );
+    assert!(std::fs::metadata(dir.join("references.csv")).is_ok());
+    let _ = std::fs::remove_dir_all(&dir);
+}
