@@ -76,7 +76,7 @@ struct Region<W> {
     error: W,
     /// Channel-wise Σ|w f| (for the f32 rounding floor).
     abs: W,
-    /// Scalar priority: largest channel of `error`.
+    /// Scalar priority: largest channel of `error + 2⁻²³ abs`.
     key: f64,
     /// Axis with the larger fourth difference (split here).
     axis: u8,
@@ -122,13 +122,18 @@ fn rule<W: WideSpectrum>(
     let dx = fourth(1, 2, 5, 6);
     let dy = fourth(3, 4, 7, 8);
     let error = acc::abs_diff(i7, i5);
+    let abs = ab.value();
+    // Priority includes the region's f32 rounding floor (∝ its Σ|w f|), so
+    // among regions whose 17 values agree (|I₇ − I₅| ≈ 0) the larger ones
+    // are split first and the small ones frozen first.
+    let key = acc::max_abs(acc::add(error, abs.map(|a| a * F32_FLOOR)));
     Ok(Region {
         c,
         h,
         value: i7,
         error,
-        abs: ab.value(),
-        key: acc::max_abs(error),
+        abs,
+        key,
         axis: if dy > dx { 1 } else { 0 },
     })
 }
@@ -145,7 +150,11 @@ fn rule<W: WideSpectrum>(
 /// error is halved along the axis with the larger fourth difference, until
 ///
 /// `Σ errors ≤ max(abs_tol, rel_tol · |Σ values|)` (largest channel), or
-/// the budget cannot pay for another split (34 evaluations).
+/// the budget cannot pay for another split (34 evaluations). With both
+/// tolerances 0 the whole budget is spent; regions whose estimated error is
+/// exactly 0 (all 17 values equal, as for a warped integrand that is
+/// piecewise constant) are then split largest-first, so a feature hidden
+/// between their nodes can still be found.
 ///
 /// Start: a 2 × 2 grid of regions (68 evaluations = minimum budget).
 /// Reported error = `Σ region errors + 2⁻²³ Σ|w g|` (the `f32` rounding
@@ -259,12 +268,16 @@ impl Adaptive {
             for (k, r) in regions[..live].iter().enumerate() {
                 err_sum += r.key;
                 val.add(r.value);
-                if r.key > regions[worst].key {
+                // Largest error first; among equal errors (e.g. all zero on a
+                // piecewise-constant integrand) the largest region.
+                let w = &regions[worst];
+                if r.key > w.key || (r.key == w.key && r.h[0] * r.h[1] > w.h[0] * w.h[1]) {
                     worst = k;
                 }
             }
             let target = self.abs_tol.max(self.rel_tol * acc::max_abs(val.value()));
-            if err_sum <= target || evals + 2 * GM_POINTS as u64 > budget {
+            let converged = target > 0.0 && err_sum <= target;
+            if converged || evals + 2 * GM_POINTS as u64 > budget {
                 break;
             }
             let r = regions[worst];
