@@ -10,6 +10,16 @@
 //! a given configuration (including its seed), never allocate, and
 //! accumulate in `f64` with compensated summation.
 //!
+//! Integrators (name strings for reports in parentheses):
+//! * [`GaussLegendre`] (`"gauss-legendre"`): product rule in `(cos θ, φ)`;
+//! * [`WarpedGaussLegendre`] (`"gauss-legendre-warped"`): the same on the
+//!   unit square of the integrand's sampling map;
+//! * [`Adaptive`] (`"adaptive"`, `"adaptive-warped"`): Genz–Malik adaptive
+//!   cubature, to a tolerance;
+//! * [`MonteCarlo`] (`"mc-{uniform,cosine,integrand}-{prng,stratified,sobol,fibonacci}"`,
+//!   `"mis-{balance,power}-…"`): Monte Carlo and randomized QMC;
+//! * [`integrate_to_tolerance`]: budget doubling for any of them.
+//!
 //! [`DirectionalAlbedo`] adapts a [`Brdf`] and an outgoing direction into
 //! the integrand `g(ωi) = f_r(ωi, ωo) cos θi`, whose integral is the
 //! directional albedo `ρ(ωo)`.
