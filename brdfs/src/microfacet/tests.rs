@@ -153,28 +153,17 @@ fn ndf_matches_closed_form_and_extremes() {
     println!("D vs closed form: worst relative error {worst:.2e}");
 }
 
-/// f64 references for Λ: GGX closed form; Beckmann erf form in f64 (with the
-/// continued fraction of erfc for large a so that the reference itself has
-/// no cancellation).
+/// f64 references for Λ: GGX closed form; Beckmann erf form in f64 written
+/// with libm's f64 `erfc` (`erf − 1 = −erfc`), whose cancellation costs only
+/// ~2a² f64 ulps — a different evaluation from the f32 continued fraction
+/// the code uses for a ≥ 2.
 fn lambda_ref(name: &str, alpha: f64, w: Vec3) -> f64 {
     let tn = (w.x as f64).hypot(w.y as f64) / w.z as f64;
     if name == "ggx" {
         return 0.5 * (-1.0 + (1.0 + alpha * alpha * tn * tn).sqrt());
     }
     let a = 1.0 / (alpha * tn);
-    if a < 3.0 {
-        0.5 * (libm::erf(a) - 1.0) + (-a * a).exp() / (2.0 * a * PI64.sqrt())
-    } else {
-        // e^{−a²}/(a√π) − erfc(a) = e^{−a²}/√π · (1/a − K(a)) with the
-        // continued fraction erfc(a) = e^{−a²}/√π · K(a),
-        // K = 1/(a + (1/2)/(a + 1/(a + (3/2)/(a + 2/(a + …))))).
-        let mut k = 0.0f64;
-        for n in (1..200).rev() {
-            k = (n as f64 / 2.0) / (a + k);
-        }
-        // 1/a − 1/(a + k) = k / (a (a + k))
-        0.5 * (-a * a).exp() / PI64.sqrt() * k / (a * (a + k))
-    }
+    0.5 * ((-a * a).exp() / (a * PI64.sqrt()) - libm::erfc(a))
 }
 
 #[test]
@@ -187,10 +176,15 @@ fn lambda_and_g1_match_references() {
             let w = dir(t, 2.0);
             let r = lambda_ref(name, al, w);
             let v = d.lambda(w) as f64;
-            let e = (v - r).abs() / r.max(1e-30);
+            // Conditioning: for Beckmann, Λ ∝ e^{−a²} near a → ∞, so the
+            // f32 rounding of the input a alone moves Λ by ~2a² ε relative.
+            let tn = (w.x as f64).hypot(w.y as f64) / w.z as f64;
+            let a = 1.0 / (al * tn);
+            let cond = if name == "ggx" { 1.0 } else { 1.0 + 2.0 * a * a };
+            let e = (v - r).abs() / r.max(1e-30) / (cond * f32::EPSILON as f64);
             if r > 1e-30 {
                 worst = worst.max(e);
-                assert!(e < 5e-5, "{name} α={al} θ={t}: Λ {v} vs {r}");
+                assert!(e < 16.0, "{name} α={al} θ={t}: Λ {v} vs {r} ({e} units)");
             }
             let g = d.g1(w) as f64;
             assert!((g - 1.0 / (1.0 + r)).abs() < 1e-6, "{name} G1");
@@ -206,7 +200,7 @@ fn lambda_and_g1_match_references() {
             assert!((0.0..=1.0).contains(&g), "{name} {w:?}: {g}");
         }
     });
-    println!("Λ vs f64 reference: worst relative error {worst:.2e}");
+    println!("Λ vs f64 reference: worst error {worst:.2} units of ε·(1 + 2a²)");
 }
 
 /// Smith weak white furnace `∫ G1(ωo) ⟨ωo·m⟩ D(m) dm = cos θo` (Heitz 2014,
@@ -776,7 +770,12 @@ fn eval_is_robust_at_edges() {
         let w = Vec3::new(0.3, 0.4, 0.866);
         assert_eq!(b.eval(-w, w), 0.0);
         // Reciprocity on a small grid.
-        for &(a, c) in &[(0.2f64, 1.0f64), (1.4, 0.1), (FRAC_PI_2 - 1e-7, FRAC_PI_2 - 1e-7), (0.0, 0.7)] {
+        for &(a, c) in &[
+            (0.2f64, 1.0f64),
+            (1.4, 0.1),
+            (FRAC_PI_2 - 1e-7, FRAC_PI_2 - 1e-7),
+            (0.0, 0.7),
+        ] {
             let (x, y) = (dir(a, 0.3), dir(c, 2.0));
             let (f1, f2) = (b.eval(x, y), b.eval(y, x));
             assert!(
@@ -797,5 +796,137 @@ fn isotropic_form_matches_eval() {
         );
         let iso = b.eval_isotropic(ti, to, dp);
         assert!((direct - iso).abs() <= 1e-4 * direct.max(1e-6), "{direct} {iso}");
+    }
+}
+
+/// Upper quantile of the χ² distribution with `k` degrees of freedom at
+/// upper-tail probability `p` (Wilson & Hilferty 1931 cube-root normal
+/// approximation; the normal quantile by bisection on libm's f64 `erfc`).
+fn chi2_critical(k: f64, p: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0f64, 40.0f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        // upper tail of N(0,1) at mid is erfc(mid/√2)/2
+        if 0.5 * libm::erfc(mid / core::f64::consts::SQRT_2) > p {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let z = 0.5 * (lo + hi);
+    let c = 2.0 / (9.0 * k);
+    k * (1.0 - c + z * c.sqrt()).powi(3)
+}
+
+/// χ² goodness of fit of `sample_visible` against cell integrals of
+/// `visible_pdf` (2-D Simpson per cell). Cells: θm edges `atan(α s)` for a
+/// fixed list of `s`, 16 φ sectors; cells with expected count < 5 pooled.
+/// Significance 0.01 with Šidák correction over all cases.
+#[test]
+fn visible_sampling_chi_square() {
+    let n = 200_000usize;
+    let s_edges = [
+        0.0f64,
+        0.25,
+        0.5,
+        0.75,
+        1.0,
+        1.5,
+        2.0,
+        3.0,
+        4.0,
+        6.0,
+        10.0,
+        20.0,
+        f64::INFINITY,
+    ];
+    let nphi = 16;
+    let cases: Vec<(f32, f64)> = [0.01f32, 0.1, 0.5, 1.0]
+        .iter()
+        .flat_map(|&a| [0.0f64, 1.0, 1.5].into_iter().map(move |t| (a, t)))
+        .collect();
+    let n_tests = (cases.len() * 2) as f64;
+    let alpha_sidak = 1.0 - (1.0 - 0.01f64).powf(1.0 / n_tests);
+    let mut state = 0x2545f4914f6cdd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut min_margin = f64::INFINITY;
+    for &(a, to) in &cases {
+        let ds: [(&str, &dyn MicrofacetDistribution); 2] = [
+            ("ggx", &Ggx::new(a).unwrap()),
+            ("beckmann", &Beckmann::new(a).unwrap()),
+        ];
+        for (name, d) in ds {
+            let wo = dir(to, 0.3);
+            let th_edges: Vec<f64> = s_edges.iter().map(|&s| (a as f64 * s).atan()).collect();
+            let nth = th_edges.len() - 1;
+            let mut expected = std::vec![0.0f64; nth * nphi];
+            for i in 0..nth {
+                for j in 0..nphi {
+                    let (p0, p1) = (
+                        TAU64 * j as f64 / nphi as f64,
+                        TAU64 * (j + 1) as f64 / nphi as f64,
+                    );
+                    expected[i * nphi + j] = n as f64
+                        * simpson(
+                            &mut |t| {
+                                simpson(&mut |p| d.visible_pdf(wo, dir(t, p)) as f64, p0, p1, 16) * t.sin()
+                            },
+                            th_edges[i],
+                            th_edges[i + 1],
+                            32,
+                        );
+                }
+            }
+            let mut observed = std::vec![0.0f64; nth * nphi];
+            for _ in 0..n {
+                let m = d.sample_visible(wo, [next(), next()]);
+                let t = (m.x as f64).hypot(m.y as f64).atan2(m.z as f64);
+                let mut p = (m.y as f64).atan2(m.x as f64);
+                if p < 0.0 {
+                    p += TAU64;
+                }
+                let i = th_edges.partition_point(|&e| e <= t).clamp(1, nth) - 1;
+                let j = ((p / TAU64 * nphi as f64) as usize).min(nphi - 1);
+                observed[i * nphi + j] += 1.0;
+            }
+            // Pool small cells (in index order) until expected ≥ 5.
+            let (mut chi2, mut dof) = (0.0f64, 0usize);
+            let (mut eo, mut ee) = (0.0f64, 0.0f64);
+            for k in 0..expected.len() {
+                eo += observed[k];
+                ee += expected[k];
+                if ee >= 5.0 {
+                    chi2 += (eo - ee).powi(2) / ee;
+                    dof += 1;
+                    eo = 0.0;
+                    ee = 0.0;
+                }
+            }
+            if ee > 0.0 || eo > 0.0 {
+                // Remainder: fold into the statistic as its own cell if it has mass.
+                if ee > 0.0 {
+                    chi2 += (eo - ee).powi(2) / ee;
+                    dof += 1;
+                } else {
+                    assert!(eo < 5.0, "{name}: samples where the density is zero");
+                }
+            }
+            let crit = chi2_critical((dof - 1) as f64, alpha_sidak);
+            min_margin = min_margin.min(crit - chi2);
+            println!(
+                "χ² {name} α={a} θo={to}: {chi2:.1} (dof {}), critical {crit:.1}",
+                dof - 1
+            );
+            assert!(
+                chi2 < crit,
+                "{name} α={a} θo={to}: χ² = {chi2} ≥ {crit} (dof {})",
+                dof - 1
+            );
+        }
     }
 }
