@@ -36,6 +36,7 @@
 use crate::spectral::SpectralCurve;
 use core::fmt;
 
+pub mod als;
 pub mod calibration;
 pub mod color;
 pub mod emva;

@@ -510,6 +510,13 @@ pub const fn d65() -> Tabulated<'static> {
 /// integration grid up to the O(h²) trapezoid error of each product
 /// segment.
 ///
+/// Curves are zero outside their supports, and the integral runs over the
+/// intersection of the supports. Declare supports tightly: a curve whose
+/// support is wider than where it is non-zero (e.g. a tabulated spectrum
+/// wrapped in a wider [`FnCurve`]) has a jump to zero inside the interval,
+/// which the trapezoid rule integrates with an O(h) error (half a step of
+/// the jump height).
+///
 /// ```
 /// use radiometry::spectral::{FnCurve, integrate_product};
 /// let one = FnCurve::new(400.0, 500.0, |_| 1.0);
