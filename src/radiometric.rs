@@ -95,6 +95,14 @@ pub fn directional_irradiance<S: Spectrum>(e_perp: S, cos_theta: f32) -> S {
 /// `σ = π/2`, where it equals `π(1 + cos θa)/2`). The result is continuous
 /// across the three cases and tends to `π σ² max(0, cos θa)` as `σ → 0`.
 ///
+/// Accuracy (measured against an f64 quadrature in `tests/illumination.rs`,
+/// 136 cases, 77 of them clipped): absolute error ≤ 2.2·10⁻⁷ · π sin²σ;
+/// relative error ≤ 6·10⁻⁶ where `Ω⊥ > 10⁻³ π sin²σ`. When only a thin
+/// sliver of the cap is visible (`θa − σ` just below π/2) the three terms
+/// of the partial-case formula cancel and the *relative* error grows
+/// (e.g. 0.8 % for `Ω⊥ = 4·10⁻⁸ π sin²σ`), while the absolute error stays
+/// at the `f32` level above.
+///
 /// Domain: `cos θa` clamped to `[−1, 1]`, `σ` clamped to `[0, π/2]` (a cap
 /// larger than a hemisphere is not a cap light here); NaN inputs give 0.
 /// Output is in `[0, π]`.
