@@ -250,14 +250,12 @@ mod tests {
 
     #[test]
     fn plugin_constructor_errors_point_at_the_parameter() {
-        let text = "ggx(alpha=0.1, fresnel=dielectric(eta=2000))";
-        let spec = parse_brdf(text);
-        // The parser accepts eta ≤ 1e3; the plugin may reject larger values.
-        if let Ok(s) = spec {
-            if let Err(e) = build_brdf(text, &s) {
-                assert_eq!(&text[e.start..e.end], "2000");
-            }
-        }
+        // The parser accepts η > 0; the plugin requires η ≥ MIN_ETA = 1e-3.
+        let text = "ggx(alpha=0.1, fresnel=dielectric(eta=0.0001))";
+        let e = build_brdf(text, &parse_brdf(text).unwrap())
+            .err()
+            .expect("plugin rejects η = 1e-4");
+        assert_eq!(&text[e.start..e.end], "0.0001", "{e}");
         assert_eq!(find_param("phong(exponent=5, ks=0.5)", "ks"), Some((21, 24)));
     }
 

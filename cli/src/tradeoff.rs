@@ -224,13 +224,16 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// `(budget, evaluations, estimate, error estimate, median seconds)`.
+type Measured = (u32, u64, f64, f64, f64);
+
 fn measure(
     brdf: &AnyBrdf,
     theta_o: f64,
     integ: &AnyIntegrator,
     budgets: &[u32],
     quick: bool,
-) -> (Vec<(u32, u64, f64, f64, f64)>, Vec<String>) {
+) -> (Vec<Measured>, Vec<String>) {
     let t = theta_o.to_radians();
     let g = DirectionalAlbedo {
         brdf,
