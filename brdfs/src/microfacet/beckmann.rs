@@ -1,6 +1,6 @@
 //! The Beckmann normal distribution.
 
-use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, erfinv_2p_minus_1};
+use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, erfinv_2p_minus_1, erfinv_2p_minus_1_guess};
 use super::{MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, unitize};
 use crate::error::{BrdfError, check_range};
 use core::f32::consts::PI;
@@ -100,41 +100,47 @@ impl Beckmann {
     }
 
     /// Samples the slope `x̃ ∈ [−MAX_SLOPE, b]` with density ∝
-    /// `(cos θ − x̃ sin θ) e^{−x̃²}` (Heitz & d'Eon 2014, eq. 11–12 for
-    /// Beckmann), `b = min(cot θ, MAX_SLOPE)`, by inverting `C` with Newton's
-    /// method safeguarded by bisection (at most 40 steps; stops at an
-    /// interval or step below 2⁻²¹ relative).
+    /// `(cos θ − x̃ sin θ) e^{−x̃²}` (Heitz & d'Eon 2014, §4.2 and eq. 11–12 for
+    /// Beckmann), `b = min(cot θ, MAX_SLOPE)`, by solving
+    /// `C(x̃) = u C(b)` with Newton's method safeguarded by bisection, started
+    /// from the normal-incidence quantile `erfinv(2u − 1)` (exact for θ = 0).
+    /// It stops when the residual reaches the `f32` rounding level of `C`
+    /// (`4ε C(b)`), the step falls below `2⁻²¹(1 + |x̃|)`, or after 24 steps.
     fn sample_slope_x(cos_t: f32, sin_t: f32, u: f32) -> f32 {
         let b = if sin_t * MAX_SLOPE <= cos_t {
             MAX_SLOPE
         } else {
             cos_t / sin_t
         };
-        let (mut lo, mut hi) = (-MAX_SLOPE, b);
-        let target = u * Self::slope_cdf(cos_t, sin_t, b);
-        if target <= Self::slope_cdf(cos_t, sin_t, lo) {
-            return lo;
+        if u <= 0.0 {
+            return -MAX_SLOPE;
         }
-        // Start from the normal-incidence quantile, which is exact for θ = 0.
-        let mut x = erfinv_2p_minus_1(u).clamp(lo, hi);
-        for _ in 0..40 {
-            let c = Self::slope_cdf(cos_t, sin_t, x) - target;
+        let total = Self::slope_cdf(cos_t, sin_t, b);
+        let target = u * total;
+        let noise = 4.0 * f32::EPSILON * total;
+        let (mut lo, mut hi) = (-MAX_SLOPE, b);
+        let mut x = erfinv_2p_minus_1_guess(u).clamp(lo, hi);
+        for _ in 0..24 {
+            let e = libm::expf(-x * x) * FRAC_1_SQRT_PI;
+            let c = 0.5 * cos_t * libm::erfcf(-x) + 0.5 * sin_t * e - target;
+            if c.abs() <= noise {
+                break;
+            }
             if c > 0.0 {
                 hi = x;
             } else {
                 lo = x;
             }
-            let dc = (cos_t - x * sin_t) * FRAC_1_SQRT_PI * libm::expf(-x * x);
+            let dc = (cos_t - x * sin_t) * e;
             let mut next = x - c / dc;
-            if !(next > lo && next < hi) {
+            if next.is_nan() || next <= lo || next >= hi {
                 next = 0.5 * (lo + hi);
             }
-            let tol = 5e-7 * (1.0 + x.abs());
-            if (next - x).abs() <= tol || hi - lo <= tol {
-                x = next;
+            let done = (next - x).abs() <= 4.8e-7 * (1.0 + x.abs());
+            x = next;
+            if done {
                 break;
             }
-            x = next;
         }
         x.clamp(-MAX_SLOPE, b)
     }

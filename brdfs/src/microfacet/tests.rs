@@ -930,3 +930,80 @@ fn visible_sampling_chi_square() {
         }
     }
 }
+
+/// Randomised sweep over extreme finite inputs (components drawn from
+/// `{0, ±1e-38, ±1e-20, ±1e-7, ±0.3, ±1, ±1e20, ±3e38}`, any `u` in
+/// `{0, 1e-7, 0.5, 1 − ε, 1}` or uniform): every output finite and
+/// non-negative (Λ may be +∞ by contract), samplers return unit vectors.
+#[test]
+fn extreme_inputs_never_nan() {
+    const MAGS: [f32; 8] = [0.0, 1e-38, 1e-20, 1e-7, 0.3, 1.0, 1e20, 3e38];
+    const US: [f32; 5] = [0.0, 1e-7, 0.5, ONE_MINUS_EPSILON, 1.0];
+    let mut state = 0x853c49e6748fea9bu64;
+    let mut rnd = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let vec = |r: &mut dyn FnMut() -> u64| {
+        let mut c = [0.0f32; 3];
+        for x in &mut c {
+            let k = r();
+            let m = MAGS[(k % 8) as usize];
+            *x = if (k >> 8) & 1 == 1 { -m } else { m };
+        }
+        Vec3::from_array(c)
+    };
+    let mut cases = 0usize;
+    for &a in &[1e-4f32, 1e-3, 0.5, 1.0] {
+        let g = Ggx::new(a).unwrap();
+        let b = Beckmann::new(a).unwrap();
+        let brdfs: [&dyn Brdf<Spectrum = f32>; 4] = [
+            &Microfacet::<_, HeightCorrelated, _>::new(g, NoFresnel),
+            &Microfacet::<_, Separable, _>::new(g, Dielectric::new(0.5).unwrap()),
+            &Microfacet::<_, HeightCorrelated, _>::new(b, Conductor::new(0.2f32, 3.0).unwrap()),
+            &Microfacet::<_, Separable, _>::new(b, Schlick::new(0.04f32).unwrap()),
+        ];
+        let dists: [&dyn MicrofacetDistribution; 2] = [&g, &b];
+        for _ in 0..5000 {
+            let (wi, wo) = (vec(&mut rnd), vec(&mut rnd));
+            let u = [
+                if rnd() % 2 == 0 {
+                    US[(rnd() % 5) as usize]
+                } else {
+                    (rnd() >> 40) as f32 / 16777216.0
+                },
+                if rnd() % 2 == 0 {
+                    US[(rnd() % 5) as usize]
+                } else {
+                    (rnd() >> 40) as f32 / 16777216.0
+                },
+            ];
+            cases += 1;
+            for d in dists {
+                for v in [d.d(wi), d.g1(wi), d.visible_pdf(wo, wi)] {
+                    assert!(v.is_finite() && v >= 0.0, "{wi:?} {wo:?}: {v}");
+                }
+                assert!(d.lambda(wi) >= 0.0);
+                let m = d.sample_visible(wo, u);
+                assert!(
+                    m.is_finite() && m.z >= 0.0 && (m.length() - 1.0).abs() < 1e-5,
+                    "{wo:?} {u:?}"
+                );
+            }
+            for br in brdfs {
+                let f = br.eval(wi, wo);
+                let p = br.pdf(wi, wo);
+                assert!(f.is_finite() && f >= 0.0, "{wi:?} {wo:?}: f = {f}");
+                assert!(p.is_finite() && p >= 0.0, "{wi:?} {wo:?}: pdf = {p}");
+                if let Some(s) = br.sample(wo, u) {
+                    assert!(s.wi.is_finite() && s.wi.z > 0.0, "{wo:?} {u:?}");
+                    assert!(s.pdf.is_finite() && s.pdf > 0.0);
+                    assert!(s.weight.is_finite() && s.weight >= 0.0);
+                }
+            }
+        }
+    }
+    println!("extreme inputs: {cases} cases × (2 distributions + 4 BRDFs)");
+}
