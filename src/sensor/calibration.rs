@@ -74,11 +74,17 @@ impl<const N: usize> PolynomialInverseResponse<N> {
         }
         let g = Self { coeffs, m_lo };
         let mut prev = g.poly(m_lo);
+        if !prev.is_finite() {
+            return Err(SensorError::NotFinite);
+        }
         if m_lo > 0.0 && prev <= 0.0 {
             return Err(SensorError::NotMonotonic);
         }
         for i in 1..=1024 {
             let v = g.poly(m_lo + (1.0 - m_lo) * i as f32 / 1024.0);
+            if !v.is_finite() {
+                return Err(SensorError::NotFinite);
+            }
             if v <= prev {
                 return Err(SensorError::NotMonotonic);
             }

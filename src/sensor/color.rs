@@ -348,6 +348,9 @@ impl FilterWheel {
                 "filters, slot time and samples must be > 0",
             ));
         }
+        if samples_per_slot > 1 << 20 {
+            return Err(SensorError::BadParameter("at most 2²⁰ samples per slot"));
+        }
         Ok(Self {
             filters,
             slot_s,

@@ -289,9 +289,10 @@ pub trait Aperture {
     /// `s(x, y)`.
     fn weight(&self, x: f32, y: f32) -> f32;
     /// `∫∫ s(x,y) dx dy` over the unit square, computed with `n × n`
-    /// midpoint samples when the aperture is not uniform.
+    /// midpoint samples when the aperture is not uniform (`n` clamped to
+    /// `1..=`[`MAX_SPACE_SAMPLES`]).
     fn mean(&self, n: u32) -> f32 {
-        let n = n.max(1);
+        let n = n.clamp(1, MAX_SPACE_SAMPLES);
         let mut acc = 0.0f32;
         for j in 0..n {
             for i in 0..n {
@@ -354,6 +355,11 @@ impl<F: Fn(f32, f32) -> f32> Aperture for FnAperture<F> {
         if v.is_finite() { v } else { 0.0 }
     }
 }
+
+/// Largest [`Sampling::space`] accepted (4096 × 4096 samples).
+pub const MAX_SPACE_SAMPLES: u32 = 4096;
+/// Largest [`Sampling::time`] accepted.
+pub const MAX_TIME_SAMPLES: u32 = 1 << 20;
 
 /// Sample counts for the dimensions a field declares varying.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -424,6 +430,11 @@ impl<A: Aperture, Q: SpectralCurve> Pixel<A, Q> {
         }
         if sampling.space == 0 || sampling.time == 0 || sampling.wavelength_step_nm <= 0.0 {
             return Err(SensorError::BadParameter("sample counts and step must be > 0"));
+        }
+        if sampling.space > MAX_SPACE_SAMPLES || sampling.time > MAX_TIME_SAMPLES {
+            return Err(SensorError::BadParameter(
+                "at most 4096 × 4096 spatial and 2²⁰ temporal samples",
+            ));
         }
         Ok(Self {
             aperture,

@@ -532,9 +532,10 @@ pub fn integrate_product(a: &impl SpectralCurve, b: &impl SpectralCurve, step_nm
 
 /// `∫_lo^hi f(λ) dλ` by the composite trapezoid rule (see
 /// [`integrate_product`] for the step policy). Empty or non-finite
-/// intervals give 0; non-finite integrand values count as 0.
+/// intervals (including `hi − lo` overflowing `f32`) give 0; non-finite
+/// integrand values count as 0; a sum that overflows `f32` gives 0.
 pub fn integrate_fn(lo: f32, hi: f32, step_nm: f32, f: impl Fn(f32) -> f32) -> f32 {
-    if !(lo.is_finite() && hi.is_finite()) || hi <= lo {
+    if !(lo.is_finite() && hi.is_finite() && (hi - lo).is_finite()) || hi <= lo {
         return 0.0;
     }
     let step = if step_nm.is_finite() && step_nm > 0.0 {
@@ -554,7 +555,8 @@ pub fn integrate_fn(lo: f32, hi: f32, step_nm: f32, f: impl Fn(f32) -> f32) -> f
     for i in 1..n {
         s.add(g(lo + i as f32 * h));
     }
-    s.value() * h
+    let v = s.value() * h;
+    if v.is_finite() { v } else { 0.0 }
 }
 
 /// Neumaier compensated sum in `f32`.
