@@ -77,6 +77,20 @@ pub const MAX_ALPHA: f32 = 1.0;
 ///   `|tan θ|` only, so `g1` and `lambda` are symmetric under `z → −z`;
 /// * the visible-normal density `D_ωo(m) = G1(ωo) ⟨ωo·m⟩ D(m) / cos θo`
 ///   (Heitz 2014 eq. 38) integrates to 1 over the hemisphere of `m`.
+///
+/// ```
+/// use radiometry::glam::Vec3;
+/// use radiometry_brdfs::microfacet::{Beckmann, Ggx, MicrofacetDistribution};
+/// fn check<D: MicrofacetDistribution>(d: &D) {
+///     let wo = Vec3::new(0.6, 0.0, 0.8);
+///     let m = d.sample_visible(wo, [0.25, 0.5]);
+///     assert!(m.z >= 0.0 && (m.length() - 1.0).abs() < 1e-5);
+///     assert!(d.visible_pdf(wo, m) > 0.0);
+///     assert!((d.g1(wo) - 1.0 / (1.0 + d.lambda(wo))).abs() < 1e-6);
+/// }
+/// check(&Ggx::new(0.4).unwrap());
+/// check(&Beckmann::new(0.4).unwrap());
+/// ```
 pub trait MicrofacetDistribution {
     /// The roughness `α ∈ [MIN_ALPHA, MAX_ALPHA]`.
     fn alpha(&self) -> f32;

@@ -1007,3 +1007,42 @@ fn extreme_inputs_never_nan() {
     }
     println!("extreme inputs: {cases} cases × (2 distributions + 4 BRDFs)");
 }
+
+/// The cheap path equals the full path where both apply: `NoFresnel` vs
+/// `Schlick(f0 = 1)`; an RGB Schlick/Conductor BRDF vs three `f32` BRDFs;
+/// height-correlated vs separable G2 at normal incidence (`Λ(+Z) = 0`).
+#[test]
+fn cheap_paths_match_full_paths() {
+    let g = Ggx::new(0.35).unwrap();
+    let b = Beckmann::new(0.2).unwrap();
+    let plain = Microfacet::<_, HeightCorrelated, _>::new(g, NoFresnel);
+    let one = Microfacet::<_, HeightCorrelated, _>::new(g, Schlick::new(1.0f32).unwrap());
+    let f0 = Vec3::new(0.1, 0.5, 0.9);
+    let (eta, k) = (Vec3::new(0.2, 0.9, 1.5), Vec3::new(3.0, 2.5, 0.5));
+    let rgb = Microfacet::<_, Separable, _>::new(b, Schlick::new(f0).unwrap());
+    let rgb_c = Microfacet::<_, Separable, _>::new(b, Conductor::new(eta, k).unwrap());
+    let hc = Microfacet::<_, HeightCorrelated, _>::new(b, NoFresnel);
+    let sep = Microfacet::<_, Separable, _>::new(b, NoFresnel);
+    for i in 0..40 {
+        for j in 0..40 {
+            let wi = dir(i as f64 / 40.0 * FRAC_PI_2, j as f64 * 0.3);
+            let wo = dir(j as f64 / 40.0 * FRAC_PI_2, 1.0 + i as f64 * 0.2);
+            assert_eq!(plain.eval(wi, wo), one.eval(wi, wo));
+            let v = rgb.eval(wi, wo);
+            let vc = rgb_c.eval(wi, wo);
+            for c in 0..3 {
+                let single = Microfacet::<_, Separable, _>::new(b, Schlick::new(f0[c]).unwrap());
+                assert_eq!(v[c], single.eval(wi, wo));
+                let single_c = Microfacet::<_, Separable, _>::new(b, Conductor::new(eta[c], k[c]).unwrap());
+                assert_eq!(vc[c], single_c.eval(wi, wo));
+            }
+            assert!((hc.eval(wi, Vec3::Z) - sep.eval(wi, Vec3::Z)).abs() <= 1e-6 * hc.eval(wi, Vec3::Z));
+            let u = [i as f32 / 40.0, j as f32 / 40.0];
+            match (plain.sample(wo, u), one.sample(wo, u)) {
+                (Some(x), Some(y)) => assert_eq!(x, y),
+                (None, None) => {}
+                other => panic!("{other:?}"),
+            }
+        }
+    }
+}
