@@ -59,6 +59,7 @@ fn monochromatic_555_is_683_lux_per_watt() {
     assert_eq!(photometry::illuminance_monochromatic(f32::NAN, 1.0), 0.0);
     assert_eq!(photometry::illuminance_monochromatic(555.0, f32::NAN), 0.0);
     assert_eq!(photometry::illuminance_monochromatic(555.0, f32::INFINITY), 0.0);
+    assert_eq!(photometry::illuminance_monochromatic(555.0, f32::MAX), f32::MAX); // saturates
 }
 
 #[test]

@@ -41,6 +41,7 @@ proptest! {
             prop_assert!(b.value(l).is_finite() && b.value(l) >= 0.0);
         }
         let _ = spectral::photopic_v().try_value(l);
+        prop_assert!(photometry::xyz_to_linear_srgb([l, t, e]).iter().all(|v| v.is_finite()));
         if let Some(c) = photometry::chromaticity([l, t, e]) {
             prop_assert!(c[0].is_finite() && c[1].is_finite());
         }

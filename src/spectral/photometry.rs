@@ -38,10 +38,14 @@ pub fn illuminance_lux(spectral_irradiance: &impl SpectralCurve) -> f32 {
 /// Illuminance in lux of monochromatic light of wavelength `lambda_nm`
 /// and irradiance `irradiance_w_m2`: `E_v = K_m V(λ) E_e`.
 /// Zero outside 360–830 nm and for a non-finite wavelength; a non-finite
-/// irradiance gives 0.
+/// irradiance gives 0; a finite result beyond the `f32` range saturates at
+/// `±f32::MAX`.
 pub fn illuminance_monochromatic(lambda_nm: f32, irradiance_w_m2: f32) -> f32 {
+    if !irradiance_w_m2.is_finite() {
+        return 0.0;
+    }
     let v = K_M * photopic_v().value(lambda_nm) * irradiance_w_m2;
-    if v.is_finite() { v } else { 0.0 }
+    v.clamp(-f32::MAX, f32::MAX)
 }
 
 /// Tristimulus integrals `(∫E x̄ dλ, ∫E ȳ dλ, ∫E z̄ dλ)` of a spectral
@@ -77,9 +81,24 @@ pub const XYZ_TO_SRGB: [[f32; 3]; 3] = [
 ];
 
 /// Linear sRGB from CIE XYZ (Y of the white = 1): `RGB = M · XYZ` with
-/// [`XYZ_TO_SRGB`]. No clipping: out-of-gamut colours give components
-/// outside `[0, 1]`, which the caller may clip.
+/// [`XYZ_TO_SRGB`]. No clipping to `[0, 1]`: out-of-gamut colours give
+/// components outside it, which the caller may clip. Finite input gives
+/// finite output: inputs near the `f32` limit are pre-scaled by 2⁻⁸ and
+/// the result saturates at `±f32::MAX`; non-finite components give 0.
+///
+/// ```
+/// use radiometry::spectral::xyz_to_linear_srgb;
+/// let rgb = xyz_to_linear_srgb([0.9505, 1.0, 1.089]); // D65 white
+/// assert!(rgb.iter().all(|c| (c - 1.0).abs() < 1e-3));
+/// assert!(xyz_to_linear_srgb([f32::MAX; 3]).iter().all(|c| c.is_finite()));
+/// ```
 pub fn xyz_to_linear_srgb(xyz: [f32; 3]) -> [f32; 3] {
     let m = &XYZ_TO_SRGB;
-    core::array::from_fn(|r| m[r][0] * xyz[0] + m[r][1] * xyz[1] + m[r][2] * xyz[2])
+    let xyz = xyz.map(|v| if v.is_finite() { v } else { 0.0 });
+    let big = xyz.iter().any(|v| v.abs() > 1.0e36);
+    let s = if big { 1.0 / 256.0 } else { 1.0 };
+    core::array::from_fn(|r| {
+        let v = (m[r][0] * (xyz[0] * s) + m[r][1] * (xyz[1] * s) + m[r][2] * (xyz[2] * s)) / s;
+        v.clamp(-f32::MAX, f32::MAX)
+    })
 }
