@@ -15,6 +15,7 @@
 //! `|R_coarse − R_fine| + ε_fine`, where `ε_fine` is the summed Kronrod error
 //! indicator of the fine run.
 
+use std::collections::BinaryHeap;
 use std::f64::consts::PI;
 
 /// A BRDF model in `f64` for the reference computation.
@@ -210,37 +211,95 @@ pub fn adaptive(
     pts.push(b);
     pts.sort_by(|x, y| x.total_cmp(y));
     pts.dedup();
-    let mut iv: Vec<(f64, f64, f64, f64)> = pts
+    // Max-heap on the error indicator; running sums are recomputed exactly
+    // every 64 splits and at the end to avoid drift.
+    let mut heap: BinaryHeap<Piece> = pts
         .windows(2)
         .filter(|w| w[1] > w[0])
         .map(|w| {
             let (v, e) = gk15(&mut f, w[0], w[1]);
-            (w[0], w[1], v, e)
+            Piece {
+                err: e,
+                lo: w[0],
+                hi: w[1],
+                val: v,
+            }
         })
         .collect();
+    let sums = |h: &BinaryHeap<Piece>| {
+        let v: f64 = h.iter().map(|p| p.val).sum();
+        let e: f64 = h.iter().map(|p| p.err).sum();
+        (v, e)
+    };
+    let (mut total, mut err) = sums(&heap);
+    let mut splits = 0usize;
     loop {
-        let total: f64 = iv.iter().map(|t| t.2).sum();
-        let err: f64 = iv.iter().map(|t| t.3).sum();
-        if err <= abs_tol.max(rel_tol * total.abs()) || iv.len() >= max_intervals {
-            return (total, err);
+        if err <= abs_tol.max(rel_tol * total.abs()) || heap.len() >= max_intervals {
+            let (t, e) = sums(&heap);
+            if e <= abs_tol.max(rel_tol * t.abs()) || heap.len() >= max_intervals {
+                return (t, e);
+            }
+            (total, err) = (t, e);
         }
-        let (k, _) = iv
-            .iter()
-            .enumerate()
-            .max_by(|x, y| x.1.3.total_cmp(&y.1.3))
-            .map(|(k, t)| (k, t.3))
-            .unwrap_or((0, 0.0));
-        let (lo, hi, _, _) = iv[k];
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            // Interval can no longer be split in f64: stop refining it.
-            iv[k].3 = 0.0;
+        let Some(p) = heap.pop() else {
+            return (0.0, 0.0);
+        };
+        let mid = 0.5 * (p.lo + p.hi);
+        if mid <= p.lo || mid >= p.hi || p.err == 0.0 {
+            // Interval can no longer be split in f64 (or is exact): freeze it.
+            heap.push(Piece { err: 0.0, ..p });
+            err -= p.err;
+            if heap.iter().all(|q| q.err == 0.0) {
+                let (t, e) = sums(&heap);
+                return (t, e.max(p.err));
+            }
             continue;
         }
-        let (v1, e1) = gk15(&mut f, lo, mid);
-        let (v2, e2) = gk15(&mut f, mid, hi);
-        iv[k] = (lo, mid, v1, e1);
-        iv.push((mid, hi, v2, e2));
+        let (v1, e1) = gk15(&mut f, p.lo, mid);
+        let (v2, e2) = gk15(&mut f, mid, p.hi);
+        total += v1 + v2 - p.val;
+        err += e1 + e2 - p.err;
+        heap.push(Piece {
+            err: e1,
+            lo: p.lo,
+            hi: mid,
+            val: v1,
+        });
+        heap.push(Piece {
+            err: e2,
+            lo: mid,
+            hi: p.hi,
+            val: v2,
+        });
+        splits += 1;
+        if splits % 64 == 0 {
+            (total, err) = sums(&heap);
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    err: f64,
+    lo: f64,
+    hi: f64,
+    val: f64,
+}
+
+impl PartialEq for Piece {
+    fn eq(&self, o: &Self) -> bool {
+        self.err.total_cmp(&o.err).is_eq()
+    }
+}
+impl Eq for Piece {}
+impl PartialOrd for Piece {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Piece {
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        self.err.total_cmp(&o.err)
     }
 }
 
