@@ -285,3 +285,27 @@ fn stacked_layers_follow_beer_lambert() {
     assert!(StackedLayers::new([0.0, 0.2]).is_err());
     assert!(StackedLayers::new([f32::NAN]).is_err());
 }
+
+#[test]
+fn slanted_edge_chart_covers_the_right_area() {
+    use radiometry::sensor::color::slanted_edge;
+    let (w, h) = (40, 30);
+    let mut img = vec![[0.0f32; 3]; w * h];
+    slanted_edge(w, h, 0.25, 10.0, &mut img).unwrap();
+    // Bright area = Σ_rows (w − (0.25·y_mid + 10)) exactly for a line crossing each row: closed form.
+    let total: f32 = img.iter().map(|p| p[0]).sum();
+    let want: f32 = (0..h).map(|y| w as f32 - (0.25 * (y as f32 + 0.5) + 10.0)).sum();
+    assert!((total - want).abs() < 0.5, "{total} vs {want}");
+    assert!(
+        img.iter()
+            .all(|p| p[0] == p[1] && p[1] == p[2] && (0.0..=1.0).contains(&p[0]))
+    );
+    assert_eq!(
+        slanted_edge(w, h, f32::NAN, 1.0, &mut img),
+        Err(SensorError::NotFinite)
+    );
+    assert_eq!(
+        slanted_edge(w, h + 1, 0.0, 1.0, &mut img),
+        Err(SensorError::BadBuffer)
+    );
+}

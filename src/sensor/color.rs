@@ -513,3 +513,48 @@ impl<const N: usize> StackedLayers<N> {
         })
     }
 }
+
+/// Writes a black/white slanted-edge test chart (ISO 12233:2017-style
+/// edge target) into `out` (`w·h` grey pixels, `[v, v, v]`): `v` is the
+/// fraction of pixel `(x, y)` lying on the bright side of the line
+/// `x = slope·y + offset` (pixel units, pixel `(x, y)` covering
+/// `[x, x+1) × [y, y+1)`), estimated with 16 × 16 sub-samples. Used to
+/// show demosaicing false colour: the true image is achromatic.
+///
+/// ```
+/// use radiometry::sensor::color::slanted_edge;
+/// let mut img = [[0.0f32; 3]; 8 * 4];
+/// slanted_edge(8, 4, 0.0, 4.0, &mut img).unwrap();
+/// assert_eq!(img[3], [0.0; 3]);
+/// assert_eq!(img[4], [1.0; 3]);
+/// ```
+pub fn slanted_edge(
+    w: usize,
+    h: usize,
+    slope: f32,
+    offset: f32,
+    out: &mut [[f32; 3]],
+) -> Result<(), SensorError> {
+    if !(slope.is_finite() && offset.is_finite()) {
+        return Err(SensorError::NotFinite);
+    }
+    if w.checked_mul(h) != Some(out.len()) {
+        return Err(SensorError::BadBuffer);
+    }
+    for y in 0..h {
+        for x in 0..w {
+            let mut n = 0u32;
+            for sy in 0..16 {
+                for sx in 0..16 {
+                    let px = x as f32 + (sx as f32 + 0.5) / 16.0;
+                    let py = y as f32 + (sy as f32 + 0.5) / 16.0;
+                    if px > slope * py + offset {
+                        n += 1;
+                    }
+                }
+            }
+            out[y * w + x] = [n as f32 / 256.0; 3];
+        }
+    }
+    Ok(())
+}
