@@ -9,8 +9,8 @@
 //!
 //! `σ_y² = K² σ_d² + σ_q² + K (μ_y − μ_y.dark)`.
 //!
-//! (The numbering of these equations differs between releases; in
-//! Release 3.1 they are eqs. (1)–(10) of §2; check the text of 4.0.)
+//! (Equation numbers are not cited: they differ between releases 3.1
+//! and 4.0; the relations are those of §2 in both.)
 //! Saturation: electrons are clipped at the saturation capacity, the
 //! output at `2^bits − 1`. Optional DSNU (offset) and PRNU (gain)
 //! non-uniformity are per-pixel, deterministic in the pixel index.

@@ -1,6 +1,7 @@
 //! CIE data tables (generated from the machine-readable copies in the `colour-science` 0.4.7 PyPI package;
 //! the numbers are those of CIE 015:2018 *Colorimetry*, 4th ed., Tables T.1 (D65) and T.4 (CIE 1931 2°
-//! standard observer), and ISO 23539:2005/CIE S 010 (photopic V(λ), identical to ȳ(λ)).
+//! standard observer; also ISO/CIE 11664-1:2019, formerly CIE S 014-1/E:2006), and ISO 23539:2005/CIE S 010
+//! (photopic V(λ), identical to ȳ(λ)).
 //! Do not edit by hand.
 
 /// First wavelength of the CIE 1931 2° colour-matching-function tables, nm.
