@@ -88,5 +88,37 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             exercise(&Microfacet::<_, Separable, _>::new(d, f), &mut acc);
         }
     }
+    // Integrators on a directional-albedo integrand (stack only, no heap).
+    // Linked for the std/alloc check; not yet part of the no-panic proof
+    // (bounds checks on their fixed-size node/region tables survive).
+    #[cfg(not(feature = "prove-no-panic"))]
+    {
+        use radiometry::Integrator;
+        use radiometry::integrator::{
+            Adaptive, DirectionalAlbedo, GaussLegendre, MonteCarlo, PointSet, Strategy, WarpedGaussLegendre,
+        };
+        if let Ok(d) = Ggx::new(black_box(0.2)) {
+            let g = DirectionalAlbedo {
+                brdf: Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel),
+                wo: black_box(Vec3::new(0.5, 0.0, 0.866)),
+            };
+            let budget = black_box(1024u32);
+            if let Ok(e) = GaussLegendre::new().integrate(&g, budget) {
+                acc += e.value as f32;
+            }
+            if let Ok(e) = WarpedGaussLegendre::new().integrate(&g, budget) {
+                acc += e.value as f32;
+            }
+            if let Ok(a) = Adaptive::new(1e-6, 0.0) {
+                if let Ok(e) = a.warped().integrate(&g, budget) {
+                    acc += e.value as f32;
+                }
+            }
+            let mc = MonteCarlo::new(Strategy::Integrand, PointSet::Sobol, black_box(7));
+            if let Ok(e) = mc.integrate(&g, budget) {
+                acc += e.value as f32;
+            }
+        }
+    }
     if acc.is_finite() { 0 } else { 1 }
 }

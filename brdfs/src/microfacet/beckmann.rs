@@ -119,7 +119,7 @@ impl Beckmann {
         let target = u * total;
         let noise = 4.0 * f32::EPSILON * total;
         let (mut lo, mut hi) = (-MAX_SLOPE, b);
-        let mut x = erfinv_2p_minus_1_guess(u).clamp(lo, hi);
+        let mut x = erfinv_2p_minus_1_guess(u).max(lo).min(hi);
         for _ in 0..24 {
             let e = libm::expf(-x * x) * FRAC_1_SQRT_PI;
             let c = 0.5 * cos_t * libm::erfcf(-x) + 0.5 * sin_t * e - target;
@@ -142,7 +142,7 @@ impl Beckmann {
                 break;
             }
         }
-        x.clamp(-MAX_SLOPE, b)
+        x.max(-MAX_SLOPE).min(b)
     }
 }
 
