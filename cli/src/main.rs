@@ -241,7 +241,7 @@ fn main() -> ExitCode {
             match format {
                 Format::Text => {
                     print!(
-                        "albedo = {} ± {}  ({} evaluations, {:.3e} s, {}, budget {})",
+                        "albedo = {} ± {}  ({} evaluations, {:.6} s, {}, budget {})",
                         est.value,
                         est.error,
                         total,

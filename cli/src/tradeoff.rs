@@ -146,7 +146,7 @@ pub struct Row {
     pub estimate: f64,
     /// The integrator's error estimate.
     pub error_estimate: f64,
-    /// Median wall time [s].
+    /// Median wall time in seconds.
     pub seconds: f64,
 }
 
@@ -382,7 +382,7 @@ pub struct Report<'a> {
     pub rows: &'a [Row],
     /// The budget ladder.
     pub budgets: &'a [u32],
-    /// Wall time spent on the references [s].
+    /// Wall time spent on the references, in seconds.
     pub ref_seconds: f64,
 }
 
@@ -570,14 +570,25 @@ impl Report<'_> {
                 if abs <= k * r.error_estimate {
                     cov += 1;
                 }
-                worst = worst.max(abs / r.error_estimate.max(f64::MIN_POSITIVE));
+                worst = worst.max(if r.error_estimate > 0.0 {
+                    abs / r.error_estimate
+                } else {
+                    f64::INFINITY
+                });
             }
             let share = if n > 0 {
                 cov as f64 / n as f64 * 100.0
             } else {
                 100.0
             };
-            let _ = writeln!(md, "| {} | {n} | {share:.1} % | {worst:.3} |", integ.name());
+            let worst = if worst >= 1e300 {
+                "∞ (estimate 0)".to_string()
+            } else if worst >= 1e3 {
+                format!("{worst:.1e}")
+            } else {
+                format!("{worst:.2}")
+            };
+            let _ = writeln!(md, "| {} | {n} | {share:.1} % | {worst} |", integ.name());
         }
         let refs_line = format!(
             "References: nested adaptive Gauss–Kronrod (7,15) in f64, independent of the integrators and plugins; \
