@@ -272,7 +272,7 @@ pub fn adaptive(
             val: v2,
         });
         splits += 1;
-        if splits % 64 == 0 {
+        if splits.is_multiple_of(64) {
             (total, err) = sums(&heap);
         }
     }
