@@ -1,0 +1,272 @@
+//! Sampling tests (issue 2): the harness itself (special functions, quadrature, χ² on toy samplers that
+//! are right and deliberately wrong), then every plugin: `weight = f cos/pdf`, `pdf(sampled wi) =
+//! returned pdf`, χ² goodness of fit at several roughnesses/exponents and incidence angles, and the
+//! integral of the pdf (1, or the documented mass of visible-normal sampling).
+
+mod common;
+
+use common::chi2::{ChiSquare, chi_square};
+use common::quad::{Adaptive, GaussLegendre, Tol, integrate_hemisphere};
+use common::special::{chi2_sf, gamma_p, gamma_q, ln_gamma, sidak};
+use radiometry::glam::{DVec3, Vec3};
+use radiometry::{Brdf, BrdfSample};
+use std::f32::consts::PI as PI32;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+// ---------------------------------------------------------------- harness self-tests
+
+#[test]
+fn ln_gamma_matches_factorials_and_half_integers() {
+    let mut fact = 1.0f64;
+    for n in 1..30u32 {
+        // Γ(n) = (n−1)!
+        let rel = (ln_gamma(n as f64) - fact.ln()).abs() / fact.ln().abs().max(1.0);
+        assert!(rel < 1e-13, "ln Γ({n})");
+        fact *= n as f64;
+    }
+    // Γ(1/2) = √π, Γ(7/2) = 15√π/8.
+    assert!((ln_gamma(0.5) - PI.sqrt().ln()).abs() < 1e-14);
+    assert!((ln_gamma(3.5) - (15.0 * PI.sqrt() / 8.0).ln()).abs() < 1e-14);
+}
+
+/// Closed forms of the χ² survival function: even k, `e^{−x/2} Σ_{j<k/2} (x/2)^j / j!`; odd k from
+/// `Q(1/2, x/2) = erfc(√(x/2))` and `Q(a+1, y) = Q(a, y) + y^a e^{−y} / Γ(a+1)` (A&S 6.5.21).
+fn chi2_sf_closed(x: f64, k: usize) -> f64 {
+    let y = x / 2.0;
+    if k.is_multiple_of(2) {
+        let mut term = 1.0;
+        let mut sum = 1.0;
+        for j in 1..k / 2 {
+            term *= y / j as f64;
+            sum += term;
+        }
+        (-y).exp() * sum
+    } else {
+        let mut q = libm::erfc(y.sqrt());
+        let mut a = 0.5f64;
+        while ((2.0 * a) as usize) < k {
+            q += (a * y.ln() - y - ln_gamma(a + 1.0)).exp();
+            a += 1.0;
+        }
+        q
+    }
+}
+
+#[test]
+fn chi2_survival_matches_closed_forms_and_tables() {
+    for k in [1usize, 2, 3, 4, 5, 10, 11, 40, 99, 100, 400] {
+        for &x in &[0.01, 0.5, 1.0, 3.0, 10.0, 50.0, 120.0, 400.0, 500.0] {
+            let a = chi2_sf(x, k);
+            let b = chi2_sf_closed(x, k);
+            assert!(
+                (a - b).abs() <= 1e-12 + 1e-9 * b,
+                "k={k} x={x}: {a} vs closed form {b}"
+            );
+        }
+    }
+    // Table values (upper critical points, NIST/SEMATECH e-Handbook 1.3.6.7.4).
+    for &(k, x, p) in &[
+        (1usize, 3.841, 0.05),
+        (1, 6.635, 0.01),
+        (10, 23.209, 0.01),
+        (10, 18.307, 0.05),
+        (100, 135.807, 0.01),
+        (100, 124.342, 0.05),
+    ] {
+        let got = chi2_sf(x, k);
+        assert!(
+            (got - p).abs() < 2e-4 * p.max(0.01) / 0.01,
+            "k={k} x={x}: {got} vs {p}"
+        );
+    }
+    assert!((gamma_p(2.5, 1.7) + gamma_q(2.5, 1.7) - 1.0).abs() < 1e-15);
+    // Šidák: m tests at the corrected level reject none with probability exactly 1 − α.
+    let a = sidak(0.01, 64);
+    assert!(((1.0 - a).powi(64) - 0.99).abs() < 1e-12);
+}
+
+#[test]
+fn gauss_legendre_and_adaptive_quadrature_are_exact_on_known_integrals() {
+    let gl = GaussLegendre::new(8);
+    // Exact for degree ≤ 15.
+    let (v, _) = gl.apply(0.0, 2.0, &mut |x| (x.powi(15), 0.0));
+    assert!((v - 2f64.powi(16) / 16.0).abs() < 1e-9);
+    let q = Adaptive::default();
+    let tol = Tol {
+        abs: 1e-12,
+        rel: 1e-14,
+        depth: 30,
+    };
+    // A sharp peak: ∫_0^1 ε/(π((x−1/3)²+ε²)) dx with ε = 1e-4.
+    let e = 1e-4f64;
+    let r = q.integrate(0.0, 1.0, tol, &mut |x| {
+        (e / (PI * ((x - 1.0 / 3.0).powi(2) + e * e)), 0.0)
+    });
+    let exact = ((2.0 / 3.0) / e).atan() / PI + ((1.0 / 3.0) / e).atan() / PI;
+    assert!((r.value - exact).abs() < 1e-10, "{r:?} vs {exact}");
+    assert!(r.err < 1e-8 && r.err >= 0.0);
+    // Honest error: with a depth limit too small to converge on a peak that the first rule does see
+    // (width 1e-2), the error estimate still covers the actual error.
+    let e = 1e-2f64;
+    let exact = ((2.0 / 3.0) / e).atan() / PI + ((1.0 / 3.0) / e).atan() / PI;
+    let shallow = Tol { depth: 2, ..tol };
+    let r = q.integrate(0.0, 1.0, shallow, &mut |x| {
+        (e / (PI * ((x - 1.0 / 3.0).powi(2) + e * e)), 0.0)
+    });
+    assert!(r.err > 1e-6, "not converged at depth 2: {r:?}");
+    assert!((r.value - exact).abs() <= r.err, "{r:?} vs {exact}");
+}
+
+#[test]
+fn hemisphere_quadrature_matches_closed_forms() {
+    let q = Adaptive::default();
+    let tol = Tol {
+        abs: 1e-8,
+        rel: 1e-10,
+        depth: 12,
+    };
+    for &theta_p in &[0.0f64, 0.5, 1.2, FRAC_PI_2 - 1e-4, FRAC_PI_2 - 3e-8] {
+        let pole = DVec3::new(theta_p.sin(), 0.0, theta_p.cos());
+        // ∫ dω = 2π; ∫ cos θ dω = π; ∫ cos^n θ cos θ... and a narrow lobe around the pole.
+        let r = integrate_hemisphere(&q, pole, &[0.3, 1.0], tol, &mut |_| 1.0);
+        assert!((r.value - 2.0 * PI).abs() < 1e-7, "area, pole θ={theta_p}: {r:?}");
+        let r = integrate_hemisphere(&q, pole, &[0.3, 1.0], tol, &mut |w| w.z);
+        assert!((r.value - PI).abs() < 1e-7, "cos, pole θ={theta_p}: {r:?}");
+        let n = 20.0;
+        let r = integrate_hemisphere(&q, pole, &common::quad::lobe_breaks(0.2), tol, &mut |w| {
+            w.z.powf(n)
+        });
+        assert!(
+            (r.value - 2.0 * PI / (n + 1.0)).abs() < 1e-7,
+            "cos^n, pole θ={theta_p}: {r:?}"
+        );
+    }
+    // A lobe of width 1e-3 around a pole at 60°: ∫ (m+1)/(2π) max(0,ω·r)^m dω = 1 when the cap is whole.
+    let m = 1e6;
+    let pole = DVec3::new(0.8660254037844386, 0.0, 0.5);
+    let tol = Tol {
+        abs: 1e-8,
+        rel: 1e-9,
+        depth: 10,
+    };
+    let r = integrate_hemisphere(&q, pole, &common::quad::lobe_breaks(1e-3), tol, &mut |w| {
+        (m + 1.0) / (2.0 * PI) * w.dot(pole).max(0.0).powf(m)
+    });
+    assert!((r.value - 1.0).abs() < 1e-7 && r.err < 1e-6, "{r:?}");
+}
+
+/// A Lambertian toy with the core crate's default (cosine-weighted) sampling.
+struct ToyLambert(f32);
+impl Brdf for ToyLambert {
+    type Spectrum = f32;
+    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if wi.z > 0.0 && wo.z > 0.0 {
+            self.0 / PI32
+        } else {
+            0.0
+        }
+    }
+}
+
+/// A deliberately wrong sampler: cosine-weighted samples, but `pdf` claims `max(0,cos θ)^p (p+1)/(2π)`.
+struct WrongPdf(f32);
+impl Brdf for WrongPdf {
+    type Spectrum = f32;
+    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if wi.z > 0.0 && wo.z > 0.0 { 0.5 / PI32 } else { 0.0 }
+    }
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+        let s = ToyLambert(0.5).sample(wo, u)?;
+        let pdf = self.pdf(s.wi, wo);
+        (pdf > 0.0).then(|| BrdfSample {
+            wi: s.wi,
+            pdf,
+            weight: self.eval(s.wi, wo) * s.wi.z / pdf,
+        })
+    }
+    fn pdf(&self, wi: Vec3, _wo: Vec3) -> f32 {
+        let p = self.0;
+        (p + 1.0) / (2.0 * PI32) * wi.z.max(0.0).powf(p)
+    }
+}
+
+/// A right sampler that drops 30 % of its samples: `None` when `u₀ < 0.3`, otherwise the cosine warp of
+/// `((u₀ − 0.3)/0.7, u₁)`; density `0.7 cos θ / π`.
+struct Lossy {
+    /// Claimed loss probability (0.3 is right).
+    claimed: f32,
+}
+impl Brdf for Lossy {
+    type Spectrum = f32;
+    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if wi.z > 0.0 && wo.z > 0.0 { 0.5 / PI32 } else { 0.0 }
+    }
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+        if u[0] < 0.3 {
+            return None;
+        }
+        let wi = radiometry::warp::square_to_cosine_hemisphere([(u[0] - 0.3) / 0.7, u[1]]);
+        let pdf = self.pdf(wi, wo);
+        (pdf > 0.0 && wi.z > 0.0).then(|| BrdfSample {
+            wi,
+            pdf,
+            weight: self.eval(wi, wo) * wi.z / pdf,
+        })
+    }
+    fn pdf(&self, wi: Vec3, _wo: Vec3) -> f32 {
+        (1.0 - self.claimed) * wi.z.max(0.0) / PI32
+    }
+}
+
+/// Significance of each of the 6 χ² tests of the harness self-test block.
+fn harness_alpha() -> f64 {
+    sidak(0.01, 6)
+}
+
+#[test]
+fn chi_square_accepts_the_default_cosine_sampler() {
+    for (k, &theta) in [0.0f32, 1.2].iter().enumerate() {
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        let cfg = ChiSquare::for_lobe(wo, 10.0, 11 + k as u64);
+        let r = chi_square(&ToyLambert(0.8), wo, &cfg);
+        eprintln!(
+            "toy cosine sampler θo={theta}: χ²={:.1} dof={} p={:.4} mass={:.8}±{:.1e}",
+            r.statistic, r.dof, r.p_value, r.mass.value, r.mass.err
+        );
+        assert!(r.passes(harness_alpha()), "{r:#?}");
+        assert!((r.mass.value - 1.0).abs() < 1e-6 + r.mass.err, "{r:?}");
+        assert!(r.worst_pdf_rel < 1e-6 && r.worst_weight_rel < 1e-6, "{r:?}");
+        assert_eq!(r.none_observed, 0);
+    }
+}
+
+#[test]
+fn chi_square_rejects_mismatched_pdfs() {
+    let wo = Vec3::new(0.0, 0.6, 0.8);
+    // Grossly wrong (uniform claimed for cosine samples) and subtly wrong (cos^1.05 for cos^1).
+    for (k, &p) in [0.0f32, 1.05].iter().enumerate() {
+        let cfg = ChiSquare::for_lobe(wo, 10.0, 21 + k as u64);
+        let r = chi_square(&WrongPdf(p), wo, &cfg);
+        eprintln!(
+            "wrong sampler p={p}: χ²={:.1} dof={} p={:.3e}",
+            r.statistic, r.dof, r.p_value
+        );
+        assert!(!r.passes(harness_alpha()), "must reject, {r:#?}");
+    }
+}
+
+#[test]
+fn chi_square_checks_the_none_frequency() {
+    let wo = Vec3::new(0.0, 0.6, 0.8);
+    let cfg = ChiSquare::for_lobe(wo, 10.0, 31);
+    let right = chi_square(&Lossy { claimed: 0.3 }, wo, &cfg);
+    eprintln!(
+        "lossy sampler: χ²={:.1} dof={} p={:.4} none {} vs {:.0}",
+        right.statistic, right.dof, right.p_value, right.none_observed, right.none_expected
+    );
+    assert!(right.passes(harness_alpha()), "{right:#?}");
+    assert!((right.mass.value - 0.7).abs() < 1e-6 + right.mass.err);
+    // Claiming a 29 % loss with a 30 % loss is a 1.4 % density error: must be rejected.
+    let wrong = chi_square(&Lossy { claimed: 0.29 }, wo, &cfg);
+    assert!(!wrong.passes(harness_alpha()), "{wrong:#?}");
+}
