@@ -95,13 +95,18 @@ pub fn directional_irradiance<S: Spectrum>(e_perp: S, cos_theta: f32) -> S {
 /// `σ = π/2`, where it equals `π(1 + cos θa)/2`). The result is continuous
 /// across the three cases and tends to `π σ² max(0, cos θa)` as `σ → 0`.
 ///
-/// Accuracy (measured against an f64 quadrature in `tests/illumination.rs`,
-/// 136 cases, 77 of them clipped): absolute error ≤ 2.2·10⁻⁷ · π sin²σ;
-/// relative error ≤ 6·10⁻⁶ where `Ω⊥ > 10⁻³ π sin²σ`. When only a thin
-/// sliver of the cap is visible (`θa − σ` just below π/2) the three terms
-/// of the partial-case formula cancel and the *relative* error grows
-/// (e.g. 0.8 % for `Ω⊥ = 4·10⁻⁸ π sin²σ`), while the absolute error stays
-/// at the `f32` level above.
+/// Thin slivers: when the axis is below the horizon and only a thin sliver
+/// of the cap is visible, the three terms above cancel to a result
+/// `O(ψ⁵)` (`ψ = acos y → 0`); a regrouped form of the same expression is
+/// then also evaluated (see `thin_sliver` in the source) and the one with
+/// the smaller rounding-error measure is returned.
+///
+/// Accuracy (measured against f64 quadratures in `tests/illumination.rs`):
+/// absolute error ≤ 1.3·10⁻⁷ · π sin²σ over 136 cases (77 clipped),
+/// relative error ≤ 9·10⁻⁶ where `Ω⊥ > 10⁻³ π sin²σ`, and for thin slivers
+/// (down to `Ω⊥ = 10⁻²⁰`) a relative error within 2× of the change caused
+/// by moving `cos θa` or `σ` by one `f32` ulp (the conditioning of the
+/// inputs).
 ///
 /// Domain: `cos θa` clamped to `[−1, 1]`, `σ` clamped to `[0, π/2]` (a cap
 /// larger than a hemisphere is not a cap light here); NaN inputs give 0.
@@ -122,21 +127,143 @@ pub fn cap_projected_solid_angle(cos_axis: f32, half_angle: f32) -> f32 {
     }
     // Partly below the horizon: |c| < sin σ ≤ 1, so s > 0 and sin σ > 0.
     let s = safe_sqrt((1.0 - c) * (1.0 + c));
-    // y = −cot σ · c / s, computed as a product of two ratios bounded by 1 in
-    // magnitude (|c| < sin σ and cos σ ≤ s) so nothing under/overflows.
-    let y = (-(c / ss) * (cs / s)).clamp(-1.0, 1.0);
-    let q = safe_sqrt((1.0 - y) * (1.0 + y));
+    // ψ = acos y with y = −cot σ · c / s. For c < 0 (y > 0) ψ is computed
+    // from 1 − y = (s sin σ + c cos σ)/(s sin σ) = cos(θa − σ)/(sin θa sin σ)
+    // (one fused multiply-add), which keeps its relative precision when
+    // y → 1 (a thin visible sliver); otherwise y is formed as a product of
+    // two ratios bounded by 1 in magnitude (|c| < sin σ and cos σ ≤ s), so
+    // nothing under/overflows.
+    let (psi, q) = if c < 0.0 {
+        let one_minus_y = (libm::fmaf(s, ss, c * cs) / (s * ss)).clamp(0.0, 1.0);
+        let psi = 2.0 * libm::asinf(safe_sqrt(0.5 * one_minus_y).min(1.0));
+        (psi, libm::sinf(psi))
+    } else {
+        let y = (-(c / ss) * (cs / s)).clamp(-1.0, 1.0);
+        (libm::acosf(y), safe_sqrt((1.0 - y) * (1.0 + y)))
+    };
     let t = s * q;
     let ts = t * ss;
-    let first = c * ss2 * libm::acosf(y);
-    let result = if ts <= 0.5 * cs {
+    let first = c * ss2 * psi;
+    // (value, Σ|terms|): the term sum bounds the rounding error (≈ ε Σ|terms|).
+    let general = if ts <= 0.5 * cs {
         // u = t tan σ ≤ 1/2.
         let u = ts / cs;
-        first + ss2 * u + atan_minus_identity(u)
+        let r = atan_minus_identity(u);
+        (first + ss2 * u + r, first.abs() + ss2 * u + r.abs())
     } else {
-        first + libm::atan2f(ts, cs) - ts * cs
+        let a = libm::atan2f(ts, cs);
+        (first + a - ts * cs, first.abs() + a + ts * cs)
     };
-    result.clamp(0.0, PI)
+    let best = match thin_sliver(c, s, ss, cs, psi) {
+        Some(sliver) if sliver.1 < general.1 => sliver,
+        _ => general,
+    };
+    best.0.clamp(0.0, PI)
+}
+
+/// The partial case of [`cap_projected_solid_angle`] for an axis below the
+/// horizon (`c < 0`) when `ψ = acos y < 1`, i.e. only a thin sliver of the
+/// cap is visible. There the three terms of the general formula cancel to
+/// `O(ψ⁵)`. With `K = s tan σ` (so that `c = −K cos ψ`), the same formula
+/// regroups exactly as
+///
+/// `Ω⊥ = K sin²σ (sin ψ − ψ cos ψ − sin³ψ/3) + K tan²σ (c² − sin²σ) sin³ψ/3
+///       + (atan x − x + x³/3)`, `x = K sin ψ`,
+///
+/// whose first and last brackets are evaluated by their Taylor series
+/// (the first starts at `2ψ⁵/15`, the last at `x⁵/5`), and
+/// `ψ = 2 asin(√((1 − y)/2))` with `1 − y = cos(θa − σ)/(sin θa sin σ)`
+/// computed as `(s sin σ + c cos σ)/(s sin σ)` (one fused multiply-add).
+/// The remaining cancellation is `O(1)`, so the relative error follows the
+/// conditioning of the inputs instead of growing like `1/ψ²` — as long as
+/// `tan σ` is moderate; for caps near a hemisphere the middle term cancels
+/// the others instead. The caller therefore evaluates both forms and keeps
+/// the one with the smaller rounding-error measure (`ε Σ|terms|`, with the
+/// middle term weighted by the cancellation in `c² − sin²σ`). Returns `None` outside `ψ < 1` and `c < 0`.
+#[inline]
+fn thin_sliver(c: f32, s: f32, ss: f32, cs: f32, psi: f32) -> Option<(f32, f32)> {
+    if c >= 0.0 || cs <= 0.0 || psi >= 1.0 {
+        return None;
+    }
+    // Taylor coefficients of sin ψ − ψ cos ψ − sin³ψ/3 = Σ_{k≥2} a_k ψ^{2k+1},
+    // a_k = (−1)^k ((3^{2k+1} − 3)/12 − 2k)/(2k+1)!  (from the series of
+    // sin, cos and sin³ψ = (3 sin ψ − sin 3ψ)/4); truncated after k = 9
+    // (remainder < 2e-11 ψ⁵ for ψ < 1).
+    const A: [f32; 8] = [
+        0.133_333_33,
+        -0.034_920_635,
+        0.004_497_354_5,
+        -3.695_687e-4,
+        2.133_411_9e-5,
+        -9.143_928e-7,
+        3.025_596e-8,
+        -7.962_105e-10,
+    ];
+    let w = psi * psi;
+    let mut p = 0.0f32;
+    for &a in A.iter().rev() {
+        p = p * w + a;
+    }
+    let p = p * w * w * psi;
+    let k = s * ss / cs;
+    let sp = libm::sinf(psi);
+    let x = k * sp;
+    let t = ss / cs;
+    let d = (c - ss) * c_plus_sin(c, ss, cs);
+    let t1 = k * (ss * ss) * p;
+    let t2 = k * (t * t) * d * (sp * sp * sp) / 3.0;
+    let t3 = atan_minus_cubic(x);
+    // d = (c − sin σ)(c + sin σ) inherits the rounding of sin σ amplified by
+    // (|c| + sin σ)/|c + sin σ|; weigh t2 accordingly in the error measure.
+    let amp = if c <= -0.5 && cs <= 0.5 {
+        1.0
+    } else {
+        (c.abs() + ss) / (c + ss).abs().max(f32::MIN_POSITIVE)
+    };
+    let (v, mag) = (t1 + t2 + t3, t1.abs() + t2.abs() * amp + t3.abs());
+    if v.is_finite() && mag.is_finite() {
+        Some((v, mag))
+    } else {
+        None
+    }
+}
+
+/// `c + sin σ` for `c < 0`, given `sin σ` and `cos σ` rounded to `f32`.
+///
+/// Near the sliver boundary `c ≈ −sin σ` and the plain sum cancels, losing
+/// the rounding of `sin σ` (`≈ 6·10⁻⁸`) relative to a tiny result. For
+/// `c ≤ −1/2` it is formed instead as `(1 + c) − 2 sin²(γ/2)` with
+/// `γ = π/2 − σ` recovered from `cos σ = sin γ` (accurate when `σ` is near
+/// `π/2`, the only case where `c ≤ −1/2` can meet `−sin σ`): `1 + c` is
+/// exact (Sterbenz) and `2 sin²(γ/2) = 1 − sin σ` has full relative
+/// precision.
+#[inline]
+fn c_plus_sin(c: f32, ss: f32, cs: f32) -> f32 {
+    if c > -0.5 || cs > 0.5 {
+        return c + ss;
+    }
+    let gamma = libm::asinf(cs.clamp(0.0, 1.0));
+    let h = libm::sinf(0.5 * gamma);
+    (1.0 + c) - 2.0 * h * h
+}
+
+/// `atan x − x + x³/3`: Taylor series `Σ_{k≥2} (−1)^k x^{2k+1}/(2k+1)`
+/// (Abramowitz & Stegun 4.4.42) for `|x| ≤ 1/2`, truncated after `k = 15`;
+/// the direct difference otherwise.
+#[inline]
+fn atan_minus_cubic(x: f32) -> f32 {
+    if x.abs() > 0.5 {
+        return libm::atanf(x) - x + x * x * x / 3.0;
+    }
+    let w = x * x;
+    let mut p = 0.0f32;
+    let mut k = 15;
+    while k >= 2 {
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        p = p * w + sign / (2 * k + 1) as f32;
+        k -= 1;
+    }
+    p * w * w * x
 }
 
 /// Irradiance from a uniform spherical cap of radiance `L`, half-angle `σ`,
@@ -212,6 +339,27 @@ mod tests {
             let got = atan_minus_identity(u) as f64;
             let tol = 2e-7 * exact.abs() + 1e-30;
             assert!((got - exact).abs() <= tol, "u={u} got={got} exact={exact}");
+        }
+    }
+
+    #[test]
+    fn atan_cubic_series_matches_f64() {
+        for i in 0..=100 {
+            let x = i as f32 * 0.01;
+            let xd = x as f64;
+            let exact = libm::atan(xd) - xd + xd * xd * xd / 3.0;
+            let got = atan_minus_cubic(x) as f64;
+            // Series branch (x ≤ 1/2): f32 rounding only; direct branch
+            // above loses ≈ x³/|exact| ulps to cancellation.
+            let tol = if x <= 0.5 {
+                3e-7 * exact.abs()
+            } else {
+                1e-6 * xd * xd * xd
+            };
+            assert!(
+                (got - exact).abs() <= tol + 1e-37,
+                "x={x} got={got} exact={exact}"
+            );
         }
     }
 

@@ -291,9 +291,11 @@ fn cap_irradiance_matches_quadrature() {
     let (mut worst_scaled, mut worst_rel, mut cases, mut partial) = (0.0f64, 0.0f64, 0, 0);
     for &ta_deg in &thetas {
         for &sigma in &sigmas {
-            let ta = deg(ta_deg);
+            // The reference uses exactly the f32 inputs the code sees.
+            let (c32, s32) = (deg(ta_deg).cos() as f32, sigma as f32);
+            let (ta, sigma) = ((c32 as f64).acos(), s32 as f64);
             let (reference, rerr) = cap_reference(&|w| w[2], ta, 0.0, sigma);
-            let got = cap_projected_solid_angle(ta.cos() as f32, sigma as f32) as f64;
+            let got = cap_projected_solid_angle(c32, s32) as f64;
             // Scale: the irradiance at normal incidence π sin²σ.
             let scale = PI * sigma.sin().powi(2);
             let err = (got - reference).abs();
@@ -321,6 +323,54 @@ fn cap_irradiance_matches_quadrature() {
     eprintln!(
         "cap irradiance: {cases} cases ({partial} partly below the horizon); worst |err|/(π sin²σ) = {worst_scaled:.2e}; worst rel err (E > 1e-3 E⊥) = {worst_rel:.2e}"
     );
+}
+
+/// Thin slivers: the axis just below the horizon so that only a sliver of
+/// the cap is visible (`cos θa = −sin σ (1 − δ)`). The general formula
+/// cancels catastrophically here; the sliver form must keep the relative
+/// error at the level set by the conditioning of the f32 inputs.
+#[test]
+fn cap_irradiance_thin_slivers() {
+    let mut worst = 0.0f64;
+    let mut n = 0;
+    for &sigma in &[1e-3f64, 0.00465, 0.05, 0.3, 0.7, 1.2, 1.5] {
+        for &delta in &[0.5f64, 0.2, 0.1, 1e-2, 1e-3, 1e-4] {
+            let s32 = sigma as f32;
+            let c32 = (-(s32 as f64).sin() * (1.0 - delta)) as f32;
+            let (ta, sg) = ((c32 as f64).acos(), s32 as f64);
+            let (reference, rerr) = cap_reference(&|w| w[2], ta, 0.0, sg);
+            let got = cap_projected_solid_angle(c32, s32) as f64;
+            let rel = (got - reference).abs() / reference;
+            // Conditioning: the relative change of the exact Ω⊥ when cos θa
+            // or σ moves by one f32 ulp (measured with the reference). The
+            // code may be off by a few such ulps (its sin/cos/sqrt of the
+            // inputs round), plus 1e-5 for f32 arithmetic on O(1) factors.
+            let ulp = |x: f32| (f32::from_bits(x.abs().to_bits() + 1) - x.abs()) as f64;
+            let mut cond = 0.0f64;
+            for (dc, ds) in [
+                (ulp(c32), 0.0),
+                (-ulp(c32), 0.0),
+                (0.0, ulp(s32)),
+                (0.0, -ulp(s32)),
+            ] {
+                let (r2, _) = cap_reference(&|w| w[2], (c32 as f64 + dc).acos(), 0.0, sg + ds);
+                cond = cond.max((r2 - reference).abs() / reference);
+            }
+            let tol = 8.0 * cond + 1e-5 + rerr / reference;
+            assert!(
+                rel <= tol,
+                "σ={sigma} δ={delta}: got {got:e} ref {reference:e} rel {rel:e} > {tol:e}"
+            );
+            if std::env::var_os("ILLUMINATION_VERBOSE").is_some() {
+                eprintln!(
+                    "sliver σ={sigma} δ={delta}: Ω⊥={reference:.3e} rel err {rel:.1e} (1-ulp conditioning {cond:.1e})"
+                );
+            }
+            worst = worst.max(rel / (cond + 1e-7));
+            n += 1;
+        }
+    }
+    eprintln!("thin slivers: {n} cases, worst rel err / (1-ulp conditioning + 1e-7) = {worst:.1}");
 }
 
 /// σ → 0 with E⊥ = πL sin²σ fixed tends to the directional light; the cap
