@@ -193,3 +193,80 @@ fn linear_solver_matches_closed_form() {
     let mut z = [[0.0; 2]; 2];
     assert_eq!(solve(&mut z, &mut [0.0; 2], 2), Err(SensorError::Singular));
 }
+
+/// Debevec–Malik on quantised readings of a known curve. Accuracy is judged against the
+/// quantisation: level z stands for every exposure in [R⁻¹((z−½)/(Z−1)), R⁻¹((z+½)/(Z−1))], so
+/// the recovered X(z) must lie within `frac` of that bin's half-width of R⁻¹(z/(Z−1)).
+fn dm_check(name: &str, r: &impl Response, lambda: f32, frac: f32) {
+    use radiometry::sensor::calibration::debevec_malik;
+    const Z: usize = 32;
+    const PX: usize = 40;
+    let mut levels = vec![0u16; PX * EXPOSURES.len()];
+    for p in 0..PX {
+        let e = 10f32.powf(-2.0 + 2.0 * p as f32 / (PX - 1) as f32);
+        for (q, t) in EXPOSURES.iter().enumerate() {
+            levels[p * EXPOSURES.len() + q] = (r.apply(e * t) * (Z - 1) as f32).round() as u16;
+        }
+    }
+    let g = debevec_malik::<Z, 80>(&levels, &EXPOSURES, lambda).unwrap();
+    let x = g.exposures();
+    let top = (Z - 1) as f32;
+    let (mut worst_abs, mut worst_bins) = (0.0f32, 0.0f32);
+    for (z, &xz) in x.iter().enumerate().take(Z - 1).skip(3) {
+        let want = r.inverse(z as f32 / top);
+        let half = 0.5 * (r.inverse((z as f32 + 0.5) / top) - r.inverse((z as f32 - 0.5) / top));
+        worst_abs = worst_abs.max((xz - want).abs());
+        worst_bins = worst_bins.max((xz - want).abs() / half);
+    }
+    println!(
+        "Debevec–Malik {name} (Z = {Z} levels, λ = {lambda}): max |X(z) − R⁻¹(z)| = {worst_abs:.2e} \
+         = {worst_bins:.2} half-bins, z = 3..{}",
+        Z - 2
+    );
+    assert!(worst_bins < frac, "{name}: {worst_bins}");
+    for i in 0..=100 {
+        let y = i as f32 / 100.0;
+        assert!((g.apply(g.inverse(y)) - y).abs() < 1e-5);
+    }
+}
+
+#[test]
+fn debevec_malik_recovers_known_curves() {
+    dm_check("gamma 2.2", &Gamma::new(2.2).unwrap(), 2.0, 1.0);
+    dm_check("sRGB", &Srgb, 2.0, 1.0);
+}
+
+#[test]
+fn debevec_malik_bad_inputs() {
+    use radiometry::sensor::calibration::debevec_malik;
+    let lv = [1u16, 5, 9, 2, 6, 10];
+    let t = [1.0f32, 2.0, 4.0];
+    // Z + P = 16 + 2 unknowns do not fit U = 17.
+    assert_eq!(
+        debevec_malik::<16, 17>(&lv, &t, 1.0).unwrap_err(),
+        SensorError::BadBuffer
+    );
+    // A level ≥ Z.
+    assert_eq!(
+        debevec_malik::<8, 16>(&lv, &t, 1.0).unwrap_err(),
+        SensorError::BadBuffer
+    );
+    assert_eq!(
+        debevec_malik::<16, 32>(&lv[..5], &t, 1.0).unwrap_err(),
+        SensorError::BadBuffer
+    );
+    assert_eq!(
+        debevec_malik::<16, 32>(&lv, &[1.0, f32::NAN, 2.0], 1.0).unwrap_err(),
+        SensorError::NotFinite
+    );
+    assert!(matches!(
+        debevec_malik::<16, 32>(&lv, &[1.0, -2.0, 4.0], 1.0),
+        Err(SensorError::BadParameter(_))
+    ));
+    assert!(matches!(
+        debevec_malik::<16, 32>(&lv, &t, -1.0),
+        Err(SensorError::BadParameter(_))
+    ));
+    // Too little data for 16 levels without smoothing: singular or non-monotonic, never a panic.
+    assert!(debevec_malik::<16, 32>(&lv, &t, 0.0).is_err());
+}

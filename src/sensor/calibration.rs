@@ -281,3 +281,153 @@ pub fn solve<const M: usize>(
     }
     Ok(x)
 }
+
+/// A tabulated inverse response from [`debevec_malik`]: `g(z) = ln X(z)`
+/// at the `Z` reading levels `z = 0..Z−1` (reading `y = z/(Z−1)`),
+/// normalised so that the top level has `X = 1`. As a [`Response`],
+/// `inverse(y)` interpolates `X` linearly between levels and `apply`
+/// inverts that by binary search.
+///
+/// ```
+/// use radiometry::sensor::calibration::debevec_malik;
+/// use radiometry::sensor::response::{Gamma, Response};
+/// let r = Gamma::new(2.0).unwrap();
+/// let t = [0.05f32, 0.08, 0.2, 0.35, 1.0];
+/// let mut levels = [0u16; 30 * 5];
+/// for p in 0..30 {
+///     let e = libm::powf(10.0, -2.0 + 2.0 * p as f32 / 29.0);
+///     for q in 0..5 {
+///         levels[p * 5 + q] = libm::roundf(r.apply(e * t[q]) * 15.0) as u16;
+///     }
+/// }
+/// let g = debevec_malik::<16, 48>(&levels, &t, 2.0).unwrap();
+/// // Level 8 of 15 ≈ exposure (8/15)² = 0.284, within the quantisation bin.
+/// assert!((g.exposures()[8] - 0.284).abs() < 0.04);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LogExposureTable<const Z: usize> {
+    x: [f32; Z],
+}
+
+impl<const Z: usize> LogExposureTable<Z> {
+    /// Relative exposure `X(z)` at every level.
+    pub fn exposures(&self) -> [f32; Z] {
+        self.x
+    }
+}
+
+impl<const Z: usize> Response for LogExposureTable<Z> {
+    fn apply(&self, x: f32) -> f32 {
+        let x = if x.is_nan() {
+            self.x[0]
+        } else {
+            x.clamp(self.x[0], self.x[Z - 1])
+        };
+        let hi = self.x.partition_point(|&v| v <= x).clamp(1, Z - 1);
+        let (a, b) = (self.x[hi - 1], self.x[hi]);
+        let f = ((x - a) / (b - a)).clamp(0.0, 1.0);
+        ((hi - 1) as f32 + f) / (Z - 1) as f32
+    }
+    fn inverse(&self, y: f32) -> f32 {
+        let y = if y.is_nan() { 0.0 } else { y.clamp(0.0, 1.0) };
+        let t = y * (Z - 1) as f32;
+        let i = (t as usize).min(Z - 2);
+        let f = t - i as f32;
+        self.x[i] + (self.x[i + 1] - self.x[i]) * f
+    }
+}
+
+/// Debevec & Malik 1997 ("Recovering high dynamic range radiance maps
+/// from photographs", SIGGRAPH, §2.1 eq. 3 and the appendix): least
+/// squares for `g(z) = ln X(z)` and the log irradiances `ln E_p`,
+///
+/// `min Σ_p Σ_q [w(Z_pq)(g(Z_pq) − ln E_p − ln t_q)]² + λ Σ_z [w(z) g''(z)]²`,
+///
+/// with the hat weight `w(z) = min(z, Z−1−z)`, `g''(z) = g(z−1) − 2g(z) +
+/// g(z+1)`, and `g(⌊Z/2⌋) = 0` fixing the scale. Solved through the normal
+/// equations in fixed-size `U × U` `f64` arrays (`U ≥ Z + P` unknowns; the
+/// matrix lives on the stack: `8·U²` bytes), Gaussian elimination with
+/// partial pivoting.
+///
+/// * `levels[p · Q + q]`: integer reading level `< Z` of pixel `p` at
+///   exposure `q`; `Q = exposures.len() ≥ 2`.
+/// * `smoothness`: λ ≥ 0 (finite).
+///
+/// Errors: [`SensorError::BadBuffer`] (lengths, a level ≥ Z, `Z < 3`,
+/// `Z + P > U`), [`SensorError::NotFinite`] / [`SensorError::BadParameter`]
+/// (exposures, λ), [`SensorError::Singular`], and
+/// [`SensorError::NotMonotonic`] when the recovered `g` is not strictly
+/// increasing (the data or λ do not determine a response).
+pub fn debevec_malik<const Z: usize, const U: usize>(
+    levels: &[u16],
+    exposures: &[f32],
+    smoothness: f32,
+) -> Result<LogExposureTable<Z>, SensorError> {
+    let q = exposures.len();
+    if Z < 3 || q < 2 || levels.is_empty() || !levels.len().is_multiple_of(q) {
+        return Err(SensorError::BadBuffer);
+    }
+    let p_count = levels.len() / q;
+    if Z + p_count > U || levels.iter().any(|&z| z as usize >= Z) {
+        return Err(SensorError::BadBuffer);
+    }
+    if exposures.iter().any(|t| !t.is_finite()) || !smoothness.is_finite() {
+        return Err(SensorError::NotFinite);
+    }
+    if exposures.iter().any(|&t| t <= 0.0) || smoothness < 0.0 {
+        return Err(SensorError::BadParameter(
+            "exposures must be > 0 and smoothness ≥ 0",
+        ));
+    }
+    let w = |z: usize| z.min(Z - 1 - z) as f64;
+    let mut ata = [[0.0f64; U]; U];
+    let mut atb = [0.0f64; U];
+    // Data rows: w (g[z] − lnE[p]) = w ln t.
+    for (p, px) in levels.chunks_exact(q).enumerate() {
+        for (&z, &t) in px.iter().zip(exposures) {
+            let z = z as usize;
+            let wz2 = w(z) * w(z);
+            if wz2 == 0.0 {
+                continue;
+            }
+            let (i, j) = (z, Z + p);
+            let lt = libm::log(t as f64);
+            ata[i][i] += wz2;
+            ata[j][j] += wz2;
+            ata[i][j] -= wz2;
+            ata[j][i] -= wz2;
+            atb[i] += wz2 * lt;
+            atb[j] -= wz2 * lt;
+        }
+    }
+    // Scale fixing: g(Z/2) = 0.
+    ata[Z / 2][Z / 2] += 1.0;
+    // Smoothness rows: λ w(z) (g[z−1] − 2 g[z] + g[z+1]) = 0.
+    let lam = smoothness as f64;
+    for z in 1..Z - 1 {
+        let c = lam * w(z);
+        let idx = [z - 1, z, z + 1];
+        let coef = [c, -2.0 * c, c];
+        for a in 0..3 {
+            for b in 0..3 {
+                ata[idx[a]][idx[b]] += coef[a] * coef[b];
+            }
+        }
+    }
+    // Pixels that never produced a weighted sample would leave a zero row: pin them.
+    for (j, row) in ata.iter_mut().enumerate().take(Z + p_count).skip(Z) {
+        if row[j] == 0.0 {
+            row[j] = 1.0;
+        }
+    }
+    let sol = solve::<U>(&mut ata, &mut atb, Z + p_count)?;
+    let top = sol[Z - 1];
+    let mut x = [0.0f32; Z];
+    for (z, xz) in x.iter_mut().enumerate() {
+        *xz = libm::exp(sol[z] - top) as f32;
+    }
+    if x.windows(2).any(|v| v[1] <= v[0]) || x.iter().any(|v| !v.is_finite()) {
+        return Err(SensorError::NotMonotonic);
+    }
+    Ok(LogExposureTable { x })
+}
