@@ -1,7 +1,12 @@
 //! Radiometric calibration: recover the inverse response `g = R⁻¹` from
 //! readings of a static scene at several known exposures.
 //!
-//! Method: Mitsunaga & Nayar 1999, "Radiometric self calibration",
+//! Two methods: [`mitsunaga_nayar`] (parametric, a polynomial — small,
+//! smooth, for normalised readings) and [`debevec_malik`] (non-parametric,
+//! one value per reading level with a smoothness prior — for integer
+//! levels; its cost grows as `(levels + pixels)²`).
+//!
+//! Method 1: Mitsunaga & Nayar 1999, "Radiometric self calibration",
 //! CVPR, §3 (eqs. 3–8) with *known* exposure ratios. The inverse response
 //! is a polynomial `g(M) = Σ_{n<N} c_n Mⁿ` of normalised readings
 //! `M ∈ [0, 1]`, normalised by `g(1) = 1`. For a static scene, pixel `p`
