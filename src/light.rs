@@ -470,6 +470,9 @@ impl<S: Spectrum> Light for UniformSky<S> {
 pub struct Cap<S> {
     axis: Vec3,
     half_angle: f32,
+    /// `sin²σ` and `cos²σ` (clamped ≥ 0), cached for [`Cap::contains`].
+    sin2: f32,
+    cos2: f32,
     radiance: S,
 }
 
@@ -484,9 +487,13 @@ impl<S: Spectrum> Cap<S> {
         if half_angle.is_nan() || half_angle <= 0.0 || half_angle > FRAC_PI_2 {
             return Err(LightError::HalfAngleOutOfRange(half_angle));
         }
+        let (sn, cs) = libm::sincosf(half_angle);
+        let cs = cs.max(0.0);
         Ok(Self {
             axis,
             half_angle,
+            sin2: sn * sn,
+            cos2: cs * cs,
             radiance: check_radiance(radiance)?,
         })
     }
@@ -558,14 +565,12 @@ impl<S: Spectrum> Cap<S> {
         if d.is_nan() || d < 0.0 {
             return false;
         }
-        let (s, c) = libm::sincosf(self.half_angle);
-        let c = c.max(0.0);
         let cross2 = w.cross(self.axis).length_squared();
         let w2 = w.length_squared();
         if w2.is_nan() || w2 <= 0.0 || !w2.is_finite() {
             return false;
         }
-        cross2 * (c * c) <= d * d * (s * s)
+        cross2 * self.cos2 <= d * d * self.sin2
     }
 }
 

@@ -1079,3 +1079,41 @@ mod props {
         }
     }
 }
+
+/// `Cap::contains` / `radiance` resolve the edge of tiny caps (no `1 − cos`
+/// cancellation): directions at angle σ ± max(10⁻³σ, 3·10⁻⁷) from the axis.
+#[test]
+fn cap_membership_resolves_tiny_caps() {
+    for &sigma in &[1e-5f64, 0.00465, 0.3, 1.5] {
+        for &(ta, pa) in &[(0.3f64, 1.0f64), (1.2, 4.0), (2.5, 0.1)] {
+            let a = dir(ta, pa);
+            let cap = Cap::new(v3(a), sigma as f32, 2.0f32).unwrap();
+            // An orthonormal vector to the axis, built in f64.
+            let e = {
+                let t = if a[2].abs() < 0.9 {
+                    [0.0, 0.0, 1.0]
+                } else {
+                    [1.0, 0.0, 0.0]
+                };
+                let d = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
+                let v = [t[0] - d * a[0], t[1] - d * a[1], t[2] - d * a[2]];
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                [v[0] / n, v[1] / n, v[2] / n]
+            };
+            // Margin: 1e-3 σ, but at least 3e-7 rad (an f32 unit vector is
+            // only resolved to ~6e-8 rad per component).
+            let m = (1e-3 * sigma).max(3e-7);
+            for (g, inside) in [(sigma - m, true), (sigma + m, false)] {
+                let w = [
+                    g.cos() * a[0] + g.sin() * e[0],
+                    g.cos() * a[1] + g.sin() * e[1],
+                    g.cos() * a[2] + g.sin() * e[2],
+                ];
+                assert_eq!(cap.contains(v3(w)), inside, "σ={sigma} θa={ta} g={g}");
+                assert_eq!(cap.radiance(v3(w) * 3.0), if inside { 2.0 } else { 0.0 });
+            }
+        }
+    }
+    let cap = Cap::new(Vec3::Z, 0.1, 1.0f32).unwrap();
+    assert!(!cap.contains(Vec3::ZERO) && !cap.contains(-Vec3::Z));
+}
