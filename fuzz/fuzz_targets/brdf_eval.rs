@@ -1,0 +1,86 @@
+//! Every plugin: any finite parameters (invalid ones must be rejected at
+//! construction), any finite directions and samples: eval / pdf / sample are
+//! finite and non-negative, and never panic.
+#![no_main]
+mod common;
+use common::Floats;
+use libfuzzer_sys::fuzz_target;
+use radiometry::{Brdf, Spectrum};
+use radiometry_brdfs::*;
+
+fn check<B: Brdf>(b: &B, f: &mut Floats) {
+    let wi = f.vec3();
+    let wo = f.vec3();
+    let v = b.eval(wi, wo);
+    assert!(
+        v.is_finite() && v.min_channel() >= 0.0,
+        "eval {wi:?} {wo:?} -> {v:?}"
+    );
+    let p = b.pdf(wi, wo);
+    assert!(p.is_finite() && p >= 0.0, "pdf {wi:?} {wo:?} -> {p}");
+    let u = [f.unit(), f.unit()];
+    if let Some(s) = b.sample(wo, u) {
+        assert!(
+            s.pdf.is_finite() && s.pdf > 0.0,
+            "sample pdf {wo:?} {u:?} -> {s:?}"
+        );
+        assert!(
+            s.weight.is_finite() && s.weight.min_channel() >= 0.0,
+            "sample weight {wo:?} {u:?} -> {s:?}"
+        );
+        assert!(s.wi.is_finite());
+    }
+}
+
+fuzz_target!(|data: &[u8]| {
+    let mut f = Floats(data);
+    let which = f.byte();
+    let (a, b, c) = (f.f32(), f.f32(), f.f32());
+    match which % 8 {
+        0 => {
+            if let Ok(x) = Lambertian::new(a) {
+                check(&x, &mut f)
+            }
+        }
+        1 => {
+            if let Ok(x) = ModifiedPhong::new(a, b, c) {
+                check(&x, &mut f)
+            }
+        }
+        2 => {
+            if let Ok(x) = BlinnPhong::new(a, b, c) {
+                check(&x, &mut f)
+            }
+        }
+        3 => {
+            if let Ok(d) = Ggx::new(a) {
+                check(&Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel), &mut f)
+            }
+        }
+        4 => {
+            if let (Ok(d), Ok(fr)) = (Ggx::new(a), Conductor::new(b, c)) {
+                check(&Microfacet::<_, Separable, _>::new(d, fr), &mut f)
+            }
+        }
+        5 => {
+            if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Dielectric::new(b)) {
+                check(&Microfacet::<_, HeightCorrelated, _>::new(d, fr), &mut f)
+            }
+        }
+        6 => {
+            if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Schlick::new(b)) {
+                check(&Microfacet::<_, Separable, _>::new(d, fr), &mut f)
+            }
+        }
+        _ => {
+            if let Ok(d) = Ggx::new(a) {
+                let w = f.vec3();
+                let m = f.vec3();
+                let vals = [d.d(m), d.g1(w), d.visible_pdf(w, m)];
+                assert!(vals.iter().all(|v| v.is_finite() && *v >= 0.0), "{vals:?}");
+                let s = d.sample_visible(w, [f.unit(), f.unit()]);
+                assert!(s.is_finite());
+            }
+        }
+    }
+});
