@@ -13,7 +13,83 @@
 #![allow(dead_code)]
 
 pub mod chi2;
+pub mod plugins;
 pub mod quad;
 pub mod rng;
 pub mod special;
 pub mod strategies;
+
+use radiometry::glam::Vec3;
+
+/// Nudges every component of `w` by `steps` ulps (`f32::next_up`/`next_down`), sign pattern `mask`.
+pub fn nudge(w: Vec3, mask: u32) -> Vec3 {
+    let f = |x: f32, bit: u32| {
+        if mask >> bit & 1 == 1 {
+            x.next_up()
+        } else {
+            x.next_down()
+        }
+    };
+    Vec3::new(f(w.x, 0), f(w.y, 1), f(w.z, 2))
+}
+
+/// Sensitivity of `g` to the rounding of its inputs: the largest `|g(wi', wo') − g(wi, wo)|` over
+/// inputs nudged by one ulp per component (8 sign patterns each for `wi` and `wo`, paired). The inputs
+/// of a BRDF are only known to `f32` rounding, so two mathematically equal evaluations at
+/// differently-rounded inputs can differ by this much without any bug.
+pub fn sensitivity(g: &dyn Fn(Vec3, Vec3) -> f32, wi: Vec3, wo: Vec3) -> f32 {
+    let base = g(wi, wo);
+    let mut m = 0.0f32;
+    for mask in 0..8 {
+        for mask2 in [mask, 7 - mask] {
+            let v = g(nudge(wi, mask), nudge(wo, mask2));
+            if v.is_finite() {
+                m = m.max((v - base).abs());
+            }
+        }
+    }
+    m
+}
+
+/// Keeps the maximum of a non-negative `f64` statistic across threads (bit patterns of non-negative
+/// floats order like the floats).
+pub struct Worst(std::sync::atomic::AtomicU64, std::sync::Mutex<String>);
+
+impl Worst {
+    /// Zero.
+    pub const fn new() -> Self {
+        Worst(
+            std::sync::atomic::AtomicU64::new(0),
+            std::sync::Mutex::new(String::new()),
+        )
+    }
+    /// Records `v` with a description of where it happened.
+    pub fn record(&self, v: f64, what: impl FnOnce() -> String) {
+        if v.is_nan() || v < 0.0 {
+            return;
+        }
+        let prev = self
+            .0
+            .fetch_max(v.to_bits(), std::sync::atomic::Ordering::Relaxed);
+        if v.to_bits() > prev {
+            *self.1.lock().unwrap() = what();
+        }
+    }
+    /// The maximum so far and where.
+    pub fn get(&self) -> (f64, String) {
+        (
+            f64::from_bits(self.0.load(std::sync::atomic::Ordering::Relaxed)),
+            self.1.lock().unwrap().clone(),
+        )
+    }
+}
+
+/// Proptest configuration: `cases` cases, no failure-persistence files (the regression seeds are in the
+/// failure message).
+pub fn config(cases: u32) -> proptest::test_runner::Config {
+    proptest::test_runner::Config {
+        cases,
+        failure_persistence: None,
+        ..proptest::test_runner::Config::default()
+    }
+}

@@ -1,0 +1,181 @@
+//! Every plugin configuration of `radiometry-brdfs` (monochrome `f32` spectra), behind one trait object,
+//! with a proptest strategy for valid parameters and the angular width of each lobe (for quadrature
+//! breakpoints and χ² grids).
+
+use super::strategies::{alpha, exponent, kd_ks, log_uniform};
+use proptest::prelude::*;
+use radiometry::IsotropicBrdf;
+use radiometry_brdfs::{
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet,
+    ModifiedPhong, NoFresnel, Schlick, Separable,
+};
+
+/// A plugin behind a trait object.
+pub type Dyn = Box<dyn IsotropicBrdf<Spectrum = f32>>;
+
+/// Normal distribution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dist {
+    /// GGX / Trowbridge–Reitz.
+    Ggx,
+    /// Beckmann.
+    Beckmann,
+}
+
+/// Shadowing–masking.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shadow {
+    /// Height-correlated Smith G2.
+    HeightCorrelated,
+    /// Separable Smith G2.
+    Separable,
+}
+
+/// Fresnel term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fres {
+    /// F = 1.
+    None,
+    /// Schlick.
+    Schlick,
+    /// Exact dielectric.
+    Dielectric,
+    /// Exact conductor.
+    Conductor,
+}
+
+/// A plugin configuration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// `Lambertian`.
+    Lambertian,
+    /// `ModifiedPhong`.
+    ModifiedPhong,
+    /// `BlinnPhong`.
+    BlinnPhong,
+    /// `Microfacet<D, G, F>`.
+    Micro(Dist, Shadow, Fres),
+}
+
+/// All 19 configurations.
+pub fn all_kinds() -> Vec<Kind> {
+    let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
+    for d in [Dist::Ggx, Dist::Beckmann] {
+        for g in [Shadow::HeightCorrelated, Shadow::Separable] {
+            for f in [Fres::None, Fres::Schlick, Fres::Dielectric, Fres::Conductor] {
+                v.push(Kind::Micro(d, g, f));
+            }
+        }
+    }
+    v
+}
+
+/// Parameters for every plugin (each uses its own subset).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    /// Lambertian albedo ρ.
+    pub rho: f32,
+    /// Phong diffuse weight.
+    pub kd: f32,
+    /// Phong specular weight.
+    pub ks: f32,
+    /// Phong exponent.
+    pub n: f32,
+    /// Microfacet roughness.
+    pub alpha: f32,
+    /// Schlick f0.
+    pub f0: f32,
+    /// Dielectric relative IOR.
+    pub eta_d: f32,
+    /// Conductor η.
+    pub eta_c: f32,
+    /// Conductor k.
+    pub k_c: f32,
+}
+
+impl Params {
+    /// A typical parameter set.
+    pub fn typical() -> Self {
+        Params {
+            rho: 0.8,
+            kd: 0.3,
+            ks: 0.7,
+            n: 50.0,
+            alpha: 0.3,
+            f0: 0.04,
+            eta_d: 1.5,
+            eta_c: 0.2,
+            k_c: 3.0,
+        }
+    }
+}
+
+/// Valid parameters, hitting the edges (α down to 1e-4, n up to 1e7, kd + ks = 1, ρ = 1, f0 ∈ {0, 1},
+/// η < 1 for the dielectric (total internal reflection)).
+pub fn params() -> impl Strategy<Value = Params> + Clone {
+    (
+        prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
+        kd_ks(),
+        exponent(),
+        alpha(),
+        prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
+        log_uniform(0.2, 5.0),
+        log_uniform(0.01, 10.0),
+        prop_oneof![3 => 0.0f64..=10.0, 1 => Just(0.0)],
+    )
+        .prop_map(|(rho, (kd, ks), n, alpha, f0, eta_d, eta_c, k_c)| Params {
+            rho,
+            kd,
+            ks,
+            n,
+            alpha,
+            f0,
+            eta_d: eta_d as f32,
+            eta_c: eta_c as f32,
+            k_c: k_c as f32,
+        })
+}
+
+fn micro<D, G>(d: D, f: Fres, p: &Params) -> Result<Dyn, BrdfError>
+where
+    D: radiometry_brdfs::MicrofacetDistribution + core::fmt::Debug + 'static,
+    G: radiometry_brdfs::ShadowingMasking + 'static,
+{
+    Ok(match f {
+        Fres::None => Box::new(Microfacet::<D, G, NoFresnel>::new(d, NoFresnel)),
+        Fres::Schlick => Box::new(Microfacet::<D, G, _>::new(d, Schlick::new(p.f0)?)),
+        Fres::Dielectric => Box::new(Microfacet::<D, G, _>::new(d, Dielectric::new(p.eta_d)?)),
+        Fres::Conductor => Box::new(Microfacet::<D, G, _>::new(d, Conductor::new(p.eta_c, p.k_c)?)),
+    })
+}
+
+/// Builds the plugin `kind` with parameters `p`.
+pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
+    Ok(match kind {
+        Kind::Lambertian => Box::new(Lambertian::new(p.rho)?),
+        Kind::ModifiedPhong => Box::new(ModifiedPhong::new(p.kd, p.ks, p.n)?),
+        Kind::BlinnPhong => Box::new(BlinnPhong::new(p.kd, p.ks, p.n)?),
+        Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, f) => {
+            micro::<_, HeightCorrelated>(Ggx::new(p.alpha)?, f, p)?
+        }
+        Kind::Micro(Dist::Ggx, Shadow::Separable, f) => micro::<_, Separable>(Ggx::new(p.alpha)?, f, p)?,
+        Kind::Micro(Dist::Beckmann, Shadow::HeightCorrelated, f) => {
+            micro::<_, HeightCorrelated>(Beckmann::new(p.alpha)?, f, p)?
+        }
+        Kind::Micro(Dist::Beckmann, Shadow::Separable, f) => {
+            micro::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
+        }
+    })
+}
+
+/// Angular width (radians) of the lobe around the mirror direction: broad (10) for Lambertian,
+/// `1/√(n+1)` for modified Phong (cos^n α ≈ e^{−nα²/2}), `2/√(n+1)` for Blinn–Phong (θh ≈ θ/2), `2α` for
+/// microfacets (D has width α in the half vector, doubled by reflection).
+pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
+    match kind {
+        Kind::Lambertian => 10.0,
+        Kind::ModifiedPhong => 1.0 / (p.n as f64 + 1.0).sqrt(),
+        Kind::BlinnPhong => 2.0 / (p.n as f64 + 1.0).sqrt(),
+        Kind::Micro(..) => 2.0 * p.alpha as f64,
+    }
+}
