@@ -331,20 +331,27 @@ pub struct Reference {
 fn integrate_2d(
     g: &dyn Fn(f64, f64) -> f64,
     peak: Option<(f64, f64)>,
+    kink: Option<&dyn Fn(f64) -> Option<f64>>,
+    extra_mu_breaks: &[f64],
     tol: f64,
     evals: &mut u64,
 ) -> (f64, f64) {
-    let (mu_breaks, phi_breaks) = match peak {
+    let (mut mu_breaks, phi_breaks) = match peak {
         Some((mu0, w)) => (
             cluster(mu0, w * (1.0 - mu0 * mu0).max(1e-12).sqrt().max(w)),
             cluster(PI, w),
         ),
         None => (vec![], vec![]),
     };
+    mu_breaks.extend_from_slice(extra_mu_breaks);
     let mut count = 0u64;
     let mut inner_err_sum = 0.0;
     let (v, e) = adaptive(
         |mu| {
+            let mut breaks = phi_breaks.clone();
+            if let Some(k) = kink.and_then(|k| k(mu)) {
+                breaks.push(k);
+            }
             let (iv, ie) = adaptive(
                 |phi| {
                     count += 1;
@@ -352,7 +359,7 @@ fn integrate_2d(
                 },
                 0.0,
                 PI,
-                &phi_breaks,
+                &breaks,
                 1e-300,
                 tol * 0.01,
                 4000,
@@ -380,8 +387,21 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
     let g = |mu: f64, phi: f64| 2.0 * model.eval(sph(mu, phi), wo) * mu;
     let peak = model.peak(mu_o);
     let mut evals = 0;
-    let (coarse, _) = integrate_2d(&g, peak, 1e-8, &mut evals);
-    let (fine, e) = integrate_2d(&g, peak, 1e-12, &mut evals);
+    // The modified Phong lobe max(0, cos α)^n has a kink (for small n) on the
+    // curve ωi·r = 0, r = (−sin θo, 0, cos θo): cos φ = μ cos θo / (sin θ sin θo).
+    // It is a break point of the inner integral, and μ = sin θo (where the
+    // curve leaves the φ range) one of the outer.
+    let (st, ct) = (theta_o.sin(), theta_o.cos());
+    let phong_kink = move |mu: f64| {
+        let s = (1.0 - mu * mu).max(0.0).sqrt();
+        let c = mu * ct / (s * st);
+        (s * st > 0.0 && c.abs() < 1.0).then(|| c.acos())
+    };
+    let is_phong = matches!(model, RefModel::Phong { .. });
+    let kink: Option<&dyn Fn(f64) -> Option<f64>> = if is_phong { Some(&phong_kink) } else { None };
+    let extra: Vec<f64> = if is_phong { vec![st] } else { vec![] };
+    let (coarse, _) = integrate_2d(&g, peak, kink, &extra, 1e-8, &mut evals);
+    let (fine, e) = integrate_2d(&g, peak, kink, &extra, 1e-12, &mut evals);
     Reference {
         value: fine,
         bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
@@ -441,27 +461,32 @@ mod tests {
         // coordinates (α, β), cos θi = cos α cos θo + sin α sin θo cos β, and
         // ∫ over β of the part above the horizon has a 1-D form we integrate
         // with a separate simple midpoint rule (independent code path).
-        let n = 10.0;
-        let to: f64 = 60f64.to_radians();
-        let m = 200_000;
-        let mut sum = 0.0;
-        for a in 0..m {
-            let al = (a as f64 + 0.5) / m as f64 * (PI / 2.0);
-            let (sa, ca) = al.sin_cos();
-            // ∫_0^{2π} max(0, ca cos θo + sa sin θo cos β) dβ
-            let p = ca * to.cos();
-            let q = sa * to.sin();
-            let inner = if q <= p.abs() {
-                if p > 0.0 { 2.0 * PI * p } else { 0.0 }
-            } else {
-                let b0 = (-p / q).acos();
-                2.0 * (p * b0 + q * b0.sin())
-            };
-            sum += ca.powf(n) * sa * inner;
+        for (n, deg) in [(10.0, 60f64), (1.0, 60.0), (1.0, 85.0)] {
+            let to: f64 = deg.to_radians();
+            let m = 200_000;
+            let mut sum = 0.0;
+            for a in 0..m {
+                let al = (a as f64 + 0.5) / m as f64 * (PI / 2.0);
+                let (sa, ca) = al.sin_cos();
+                // ∫_0^{2π} max(0, ca cos θo + sa sin θo cos β) dβ
+                let p = ca * to.cos();
+                let q = sa * to.sin();
+                let inner = if q <= p.abs() {
+                    if p > 0.0 { 2.0 * PI * p } else { 0.0 }
+                } else {
+                    let b0 = (-p / q).acos();
+                    2.0 * (p * b0 + q * b0.sin())
+                };
+                sum += ca.powf(n) * sa * inner;
+            }
+            let closed = (n + 2.0) / (2.0 * PI) * sum * (PI / 2.0) / m as f64;
+            let r = albedo(&RefModel::Phong { n, ks: 1.0, kd: 0.0 }, to);
+            assert!(
+                (r.value - closed).abs() < 1e-8,
+                "n={n} θo={deg}: {} vs {closed}",
+                r.value
+            );
         }
-        let closed = (n + 2.0) / (2.0 * PI) * sum * (PI / 2.0) / m as f64;
-        let r = albedo(&RefModel::Phong { n, ks: 1.0, kd: 0.0 }, to);
-        assert!((r.value - closed).abs() < 1e-8, "{} vs {closed}", r.value);
     }
 
     #[test]
@@ -521,6 +546,21 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    #[test]
+    fn phong_n1_kink_is_resolved() {
+        for deg in [60.0f64, 85.0, 89.5] {
+            let r = albedo(
+                &RefModel::Phong {
+                    n: 1.0,
+                    ks: 1.0,
+                    kd: 0.0,
+                },
+                deg.to_radians(),
+            );
+            assert!(r.bound < 1e-8 * r.value, "θo={deg}: {r:?}");
         }
     }
 
