@@ -550,8 +550,12 @@ impl Report<'_> {
              estimate); Monte Carlo: share of rows with true error ≤ 3σ. Rows whose true error is below 10× the \
              reference bound are not counted.\n"
         );
-        let _ = writeln!(md, "| integrator | rows | covered | worst true/estimate |");
-        let _ = writeln!(md, "|---|---|---|---|");
+        let _ = writeln!(
+            md,
+            "| integrator | rows | covered (1× quadrature, 3σ MC) | true ≤ 10× estimate | worst true/estimate |"
+        );
+        let _ = writeln!(md, "|---|---|---|---|---|");
+        let mut offenders: Vec<(f64, &Row)> = Vec::new();
         let max_ref_bound = |ci: usize| self.refs[ci].bound;
         let mut ref_worst = 0.0f64;
         for (ci, r) in self.refs.iter().enumerate() {
@@ -559,7 +563,7 @@ impl Report<'_> {
             let _ = ci;
         }
         for (ii, integ) in self.integs.iter().enumerate() {
-            let (mut n, mut cov, mut worst) = (0usize, 0usize, 0.0f64);
+            let (mut n, mut cov, mut cov10, mut worst) = (0usize, 0usize, 0usize, 0.0f64);
             for r in self.rows.iter().filter(|r| r.integ == ii) {
                 let abs = (r.estimate - self.refs[r.case].value).abs();
                 if abs <= 10.0 * max_ref_bound(r.case) {
@@ -570,11 +574,18 @@ impl Report<'_> {
                 if abs <= k * r.error_estimate {
                     cov += 1;
                 }
-                worst = worst.max(if r.error_estimate > 0.0 {
+                if abs <= 10.0 * r.error_estimate {
+                    cov10 += 1;
+                }
+                let ratio = if r.error_estimate > 0.0 {
                     abs / r.error_estimate
                 } else {
                     f64::INFINITY
-                });
+                };
+                worst = worst.max(ratio);
+                if integ.is_deterministic() && ratio > 10.0 {
+                    offenders.push((ratio, r));
+                }
             }
             let share = if n > 0 {
                 cov as f64 / n as f64 * 100.0
@@ -588,7 +599,42 @@ impl Report<'_> {
             } else {
                 format!("{worst:.2}")
             };
-            let _ = writeln!(md, "| {} | {n} | {share:.1} % | {worst} |", integ.name());
+            let share10 = if n > 0 {
+                cov10 as f64 / n as f64 * 100.0
+            } else {
+                100.0
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {n} | {share:.1} % | {share10:.1} % | {worst} |",
+                integ.name()
+            );
+        }
+        if !offenders.is_empty() {
+            offenders.sort_by(|a, b| b.0.total_cmp(&a.0));
+            let _ = writeln!(
+                md,
+                "\nQuadrature rows whose error estimate understates the true error by more than 10× \
+                 ({} rows; worst 15):\n",
+                offenders.len()
+            );
+            let _ = writeln!(
+                md,
+                "| case | integrator | budget | rel. error | estimate / ρ | true / estimate |"
+            );
+            let _ = writeln!(md, "|---|---|---|---|---|---|");
+            for (ratio, r) in offenders.iter().take(15) {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {:.1e} | {:.1e} | {:.1e} |",
+                    self.cases[r.case].name,
+                    self.integs[r.integ].name(),
+                    r.budget,
+                    self.rel_error(r),
+                    r.error_estimate / self.refs[r.case].value,
+                    ratio
+                );
+            }
         }
         let refs_line = format!(
             "References: nested adaptive Gauss–Kronrod (7,15) in f64, independent of the integrators and plugins; \
