@@ -276,7 +276,9 @@ fn atan_minus_cubic(x: f32) -> f32 {
 /// As `σ → 0` with `π L sin²σ = E⊥` fixed this tends to the directional
 /// result `E⊥ max(0, cos θa)`.
 ///
-/// Domain: as [`cap_projected_solid_angle`]; `L` channel-wise.
+/// Domain: as [`cap_projected_solid_angle`]; `L` channel-wise. The result
+/// is finite when `|L| < f32::MAX/π` (lights built with
+/// [`crate::light::Cap::new`] enforce `L ≤ MAX_RADIANCE = 10³⁰`).
 #[inline]
 pub fn cap_irradiance<S: Spectrum>(radiance: S, cos_axis: f32, half_angle: f32) -> S {
     radiance * cap_projected_solid_angle(cos_axis, half_angle)
@@ -288,7 +290,8 @@ pub fn cap_irradiance<S: Spectrum>(radiance: S, cos_axis: f32, half_angle: f32) 
 /// given by its irradiance into a cap radiance and back:
 /// `L = E⊥ / (π sin²σ)`.
 ///
-/// Domain: `σ` clamped to `[0, π/2]`, NaN gives 0.
+/// Domain: `σ` clamped to `[0, π/2]`, NaN gives 0; finite when
+/// `|L| < f32::MAX/π`.
 #[inline]
 pub fn cap_normal_irradiance<S: Spectrum>(radiance: S, half_angle: f32) -> S {
     let s = libm::sinf(clamp_or_zero(half_angle, 0.0, FRAC_PI_2)).clamp(0.0, 1.0);

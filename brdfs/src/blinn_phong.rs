@@ -230,10 +230,13 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         let diffuse = self.p_diffuse * wi.z * FRAC_1_PI;
         let lobe = match half_vector(wi, wo) {
             Some(h) if self.p_lobe > 0.0 => {
-                let wo_h = wo.dot(h);
+                // For unit ωi, ωo above the horizon, ωo·h = |ωi + ωo|/2
+                // exactly; computing it that way (not as a dot product of
+                // rounded vectors, which can be ~1e-30 for ωi ≈ −ωo) keeps
+                // it ≥ 5·10⁻⁸ whenever h is defined, so the quotient is
+                // ≤ 2·10¹³ (finite). Found by the `brdf_eval` fuzz target.
+                let wo_h = 0.5 * (wi + wo).length();
                 if wo_h > 0.0 {
-                    // wo·h = |ωi + ωo|/2 ≥ 5·10⁻⁸ when h is defined, so the
-                    // quotient is ≤ 2·10¹³ (finite).
                     self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * self.lobe(h) / (4.0 * wo_h)
                 } else {
                     0.0

