@@ -11,6 +11,7 @@ use radiometry::glam::Vec3;
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, Lambertian, ModifiedPhong, Schlick,
 };
+use std::f32::consts::{FRAC_PI_2, PI};
 
 const ONE_MINUS_EPS: f32 = 0.99999994;
 
@@ -120,7 +121,7 @@ fn grazing_cos_1e_minus_7() {
         (mirror(wo), wo),
         (graze(1e-7, 2.0), wo),
         (graze(0.5, 1.0), wo),
-        (graze(1e-7, 0.3 + std::f32::consts::PI), wo),
+        (graze(1e-7, 0.3 + PI), wo),
     ];
     check_all(&pairs, &US);
 }
@@ -150,9 +151,9 @@ fn one_param_set_all_kinds(p: Params, pairs: &[(Vec3, Vec3)]) {
         // The 3-parameter form at the edges of its domain.
         for &(ti, to, dphi) in &[
             (0.0f32, 0.0f32, 0.0f32),
-            (1.5707963, 1.5707963, 3.1415927),
-            (0.3, 0.3, 3.1415927),
-            (1.5707963, 0.0, 0.0),
+            (FRAC_PI_2, FRAC_PI_2, PI),
+            (0.3, 0.3, PI),
+            (FRAC_PI_2, 0.0, 0.0),
         ] {
             let f = b.eval_isotropic(ti, to, dphi);
             assert!(
