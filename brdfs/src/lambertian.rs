@@ -96,6 +96,14 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
         }
     }
 
+    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]) tests the
+    /// horizon/finiteness conditions; results equal [`Brdf::eval`] exactly.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        crate::simd::lambertian_eval_batch(self.albedo * FRAC_1_PI, wi, wo, out)
+    }
+
     /// Cosine-weighted sampling; `weight = ρ`. `None` when `wo` is at or
     /// below the horizon (or not finite) or `wi` lands on the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {

@@ -13,6 +13,8 @@ pub mod error;
 pub mod lambertian;
 pub mod microfacet;
 pub mod phong;
+#[cfg(feature = "simd")]
+pub mod simd;
 
 pub use error::BrdfError;
 // -- re-exports: Lambertian / Phong family (keep this block for those modules)

@@ -105,6 +105,12 @@ impl MicrofacetDistribution for Ggx {
         2.0 / (1.0 + libm::sqrtf(1.0 + x))
     }
 
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn batch_kind(&self) -> crate::simd::DistributionKind {
+        crate::simd::DistributionKind::Ggx { alpha: self.alpha }
+    }
+
     /// Visible-normal sampling by spherical caps (Dupuy & Benyoub 2023,
     /// "Sampling Visible GGX Normals with Spherical Caps", CGF 42(8), §3;
     /// stretch/unstretch as in Heitz 2018, "Sampling the GGX Distribution of

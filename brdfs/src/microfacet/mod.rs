@@ -120,6 +120,18 @@ pub trait MicrofacetDistribution {
     /// vector with `z ≥ 0`.
     fn sample_visible(&self, wo: Vec3, u: [f32; 2]) -> Vec3;
 
+    /// Hidden hook of the `simd` feature: which vectorised kernel (if any)
+    /// [`Brdf::eval_batch`] of [`Microfacet`] may use for this distribution.
+    /// The default, [`DistributionKind::Scalar`](crate::simd::DistributionKind),
+    /// keeps the scalar loop; only [`Ggx`] overrides it. Not part of the
+    /// stable API.
+    #[cfg(feature = "simd")]
+    #[doc(hidden)]
+    #[inline]
+    fn batch_kind(&self) -> crate::simd::DistributionKind {
+        crate::simd::DistributionKind::Scalar
+    }
+
     /// The density of [`sample_visible`](Self::sample_visible) with respect to
     /// solid angle of `m`: `G1(ωo) max(0, ωo·m) D(m) / cos θo` (Heitz &
     /// d'Eon 2014, eq. 2), with `ωo` mirrored to the upper hemisphere; `0` at
@@ -295,6 +307,16 @@ where
             return F::Spectrum::zero();
         }
         self.fresnel.eval(wi.dot(h).clamp(0.0, 1.0)) * s
+    }
+
+    /// With the `simd` feature, GGX with either shadowing–masking variant
+    /// (any Fresnel term) uses the 8-wide kernel of [`crate::simd`], which
+    /// returns exactly what [`Brdf::eval`] returns; other combinations loop
+    /// over `eval`.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [F::Spectrum]) {
+        crate::simd::microfacet_eval_batch(self, wi, wo, out)
     }
 
     /// Visible-normal sampling (Heitz & d'Eon 2014) followed by mirror

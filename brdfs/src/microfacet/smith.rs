@@ -23,6 +23,13 @@ pub trait ShadowingMasking {
     /// `G2(ωi, ωo) ∈ [0, 1]` for directions in the upper hemisphere (the
     /// BRDF excludes the others before calling this).
     fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32;
+
+    /// Hidden hook of the `simd` feature: which vectorised `G2` (if any) the
+    /// batched microfacet kernel may use. The default keeps the scalar loop.
+    /// Not part of the stable API.
+    #[cfg(feature = "simd")]
+    #[doc(hidden)]
+    const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::Scalar;
 }
 
 /// Height-correlated Smith `G2 = 1/(1 + Λ(ωi) + Λ(ωo))` (Heitz 2014,
@@ -50,6 +57,9 @@ pub struct HeightCorrelated;
 pub struct Separable;
 
 impl ShadowingMasking for HeightCorrelated {
+    #[cfg(feature = "simd")]
+    const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::HeightCorrelated;
+
     #[inline]
     fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
         let s = 1.0 + d.lambda(wi) + d.lambda(wo);
@@ -59,6 +69,9 @@ impl ShadowingMasking for HeightCorrelated {
 }
 
 impl ShadowingMasking for Separable {
+    #[cfg(feature = "simd")]
+    const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::Separable;
+
     #[inline]
     fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
         d.g1(wi) * d.g1(wo)
