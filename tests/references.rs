@@ -21,7 +21,6 @@ mod common;
 use common::plugins::{Dist, Fres, Kind, Params, Shadow, build, lobe_width};
 use common::quad::{Adaptive, Integral, Tol, integrate_hemisphere, lobe_breaks};
 use common::strategies::to_f32;
-use radiometry::Brdf;
 use radiometry::glam::{DVec3, Vec3};
 use radiometry_brdfs::{Beckmann, Ggx, MicrofacetDistribution};
 use std::f64::consts::{FRAC_PI_2, LN_2};
