@@ -270,3 +270,198 @@ fn chi_square_checks_the_none_frequency() {
     let wrong = chi_square(&Lossy { claimed: 0.29 }, wo, &cfg);
     assert!(!wrong.passes(harness_alpha()), "{wrong:#?}");
 }
+
+// ---------------------------------------------------------------- every plugin
+
+use common::plugins::{Dist, Fres, Kind, Params, Shadow, all_kinds, build, lobe_width, params};
+use common::{Worst, sensitivity};
+use proptest::test_runner::TestRunner;
+
+static WORST_PDF: Worst = Worst::new();
+static WORST_WEIGHT: Worst = Worst::new();
+
+/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 19
+/// configurations, `u` including 0 and `1 − 2⁻²⁴`. Tolerance: `1e-4` relative plus the sensitivity of
+/// `pdf` (resp. `f cos/pdf`) to one-ulp changes of its inputs (the sampled `ωi` is rounded to `f32`
+/// before `pdf` sees it), plus, for the weight, the underflow term `f32::MIN_POSITIVE cos θi / pdf`.
+#[test]
+fn weight_and_pdf_match_eval_and_pdf_every_plugin() {
+    use proptest::prelude::*;
+    let mut runner = TestRunner::new(common::config(1000));
+    let kinds = all_kinds();
+    let u = prop_oneof![4 => 0.0f32..1.0, 1 => Just(0.0f32), 1 => Just(0.99999994f32)];
+    runner
+        .run(
+            &(params(), common::strategies::upper_dir(), [u.clone(), u]),
+            |(p, wo, u)| {
+                let wo = common::strategies::to_f32(wo);
+                for &k in &kinds {
+                    let b = build(k, &p).unwrap();
+                    let Some(s) = b.sample(wo, u) else { continue };
+                    let ctx = || format!("{k:?} {p:?} wo={wo:?} u={u:?}: {s:?}");
+                    if !(s.pdf > 0.0 && s.pdf.is_finite() && s.weight.is_finite() && s.weight >= 0.0) {
+                        return Err(TestCaseError::fail(format!("invalid sample {}", ctx())));
+                    }
+                    let pdf = |x: Vec3, y: Vec3| b.pdf(x, y);
+                    let p2 = b.pdf(s.wi, wo);
+                    let sp = sensitivity(&pdf, s.wi, wo);
+                    let tol = 1e-4 * s.pdf.max(p2) + sp;
+                    WORST_PDF.record(((p2 - s.pdf).abs() / s.pdf) as f64, ctx);
+                    if (p2 - s.pdf).abs() > tol {
+                        return Err(TestCaseError::fail(format!(
+                            "pdf(wi) = {p2:e} (tol {tol:e}): {}",
+                            ctx()
+                        )));
+                    }
+                    let w = |x: Vec3, y: Vec3| b.eval(x, y) * x.z / s.pdf;
+                    let expect = w(s.wi, wo);
+                    // f below f32::MIN_POSITIVE (subnormal or flushed to 0) has no relative precision: its
+                    // absolute uncertainty MIN_POSITIVE becomes MIN_POSITIVE cos/pdf in the weight (deep tails
+                    // of sharp lobes, where the plugin's analytic weight G2/G1·F is exact and eval underflows).
+                    let underflow = f32::MIN_POSITIVE * s.wi.z / s.pdf;
+                    let tol = 1e-4 * expect.max(s.weight) + sensitivity(&w, s.wi, wo) + underflow + 1e-30;
+                    let m = expect.max(s.weight);
+                    if m > 0.0 {
+                        WORST_WEIGHT.record(((expect - s.weight).abs() / m) as f64, ctx);
+                    }
+                    if (expect - s.weight).abs() > tol {
+                        return Err(TestCaseError::fail(format!(
+                            "weight vs f cos/pdf = {expect:e}: {}",
+                            ctx()
+                        )));
+                    }
+                }
+                Ok(())
+            },
+        )
+        .unwrap();
+    let (a, wa) = WORST_PDF.get();
+    let (b, wb) = WORST_WEIGHT.get();
+    eprintln!(
+        "sampling: 1000 cases x {} plugins; worst |pdf(wi) - returned pdf|/pdf {a:.3e} at {wa}",
+        kinds.len()
+    );
+    eprintln!("sampling: worst |weight - f cos/pdf|/weight {b:.3e} at {wb}");
+}
+
+/// Number of χ² tests over the plugins below (for the Šidák correction).
+const PLUGIN_CHI2_TESTS: usize = 4 + 17 + 17 + 16 + 16 + 2;
+const THETAS_DEG: [f32; 4] = [0.0, 30.0, 70.0, 85.0];
+
+fn plugin_alpha() -> f64 {
+    sidak(0.01, PLUGIN_CHI2_TESTS)
+}
+
+/// Runs the χ² test of one configuration at every incidence angle; returns failure descriptions.
+fn chi2_plugin(k: Kind, p: &Params, thetas: &[f32], seed: u64) -> Vec<String> {
+    let b = build(k, p).unwrap();
+    let mut fails = Vec::new();
+    for (i, &deg) in thetas.iter().enumerate() {
+        let t = deg.to_radians();
+        let wo = Vec3::new(t.sin(), 0.0, t.cos());
+        let cfg = ChiSquare::for_lobe(wo, lobe_width(k, p), seed * 100 + i as u64);
+        let r = chi_square(b.as_ref(), wo, &cfg);
+        eprintln!(
+            "χ² {k:?} n={} α={} kd={} θo={deg}°: χ²={:.1} dof={} p={:.4} mass={:.6}±{:.1e} None {} vs {:.1} | pdf rel {:.1e} weight rel {:.1e}",
+            p.n,
+            p.alpha,
+            p.kd,
+            r.statistic,
+            r.dof,
+            r.p_value,
+            r.mass.value,
+            r.mass.err,
+            r.none_observed,
+            r.none_expected,
+            r.worst_pdf_rel,
+            r.worst_weight_rel
+        );
+        let mass_ok = r.mass.value <= 1.0 + r.mass.err + 1e-5;
+        if !r.passes(plugin_alpha()) || !mass_ok {
+            fails.push(format!(
+                "{k:?} {p:?} θo={deg}°: p={:e} (α={:e}), bad samples {} ({:?}), zero-pdf hits {}, mass {:?}, top cells {:?}",
+                r.p_value,
+                plugin_alpha(),
+                r.bad_samples,
+                r.first_bad,
+                r.zero_pdf_hits,
+                r.mass,
+                r.top_cells
+            ));
+        }
+    }
+    fails
+}
+
+#[test]
+fn chi_square_lambertian() {
+    let p = Params::typical();
+    let fails = chi2_plugin(Kind::Lambertian, &p, &THETAS_DEG, 1);
+    assert!(fails.is_empty(), "{fails:#?}");
+}
+
+fn chi2_phong_family(k: Kind, seed: u64) {
+    let mut fails = Vec::new();
+    for (j, &n) in [1.0f32, 10.0, 100.0, 1000.0].iter().enumerate() {
+        let p = Params {
+            kd: 0.0,
+            ks: 1.0,
+            n,
+            ..Params::typical()
+        };
+        fails.extend(chi2_plugin(k, &p, &THETAS_DEG, seed + j as u64));
+    }
+    // The one-sample mixture of cosine and lobe sampling.
+    let p = Params {
+        kd: 0.4,
+        ks: 0.5,
+        n: 100.0,
+        ..Params::typical()
+    };
+    fails.extend(chi2_plugin(k, &p, &[30.0], seed + 10));
+    assert!(fails.is_empty(), "{fails:#?}");
+}
+
+#[test]
+fn chi_square_modified_phong() {
+    chi2_phong_family(Kind::ModifiedPhong, 10);
+}
+
+#[test]
+fn chi_square_blinn_phong() {
+    chi2_phong_family(Kind::BlinnPhong, 30);
+}
+
+fn chi2_microfacet(d: Dist, seed: u64) {
+    let mut fails = Vec::new();
+    for (j, &alpha) in [0.05f32, 0.2, 0.6, 1.0].iter().enumerate() {
+        let p = Params {
+            alpha,
+            ..Params::typical()
+        };
+        let k = Kind::Micro(d, Shadow::HeightCorrelated, Fres::None);
+        fails.extend(chi2_plugin(k, &p, &THETAS_DEG, seed + j as u64));
+    }
+    // Sampling does not depend on G2 or F, but the weight does: one more configuration.
+    let p = Params {
+        alpha: 0.2,
+        ..Params::typical()
+    };
+    fails.extend(chi2_plugin(
+        Kind::Micro(d, Shadow::Separable, Fres::Conductor),
+        &p,
+        &[70.0],
+        seed + 10,
+    ));
+    assert!(fails.is_empty(), "{fails:#?}");
+}
+
+#[test]
+fn chi_square_ggx() {
+    chi2_microfacet(Dist::Ggx, 50);
+}
+
+#[test]
+fn chi_square_beckmann() {
+    chi2_microfacet(Dist::Beckmann, 70);
+}
