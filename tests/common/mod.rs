@@ -93,3 +93,11 @@ pub fn config(cases: u32) -> proptest::test_runner::Config {
         ..proptest::test_runner::Config::default()
     }
 }
+
+/// A proptest runner with `cases` cases and a fixed seed, so that every run (and CI) checks the same
+/// cases and a failure is reproducible.
+pub fn runner(cases: u32) -> proptest::test_runner::TestRunner {
+    let cfg = config(cases);
+    let rng = proptest::test_runner::TestRng::deterministic_rng(cfg.rng_algorithm);
+    proptest::test_runner::TestRunner::new_with_rng(cfg, rng)
+}
