@@ -67,8 +67,9 @@ enum Command {
         no_progress: bool,
     },
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi of a BRDF.
+    #[command(after_help = spec::BRDF_SPEC_HELP)]
     Albedo {
-        /// BRDF spec, e.g. `ggx(alpha=0.1, g=separable, fresnel=schlick(f0=0.04))`. See `radiometry eval --help`.
+        /// BRDF spec, e.g. `ggx(alpha=0.1, g=separable, fresnel=schlick(f0=0.04))` (see below).
         spec: String,
         /// Outgoing polar angle θo in degrees, in [0, 90].
         #[arg(long = "theta-o", allow_negative_numbers = true)]
