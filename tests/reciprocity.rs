@@ -110,3 +110,28 @@ fn reciprocity_strict_when_well_conditioned() {
         kinds.len()
     );
 }
+
+/// Regression for a finding of this suite: ωi ≈ −ωo with both just above the horizon (here from the
+/// `NearMirror` strategy at grazing incidence). The f32 inputs are exact and the mathematical BRDF of
+/// the normalised inputs is reciprocal, but `ωi + ωo` nearly cancels, so the computed half vector is
+/// dominated by rounding and `ωi·h ≠ ωo·h` (one is clamped to 0): `F(ωi·h)` vs `F(ωo·h)` differ by a factor
+/// ~2. Computing `cos θd = |ω̂i + ω̂o| / 2` (equal to both dot products for unit vectors, symmetric, and
+/// accurate because the component sums are exact by Sterbenz's lemma) makes it exactly reciprocal.
+#[test]
+#[ignore = "bug in microfacet (Fresnel argument ωi·h at ωi ≈ −ωo grazing), see the tests report"]
+fn reciprocity_exact_at_near_opposite_grazing() {
+    use radiometry::glam::Vec3;
+    let wi = Vec3::new(-0.99674785, -0.08058376, 6.414576e-8);
+    let wo = Vec3::new(0.99674785, 0.08058366, 4.4635744e-9);
+    let mut p = common::plugins::Params::typical();
+    (p.alpha, p.eta_c, p.k_c, p.f0, p.eta_d) = (1.0, 8.614023, 4.051648, 0.04, 1.5);
+    let mut bad = Vec::new();
+    for k in all_kinds() {
+        let b = build(k, &p).unwrap();
+        let (x, y) = (b.eval(wi, wo), b.eval(wo, wi));
+        if (x - y).abs() > 1e-5 * x.max(y) + 1e-30 {
+            bad.push(format!("{k:?}: f(wi,wo) = {x:e}, f(wo,wi) = {y:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}

@@ -473,3 +473,30 @@ fn chi_square_ggx() {
 fn chi_square_beckmann() {
     chi2_microfacet(Dist::Beckmann, 70);
 }
+
+/// Regression for a finding of this suite (energy test, heavy-tailed weights): Blinn–Phong at grazing
+/// `ωo` and `ωi ≈ −ωo` (both just above the horizon, opposite azimuths). There `h ≈ +Z`, so the lobe
+/// `f ≈ ks (n+…) cos^n θh` is at its peak, and the lobe sampler's density `(n+1)/(2π) cos^n θh / (4 ωo·h)`
+/// is huge; but `pdf` computes `ωo·h` from a half vector dominated by rounding, finds it ≤ 0 and drops
+/// the lobe term, returning only the diffuse part — so `f cos/pdf` reaches 6.6e5 and `pdf` is not the
+/// density of `sample` there. Expected: the lobe term evaluated with `ωo·h = |ω̂i + ω̂o|/2` (our f64
+/// value below, from the f32 inputs).
+#[test]
+#[ignore = "bug in BlinnPhong::pdf (ωo·h sign at ωi ≈ −ωo grazing), see the tests report"]
+fn blinn_phong_pdf_includes_lobe_at_near_opposite_grazing() {
+    let (kd, ks, n) = (0.6092879f32, 0.39071205f32, 1e7f32);
+    let b = radiometry_brdfs::BlinnPhong::new(kd, ks, n).unwrap();
+    let wi = Vec3::new(-0.7147365, 0.69939387, 0.0002987285);
+    let wo = Vec3::new(0.7147365, -0.6993938, 1.181356e-8);
+    let (a, c) = (
+        common::strategies::to_f64(wi).normalize(),
+        common::strategies::to_f64(wo).normalize(),
+    );
+    let s = a + c;
+    let h = s.normalize();
+    let wo_h = 0.5 * s.length();
+    let p_lobe = ks as f64 / (kd + ks) as f64;
+    let lobe = p_lobe * (n as f64 + 1.0) / (2.0 * PI) * h.z.powf(n as f64) / (4.0 * wo_h);
+    let got = b.pdf(wi, wo) as f64;
+    assert!(got >= 0.5 * lobe, "pdf = {got:e}, lobe density alone = {lobe:e}");
+}
