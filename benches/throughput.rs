@@ -2,6 +2,20 @@
 //!
 //! `cargo bench --bench throughput` — reports time per batch of 4096
 //! evaluations / samples for each plugin, scalar `eval` vs `eval_batch`.
+//!
+//! With the 8-wide `eval_batch` kernels of `radiometry-brdfs` (feature
+//! `simd`; GGX with either Smith `G2` and any Fresnel, Lambertian), enable
+//! the feature on the dev-dependency from the command line (the root crate's
+//! own `simd` feature does not reach its dev-dependency):
+//!
+//! ```text
+//! cargo bench -p radiometry --bench throughput --features radiometry-brdfs/simd
+//! # only the eval / eval_batch groups, AVX where the CPU has it:
+//! RUSTFLAGS="-C target-cpu=native" cargo bench -p radiometry --bench throughput \
+//!     --features radiometry-brdfs/simd -- 'brdf/eval'
+//! ```
+//!
+//! Without `target-cpu` flags `wide::f32x8` runs as two SSE2 halves on x86_64.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use radiometry::glam::Vec3;

@@ -186,6 +186,15 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (norm * self.lobe(wi, wo))
     }
 
+    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]); it
+    /// matches `eval` to the tolerance documented there (vector `exp`/`ln_1p`
+    /// for `cos^n α`).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        crate::simd::phong_eval_batch(self.kd, self.ks, self.exponent, wi, wo, out)
+    }
+
     /// Mixture sampling (see the module documentation). `None` when `wo`
     /// is at or below the horizon, when `kd = ks = 0`, or when the lobe
     /// sample falls at or below the horizon.
