@@ -183,6 +183,11 @@ impl V8 {
     fn unitize(self) -> (V8, f32x8) {
         let l2 = self.dot(self);
         let near1 = (l2 - f32x8::ONE).abs().simd_le(f32x8::splat(4.0 * f32::EPSILON));
+        if near1.all() {
+            // The usual case (unit input, or re-unitising a unit vector):
+            // skip the square root and divisions.
+            return (self, near1);
+        }
         let in_range = l2.simd_ge(f32x8::splat(1e-30)) & l2.simd_le(f32x8::splat(1e30));
         let scaled = self.div(l2.sqrt());
         (V8::select(near1, self, scaled), near1 | in_range)
