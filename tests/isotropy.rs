@@ -153,7 +153,6 @@ fn eval_isotropic_matches_eval_every_plugin() {
 /// restores it (an 8 % jump — the sensitivity-based isotropy tolerance absorbs it because a one-ulp
 /// nudge of the inputs crosses the same threshold).
 #[test]
-#[ignore = "bug in BlinnPhong (lobe dropped when h is nearly horizontal), see the tests report"]
 fn blinn_phong_constant_lobe_at_grazing() {
     use radiometry::Brdf;
     let (kd, ks) = (0.9217622f32, 0.07823777f32);

@@ -482,7 +482,6 @@ fn chi_square_beckmann() {
 /// density of `sample` there. Expected: the lobe term evaluated with `ωo·h = |ω̂i + ω̂o|/2` (our f64
 /// value below, from the f32 inputs).
 #[test]
-#[ignore = "bug in BlinnPhong::pdf (ωo·h sign at ωi ≈ −ωo grazing), see the tests report"]
 fn blinn_phong_pdf_includes_lobe_at_near_opposite_grazing() {
     let (kd, ks, n) = (0.6092879f32, 0.39071205f32, 1e7f32);
     let b = radiometry_brdfs::BlinnPhong::new(kd, ks, n).unwrap();

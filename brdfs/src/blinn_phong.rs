@@ -179,10 +179,22 @@ impl<S: Spectrum> BlinnPhong<S> {
     }
 
     /// `cos^n θh` of the unit half vector `h` (`h_z ≥ 0`).
+    ///
+    /// Near the pole (`cos θh ≥ 1/2`) it is `(1 − δ)^n` with
+    /// `δ = (h_x² + h_y²)/(1 + h_z) = 1 − cos θh`, which keeps precision for
+    /// huge `n`; away from it `cos θh = h_z` is itself accurate and is raised
+    /// to the power directly, so a nearly horizontal `h` (`h_z ≈ 10⁻⁸`,
+    /// where `1 − δ` rounds to 0) still gives `cos⁰ θh = 1` for `n = 0`.
     #[inline]
     fn lobe(&self, h: Vec3) -> f32 {
-        let delta = (h.x * h.x + h.y * h.y) / (1.0 + h.z);
-        pow_one_minus(delta, self.exponent)
+        if h.z >= 0.5 {
+            let delta = (h.x * h.x + h.y * h.y) / (1.0 + h.z);
+            pow_one_minus(delta, self.exponent)
+        } else if h.z > 0.0 {
+            libm::powf(h.z, self.exponent)
+        } else {
+            0.0
+        }
     }
 }
 
