@@ -118,7 +118,6 @@ fn reciprocity_strict_when_well_conditioned() {
 /// ~2. Computing `cos θd = |ω̂i + ω̂o| / 2` (equal to both dot products for unit vectors, symmetric, and
 /// accurate because the component sums are exact by Sterbenz's lemma) makes it exactly reciprocal.
 #[test]
-#[ignore = "bug in microfacet (Fresnel argument ωi·h at ωi ≈ −ωo grazing), see the tests report"]
 fn reciprocity_exact_at_near_opposite_grazing() {
     use radiometry::glam::Vec3;
     let wi = Vec3::new(-0.99674785, -0.08058376, 6.414576e-8);

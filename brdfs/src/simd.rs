@@ -297,7 +297,7 @@ fn a2_tan2(alpha: f32x8, w: V8) -> (f32x8, f32x8) {
 /// One chunk of `Microfacet<Ggx, G, F>::eval` without the Fresnel factor.
 ///
 /// Returns `(s, cos θd, fallback)` where `s = finite_nonneg(D G2 / (4 cos θi
-/// cos θo))` (0 where `eval` returns 0), `cos θd = clamp(ωi·h, 0, 1)`, and
+/// cos θo))` (0 where `eval` returns 0), `cos θd = min(1, |ωi + ωo|/2)`, and
 /// `fallback` has bit `k` set when lane `k` must be recomputed by `eval`.
 #[inline(always)]
 fn ggx_x8<const SEPARABLE: bool>(alpha: f32, wi: V8, wo: V8) -> (f32x8, f32x8, u32) {
@@ -342,7 +342,8 @@ fn ggx_x8<const SEPARABLE: bool>(alpha: f32, wi: V8, wo: V8) -> (f32x8, f32x8, u
     let s = finite_nonneg(d * g / (f32x8::splat(4.0) * wi.z * wo.z));
     let valid = up & h_ok & d_ok;
     let s = valid.select(s, zero);
-    let cos_d = wi.dot(h).max(zero).min(one);
+    // cos θd = |ωi + ωo|/2, as the scalar `cos_theta_d` (symmetric in ωi, ωo).
+    let cos_d = (f32x8::splat(0.5) * hl2.sqrt()).min(one);
     (s, cos_d, fallback.to_bitmask())
 }
 

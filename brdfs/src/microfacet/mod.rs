@@ -283,6 +283,19 @@ where
     }
 }
 
+/// `cos θd = ωi·h = ωo·h` for unit `ωi`, `ωo`, computed as `|ωi + ωo|/2`
+/// (since `|ωi + ωo|² = 2 + 2 ωi·ωo = 4 cos² θd`), clamped to 1.
+///
+/// Unlike the dot product `ωi·h` with the rounded half vector, this is
+/// symmetric in its arguments bit for bit (the component sums commute
+/// exactly), so `F(cos θd)` — and the BRDF — stay exactly reciprocal even
+/// for `ωi ≈ −ωo` at grazing, where `ωi + ωo` nearly cancels and `ωi·h`
+/// can round to 0 in one order and not in the other.
+#[inline]
+fn cos_theta_d(wi: Vec3, wo: Vec3) -> f32 {
+    (0.5 * (wi + wo).length()).min(1.0)
+}
+
 impl<D, G, F> Brdf for Microfacet<D, G, F>
 where
     D: MicrofacetDistribution,
@@ -306,7 +319,7 @@ where
         if s == 0.0 {
             return F::Spectrum::zero();
         }
-        self.fresnel.eval(wi.dot(h).clamp(0.0, 1.0)) * s
+        self.fresnel.eval(cos_theta_d(wi, wo)) * s
     }
 
     /// With the `simd` feature, GGX with either shadowing–masking variant
@@ -347,7 +360,7 @@ where
             return None;
         }
         let ratio = (G::g2(&self.distribution, wi, wo) / g1o).clamp(0.0, 1.0);
-        let weight = self.fresnel.eval(wi.dot(h).clamp(0.0, 1.0)) * ratio;
+        let weight = self.fresnel.eval(cos_theta_d(wi, wo)) * ratio;
         Some(BrdfSample { wi, pdf, weight })
     }
 
