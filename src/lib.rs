@@ -48,3 +48,8 @@ pub use brdf::{Brdf, BrdfSample, IsotropicBrdf};
 pub use frame::Frame;
 pub use integrator::{Estimate, Integrand, IntegrateError, Integrator};
 pub use spectrum::{SampledSpectrum, Spectrum, WideSpectrum};
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
