@@ -689,3 +689,186 @@ fn deterministic_for_config_and_seed() {
     assert_eq!(wgl.integrate(&g, 1000), wgl.integrate(&g, 1000));
     assert_eq!(adw.integrate(&g, 1000), adw.integrate(&g, 1000));
 }
+
+// ------------------------------------------- adaptive: kinks and steps (regression)
+
+/// Hemisphere point for `cos θ = mu`, azimuth `phi` (f64 → f32 unit vector).
+fn dir(mu: f64, phi: f64) -> Vec3 {
+    let s = (1.0 - mu * mu).max(0.0).sqrt();
+    Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, mu as f32)
+}
+
+/// Cosine-weighted hemisphere map `u → (√(1−u₀) , φ = 2πu₁)`, pdf `cos θ/π`
+/// (PBRT 4th ed. §A.5.3; Malley's method in polar form).
+fn cosine_map<G: Fn(Vec3) -> f32>(g: G, u: [f32; 2]) -> Option<IntegrandSample<f32>> {
+    let (u0, u1) = (u[0] as f64, u[1] as f64);
+    let mu = (1.0 - u0).max(0.0).sqrt();
+    if mu <= 0.0 {
+        return None;
+    }
+    let w = dir(mu, TAU * u1);
+    Some(IntegrandSample {
+        w,
+        pdf: (mu / PI) as f32,
+        value: g(w),
+    })
+}
+
+/// Clamped cosine lobe times the cosine: `g = max(0, ω·d) cos θ` with `d`
+/// at polar angle `γ`, azimuth π (like a Phong `n = 1` lobe at grazing
+/// view: its kink runs next to φ = π/2 and 3π/2).
+/// `∫_H g dω = ∫_{S²} max(0, ω·n) max(0, ω·d) dω = (2/3)((π − γ) cos γ + sin γ)`
+/// (the clamped-cosine correlation; checked against an independent f64
+/// midpoint rule in `clamped_cosine_closed_form_is_right`).
+struct ClampedCos {
+    d: Vec3,
+}
+impl ClampedCos {
+    fn new(gamma: f64) -> Self {
+        Self {
+            d: Vec3::new(-gamma.sin() as f32, 0.0, gamma.cos() as f32),
+        }
+    }
+    fn exact(gamma: f64) -> f64 {
+        2.0 / 3.0 * ((PI - gamma) * gamma.cos() + gamma.sin())
+    }
+}
+impl Integrand for ClampedCos {
+    type Spectrum = f32;
+    fn eval(&self, w: Vec3) -> f32 {
+        w.dot(self.d).max(0.0) * w.z.max(0.0)
+    }
+    fn has_sampling_map(&self) -> bool {
+        true
+    }
+    fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<f32>> {
+        cosine_map(|w| self.eval(w), u)
+    }
+    fn pdf(&self, w: Vec3) -> f32 {
+        w.z.max(0.0) / core::f32::consts::PI
+    }
+}
+
+/// Indicator of the spherical cap `ω·c ≥ cos β` (a step), `c` at polar
+/// angle `γ` with `γ + β < π/2` (cap inside the hemisphere):
+/// `∫_H g dω = 2π(1 − cos β)` (solid angle of a cap).
+struct Cap {
+    c: Vec3,
+    cos_beta: f32,
+}
+impl Integrand for Cap {
+    type Spectrum = f32;
+    fn eval(&self, w: Vec3) -> f32 {
+        if w.dot(self.c) >= self.cos_beta { 1.0 } else { 0.0 }
+    }
+    fn has_sampling_map(&self) -> bool {
+        true
+    }
+    fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<f32>> {
+        cosine_map(|w| self.eval(w), u)
+    }
+    fn pdf(&self, w: Vec3) -> f32 {
+        w.z.max(0.0) / core::f32::consts::PI
+    }
+}
+
+#[test]
+fn clamped_cosine_closed_form_is_right() {
+    // Independent f64 midpoint rule in (μ, φ), 3000 × 6000 cells.
+    for gamma_deg in [0.0f64, 30.0, 89.5, 120.0] {
+        let gamma = gamma_deg.to_radians();
+        let (m, p) = (3000usize, 6000usize);
+        let mut sum = 0.0;
+        for i in 0..m {
+            let mu = (i as f64 + 0.5) / m as f64;
+            let s = (1.0 - mu * mu).sqrt();
+            for j in 0..p {
+                let phi = (j as f64 + 0.5) / p as f64 * TAU;
+                sum += (-gamma.sin() * s * phi.cos() + gamma.cos() * mu).max(0.0) * mu;
+            }
+        }
+        let q = sum * TAU / (m * p) as f64;
+        let ex = ClampedCos::exact(gamma);
+        assert!(
+            (q - ex).abs() < 1e-6,
+            "γ={gamma_deg}: midpoint {q} vs closed form {ex}"
+        );
+    }
+}
+
+/// Regression: the adaptive rule used to level off at relative error
+/// ~5e-5 on a grazing clamped lobe while claiming ~1e-7 (kink hidden
+/// between the outer nodes and a dyadic region edge). The true error must
+/// never exceed 10× the estimate, at any budget, plain or warped.
+#[test]
+fn adaptive_estimates_are_honest_on_kinks_and_steps() {
+    let plain = Adaptive::new(0.0, 0.0).unwrap();
+    let budgets = [256u32, 1024, 4096, 16384, 65536, 262_144];
+    let mut worst = 0.0f64;
+    let mut failures = Vec::new();
+    let mut check = |name: &str, e: radiometry::integrator::Estimate<f64>, exact: f64, b: u32| {
+        let err = (e.value - exact).abs();
+        worst = worst.max(err / e.error.max(1e-300));
+        if err > 10.0 * e.error {
+            failures.push(format!(
+                "{name} budget {b}: |{} − {exact}| = {err:.3e} > 10 × estimate {:.3e}",
+                e.value, e.error
+            ));
+        }
+    };
+    for gamma_deg in [89.5f64, 85.0, 60.0] {
+        let g = ClampedCos::new(gamma_deg.to_radians());
+        let exact = ClampedCos::exact(gamma_deg.to_radians());
+        for &b in &budgets {
+            for a in [plain, plain.warped()] {
+                let e = a.integrate(&g, b).unwrap();
+                check(&format!("{} clamped γ={gamma_deg}", a.name()), e, exact, b);
+            }
+        }
+        // Converges: relative error ≤ 1e-5 by 65,536 evaluations.
+        let e = plain.integrate(&g, 65536).unwrap();
+        assert!(
+            (e.value - exact).abs() <= 1e-5 * exact,
+            "γ={gamma_deg}: {} vs {exact}",
+            e.value
+        );
+    }
+    for (gamma_deg, beta_deg) in [(60.0f64, 20.0f64), (45.0, 5.0), (30.0, 12.5)] {
+        let (gm, bt) = (gamma_deg.to_radians(), beta_deg.to_radians());
+        let g = Cap {
+            c: Vec3::new(gm.sin() as f32, 0.0, gm.cos() as f32),
+            cos_beta: bt.cos() as f32,
+        };
+        // f32 cap edge: the exact value for the f32 threshold and axis is
+        // within ~1e-7 relative of this.
+        let exact = TAU * (1.0 - bt.cos());
+        for &b in &budgets {
+            // Documented limit: a feature smaller than the node spacing can
+            // be missed entirely (`0 ± 0`); the 5° cap (0.4 % of the square)
+            // falls between the 4 × 17 + 10 × 34 nodes of the plain rule at
+            // budget 256.
+            if beta_deg < 10.0 && b < 1024 {
+                continue;
+            }
+            for a in [plain, plain.warped()] {
+                let e = a.integrate(&g, b).unwrap();
+                check(
+                    &format!("{} cap γ={gamma_deg} β={beta_deg}", a.name()),
+                    e,
+                    exact,
+                    b,
+                );
+            }
+        }
+        // Tolerance mode stops at an honest estimate too.
+        for a in [
+            Adaptive::new(1e-4, 0.0).unwrap(),
+            Adaptive::new(1e-3, 0.0).unwrap(),
+        ] {
+            let e = a.integrate(&g, 1 << 20).unwrap();
+            check(&format!("tol cap γ={gamma_deg} β={beta_deg}"), e, exact, 1 << 20);
+        }
+    }
+    eprintln!("worst true/estimated error: {worst:.3}");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

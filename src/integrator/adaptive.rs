@@ -5,9 +5,10 @@ use super::acc::{self, F32_FLOOR, WideSum};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
 use crate::spectrum::WideSpectrum;
 
-/// Most live regions kept on the stack. When the table is full, the region
-/// with the smallest error estimate is retired ("frozen": its value and
-/// error are added to fixed totals and it is never split again).
+/// Most live regions kept on the stack. When the table is full, the
+/// worst region is no longer split but re-evaluated with the composite
+/// rule on an `n × n` grid of cells, `n` doubling each time (no region is
+/// ever discarded or frozen).
 pub const MAX_REGIONS: usize = 512;
 
 /// Most evaluations an [`Adaptive`] run spends (`2²⁰`).
@@ -91,6 +92,53 @@ struct Region<W> {
     key: f64,
     /// Axis with the larger fourth difference (split here).
     axis: u8,
+    /// The region's rule is the composite rule on an `n × n` grid of
+    /// equal cells (`n > 1` only once the table is full).
+    n: u32,
+}
+
+impl<W> Region<W> {
+    /// Area of one cell of the region's (composite) rule.
+    fn cell_area(&self) -> f64 {
+        let n = self.n as f64;
+        self.h[0] * self.h[1] / (n * n)
+    }
+}
+
+/// The Genz–Malik rule compounded over an `n × n` grid of equal cells of
+/// the rectangle `c ± h` (value, error and Σ|w f| are sums over the cells).
+fn composite<W: WideSpectrum>(
+    c: [f64; 2],
+    h: [f64; 2],
+    n: u32,
+    axis: u8,
+    f: &mut impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+) -> Result<Region<W>, IntegrateError> {
+    let hc = [h[0] / n as f64, h[1] / n as f64];
+    let (mut v, mut e, mut a) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
+    for i in 0..n {
+        for j in 0..n {
+            let cc = [
+                c[0] - h[0] + (2 * i + 1) as f64 * hc[0],
+                c[1] - h[1] + (2 * j + 1) as f64 * hc[1],
+            ];
+            let r = rule(cc, hc, f)?;
+            v.add(r.value);
+            e.add(r.error);
+            a.add(r.abs);
+        }
+    }
+    let (value, error, abs) = (v.value(), e.value(), a.value());
+    Ok(Region {
+        c,
+        h,
+        value,
+        error,
+        abs,
+        key: acc::max_abs(acc::add(error, abs.map(|x| x * F32_FLOOR))),
+        axis,
+        n,
+    })
 }
 
 /// Applies the rule to the rectangle `c ± h`.
@@ -145,7 +193,14 @@ fn rule<W: WideSpectrum>(
         error,
         abs,
         key,
-        axis: if dy > dx { 1 } else { 0 },
+        // Ties (e.g. both 0 where the integrand is constant) split the
+        // longer side, so blank regions do not become thin slabs.
+        axis: if dy > dx || (dy == dx && h[1] > h[0]) {
+            1
+        } else {
+            0
+        },
+        n: 1,
     })
 }
 
@@ -219,8 +274,12 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 /// Start: a 2 × 2 grid of regions (68 evaluations = minimum budget).
 /// Reported error = `Σ region errors + 2⁻²³ Σ|w g|` (the `f32` rounding
 /// floor), channel-wise. Memory: at most [`MAX_REGIONS`] live regions on
-/// the stack; beyond that the smallest-error region is frozen (its error
-/// stays in the total, so the estimate remains honest). At most
+/// the stack; once the table is full, the chosen region (worst, or every
+/// 4th time the one with the largest cells) is instead re-evaluated with
+/// the composite Genz–Malik rule on a grid twice as fine per axis
+/// (`17 n²` evaluations for `n × n` cells), with the same two-level check
+/// against its previous value; this stops when the budget cannot pay for
+/// the next refinement. At most
 /// [`MAX_ADAPTIVE_EVALUATIONS`] are spent. NaN/∞ → `NonFiniteIntegrand`.
 /// Stack use: the region table takes `MAX_REGIONS × (48 + 24·CHANNELS)`
 /// bytes (≈ 37 KiB for `f32`, ≈ 61 KiB for RGB; for a sampled spectrum
@@ -307,6 +366,7 @@ impl Adaptive {
             abs: zero,
             key: 0.0,
             axis: 0,
+            n: 1,
         };
         let mut regions = [empty; MAX_REGIONS];
         let mut live = 0usize;
@@ -330,29 +390,24 @@ impl Adaptive {
             live += 1;
         }
         let mut evals = 4 * GM_POINTS as u64;
-        let mut frozen_val = WideSum::<W>::new();
-        let mut frozen_err = WideSum::<W>::new();
-        let mut frozen_abs = WideSum::<W>::new();
-        let mut frozen_key = 0.0f64;
         let mut splits = 0u64;
         loop {
             // Totals and the worst region.
             let mut worst = 0usize;
             let mut largest = 0usize;
-            let mut err_sum = frozen_key;
-            let mut val = frozen_val;
+            let mut err_sum = 0.0f64;
+            let mut val = WideSum::<W>::new();
             for (k, r) in regions[..live].iter().enumerate() {
                 err_sum += r.key;
                 val.add(r.value);
                 // Largest error first; among equal errors (e.g. all zero on a
                 // piecewise-constant integrand) the largest region.
                 let w = &regions[worst];
-                if r.key > w.key || (r.key == w.key && r.h[0] * r.h[1] > w.h[0] * w.h[1]) {
+                if r.key > w.key || (r.key == w.key && r.cell_area() > w.cell_area()) {
                     worst = k;
                 }
                 let l = &regions[largest];
-                if r.h[0] * r.h[1] > l.h[0] * l.h[1] || (r.h[0] * r.h[1] == l.h[0] * l.h[1] && r.key > l.key)
-                {
+                if r.cell_area() > l.cell_area() || (r.cell_area() == l.cell_area() && r.key > l.key) {
                     largest = k;
                 }
             }
@@ -363,11 +418,37 @@ impl Adaptive {
             }
             // Every `FORCED_EVERY`-th split refines the largest region
             // regardless of its estimate (see the type's docs).
-            if splits % FORCED_EVERY == FORCED_EVERY - 1 {
+            let forced = splits % FORCED_EVERY == FORCED_EVERY - 1;
+            if forced {
                 worst = largest;
             }
             let r = regions[worst];
-            let ax = r.axis as usize;
+            if live == MAX_REGIONS {
+                // Table full: re-evaluate the region with the composite
+                // rule on a grid twice as fine per axis (the table never
+                // discards a region, so none is left blind for good).
+                let n = r.n.saturating_mul(2);
+                let cost = (n as u64) * (n as u64) * GM_POINTS as u64;
+                if evals + cost > budget {
+                    break;
+                }
+                let mut q = composite(r.c, r.h, n, r.axis, &mut f)?;
+                evals += cost;
+                splits += 1;
+                // Two-level check against the coarser rule.
+                let d = acc::abs_diff(r.value, q.value);
+                let excess = d.zip(r.error, |d, e| (d - e).max(0.0));
+                q.error = acc::add(q.error, excess);
+                q.key = acc::max_abs(acc::add(q.error, q.abs.map(|x| x * F32_FLOOR)));
+                regions[worst] = q;
+                continue;
+            }
+            // A forced split halves the longer side (a resolution guard).
+            let ax = if forced {
+                usize::from(r.h[1] > r.h[0])
+            } else {
+                r.axis as usize
+            };
             let mut h = r.h;
             h[ax] *= 0.5;
             let mut c1 = r.c;
@@ -380,26 +461,10 @@ impl Adaptive {
             splits += 1;
             two_level(&r, &mut a, &mut b);
             regions[worst] = a;
-            if live == MAX_REGIONS {
-                // Freeze the smallest-error region to make room.
-                let mut best = 0usize;
-                for (k, q) in regions[..live].iter().enumerate() {
-                    if q.key < regions[best].key {
-                        best = k;
-                    }
-                }
-                let q = regions[best];
-                frozen_val.add(q.value);
-                frozen_err.add(q.error);
-                frozen_abs.add(q.abs);
-                frozen_key += q.key;
-                regions[best] = b;
-            } else {
-                regions[live] = b;
-                live += 1;
-            }
+            regions[live] = b;
+            live += 1;
         }
-        let (mut val, mut err, mut abs) = (frozen_val, frozen_err, frozen_abs);
+        let (mut val, mut err, mut abs) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
         for r in &regions[..live] {
             val.add(r.value);
             err.add(r.error);
