@@ -254,8 +254,10 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 ///    (`φ = 2π (b + 0.618… mod 1)`, exact for the periodic azimuth), so
 ///    region edges do not line up with the symmetry lines of typical
 ///    integrands;
-/// 2. every 4th split refines the largest live region whatever its
-///    estimate, so no region stays coarse (and blind) forever (the failure
+/// 2. every 4th split refines the live region with the largest cells
+///    whatever its estimate (also whenever the worst region's estimate is
+///    already below its `f32` floor, or its next refinement does not fit
+///    the budget), so no region stays coarse (and blind) forever (the failure
 ///    mode of automatic quadrature discussed by Lyness 1983, "When not to
 ///    use an automatic quadrature routine", SIAM Rev. 25(1));
 /// 3. a two-level check: after a split, `d = |I(parent) − I(children)|`
@@ -402,8 +404,11 @@ impl Adaptive {
                 val.add(r.value);
                 // Largest error first; among equal errors (e.g. all zero on a
                 // piecewise-constant integrand) the largest region.
+                // (By the estimate alone: the f32 floor term of the key does
+                // not shrink under refinement.)
                 let w = &regions[worst];
-                if r.key > w.key || (r.key == w.key && r.cell_area() > w.cell_area()) {
+                let (re, we) = (acc::max_abs(r.error), acc::max_abs(w.error));
+                if re > we || (re == we && r.cell_area() > w.cell_area()) {
                     worst = k;
                 }
                 let l = &regions[largest];
@@ -418,7 +423,15 @@ impl Adaptive {
             }
             // Every `FORCED_EVERY`-th split refines the largest region
             // regardless of its estimate (see the type's docs).
-            let forced = splits % FORCED_EVERY == FORCED_EVERY - 1;
+            // So does the worst region once its estimate is below its f32
+            // floor (refining it cannot help).
+            let w = &regions[worst];
+            let mut forced = splits % FORCED_EVERY == FORCED_EVERY - 1
+                || acc::max_abs(w.error) <= F32_FLOOR * acc::max_abs(w.abs);
+            if live == MAX_REGIONS && !forced {
+                let n = w.n.saturating_mul(2) as u64;
+                forced = evals + n * n * GM_POINTS as u64 > budget;
+            }
             if forced {
                 worst = largest;
             }
@@ -443,12 +456,7 @@ impl Adaptive {
                 regions[worst] = q;
                 continue;
             }
-            // A forced split halves the longer side (a resolution guard).
-            let ax = if forced {
-                usize::from(r.h[1] > r.h[0])
-            } else {
-                r.axis as usize
-            };
+            let ax = r.axis as usize;
             let mut h = r.h;
             h[ax] *= 0.5;
             let mut c1 = r.c;
