@@ -9,6 +9,7 @@
 
 mod model;
 mod reference;
+mod sensor_cmd;
 mod spec;
 mod tradeoff;
 
@@ -118,6 +119,10 @@ enum Command {
     },
     /// List the integrator names.
     Integrators,
+    /// Sensor simulation: EMVA 1288 pixel readings under a light (`read`), demosaicing false colour on a
+    /// slanted edge (`edge`).
+    #[command(subcommand)]
+    Sensor(sensor_cmd::SensorCommand),
 }
 
 fn spec_error(e: spec::SpecError) -> ExitCode {
@@ -296,6 +301,7 @@ fn main() -> ExitCode {
             }
             ExitCode::SUCCESS
         }
+        Command::Sensor(cmd) => sensor_cmd::run(cmd),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
                 println!("{}", i.name());

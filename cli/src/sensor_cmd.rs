@@ -1,0 +1,706 @@
+//! `radiometry sensor ...`: simulate EMVA 1288 pixel readings under a
+//! standard light, and render a slanted-edge target through Bayer +
+//! bilinear, Bayer + Malvar–He–Cutler and a 3-chip prism camera.
+
+use clap::{Args, Subcommand, ValueEnum};
+use radiometry::sensor::color::{
+    BayerPattern, DichroicPrism, demosaic_bilinear, demosaic_malvar, false_colour_energy, mosaic,
+    slanted_edge,
+};
+use radiometry::sensor::{
+    Emva1288, FillFactor, IrradianceField, Monochromatic, Pcg32, Pixel, Sampling, SensorError,
+    UniformSpectral,
+};
+use radiometry::spectral::photometry::{K_M, illuminance_lux};
+use radiometry::spectral::{self, FnCurve, IlluminantA, Scaled, SpectralCurve};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use crate::{Format, json_num};
+
+/// Largest `--repeats`.
+const MAX_REPEATS: u64 = 10_000_000;
+/// At most this many individual readings are listed in the JSON output.
+const MAX_LISTED_READINGS: usize = 1000;
+
+/// `radiometry sensor` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum SensorCommand {
+    /// Simulate readings of one EMVA 1288 linear-camera pixel (shot noise, dark noise, gain, ADC) under a
+    /// light scaled to a given illuminance; compare the sample mean/variance of the readings with the photon
+    /// transfer prediction σ²_y = K²(σ²_d + μ_e) + 1/12 DN².
+    #[command(after_help = READ_HELP)]
+    Read(ReadArgs),
+    /// Render a black/white slanted-edge target through (a) Bayer + bilinear, (b) Bayer +
+    /// Malvar–He–Cutler and (c) a 3-chip prism camera side by side into one picture, and print the
+    /// false-colour energy Σ Σ_c (c − mean)² of each (zero for a perfect achromatic reproduction).
+    Edge(EdgeArgs),
+}
+
+const READ_HELP: &str = "\
+Model (EMVA 1288 Release 4.0, §2): photons μ_p = A·t·∫E(λ)·λ/(hc) dλ on the photosensitive area A·fill,
+electrons μ_e = η·μ_p (η = --qe at every wavelength), mean μ_y = K·μ_e (clipped to [0, 2^bits − 1] and
+the full well), one reading y = round(K·(Poisson(μ_e) + N(0, σ_d²))) clipped to [0, 2^bits − 1].
+Lights: d65 (CIE D65), a (CIE illuminant A), mono:<nm> (a line at <nm>); each is scaled so that its
+illuminance K_m ∫E V dλ (K_m = 683 lm/W) equals --lux.
+JSON keys: light, lux, irradiance_w_m2, mean_electrons, mean_dn, repeats, readings (the first 1000),
+sample_mean_dn, sample_variance_dn (null for repeats < 2), predicted_variance_dn, saturated.
+Exit codes: 0 success, 2 invalid input (e.g. negative lux, NaN, bits outside 1..=32).";
+
+/// Arguments of `radiometry sensor read`.
+#[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct ReadArgs {
+    /// Light: `d65`, `a` (CIE illuminant A) or `mono:<nm>` (monochromatic line).
+    #[arg(long, default_value = "d65")]
+    light: String,
+    /// Illuminance on the pixel, lux (finite, ≥ 0).
+    #[arg(long)]
+    lux: f64,
+    /// Exposure time, s (finite, ≥ 0).
+    #[arg(long, default_value_t = 0.001)]
+    exposure: f64,
+    /// Quantum efficiency η, electrons per photon, in [0, 1], the same at every wavelength.
+    #[arg(long, default_value_t = 0.5)]
+    qe: f64,
+    /// System gain K, DN per electron (> 0).
+    #[arg(long, default_value_t = 0.1)]
+    gain: f64,
+    /// ADC bit depth, 1..=32.
+    #[arg(long, default_value_t = 12)]
+    bits: i64,
+    /// Temporal dark noise σ_d, electrons (≥ 0).
+    #[arg(long = "dark-noise", default_value_t = 0.0)]
+    dark_noise: f64,
+    /// Saturation capacity (full well), electrons (> 0).
+    #[arg(long = "full-well", default_value_t = 40_000.0)]
+    full_well: f64,
+    /// Pixel area, m² (> 0); default a 5 µm × 5 µm pixel.
+    #[arg(long = "pixel-area", default_value_t = 25e-12)]
+    pixel_area: f64,
+    /// Fill factor, in (0, 1].
+    #[arg(long = "fill-factor", default_value_t = 1.0)]
+    fill_factor: f64,
+    /// Seed of the noise generator (PCG32).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Number of simulated readings (1..=10000000).
+    #[arg(long, default_value_t = 1)]
+    repeats: u64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+}
+
+/// Picture format of `radiometry sensor edge`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ImageFormat {
+    /// Scalable vector graphics (one rectangle per pixel, with text labels).
+    Svg,
+    /// 8-bit RGB PNG (labels drawn with a built-in pixel font).
+    Png,
+}
+
+/// Bayer phase on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Pattern {
+    /// R G / G B.
+    Rggb,
+    /// B G / G R.
+    Bggr,
+    /// G R / B G.
+    Grbg,
+    /// G B / R G.
+    Gbrg,
+}
+
+impl From<Pattern> for BayerPattern {
+    fn from(p: Pattern) -> Self {
+        match p {
+            Pattern::Rggb => BayerPattern::Rggb,
+            Pattern::Bggr => BayerPattern::Bggr,
+            Pattern::Grbg => BayerPattern::Grbg,
+            Pattern::Gbrg => BayerPattern::Gbrg,
+        }
+    }
+}
+
+/// Arguments of `radiometry sensor edge`.
+#[derive(Args, Debug)]
+pub struct EdgeArgs {
+    /// Output folder (created if missing); the picture is `edge.svg` or `edge.png` in it.
+    #[arg(long, default_value = "target/sensor")]
+    out: PathBuf,
+    /// Side of the square target, pixels (8..=512).
+    #[arg(long, default_value_t = 64)]
+    size: usize,
+    /// Bayer phase.
+    #[arg(long, value_enum, default_value_t = Pattern::Rggb)]
+    pattern: Pattern,
+    /// Picture format.
+    #[arg(long, value_enum, default_value_t = ImageFormat::Svg)]
+    format: ImageFormat,
+    /// Print the report as one JSON object (keys: file, size, pattern, slope, false_colour_energy
+    /// {bilinear, malvar, three_chip}).
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs a `sensor` subcommand.
+pub fn run(cmd: SensorCommand) -> ExitCode {
+    let r = match cmd {
+        SensorCommand::Read(a) => read(&a),
+        SensorCommand::Edge(a) => edge(&a),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Usage(m)) => {
+            eprintln!("error: {m}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Runtime(m)) => {
+            eprintln!("error: {m}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+enum Failure {
+    /// Invalid input (exit 2).
+    Usage(String),
+    /// Runtime failure, e.g. an unwritable folder (exit 1).
+    Runtime(String),
+}
+
+fn usage(msg: impl Into<String>) -> Failure {
+    Failure::Usage(msg.into())
+}
+
+fn sensor_err(what: &str, e: SensorError) -> Failure {
+    Failure::Usage(format!("{what}: {e}"))
+}
+
+/// `x` as a finite f32 in the range described by `ok`, or a usage error naming `--flag`.
+fn check(flag: &str, x: f64, ok: impl Fn(f32) -> bool, domain: &str) -> Result<f32, Failure> {
+    let v = x as f32;
+    if !x.is_finite() || !v.is_finite() {
+        return Err(usage(format!("--{flag} {x} is not a finite number (f32)")));
+    }
+    if !ok(v) {
+        return Err(usage(format!("--{flag} {x} is outside its domain: {domain}")));
+    }
+    Ok(v)
+}
+
+/// A parsed `--light`.
+#[derive(Clone, Copy, Debug)]
+enum Light {
+    D65,
+    A,
+    Mono(f32),
+}
+
+fn parse_light(s: &str) -> Result<Light, Failure> {
+    let t = s.trim().to_ascii_lowercase();
+    match t.as_str() {
+        "d65" => Ok(Light::D65),
+        "a" => Ok(Light::A),
+        _ => {
+            let Some(nm) = t.strip_prefix("mono:") else {
+                return Err(usage(format!(
+                    "unknown light `{s}`; expected d65, a or mono:<nm>"
+                )));
+            };
+            let l: f64 = nm
+                .trim()
+                .parse()
+                .map_err(|_| usage(format!("mono:<nm>: `{nm}` is not a number")))?;
+            let l = check("light mono", l, |v| v > 0.0, "wavelength > 0 nm")?;
+            Ok(Light::Mono(l))
+        }
+    }
+}
+
+/// The camera, the light and the derived numbers of one `read` run.
+struct ReadOutcome {
+    irradiance_w_m2: f32,
+    mean_electrons: f32,
+    mean_dn: f32,
+    predicted_variance_dn: f32,
+    saturated: bool,
+    readings: Vec<f32>,
+}
+
+fn simulate<F: IrradianceField>(
+    a: &ReadArgs,
+    v: &Validated,
+    field: &F,
+    irradiance_w_m2: f32,
+) -> Result<ReadOutcome, Failure> {
+    // Constant QE over every wavelength any light here can have.
+    let qe_val = v.qe;
+    let qe = FnCurve::new(1.0, 1.0e5, move |_| qe_val);
+    let px = Pixel::new(
+        FillFactor::new(v.fill).map_err(|e| sensor_err("--fill-factor", e))?,
+        qe,
+        v.area,
+        v.exposure,
+        Sampling::default(),
+    )
+    .map_err(|e| sensor_err("pixel", e))?;
+    let cam = Emva1288::ideal(px, v.gain, v.full_well, v.bits)
+        .map_err(|e| sensor_err("camera", e))?
+        .with_shot_noise()
+        .with_dark_noise(v.dark)
+        .map_err(|e| sensor_err("--dark-noise", e))?;
+    let mu_e = cam.pixel.mean_electrons(field).map_err(|e| {
+        usage(format!(
+            "the light collects a non-finite number of electrons ({e}); lower --lux, --exposure or --pixel-area"
+        ))
+    })?;
+    let mean_dn = cam.mean_dn(mu_e);
+    // Photon transfer (EMVA 1288 Release 4.0 eq. 6/7): σ²_y = K²(σ²_d + μ_e) + σ²_q, σ²_q = 1/12 DN².
+    let k = v.gain as f64;
+    let predicted = k * k * ((v.dark as f64).powi(2) + mu_e as f64) + 1.0 / 12.0;
+    let saturated = mu_e >= v.full_well || k * mu_e as f64 >= cam.max_dn() as f64;
+    let mut rng = Pcg32::new(a.seed);
+    let readings = (0..a.repeats).map(|_| cam.digitize(mu_e, 0, &mut rng)).collect();
+    Ok(ReadOutcome {
+        irradiance_w_m2,
+        mean_electrons: mu_e,
+        mean_dn,
+        predicted_variance_dn: predicted as f32,
+        saturated,
+        readings,
+    })
+}
+
+struct Validated {
+    lux: f32,
+    exposure: f32,
+    qe: f32,
+    gain: f32,
+    bits: u8,
+    dark: f32,
+    full_well: f32,
+    area: f32,
+    fill: f32,
+}
+
+fn validate(a: &ReadArgs) -> Result<Validated, Failure> {
+    let bits = if (1..=32).contains(&a.bits) {
+        a.bits as u8
+    } else {
+        return Err(usage(format!("--bits {} is outside 1..=32", a.bits)));
+    };
+    if !(1..=MAX_REPEATS).contains(&a.repeats) {
+        return Err(usage(format!(
+            "--repeats {} is outside 1..={MAX_REPEATS}",
+            a.repeats
+        )));
+    }
+    Ok(Validated {
+        lux: check("lux", a.lux, |v| v >= 0.0, "≥ 0 lx")?,
+        exposure: check("exposure", a.exposure, |v| v >= 0.0, "≥ 0 s")?,
+        qe: check("qe", a.qe, |v| (0.0..=1.0).contains(&v), "[0, 1]")?,
+        gain: check("gain", a.gain, |v| v > 0.0, "> 0 DN/e⁻")?,
+        bits,
+        dark: check("dark-noise", a.dark_noise, |v| v >= 0.0, "≥ 0 e⁻")?,
+        full_well: check("full-well", a.full_well, |v| v > 0.0, "> 0 e⁻")?,
+        area: check("pixel-area", a.pixel_area, |v| v > 0.0, "> 0 m²")?,
+        fill: check("fill-factor", a.fill_factor, |v| v > 0.0 && v <= 1.0, "(0, 1]")?,
+    })
+}
+
+fn read(a: &ReadArgs) -> Result<(), Failure> {
+    let light = parse_light(&a.light)?;
+    let v = validate(a)?;
+    let out = match light {
+        Light::D65 => {
+            let unit = illuminance_lux(&spectral::d65());
+            let f = Scaled::new(spectral::d65(), v.lux / unit);
+            let e = radiometry::spectral::integrate_fn(f.support().0, f.support().1, 1.0, |l| f.value(l));
+            simulate(a, &v, &UniformSpectral(f), e)?
+        }
+        Light::A => {
+            let unit = illuminance_lux(&IlluminantA);
+            let f = Scaled::new(IlluminantA, v.lux / unit);
+            let e = radiometry::spectral::integrate_fn(f.support().0, f.support().1, 1.0, |l| f.value(l));
+            simulate(a, &v, &UniformSpectral(f), e)?
+        }
+        Light::Mono(l) => {
+            let vl = spectral::photopic_v().value(l);
+            if vl <= 0.0 {
+                return Err(usage(format!(
+                    "mono:{l}: V(λ) = 0 there (outside 360–830 nm), so no irradiance gives {} lx",
+                    v.lux
+                )));
+            }
+            let e = v.lux / (K_M * vl);
+            if !e.is_finite() {
+                return Err(usage(format!(
+                    "mono:{l}: irradiance for {} lx overflows f32",
+                    v.lux
+                )));
+            }
+            simulate(a, &v, &Monochromatic::new(l, e), e)?
+        }
+    };
+    let n = out.readings.len() as f64;
+    let mean = out.readings.iter().map(|&r| r as f64).sum::<f64>() / n;
+    let var = (out.readings.len() >= 2).then(|| {
+        out.readings
+            .iter()
+            .map(|&r| (r as f64 - mean) * (r as f64 - mean))
+            .sum::<f64>()
+            / (n - 1.0)
+    });
+    match a.format {
+        Format::Text => {
+            println!("light {} at {} lx = {} W/m²", a.light, v.lux, out.irradiance_w_m2);
+            println!("mean electrons μ_e      = {}", out.mean_electrons);
+            println!("mean DN μ_y (model)     = {}", out.mean_dn);
+            println!("predicted variance (DN²) = {}", out.predicted_variance_dn);
+            if out.readings.len() == 1 {
+                println!("reading (DN)            = {}", out.readings[0]);
+            } else {
+                println!("sample mean DN ({} readings) = {mean}", out.readings.len());
+                if let Some(s) = var {
+                    println!("sample variance (DN²)   = {s}");
+                }
+            }
+            if out.saturated {
+                println!(
+                    "note: the pixel saturates (full well or ADC range); the variance prediction does not apply"
+                );
+            }
+        }
+        Format::Json => {
+            let listed: Vec<_> = out
+                .readings
+                .iter()
+                .take(MAX_LISTED_READINGS)
+                .map(|&r| json_num(r as f64))
+                .collect();
+            let j = serde_json::json!({
+                "light": a.light,
+                "lux": json_num(v.lux as f64),
+                "irradiance_w_m2": json_num(out.irradiance_w_m2 as f64),
+                "mean_electrons": json_num(out.mean_electrons as f64),
+                "mean_dn": json_num(out.mean_dn as f64),
+                "repeats": a.repeats,
+                "readings": listed,
+                "sample_mean_dn": json_num(mean),
+                "sample_variance_dn": var.map_or(serde_json::Value::Null, json_num),
+                "predicted_variance_dn": json_num(out.predicted_variance_dn as f64),
+                "saturated": out.saturated,
+            });
+            println!("{j}");
+        }
+    }
+    Ok(())
+}
+
+/// The three reconstructions of the edge target.
+struct EdgeImages {
+    bilinear: Vec<[f32; 3]>,
+    malvar: Vec<[f32; 3]>,
+    three_chip: Vec<[f32; 3]>,
+}
+
+/// Slope (pixels of x per pixel of y) of the slanted edge: about 5.7°
+/// from vertical, as ISO 12233 slanted-edge charts use a few degrees.
+const EDGE_SLOPE: f32 = 0.1;
+
+fn render_edge(n: usize, pattern: BayerPattern) -> Result<EdgeImages, SensorError> {
+    let mut truth = vec![[0.0f32; 3]; n * n];
+    let half = n as f32 / 2.0;
+    slanted_edge(n, n, EDGE_SLOPE, half - EDGE_SLOPE * half, &mut truth)?;
+    let mut raw = vec![0.0f32; n * n];
+    mosaic(&truth, n, n, pattern, &mut raw)?;
+    let mut bilinear = vec![[0.0f32; 3]; n * n];
+    demosaic_bilinear(&raw, n, n, pattern, &mut bilinear)?;
+    let mut malvar = vec![[0.0f32; 3]; n * n];
+    demosaic_malvar(&raw, n, n, pattern, &mut malvar)?;
+    // 3-chip: each chip sees the whole image through its prism band; white-balanced on an
+    // equal-energy white (chip c reads v·S_c, divided by S_c).
+    let prism = DichroicPrism::new(490.0, 590.0, 5.0)?;
+    let white = FnCurve::new(380.0, 780.0, |_| 1.0);
+    let qe = FnCurve::new(380.0, 780.0, |_| 1.0);
+    let s = prism.split(&white, &qe);
+    let wb = s.map(|x| 1.0 / x);
+    let three_chip = truth
+        .iter()
+        .map(|p| core::array::from_fn(|c| p[c] * s[c] * wb[c]))
+        .collect();
+    Ok(EdgeImages {
+        bilinear,
+        malvar,
+        three_chip,
+    })
+}
+
+/// sRGB encoding of a linear value clipped to [0, 1] (IEC 61966-2-1), as 8 bits.
+fn srgb8(v: f32) -> u8 {
+    let v = if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 };
+    let e = if v <= 0.003_130_8 {
+        12.92 * v
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    };
+    (e * 255.0).round().clamp(0.0, 255.0) as u8
+}
+
+/// Layout: three panels of `n·scale` pixels side by side, `GAP` apart, under a label band.
+const GAP: usize = 16;
+const LABEL_H: usize = 28;
+
+fn panel_scale(n: usize) -> usize {
+    (256 / n).max(1)
+}
+
+fn write_svg(path: &Path, n: usize, panels: &[(&str, &[[f32; 3]])]) -> std::io::Result<()> {
+    let s = panel_scale(n);
+    let side = n * s;
+    let w = panels.len() * side + (panels.len() + 1) * GAP;
+    let h = side + LABEL_H + GAP;
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" shape-rendering="crispEdges">"#
+    );
+    let _ = writeln!(o, r#"<rect width="{w}" height="{h}" fill="rgb(128,128,128)"/>"#);
+    for (k, (label, img)) in panels.iter().enumerate() {
+        let x0 = GAP + k * (side + GAP);
+        let y0 = LABEL_H;
+        let _ = writeln!(
+            o,
+            r#"<text x="{}" y="{}" font-family="sans-serif" font-size="14" text-anchor="middle" fill="black">{label}</text>"#,
+            x0 + side / 2,
+            LABEL_H - 9
+        );
+        for y in 0..n {
+            for x in 0..n {
+                let p = img[y * n + x];
+                let _ = writeln!(
+                    o,
+                    r#"<rect x="{}" y="{}" width="{s}" height="{s}" fill="rgb({},{},{})"/>"#,
+                    x0 + x * s,
+                    y0 + y * s,
+                    srgb8(p[0]),
+                    srgb8(p[1]),
+                    srgb8(p[2])
+                );
+            }
+        }
+    }
+    o.push_str("</svg>\n");
+    std::fs::write(path, o)
+}
+
+fn edge(a: &EdgeArgs) -> Result<(), Failure> {
+    if !(8..=512).contains(&a.size) {
+        return Err(usage(format!("--size {} is outside 8..=512", a.size)));
+    }
+    let n = a.size;
+    let pattern = BayerPattern::from(a.pattern);
+    let imgs = render_edge(n, pattern).map_err(|e| Failure::Runtime(format!("edge target: {e}")))?;
+    let e_bil = false_colour_energy(&imgs.bilinear);
+    let e_mal = false_colour_energy(&imgs.malvar);
+    let e_3 = false_colour_energy(&imgs.three_chip);
+    std::fs::create_dir_all(&a.out)
+        .map_err(|e| Failure::Runtime(format!("cannot create {}: {e}", a.out.display())))?;
+    let panels: [(&str, &[[f32; 3]]); 3] = [
+        ("Bayer + bilinear", &imgs.bilinear),
+        ("Bayer + Malvar-He-Cutler", &imgs.malvar),
+        ("3-chip prism", &imgs.three_chip),
+    ];
+    let path = match a.format {
+        ImageFormat::Svg => {
+            let p = a.out.join("edge.svg");
+            write_svg(&p, n, &panels)
+                .map_err(|e| Failure::Runtime(format!("cannot write {}: {e}", p.display())))?;
+            p
+        }
+        ImageFormat::Png => {
+            let p = a.out.join("edge.png");
+            png::write_png(&p, n, &panels)
+                .map_err(|e| Failure::Runtime(format!("cannot write {}: {e}", p.display())))?;
+            p
+        }
+    };
+    if a.json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "file": path.display().to_string(),
+                "size": n,
+                "pattern": format!("{:?}", pattern).to_ascii_lowercase(),
+                "slope": json_num(EDGE_SLOPE as f64),
+                "false_colour_energy": {
+                    "bilinear": json_num(e_bil as f64),
+                    "malvar": json_num(e_mal as f64),
+                    "three_chip": json_num(e_3 as f64),
+                },
+            })
+        );
+    } else {
+        println!(
+            "slanted edge {n}×{n}, slope {EDGE_SLOPE}, Bayer {:?}: false-colour energy Σ Σ_c (c − mean)²",
+            pattern
+        );
+        println!("  Bayer + bilinear         {e_bil}");
+        println!("  Bayer + Malvar-He-Cutler {e_mal}");
+        println!("  3-chip prism             {e_3}");
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// A minimal PNG writer (8-bit RGB, zlib "stored" deflate blocks) with a
+/// 5 × 7 pixel font for the panel labels: no image crate needed.
+/// Format: PNG specification (ISO/IEC 15948:2004) §5–§11; zlib RFC 1950;
+/// deflate stored blocks RFC 1951 §3.2.4; CRC-32 of ISO 3309 (§D of the PNG spec).
+mod png {
+    use super::{GAP, LABEL_H, panel_scale, srgb8};
+    use std::path::Path;
+
+    /// 5 × 7 glyphs, one byte per row, bit 4 = leftmost column.
+    fn glyph(c: char) -> [u8; 7] {
+        match c {
+            'A' => [0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11],
+            'B' => [0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E],
+            'C' => [0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E],
+            'E' => [0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F],
+            'H' => [0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11],
+            'I' => [0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E],
+            'L' => [0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F],
+            'M' => [0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11],
+            'N' => [0x11, 0x19, 0x15, 0x13, 0x11, 0x11, 0x11],
+            'P' => [0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10],
+            'R' => [0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11],
+            'T' => [0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04],
+            'U' => [0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E],
+            'V' => [0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04],
+            'Y' => [0x11, 0x11, 0x0A, 0x04, 0x04, 0x04, 0x04],
+            '3' => [0x1E, 0x01, 0x01, 0x0E, 0x01, 0x01, 0x1E],
+            '-' => [0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00],
+            '+' => [0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00],
+            _ => [0; 7],
+        }
+    }
+
+    /// CRC-32 (reflected polynomial 0xEDB88320), bitwise.
+    pub(super) fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = 0xFFFF_FFFFu32;
+        for &b in bytes {
+            c ^= b as u32;
+            for _ in 0..8 {
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
+    }
+
+    fn adler32(bytes: &[u8]) -> u32 {
+        let (mut a, mut b) = (1u32, 0u32);
+        for &x in bytes {
+            a = (a + x as u32) % 65521;
+            b = (b + a) % 65521;
+        }
+        (b << 16) | a
+    }
+
+    fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let start = out.len();
+        out.extend_from_slice(kind);
+        out.extend_from_slice(data);
+        let crc = crc32(&out[start..]);
+        out.extend_from_slice(&crc.to_be_bytes());
+    }
+
+    /// PNG bytes of an RGB8 image (`rgb.len() == 3·w·h`).
+    pub(super) fn encode(w: usize, h: usize, rgb: &[u8]) -> Vec<u8> {
+        // Scanlines with filter type 0.
+        let mut raw = Vec::with_capacity(h * (3 * w + 1));
+        for row in rgb.chunks(3 * w) {
+            raw.push(0);
+            raw.extend_from_slice(row);
+        }
+        let mut z = vec![0x78, 0x01];
+        let mut blocks = raw.chunks(65_535).peekable();
+        if blocks.peek().is_none() {
+            z.extend_from_slice(&[1, 0, 0, 0xFF, 0xFF]);
+        }
+        while let Some(b) = blocks.next() {
+            z.push(u8::from(blocks.peek().is_none()));
+            let len = b.len() as u16;
+            z.extend_from_slice(&len.to_le_bytes());
+            z.extend_from_slice(&(!len).to_le_bytes());
+            z.extend_from_slice(b);
+        }
+        z.extend_from_slice(&adler32(&raw).to_be_bytes());
+        let mut out = vec![0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A];
+        let mut ihdr = Vec::with_capacity(13);
+        ihdr.extend_from_slice(&(w as u32).to_be_bytes());
+        ihdr.extend_from_slice(&(h as u32).to_be_bytes());
+        ihdr.extend_from_slice(&[8, 2, 0, 0, 0]);
+        chunk(&mut out, b"IHDR", &ihdr);
+        chunk(&mut out, b"IDAT", &z);
+        chunk(&mut out, b"IEND", &[]);
+        out
+    }
+
+    /// The same layout as the SVG: three panels under upper-case labels.
+    pub(super) fn write_png(path: &Path, n: usize, panels: &[(&str, &[[f32; 3]])]) -> std::io::Result<()> {
+        let s = panel_scale(n);
+        let side = n * s;
+        let w = panels.len() * side + (panels.len() + 1) * GAP;
+        let h = side + LABEL_H + GAP;
+        let mut px = vec![128u8; 3 * w * h];
+        let mut put = |x: usize, y: usize, c: [u8; 3]| {
+            if x < w && y < h {
+                px[3 * (y * w + x)..3 * (y * w + x) + 3].copy_from_slice(&c);
+            }
+        };
+        for (k, (label, img)) in panels.iter().enumerate() {
+            let x0 = GAP + k * (side + GAP);
+            let text = label.to_ascii_uppercase();
+            let fs = if side >= 200 { 2 } else { 1 };
+            let tw = text.chars().count() * 6 * fs;
+            let tx = (x0 + side / 2).saturating_sub(tw / 2);
+            let ty = (LABEL_H - 7 * fs) / 2;
+            for (i, ch) in text.chars().enumerate() {
+                for (r, bits) in glyph(ch).iter().enumerate() {
+                    for col in 0..5 {
+                        if bits & (0x10 >> col) != 0 {
+                            for dy in 0..fs {
+                                for dx in 0..fs {
+                                    put(tx + (i * 6 + col) * fs + dx, ty + r * fs + dy, [0, 0, 0]);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            for y in 0..n {
+                for x in 0..n {
+                    let p = img[y * n + x];
+                    let c = [srgb8(p[0]), srgb8(p[1]), srgb8(p[2])];
+                    for dy in 0..s {
+                        for dx in 0..s {
+                            put(x0 + x * s + dx, LABEL_H + y * s + dy, c);
+                        }
+                    }
+                }
+            }
+        }
+        std::fs::write(path, encode(w, h, &px))
+    }
+}
