@@ -580,6 +580,7 @@ mod png {
             'N' => [0x11, 0x19, 0x15, 0x13, 0x11, 0x11, 0x11],
             'P' => [0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10],
             'R' => [0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11],
+            'S' => [0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E],
             'T' => [0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04],
             'U' => [0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E],
             'V' => [0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04],
@@ -672,7 +673,11 @@ mod png {
         for (k, (label, img)) in panels.iter().enumerate() {
             let x0 = GAP + k * (side + GAP);
             let text = label.to_ascii_uppercase();
-            let fs = if side >= 200 { 2 } else { 1 };
+            let fs = if text.chars().count() * 12 <= side + GAP {
+                2
+            } else {
+                1
+            };
             let tw = text.chars().count() * 6 * fs;
             let tx = (x0 + side / 2).saturating_sub(tw / 2);
             let ty = (LABEL_H - 7 * fs) / 2;
