@@ -29,6 +29,22 @@ pub fn safe_asin(x: f32) -> f32 {
     libm::asinf(x.clamp(-1.0, 1.0))
 }
 
+/// Clamps a sample coordinate into `[0, 1]`, mapping NaN to `0`.
+///
+/// Used by every warp and sampler so that any `u`, including NaN and values
+/// outside the unit interval, maps to a point of the closed domain.
+///
+/// ```
+/// use radiometry::math::clamp01;
+/// assert_eq!(clamp01(f32::NAN), 0.0);
+/// assert_eq!(clamp01(1.5), 1.0);
+/// assert_eq!(clamp01(0.25), 0.25);
+/// ```
+#[inline]
+pub fn clamp01(u: f32) -> f32 {
+    if u > 0.0 { u.min(1.0) } else { 0.0 }
+}
+
 /// `x²`.
 #[inline]
 pub fn sqr(x: f32) -> f32 {

@@ -10,15 +10,9 @@
 //! [`ONE_MINUS_EPSILON`](crate::math::ONE_MINUS_EPSILON) — and returns a
 //! finite, unit-length direction on the closed domain.
 
-use crate::math::safe_sqrt;
+use crate::math::{clamp01, safe_sqrt};
 use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI, TAU};
 use glam::{Vec2, Vec3};
-
-/// Clamps a sample coordinate into `[0, 1]`, mapping NaN to `0`.
-#[inline]
-fn clamp01(u: f32) -> f32 {
-    if u > 0.0 { u.min(1.0) } else { 0.0 }
-}
 
 /// Concentric map of the unit square onto the unit disk (Shirley & Chiu
 /// 1997, "A Low Distortion Map Between Disk and Square", JGT 2(3)).

@@ -181,11 +181,7 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
     }
 }
 
-/// Clamps a sample coordinate into `[0, 1]`, NaN → 0.
-#[inline]
-pub(crate) fn clamp01(u: f32) -> f32 {
-    if u > 0.0 { u.min(1.0) } else { 0.0 }
-}
+pub(crate) use radiometry::math::clamp01;
 
 /// Maps NaN to 0 and saturates `+∞` at `f32::MAX` (used only where the
 /// exact value exceeds the `f32` range).
