@@ -9,6 +9,7 @@
 //! default to cosine-weighted hemisphere sampling, which is exact (if not
 //! efficient) for any BRDF.
 
+use crate::batch::Vec3Soa;
 use crate::frame::{cos_theta, spherical_direction};
 use crate::spectrum::Spectrum;
 use crate::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
@@ -86,6 +87,48 @@ pub trait Brdf {
             *o = self.eval(a, b);
         }
     }
+
+    /// Structure-of-arrays form of [`Brdf::eval_batch`]:
+    /// `out[k] = eval(wi.get(k), wo.get(k))` for `k < min(wi.len(), wo.len(),
+    /// out.len())`; extra elements are left untouched.
+    ///
+    /// The default loops over [`Brdf::eval`]; plugins with vector kernels
+    /// override it (loads of 8 consecutive `x`, `y`, `z` need no shuffles).
+    ///
+    /// ```
+    /// use radiometry::{Brdf, batch::Vec3Soa, glam::Vec3};
+    /// struct Flat;
+    /// impl Brdf for Flat {
+    ///     type Spectrum = f32;
+    ///     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 { if wi.z > 0.0 && wo.z > 0.0 { 0.1 } else { 0.0 } }
+    /// }
+    /// let (x, y, z) = ([0.0f32, 0.0], [0.0f32, 0.0], [1.0f32, -1.0]);
+    /// let w = Vec3Soa::new(&x, &y, &z);
+    /// let mut out = [7.0f32; 2];
+    /// Flat.eval_batch_soa(w, w, &mut out);
+    /// assert_eq!(out, [0.1, 0.0]);
+    /// ```
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [Self::Spectrum]) {
+        for ((o, a), b) in out.iter_mut().zip(wi.iter()).zip(wo.iter()) {
+            *o = self.eval(a, b);
+        }
+    }
+
+    /// `out[k] = pdf(wi[k], wo[k])` for `k < min(len)`; extra elements are
+    /// left untouched. The default loops over [`Brdf::pdf`].
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        for ((o, &a), &b) in out.iter_mut().zip(wi).zip(wo) {
+            *o = self.pdf(a, b);
+        }
+    }
+
+    /// `out[k] = sample(wo[k], u[k])` for `k < min(len)`; extra elements
+    /// are left untouched. The default loops over [`Brdf::sample`].
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<Self::Spectrum>>]) {
+        for ((o, &w), &v) in out.iter_mut().zip(wo).zip(u) {
+            *o = self.sample(w, v);
+        }
+    }
 }
 
 /// A BRDF invariant under rotation about the normal: `f_r` depends only on
@@ -131,6 +174,18 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     #[inline]
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [Self::Spectrum]) {
         (**self).eval_batch(wi, wo, out)
+    }
+    #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [Self::Spectrum]) {
+        (**self).eval_batch_soa(wi, wo, out)
+    }
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        (**self).pdf_batch(wi, wo, out)
+    }
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<Self::Spectrum>>]) {
+        (**self).sample_batch(wo, u, out)
     }
 }
 

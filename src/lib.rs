@@ -33,6 +33,7 @@
 
 pub use glam;
 
+pub mod batch;
 pub mod brdf;
 pub mod frame;
 pub mod integrator;
