@@ -170,33 +170,6 @@ impl V8 {
             z: self.z + o.z,
         }
     }
-
-    #[inline(always)]
-    fn select(mask: f32x8, t: V8, f: V8) -> V8 {
-        V8 {
-            x: mask.select(t.x, f.x),
-            y: mask.select(t.y, f.y),
-            z: mask.select(t.z, f.z),
-        }
-    }
-
-    /// The common branches of `microfacet::unitize`: unchanged when
-    /// `|‖w‖² − 1| ≤ 4ε`, else `w/√‖w‖²`. Returns the mask of lanes for
-    /// which one of these branches applies (`‖w‖² ∈ [1e-30, 1e30]` or
-    /// near 1); the other lanes need the scalar path.
-    #[inline(always)]
-    fn unitize(self) -> (V8, f32x8) {
-        let l2 = self.dot(self);
-        let near1 = (l2 - f32x8::ONE).abs().simd_le(f32x8::splat(4.0 * f32::EPSILON));
-        if near1.all() {
-            // The usual case (unit input, or re-unitising a unit vector):
-            // skip the square root and divisions.
-            return (self, near1);
-        }
-        let in_range = l2.simd_ge(f32x8::splat(1e-30)) & l2.simd_le(f32x8::splat(1e30));
-        let scaled = self.div(l2.sqrt());
-        (V8::select(near1, self, scaled), near1 | in_range)
-    }
 }
 
 /// `finite_nonneg`: `x > 0 ? min(x, f32::MAX) : 0` (NaN → 0).
@@ -281,69 +254,69 @@ where
     }
 }
 
-/// GGX `α² tan²θ` of a unit `w` (`a2_tan2` of the scalar code) and the mask
-/// of lanes where it is finite.
+/// `tan²θ = (x² + y²)/z²` of a unit `w` (`tan2_theta` of the scalar code),
+/// `+∞` where `z² = 0`.
 #[inline(always)]
-fn a2_tan2(alpha: f32x8, w: V8) -> (f32x8, f32x8) {
-    // `a2_tan2` re-unitises its argument; for an already unit `w` this is
-    // the near-1 / divide branch.
-    let (w, _) = w.unitize();
+fn tan2(w: V8) -> f32x8 {
     let c2 = w.z * w.z;
     let s2 = w.x * w.x + w.y * w.y;
-    let x = alpha * alpha * s2 / c2;
-    (x, !c2.simd_eq(f32x8::ZERO) & x.is_finite())
+    c2.simd_gt(f32x8::ZERO)
+        .select(s2 / c2, f32x8::splat(f32::INFINITY))
 }
 
 /// One chunk of `Microfacet<Ggx, G, F>::eval` without the Fresnel factor.
 ///
-/// Returns `(s, cos θd, fallback)` where `s = finite_nonneg(D G2 / (4 cos θi
-/// cos θo))` (0 where `eval` returns 0), `cos θd = min(1, |ωi + ωo|/2)`, and
-/// `fallback` has bit `k` set when lane `k` must be recomputed by `eval`.
+/// Returns `(s, cos θd, fallback)` where `s = finite_nonneg(D G2 / (4 (cos θi
+/// cos θo)))` (0 where `eval` returns 0), `cos θd = min(1, |ωi + ωo|/2)`, and
+/// `fallback` has bit `k` set when lane `k` must be recomputed by `eval`
+/// (a direction that is not unit to within `4ε`: `eval`'s cold path).
 #[inline(always)]
 fn ggx_x8<const SEPARABLE: bool>(alpha: f32, wi: V8, wo: V8) -> (f32x8, f32x8, u32) {
     let one = f32x8::ONE;
     let zero = f32x8::ZERO;
+    let inf = f32x8::splat(f32::INFINITY);
+    let two = f32x8::splat(2.0);
     let alpha = f32x8::splat(alpha);
 
-    // geometry(): unitize both, both strictly above the horizon, half vector.
-    let (wi, ok_i) = wi.unitize();
-    let (wo, ok_o) = wo.unitize();
-    let fallback = !(ok_i & ok_o);
+    // is_unit of both directions, else the scalar (cold) path.
+    let tol = f32x8::splat(4.0 * f32::EPSILON);
+    let unit_i = (wi.dot(wi) - one).abs().simd_le(tol);
+    let unit_o = (wo.dot(wo) - one).abs().simd_le(tol);
+    let fallback = !(unit_i & unit_o);
+
+    // Half::of: both strictly above the horizon, |h|² > 1e-14, one division.
     let up = wi.z.simd_gt(zero) & wo.z.simd_gt(zero);
     let h = wi.add(wo);
-    let hl2 = h.dot(h);
-    let h_ok = hl2.simd_gt(f32x8::splat(1e-14)) & hl2.is_finite();
-    // h.z > 0 whenever both z > 0, so half_vector's flip never applies.
-    let h = h.div(hl2.sqrt());
+    let len2 = h.dot(h);
+    let h_ok = len2.simd_gt(f32x8::splat(1e-14));
+    let inv = one / len2;
+    let cos2 = (h.z * h.z) * inv;
+    let sin2 = (h.x * h.x + h.y * h.y) * inv;
 
-    // D(h) (Ggx::d): re-unitise, require m.z > 0.
-    let (m, _) = h.unitize();
+    // Ggx::d_cos2.
     let a2 = alpha * alpha;
-    let t = a2 * (m.z * m.z) + (m.x * m.x + m.y * m.y);
+    let t = a2 * cos2 + sin2;
     let d = finite_nonneg(a2 / (f32x8::splat(PI) * t * t));
-    let d_ok = m.z.simd_gt(zero) & d.simd_gt(zero);
 
-    // G2.
-    let (xi, fi) = a2_tan2(alpha, wi);
-    let (xo, fo) = a2_tan2(alpha, wo);
-    let two = f32x8::splat(2.0);
+    // G2 from tan²θ (Ggx::lambda_tan2 / g1_tan2).
+    let xi = a2 * tan2(wi);
+    let xo = a2 * tan2(wo);
+    let (fi, fo) = (xi.simd_lt(inf), xo.simd_lt(inf));
     let g = if SEPARABLE {
         let g1i = fi.select(two / (one + (one + xi).sqrt()), zero);
         let g1o = fo.select(two / (one + (one + xo).sqrt()), zero);
         g1i * g1o
     } else {
-        let inf = f32x8::splat(f32::INFINITY);
         let li = fi.select(xi / (two * (one + (one + xi).sqrt())), inf);
         let lo = fo.select(xo / (two * (one + (one + xo).sqrt())), inf);
-        let s = one + li + lo;
+        let s = one + (li + lo);
         s.simd_ge(one).select(one / s, zero)
     };
 
-    let s = finite_nonneg(d * g / (f32x8::splat(4.0) * wi.z * wo.z));
-    let valid = up & h_ok & d_ok;
-    let s = valid.select(s, zero);
-    // cos θd = |ωi + ωo|/2, as the scalar `cos_theta_d` (symmetric in ωi, ωo).
-    let cos_d = (f32x8::splat(0.5) * hl2.sqrt()).min(one);
+    let s = finite_nonneg(d * g / (f32x8::splat(4.0) * (wi.z * wo.z)));
+    let s = (up & h_ok).select(s, zero);
+    // cos θd = |ωi + ωo|/2, as the scalar `Half::cos_theta_d`.
+    let cos_d = (f32x8::splat(0.5) * len2.sqrt()).min(one);
     (s, cos_d, fallback.to_bitmask())
 }
 

@@ -1,7 +1,9 @@
 //! The Beckmann normal distribution.
 
 use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, erfinv_2p_minus_1, erfinv_2p_minus_1_guess};
-use super::{MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, unitize};
+use super::{
+    MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, tan2_theta_robust, unitize,
+};
 use crate::error::{BrdfError, check_range};
 use core::f32::consts::PI;
 use radiometry::glam::Vec3;
@@ -76,20 +78,6 @@ fn lambda_of_a(a: f32) -> f32 {
 }
 
 impl Beckmann {
-    /// `a = cos θ / (α sin θ)` of `w`; `+∞` at the pole, `0` at grazing and
-    /// for degenerate `w`.
-    #[inline]
-    fn a_of(&self, w: Vec3) -> f32 {
-        let Some(w) = unitize(w) else {
-            return 0.0;
-        };
-        let s = libm::hypotf(w.x, w.y);
-        if s == 0.0 {
-            return f32::INFINITY;
-        }
-        w.z.abs() / (self.alpha * s)
-    }
-
     /// The CDF (unnormalised) of the visible slope `x̃` of the standard
     /// (`α = 1`) Beckmann surface seen at angle θ (Heitz & d'Eon 2014,
     /// §4.2): `C(x) = ∫_{−∞}^x (cos θ − t sin θ) e^{−t²}/√π dt
@@ -152,34 +140,48 @@ impl MicrofacetDistribution for Beckmann {
         self.alpha
     }
 
-    /// `D(m) = exp(−tan²θm/α²) / (π α² cos⁴θm)` (Walter et al. 2007, eq. 25).
+    /// `D(m) = exp(−tan²θm/α²) / (π α² cos⁴θm)` (Walter et al. 2007, eq. 25)
+    /// of `m` normalised robustly; see
+    /// [`d_cos2`](MicrofacetDistribution::d_cos2).
+    #[inline]
+    fn d(&self, m: Vec3) -> f32 {
+        match unitize(m) {
+            Some(m) if m.z > 0.0 => self.d_cos2(m.z * m.z, m.x * m.x + m.y * m.y),
+            _ => 0.0,
+        }
+    }
+
+    /// `D = exp(−tan²θm/α²) / (π α² cos⁴θm)` with `tan²θm = sin²/cos²`.
     /// For `cos²θm < 10⁻⁸` it is evaluated as
     /// `exp(−tan²θm/α² − 2 ln cos²θm)/(π α²)` so that the vanishing
     /// exponential and the exploding `1/cos⁴` never meet as `0·∞`.
-    #[inline]
-    fn d(&self, m: Vec3) -> f32 {
-        let Some(m) = unitize(m) else {
-            return 0.0;
-        };
-        if m.z <= 0.0 {
-            return 0.0;
-        }
+    #[inline(always)]
+    fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
         let a2 = self.alpha * self.alpha;
-        let c2 = m.z * m.z;
-        let e = (m.x * m.x + m.y * m.y) / (c2 * a2);
-        let v = if c2 >= 1e-8 {
-            libm::expf(-e) / (c2 * c2)
+        let e = sin2 / (cos2 * a2);
+        let v = if cos2 >= 1e-8 {
+            libm::expf(-e) / (cos2 * cos2)
         } else {
-            libm::expf(-e - 2.0 * libm::logf(c2))
+            libm::expf(-e - 2.0 * libm::logf(cos2))
         };
         finite_nonneg(v / (PI * a2))
     }
 
-    /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form); `+∞` at
-    /// grazing, `0` at normal incidence.
+    /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form) of `ω`
+    /// normalised robustly; `+∞` at grazing, `0` at normal incidence.
     #[inline]
     fn lambda(&self, w: Vec3) -> f32 {
-        lambda_of_a(self.a_of(w))
+        self.lambda_tan2(tan2_theta_robust(w))
+    }
+
+    /// `Λ(a)` with `a = 1/(α tan θ)` (the erf form above): `0` for
+    /// `tan²θ = 0`, `+∞` for `tan²θ = +∞` or NaN.
+    #[inline(always)]
+    fn lambda_tan2(&self, tan2: f32) -> f32 {
+        if !(tan2 < f32::INFINITY) {
+            return f32::INFINITY;
+        }
+        lambda_of_a(1.0 / (self.alpha * libm::sqrtf(tan2)))
     }
 
     /// Visible-normal sampling of Heitz & d'Eon 2014 ("Importance Sampling
@@ -194,7 +196,7 @@ impl MicrofacetDistribution for Beckmann {
         let a = self.alpha;
         let wo = unitize(wo).unwrap_or(Vec3::Z);
         let v = unitize(Vec3::new(a * wo.x, a * wo.y, wo.z.abs())).unwrap_or(Vec3::Z);
-        let sin_t = libm::hypotf(v.x, v.y).min(1.0);
+        let sin_t = libm::sqrtf(v.x * v.x + v.y * v.y).min(1.0);
         let cos_t = v.z;
         let (cos_p, sin_p) = if sin_t > 0.0 {
             (v.x / sin_t, v.y / sin_t)

@@ -1,6 +1,8 @@
 //! The GGX / Trowbridge–Reitz normal distribution.
 
-use super::{MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, unitize};
+use super::{
+    MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, tan2_theta_robust, unitize,
+};
 use crate::error::{BrdfError, check_range};
 use core::f32::consts::{PI, TAU};
 use radiometry::glam::Vec3;
@@ -42,20 +44,6 @@ impl Ggx {
             alpha: check_range("alpha", alpha, MIN_ALPHA, MAX_ALPHA)?,
         })
     }
-
-    /// `α² tan²θ` of `w` (any length), `+∞` at grazing or for degenerate `w`.
-    #[inline]
-    fn a2_tan2(&self, w: Vec3) -> f32 {
-        let Some(w) = unitize(w) else {
-            return f32::INFINITY;
-        };
-        let c2 = w.z * w.z;
-        if c2 == 0.0 {
-            return f32::INFINITY;
-        }
-        let s2 = w.x * w.x + w.y * w.y;
-        self.alpha * self.alpha * s2 / c2
-    }
 }
 
 impl MicrofacetDistribution for Ggx {
@@ -65,44 +53,62 @@ impl MicrofacetDistribution for Ggx {
     }
 
     /// `D(m) = α² / (π (α² cos²θm + sin²θm)²)` (Walter et al. 2007, eq. 33,
-    /// multiplied through by `cos⁴θm`), with `sin²θm = x² + y²` of the unit
-    /// normal. For unit `m` the bracket is `≥ α² ≥ 10⁻⁸`, so the result is
-    /// finite for every `α` in range; the form has no `1 − cos²` cancellation
-    /// near the peak.
+    /// multiplied through by `cos⁴θm`) of `m` normalised robustly; see
+    /// [`d_cos2`](MicrofacetDistribution::d_cos2).
     #[inline]
     fn d(&self, m: Vec3) -> f32 {
-        let Some(m) = unitize(m) else {
-            return 0.0;
-        };
-        if m.z <= 0.0 {
-            return 0.0;
+        match unitize(m) {
+            Some(m) if m.z > 0.0 => self.d_cos2(m.z * m.z, m.x * m.x + m.y * m.y),
+            _ => 0.0,
         }
+    }
+
+    /// `D = α² / (π (α² cos²θm + sin²θm)²)`. For a unit normal the bracket
+    /// is `≥ α² ≥ 10⁻⁸`, so the result is finite for every `α` in range; the
+    /// form has no `1 − cos²` cancellation near the peak.
+    #[inline(always)]
+    fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
         let a2 = self.alpha * self.alpha;
-        let t = a2 * (m.z * m.z) + (m.x * m.x + m.y * m.y);
+        let t = a2 * cos2 + sin2;
         finite_nonneg(a2 / (PI * t * t))
     }
 
-    /// `Λ(ω) = (−1 + sqrt(1 + α² tan²θ))/2`, evaluated as
-    /// `x / (2 (1 + sqrt(1 + x)))` with `x = α² tan²θ` (no cancellation for
-    /// small `x`); `+∞` at grazing.
+    /// `Λ(ω)` of `ω` normalised robustly; see
+    /// [`lambda_tan2`](MicrofacetDistribution::lambda_tan2).
     #[inline]
     fn lambda(&self, w: Vec3) -> f32 {
-        let x = self.a2_tan2(w);
-        if !x.is_finite() {
-            return f32::INFINITY;
+        self.lambda_tan2(tan2_theta_robust(w))
+    }
+
+    /// `G1(ω)`; see [`g1_tan2`](MicrofacetDistribution::g1_tan2).
+    #[inline]
+    fn g1(&self, w: Vec3) -> f32 {
+        self.g1_tan2(tan2_theta_robust(w))
+    }
+
+    /// `Λ = (−1 + sqrt(1 + α² tan²θ))/2` (Heitz 2014, eq. 86), evaluated as
+    /// `x / (2 (1 + sqrt(1 + x)))` with `x = α² tan²θ` (no cancellation for
+    /// small `x`); `+∞` at grazing (`tan²θ = +∞` or NaN).
+    #[inline(always)]
+    fn lambda_tan2(&self, tan2: f32) -> f32 {
+        let x = self.alpha * self.alpha * tan2;
+        if x < f32::INFINITY {
+            x / (2.0 * (1.0 + libm::sqrtf(1.0 + x)))
+        } else {
+            f32::INFINITY
         }
-        x / (2.0 * (1.0 + libm::sqrtf(1.0 + x)))
     }
 
     /// `G1 = 1/(1 + Λ) = 2 / (1 + sqrt(1 + α² tan²θ))` (Walter et al. 2007,
     /// eq. 34); `0` at grazing.
-    #[inline]
-    fn g1(&self, w: Vec3) -> f32 {
-        let x = self.a2_tan2(w);
-        if !x.is_finite() {
-            return 0.0;
+    #[inline(always)]
+    fn g1_tan2(&self, tan2: f32) -> f32 {
+        let x = self.alpha * self.alpha * tan2;
+        if x < f32::INFINITY {
+            2.0 / (1.0 + libm::sqrtf(1.0 + x))
+        } else {
+            0.0
         }
-        2.0 / (1.0 + libm::sqrtf(1.0 + x))
     }
 
     #[cfg(feature = "simd")]

@@ -111,6 +111,42 @@ pub trait MicrofacetDistribution {
         1.0 / (1.0 + self.lambda(w))
     }
 
+    /// `D(m)` of a unit normal given `cos²θm` and `sin²θm` — the fast form
+    /// behind [`d`](Self::d) that the BRDF's hot path calls once it has
+    /// validated its input. The two squares are passed separately so that
+    /// neither is formed by the cancelling difference `1 − other` (for the
+    /// half vector `h ∝ ωi + ωo` they are `h_z²/|h|²` and `(h_x² + h_y²)/|h|²`).
+    ///
+    /// Contract: `cos2 ≥ 0`, `sin2 ≥ 0`, `cos2 + sin2 ≈ 1`, the normal in the
+    /// upper hemisphere; returns a finite value `≥ 0` (0 where `cos2 = 0`).
+    /// The default builds the unit vector `(sin θ, 0, cos θ)` and calls
+    /// [`d`](Self::d) (exact for an isotropic distribution).
+    #[inline]
+    fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
+        self.d(Vec3::new(libm::sqrtf(sin2), 0.0, libm::sqrtf(cos2)))
+    }
+
+    /// `Λ` as a function of `tan²θ ∈ [0, +∞]` — the fast form behind
+    /// [`lambda`](Self::lambda) (Λ of an isotropic distribution depends on
+    /// `|tan θ|` only). `tan2 = +∞` (grazing) gives `+∞`; NaN is treated as
+    /// grazing. The default calls [`lambda`](Self::lambda) on
+    /// `(tan θ, 0, 1)` (its length does not matter to `Λ`).
+    #[inline]
+    fn lambda_tan2(&self, tan2: f32) -> f32 {
+        if tan2 < f32::INFINITY {
+            self.lambda(Vec3::new(libm::sqrtf(tan2.max(0.0)), 0.0, 1.0))
+        } else {
+            f32::INFINITY
+        }
+    }
+
+    /// `G1 = 1/(1 + Λ)` as a function of `tan²θ` (see
+    /// [`lambda_tan2`](Self::lambda_tan2)); `0` at grazing.
+    #[inline]
+    fn g1_tan2(&self, tan2: f32) -> f32 {
+        1.0 / (1.0 + self.lambda_tan2(tan2))
+    }
+
     /// Samples a microfacet normal `m` from the distribution of normals
     /// visible from `wo`, `D_ωo(m) = G1(ωo) max(0, ωo·m) D(m) / cos θo`.
     ///
@@ -178,6 +214,33 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
         Some(v / libm::sqrtf(l2))
     } else {
         None
+    }
+}
+
+/// Whether `w` is unit length to within the tolerance [`unitize`] leaves
+/// unchanged (`|‖w‖² − 1| ≤ 4ε`): the one test the hot paths make per
+/// direction. False for NaN and infinite components.
+#[inline(always)]
+pub(crate) fn is_unit(w: Vec3) -> bool {
+    (w.length_squared() - 1.0).abs() <= 4.0 * f32::EPSILON
+}
+
+/// `tan²θ = (x² + y²)/z²` of a direction of any (non-degenerate, in-range)
+/// length; `+∞` when `z² = 0`.
+#[inline(always)]
+pub(crate) fn tan2_theta(w: Vec3) -> f32 {
+    let c2 = w.z * w.z;
+    let s2 = w.x * w.x + w.y * w.y;
+    if c2 > 0.0 { s2 / c2 } else { f32::INFINITY }
+}
+
+/// [`tan2_theta`] after robust normalisation; `+∞` for degenerate input
+/// (which Λ maps to `+∞` and `G1` to 0, as at grazing).
+#[inline]
+pub(crate) fn tan2_theta_robust(w: Vec3) -> f32 {
+    match unitize(w) {
+        Some(w) => tan2_theta(w),
+        None => f32::INFINITY,
     }
 }
 
@@ -260,36 +323,144 @@ impl<D, G, F> Microfacet<D, G, F> {
     }
 }
 
+/// The half-vector quantities of a valid reflection pair of unit directions
+/// above the horizon: `|h|²` of the unnormalised `h = ωi + ωo`, and
+/// `cos²θh`, `sin²θh` of its direction.
+#[derive(Clone, Copy)]
+struct Half {
+    len2: f32,
+    cos2: f32,
+    sin2: f32,
+}
+
+impl Half {
+    /// `None` when either direction is at or below the horizon or the half
+    /// vector is undefined (`|ωi + ωo|² ≤ 10⁻¹⁴`, i.e. `ωi ≈ −ωo`, the
+    /// threshold of [`radiometry::frame::half_vector`]). For unit inputs
+    /// `|h|² ≤ 4`, so one division gives both squares and `h` itself is
+    /// never normalised.
+    #[inline(always)]
+    fn of(wi: Vec3, wo: Vec3) -> Option<Half> {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return None;
+        }
+        let h = wi + wo;
+        let len2 = h.length_squared();
+        if !(len2 > 1e-14) {
+            return None;
+        }
+        let inv = 1.0 / len2;
+        Some(Half {
+            len2,
+            cos2: (h.z * h.z) * inv,
+            sin2: (h.x * h.x + h.y * h.y) * inv,
+        })
+    }
+
+    /// `cos θd = ωi·h = ωo·h = |ωi + ωo|/2` for unit `ωi`, `ωo` (since
+    /// `|ωi + ωo|² = 2 + 2 ωi·ωo = 4 cos² θd`), clamped to 1.
+    ///
+    /// Unlike the dot product `ωi·h` with the rounded half vector, this is
+    /// symmetric in its arguments bit for bit (the component sums commute
+    /// exactly), so `F(cos θd)` — and the BRDF — stay exactly reciprocal even
+    /// for `ωi ≈ −ωo` at grazing, where `ωi + ωo` nearly cancels and `ωi·h`
+    /// can round to 0 in one order and not in the other.
+    #[inline(always)]
+    fn cos_theta_d(&self) -> f32 {
+        (0.5 * libm::sqrtf(self.len2)).min(1.0)
+    }
+}
+
+/// Both directions normalised by the robust [`unitize`], or `None` for a
+/// degenerate one: the cold path of every method (the hot path has checked
+/// [`is_unit`] and skips this).
+#[cold]
+#[inline(never)]
+fn unitize_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
+    Some((unitize(wi)?, unitize(wo)?))
+}
+
 impl<D, G, F> Microfacet<D, G, F>
 where
     D: MicrofacetDistribution,
     G: ShadowingMasking,
     F: Fresnel,
 {
-    /// `(cos θi, cos θo, h)` for a valid reflection pair, else `None`.
-    #[inline]
-    fn geometry(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3, Vec3)> {
-        let wi = unitize(wi)?;
-        let wo = unitize(wo)?;
-        if wi.z <= 0.0 || wo.z <= 0.0 {
+    /// `f_r` for unit `wi`, `wo` (the straight-line part of `eval`).
+    #[inline(always)]
+    fn eval_unit(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
+        let Some(h) = Half::of(wi, wo) else {
+            return F::Spectrum::zero();
+        };
+        let d = self.distribution.d_cos2(h.cos2, h.sin2);
+        let g = G::g2_tan2(&self.distribution, tan2_theta(wi), tan2_theta(wo));
+        // 4 (cos θi cos θo): the product first, so the expression is
+        // symmetric in (ωi, ωo) bit for bit.
+        let s = finite_nonneg(d * g / (4.0 * (wi.z * wo.z)));
+        if s == 0.0 {
+            return F::Spectrum::zero();
+        }
+        self.fresnel.eval(h.cos_theta_d()) * s
+    }
+
+    /// The cold path of `eval`: non-unit, degenerate or non-finite input.
+    #[cold]
+    #[inline(never)]
+    fn eval_cold(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
+        match unitize_pair(wi, wo) {
+            Some((wi, wo)) => self.eval_unit(wi, wo),
+            None => F::Spectrum::zero(),
+        }
+    }
+
+    /// `pdf` for unit `wi`, `wo`:
+    /// `D_ωo(h)/(4 ωo·h) = G1(ωo) D(h)/(4 cos θo)`.
+    #[inline(always)]
+    fn pdf_unit(&self, wi: Vec3, wo: Vec3) -> f32 {
+        let Some(h) = Half::of(wi, wo) else {
+            return 0.0;
+        };
+        // ωo·h = |ωi + ωo|/2 > 0 for every pair `Half::of` accepts.
+        let g1 = self.distribution.g1_tan2(tan2_theta(wo));
+        if !(g1 > 0.0) {
+            return 0.0;
+        }
+        finite_nonneg(g1 / (4.0 * wo.z) * self.distribution.d_cos2(h.cos2, h.sin2))
+    }
+
+    /// The cold path of `pdf`.
+    #[cold]
+    #[inline(never)]
+    fn pdf_cold(&self, wi: Vec3, wo: Vec3) -> f32 {
+        match unitize_pair(wi, wo) {
+            Some((wi, wo)) => self.pdf_unit(wi, wo),
+            None => 0.0,
+        }
+    }
+
+    /// `(pdf, weight)` of the pair `(wi, wo)` exactly as `pdf` computes the
+    /// density (same normalisation decisions, so bit-identical), with the
+    /// weight `F(cos θd) G2(ωi, ωo)/G1(ωo)`.
+    #[inline(always)]
+    fn pdf_and_weight(&self, wi: Vec3, wo: Vec3) -> Option<(Vec3, f32, F::Spectrum)> {
+        let (wi, wo) = if is_unit(wi) && is_unit(wo) {
+            (wi, wo)
+        } else {
+            unitize_pair(wi, wo)?
+        };
+        let h = Half::of(wi, wo)?;
+        let (t2i, t2o) = (tan2_theta(wi), tan2_theta(wo));
+        let g1o = self.distribution.g1_tan2(t2o);
+        if !(g1o > 0.0) {
             return None;
         }
-        let h = radiometry::frame::half_vector(wi, wo)?;
-        Some((wi, wo, h))
+        let pdf = finite_nonneg(g1o / (4.0 * wo.z) * self.distribution.d_cos2(h.cos2, h.sin2));
+        if !(pdf > 0.0 && pdf < f32::INFINITY) {
+            return None;
+        }
+        let ratio = (G::g2_tan2(&self.distribution, t2i, t2o) / g1o).clamp(0.0, 1.0);
+        Some((wi, pdf, self.fresnel.eval(h.cos_theta_d()) * ratio))
     }
-}
-
-/// `cos θd = ωi·h = ωo·h` for unit `ωi`, `ωo`, computed as `|ωi + ωo|/2`
-/// (since `|ωi + ωo|² = 2 + 2 ωi·ωo = 4 cos² θd`), clamped to 1.
-///
-/// Unlike the dot product `ωi·h` with the rounded half vector, this is
-/// symmetric in its arguments bit for bit (the component sums commute
-/// exactly), so `F(cos θd)` — and the BRDF — stay exactly reciprocal even
-/// for `ωi ≈ −ωo` at grazing, where `ωi + ωo` nearly cancels and `ωi·h`
-/// can round to 0 in one order and not in the other.
-#[inline]
-fn cos_theta_d(wi: Vec3, wo: Vec3) -> f32 {
-    (0.5 * (wi + wo).length()).min(1.0)
 }
 
 impl<D, G, F> Brdf for Microfacet<D, G, F>
@@ -301,21 +472,19 @@ where
     type Spectrum = F::Spectrum;
 
     /// `D(h) G2(ωi, ωo) F(ωi·h) / (4 cos θi cos θo)` (Walter et al. 2007, eq. 20).
+    ///
+    /// Hot path: one squared-length test per direction, then straight-line
+    /// arithmetic on `h = ωi + ωo` (never normalised: `D` takes
+    /// `cos²θh = h_z²/|h|²`, `Λ` takes `tan²θ = (x² + y²)/z²`). Non-unit,
+    /// degenerate or non-finite input goes to a `#[cold]` path that
+    /// normalises robustly first.
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
-        let Some((wi, wo, h)) = Self::geometry(wi, wo) else {
-            return F::Spectrum::zero();
-        };
-        let d = self.distribution.d(h);
-        if d <= 0.0 {
-            return F::Spectrum::zero();
+        if is_unit(wi) && is_unit(wo) {
+            self.eval_unit(wi, wo)
+        } else {
+            self.eval_cold(wi, wo)
         }
-        let g = G::g2(&self.distribution, wi, wo);
-        let s = finite_nonneg(d * g / (4.0 * wi.z * wo.z));
-        if s == 0.0 {
-            return F::Spectrum::zero();
-        }
-        self.fresnel.eval(cos_theta_d(wi, wo)) * s
     }
 
     /// With the `simd` feature, GGX with either shadowing–masking variant
@@ -330,62 +499,37 @@ where
 
     /// Visible-normal sampling (Heitz & d'Eon 2014) followed by mirror
     /// reflection about the sampled normal.
+    #[inline]
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<F::Spectrum>> {
-        let wo = unitize(wo)?;
-        if wo.z <= 0.0 {
+        let wo_unit = if is_unit(wo) { wo } else { unitize(wo)? };
+        if !(wo_unit.z > 0.0) {
             return None;
         }
-        let m = self.distribution.sample_visible(wo, u);
-        let dot = wo.dot(m);
-        if dot <= 0.0 {
+        let m = self.distribution.sample_visible(wo_unit, u);
+        let dot = wo_unit.dot(m);
+        if !(dot > 0.0) {
             return None;
         }
-        let wi = unitize(2.0 * dot * m - wo)?;
-        if wi.z <= 0.0 {
+        let wi = 2.0 * dot * m - wo_unit;
+        let wi = if is_unit(wi) { wi } else { unitize(wi)? };
+        if !(wi.z > 0.0) {
             return None;
         }
-        // Recompute the geometry from (wi, wo) exactly as `Brdf::pdf` does, so
-        // that the returned pdf equals `pdf(wi, wo)` bit for bit.
-        let (wi, wo, h) = Self::geometry(wi, wo)?;
-        let pdf = self.pdf_h(wo, h);
-        if !(pdf > 0.0 && pdf.is_finite()) {
-            return None;
-        }
-        let g1o = self.distribution.g1(wo);
-        if g1o <= 0.0 {
-            return None;
-        }
-        let ratio = (G::g2(&self.distribution, wi, wo) / g1o).clamp(0.0, 1.0);
-        let weight = self.fresnel.eval(cos_theta_d(wi, wo)) * ratio;
+        // The density and weight of the pair exactly as `Brdf::pdf(wi, wo)`
+        // computes them (from the caller's `wo`), so the returned pdf equals
+        // `pdf(wi, wo)` bit for bit.
+        let (wi, pdf, weight) = self.pdf_and_weight(wi, wo)?;
         Some(BrdfSample { wi, pdf, weight })
     }
 
     /// `G1(ωo) D(h) / (4 cos θo)` for a valid reflection pair, else 0.
-    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        match Self::geometry(wi, wo) {
-            Some((_, wo, h)) => self.pdf_h(wo, h),
-            None => 0.0,
-        }
-    }
-}
-
-impl<D, G, F> Microfacet<D, G, F>
-where
-    D: MicrofacetDistribution,
-    G: ShadowingMasking,
-    F: Fresnel,
-{
-    /// `D_ωo(h)/(4 ωo·h) = G1(ωo) D(h)/(4 cos θo)` for unit `wo` (z > 0) and `h`.
     #[inline]
-    fn pdf_h(&self, wo: Vec3, h: Vec3) -> f32 {
-        if wo.dot(h) <= 0.0 {
-            return 0.0;
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if is_unit(wi) && is_unit(wo) {
+            self.pdf_unit(wi, wo)
+        } else {
+            self.pdf_cold(wi, wo)
         }
-        let g1 = self.distribution.g1(wo);
-        if g1 <= 0.0 {
-            return 0.0;
-        }
-        finite_nonneg(g1 / (4.0 * wo.z) * self.distribution.d(h))
     }
 }
 

@@ -1,6 +1,6 @@
 //! Smith shadowing–masking `G2`, chosen by type.
 
-use super::MicrofacetDistribution;
+use super::{MicrofacetDistribution, tan2_theta_robust};
 use radiometry::glam::Vec3;
 
 /// How shadowing (of `ωi`) and masking (of `ωo`) combine into `G2`.
@@ -20,9 +20,18 @@ use radiometry::glam::Vec3;
 /// assert!(HeightCorrelated::g2(&d, wi, wo) >= Separable::g2(&d, wi, wo));
 /// ```
 pub trait ShadowingMasking {
+    /// `G2 ∈ [0, 1]` from `tan²θi` and `tan²θo` (each in `[0, +∞]`, `+∞`
+    /// at grazing): the fast form the BRDF's hot path calls. Symmetric in its
+    /// arguments bit for bit.
+    fn g2_tan2<D: MicrofacetDistribution>(d: &D, tan2_i: f32, tan2_o: f32) -> f32;
+
     /// `G2(ωi, ωo) ∈ [0, 1]` for directions in the upper hemisphere (the
-    /// BRDF excludes the others before calling this).
-    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32;
+    /// BRDF excludes the others before calling this). Inputs of any length
+    /// are normalised robustly; degenerate ones count as grazing (`G2 = 0`).
+    #[inline]
+    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
+        Self::g2_tan2(d, tan2_theta_robust(wi), tan2_theta_robust(wo))
+    }
 
     /// Hidden hook of the `simd` feature: which vectorised `G2` (if any) the
     /// batched microfacet kernel may use. The default keeps the scalar loop.
@@ -61,9 +70,10 @@ impl ShadowingMasking for HeightCorrelated {
     const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::HeightCorrelated;
 
     #[inline]
-    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
-        let s = 1.0 + d.lambda(wi) + d.lambda(wo);
-        // s ≥ 1, possibly +∞ (→ 0); never NaN since Λ ≥ 0.
+    fn g2_tan2<D: MicrofacetDistribution>(d: &D, tan2_i: f32, tan2_o: f32) -> f32 {
+        // 1 + (Λi + Λo): the inner sum commutes exactly, so G2 is reciprocal
+        // bit for bit. s ≥ 1, possibly +∞ (→ 0); never NaN since Λ ≥ 0.
+        let s = 1.0 + (d.lambda_tan2(tan2_i) + d.lambda_tan2(tan2_o));
         if s >= 1.0 { 1.0 / s } else { 0.0 }
     }
 }
@@ -73,7 +83,7 @@ impl ShadowingMasking for Separable {
     const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::Separable;
 
     #[inline]
-    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
-        d.g1(wi) * d.g1(wo)
+    fn g2_tan2<D: MicrofacetDistribution>(d: &D, tan2_i: f32, tan2_o: f32) -> f32 {
+        d.g1_tan2(tan2_i) * d.g1_tan2(tan2_o)
     }
 }
