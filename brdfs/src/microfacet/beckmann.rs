@@ -178,7 +178,7 @@ impl MicrofacetDistribution for Beckmann {
     /// `tan²θ = 0`, `+∞` for `tan²θ = +∞` or NaN.
     #[inline(always)]
     fn lambda_tan2(&self, tan2: f32) -> f32 {
-        if !(tan2 < f32::INFINITY) {
+        if tan2.is_nan() || tan2 == f32::INFINITY {
             return f32::INFINITY;
         }
         lambda_of_a(1.0 / (self.alpha * libm::sqrtf(tan2)))

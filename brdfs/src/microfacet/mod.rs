@@ -346,7 +346,7 @@ impl Half {
         }
         let h = wi + wo;
         let len2 = h.length_squared();
-        if !(len2 > 1e-14) {
+        if len2 <= 1e-14 || len2.is_nan() {
             return None;
         }
         let inv = 1.0 / len2;
@@ -422,7 +422,7 @@ where
         };
         // ωo·h = |ωi + ωo|/2 > 0 for every pair `Half::of` accepts.
         let g1 = self.distribution.g1_tan2(tan2_theta(wo));
-        if !(g1 > 0.0) {
+        if g1.is_nan() || g1 <= 0.0 {
             return 0.0;
         }
         finite_nonneg(g1 / (4.0 * wo.z) * self.distribution.d_cos2(h.cos2, h.sin2))
@@ -451,7 +451,7 @@ where
         let h = Half::of(wi, wo)?;
         let (t2i, t2o) = (tan2_theta(wi), tan2_theta(wo));
         let g1o = self.distribution.g1_tan2(t2o);
-        if !(g1o > 0.0) {
+        if g1o.is_nan() || g1o <= 0.0 {
             return None;
         }
         let pdf = finite_nonneg(g1o / (4.0 * wo.z) * self.distribution.d_cos2(h.cos2, h.sin2));
@@ -502,17 +502,17 @@ where
     #[inline]
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<F::Spectrum>> {
         let wo_unit = if is_unit(wo) { wo } else { unitize(wo)? };
-        if !(wo_unit.z > 0.0) {
+        if wo_unit.z <= 0.0 {
             return None;
         }
         let m = self.distribution.sample_visible(wo_unit, u);
         let dot = wo_unit.dot(m);
-        if !(dot > 0.0) {
+        if dot.is_nan() || dot <= 0.0 {
             return None;
         }
         let wi = 2.0 * dot * m - wo_unit;
         let wi = if is_unit(wi) { wi } else { unitize(wi)? };
-        if !(wi.z > 0.0) {
+        if wi.z <= 0.0 {
             return None;
         }
         // The density and weight of the pair exactly as `Brdf::pdf(wi, wo)`
