@@ -254,28 +254,24 @@ where
     }
 }
 
-/// `tan²θ = (x² + y²)/z²` of a unit `w` (`tan2_theta` of the scalar code),
-/// `+∞` where `z² = 0`.
+/// GGX `A(ω) = (cos θ + √(cos²θ + α² sin²θ))/2` of a unit `w`
+/// (`Ggx::projected_area` of the scalar code).
 #[inline(always)]
-fn tan2(w: V8) -> f32x8 {
-    let c2 = w.z * w.z;
-    let s2 = w.x * w.x + w.y * w.y;
-    c2.simd_gt(f32x8::ZERO)
-        .select(s2 / c2, f32x8::splat(f32::INFINITY))
+fn ggx_area(a2: f32x8, w: V8) -> f32x8 {
+    f32x8::splat(0.5) * (w.z + (w.z * w.z + a2 * (w.x * w.x + w.y * w.y)).sqrt())
 }
 
 /// One chunk of `Microfacet<Ggx, G, F>::eval` without the Fresnel factor.
 ///
-/// Returns `(s, cos θd, fallback)` where `s = finite_nonneg(D G2 / (4 (cos θi
-/// cos θo)))` (0 where `eval` returns 0), `cos θd = min(1, |ωi + ωo|/2)`, and
-/// `fallback` has bit `k` set when lane `k` must be recomputed by `eval`
-/// (a direction that is not unit to within `4ε`: `eval`'s cold path).
+/// Returns `(s, cos θd, fallback)` where `s = finite_nonneg(D V)` (0 where
+/// `eval` returns 0), `cos θd = min(1, |ωi + ωo|/2)`, and `fallback` has
+/// bit `k` set when lane `k` must be recomputed by `eval` (a direction that
+/// is not unit to within `4ε`: `eval`'s cold path).
 #[inline(always)]
 fn ggx_x8<const SEPARABLE: bool>(alpha: f32, wi: V8, wo: V8) -> (f32x8, f32x8, u32) {
     let one = f32x8::ONE;
     let zero = f32x8::ZERO;
-    let inf = f32x8::splat(f32::INFINITY);
-    let two = f32x8::splat(2.0);
+    let four = f32x8::splat(4.0);
     let alpha = f32x8::splat(alpha);
 
     // is_unit of both directions, else the scalar (cold) path.
@@ -298,22 +294,15 @@ fn ggx_x8<const SEPARABLE: bool>(alpha: f32, wi: V8, wo: V8) -> (f32x8, f32x8, u
     let t = a2 * cos2 + sin2;
     let d = finite_nonneg(a2 / (f32x8::splat(PI) * t * t));
 
-    // G2 from tan²θ (Ggx::lambda_tan2 / g1_tan2).
-    let xi = a2 * tan2(wi);
-    let xo = a2 * tan2(wo);
-    let (fi, fo) = (xi.simd_lt(inf), xo.simd_lt(inf));
-    let g = if SEPARABLE {
-        let g1i = fi.select(two / (one + (one + xi).sqrt()), zero);
-        let g1o = fo.select(two / (one + (one + xo).sqrt()), zero);
-        g1i * g1o
+    // ShadowingMasking::visibility from the projected areas.
+    let (ai, ao) = (ggx_area(a2, wi), ggx_area(a2, wo));
+    let v = if SEPARABLE {
+        one / (four * (ai * ao))
     } else {
-        let li = fi.select(xi / (two * (one + (one + xi).sqrt())), inf);
-        let lo = fo.select(xo / (two * (one + (one + xo).sqrt())), inf);
-        let s = one + (li + lo);
-        s.simd_ge(one).select(one / s, zero)
+        one / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
     };
 
-    let s = finite_nonneg(d * g / (f32x8::splat(4.0) * (wi.z * wo.z)));
+    let s = finite_nonneg(d * v);
     let s = (up & h_ok).select(s, zero);
     // cos θd = |ωi + ωo|/2, as the scalar `Half::cos_theta_d`.
     let cos_d = (f32x8::splat(0.5) * len2.sqrt()).min(one);

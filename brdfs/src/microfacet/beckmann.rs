@@ -174,6 +174,30 @@ impl MicrofacetDistribution for Beckmann {
         self.lambda_tan2(tan2_theta_robust(w))
     }
 
+    /// `A(ω) = cos θ (1 + Λ) = cos θ + α sin θ · aΛ(a)` with
+    /// `a = cos θ/(α sin θ)`: `cos θ · Λ` written through `a Λ(a)`, which is
+    /// finite at grazing (`a → 0`: `aΛ → 1/(2√π)`, so `A → α sin θ/(2√π)`).
+    #[inline(always)]
+    fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
+        let s = libm::sqrtf(sin2);
+        let alpha_s = self.alpha * s;
+        if alpha_s <= 0.0 {
+            // Normal incidence: Λ = 0.
+            return cos_theta;
+        }
+        let a = cos_theta / alpha_s;
+        if a == f32::INFINITY {
+            return cos_theta;
+        }
+        // For a < 1e-20, aΛ(a) = 1/(2√π) − a/2 + O(a²) is 1/(2√π) in f32.
+        let a_lambda = if a < 1e-20 {
+            0.5 * FRAC_1_SQRT_PI
+        } else {
+            a * lambda_of_a(a)
+        };
+        cos_theta + alpha_s * a_lambda
+    }
+
     /// `Λ(a)` with `a = 1/(α tan θ)` (the erf form above): `0` for
     /// `tan²θ = 0`, `+∞` for `tan²θ = +∞` or NaN.
     #[inline(always)]

@@ -99,6 +99,15 @@ impl MicrofacetDistribution for Ggx {
         }
     }
 
+    /// `A(ω) = cos θ (1 + Λ) = (cos θ + sqrt(cos²θ + α² sin²θ))/2` (the GGX
+    /// `Λ` above multiplied through by `cos θ`): no division, and `α sin θ/2`
+    /// at grazing.
+    #[inline(always)]
+    fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
+        let a2 = self.alpha * self.alpha;
+        0.5 * (cos_theta + libm::sqrtf(cos_theta * cos_theta + a2 * sin2))
+    }
+
     /// `G1 = 1/(1 + Λ) = 2 / (1 + sqrt(1 + α² tan²θ))` (Walter et al. 2007,
     /// eq. 34); `0` at grazing.
     #[inline(always)]

@@ -126,6 +126,32 @@ pub trait MicrofacetDistribution {
         self.d(Vec3::new(libm::sqrtf(sin2), 0.0, libm::sqrtf(cos2)))
     }
 
+    /// The projected area of the microsurface seen from a unit direction
+    /// `ω` above the horizon, `A(ω) = ∫ ⟨ω·m⟩ D(m) dm = cos θ (1 + Λ(ω))`
+    /// (Heitz 2014, eq. 16 with the Smith `Λ`), from `cos θ ≥ 0` and
+    /// `sin²θ = x² + y²`. It is what the hot path uses instead of `Λ`:
+    /// `G1 = cos θ / A`, and [`ShadowingMasking::visibility`] combines two of
+    /// them without any `1/cos θ`. `A ≥ cos θ`, and `A > 0` even at grazing
+    /// (where `cos θ Λ` has a finite limit).
+    ///
+    /// The default is `cos θ (1 + Λ)` through
+    /// [`lambda_tan2`](Self::lambda_tan2) (`+∞` where `cos²θ` underflows,
+    /// which makes the BRDF 0 there).
+    #[inline]
+    fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
+        let c2 = cos_theta * cos_theta;
+        let l = if c2 > 0.0 {
+            self.lambda_tan2(sin2 / c2)
+        } else {
+            f32::INFINITY
+        };
+        if l < f32::INFINITY {
+            cos_theta + cos_theta * l
+        } else {
+            f32::INFINITY
+        }
+    }
+
     /// `Λ` as a function of `tan²θ ∈ [0, +∞]` — the fast form behind
     /// [`lambda`](Self::lambda) (Λ of an isotropic distribution depends on
     /// `|tan θ|` only). `tan2 = +∞` (grazing) gives `+∞`; NaN is treated as
@@ -228,18 +254,18 @@ pub(crate) fn is_unit(w: Vec3) -> bool {
 /// `tan²θ = (x² + y²)/z²` of a direction of any (non-degenerate, in-range)
 /// length; `+∞` when `z² = 0`.
 #[inline(always)]
-pub(crate) fn tan2_theta(w: Vec3) -> f32 {
+pub(crate) fn tan2_theta_unit(w: Vec3) -> f32 {
     let c2 = w.z * w.z;
     let s2 = w.x * w.x + w.y * w.y;
     if c2 > 0.0 { s2 / c2 } else { f32::INFINITY }
 }
 
-/// [`tan2_theta`] after robust normalisation; `+∞` for degenerate input
+/// [`tan2_theta_unit`] after robust normalisation; `+∞` for degenerate input
 /// (which Λ maps to `+∞` and `G1` to 0, as at grazing).
 #[inline]
 pub(crate) fn tan2_theta_robust(w: Vec3) -> f32 {
     match unitize(w) {
-        Some(w) => tan2_theta(w),
+        Some(w) => tan2_theta_unit(w),
         None => f32::INFINITY,
     }
 }
@@ -386,21 +412,26 @@ where
     G: ShadowingMasking,
     F: Fresnel,
 {
-    /// `f_r` for unit `wi`, `wo` (the straight-line part of `eval`).
+    /// `f_r = D(h) V F(cos θd)` for unit `wi`, `wo` (the straight-line part
+    /// of `eval`), with the visibility `V = G2/(4 cos θi cos θo)`.
     #[inline(always)]
     fn eval_unit(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
         let Some(h) = Half::of(wi, wo) else {
             return F::Spectrum::zero();
         };
         let d = self.distribution.d_cos2(h.cos2, h.sin2);
-        let g = G::g2_tan2(&self.distribution, tan2_theta(wi), tan2_theta(wo));
-        // 4 (cos θi cos θo): the product first, so the expression is
-        // symmetric in (ωi, ωo) bit for bit.
-        let s = finite_nonneg(d * g / (4.0 * (wi.z * wo.z)));
+        let v = G::visibility(wi.z, self.area(wi), wo.z, self.area(wo));
+        let s = finite_nonneg(d * v);
         if s == 0.0 {
             return F::Spectrum::zero();
         }
         self.fresnel.eval(h.cos_theta_d()) * s
+    }
+
+    /// [`MicrofacetDistribution::projected_area`] of a unit direction.
+    #[inline(always)]
+    fn area(&self, w: Vec3) -> f32 {
+        self.distribution.projected_area(w.z, w.x * w.x + w.y * w.y)
     }
 
     /// The cold path of `eval`: non-unit, degenerate or non-finite input.
@@ -414,18 +445,14 @@ where
     }
 
     /// `pdf` for unit `wi`, `wo`:
-    /// `D_ωo(h)/(4 ωo·h) = G1(ωo) D(h)/(4 cos θo)`.
+    /// `D_ωo(h)/(4 ωo·h) = G1(ωo) D(h)/(4 cos θo) = D(h)/(4 A(ωo))`.
     #[inline(always)]
     fn pdf_unit(&self, wi: Vec3, wo: Vec3) -> f32 {
         let Some(h) = Half::of(wi, wo) else {
             return 0.0;
         };
         // ωo·h = |ωi + ωo|/2 > 0 for every pair `Half::of` accepts.
-        let g1 = self.distribution.g1_tan2(tan2_theta(wo));
-        if g1.is_nan() || g1 <= 0.0 {
-            return 0.0;
-        }
-        finite_nonneg(g1 / (4.0 * wo.z) * self.distribution.d_cos2(h.cos2, h.sin2))
+        finite_nonneg(self.distribution.d_cos2(h.cos2, h.sin2) / (4.0 * self.area(wo)))
     }
 
     /// The cold path of `pdf`.
@@ -438,9 +465,9 @@ where
         }
     }
 
-    /// `(pdf, weight)` of the pair `(wi, wo)` exactly as `pdf` computes the
-    /// density (same normalisation decisions, so bit-identical), with the
-    /// weight `F(cos θd) G2(ωi, ωo)/G1(ωo)`.
+    /// `(wi, pdf, weight)` of the pair `(wi, wo)`, the density exactly as
+    /// `pdf` computes it (same normalisation decisions, so bit-identical),
+    /// the weight `F(cos θd) G2(ωi, ωo)/G1(ωo) = F · 4 V cos θi A(ωo)`.
     #[inline(always)]
     fn pdf_and_weight(&self, wi: Vec3, wo: Vec3) -> Option<(Vec3, f32, F::Spectrum)> {
         let (wi, wo) = if is_unit(wi) && is_unit(wo) {
@@ -449,16 +476,14 @@ where
             unitize_pair(wi, wo)?
         };
         let h = Half::of(wi, wo)?;
-        let (t2i, t2o) = (tan2_theta(wi), tan2_theta(wo));
-        let g1o = self.distribution.g1_tan2(t2o);
-        if g1o.is_nan() || g1o <= 0.0 {
-            return None;
-        }
-        let pdf = finite_nonneg(g1o / (4.0 * wo.z) * self.distribution.d_cos2(h.cos2, h.sin2));
+        let d = self.distribution.d_cos2(h.cos2, h.sin2);
+        let (ai, ao) = (self.area(wi), self.area(wo));
+        let pdf = finite_nonneg(d / (4.0 * ao));
         if !(pdf > 0.0 && pdf < f32::INFINITY) {
             return None;
         }
-        let ratio = (G::g2_tan2(&self.distribution, t2i, t2o) / g1o).clamp(0.0, 1.0);
+        let v = G::visibility(wi.z, ai, wo.z, ao);
+        let ratio = (4.0 * v * wi.z * ao).clamp(0.0, 1.0);
         Some((wi, pdf, self.fresnel.eval(h.cos_theta_d()) * ratio))
     }
 }
@@ -475,7 +500,8 @@ where
     ///
     /// Hot path: one squared-length test per direction, then straight-line
     /// arithmetic on `h = ωi + ωo` (never normalised: `D` takes
-    /// `cos²θh = h_z²/|h|²`, `Λ` takes `tan²θ = (x² + y²)/z²`). Non-unit,
+    /// `cos²θh = h_z²/|h|²`), evaluated as `D(h) V F` with the visibility
+    /// `V = G2/(4 cos θi cos θo)` of [`ShadowingMasking::visibility`]. Non-unit,
     /// degenerate or non-finite input goes to a `#[cold]` path that
     /// normalises robustly first.
     #[inline]

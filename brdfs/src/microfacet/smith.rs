@@ -1,6 +1,6 @@
 //! Smith shadowing–masking `G2`, chosen by type.
 
-use super::{MicrofacetDistribution, tan2_theta_robust};
+use super::MicrofacetDistribution;
 use radiometry::glam::Vec3;
 
 /// How shadowing (of `ωi`) and masking (of `ωo`) combine into `G2`.
@@ -20,18 +20,18 @@ use radiometry::glam::Vec3;
 /// assert!(HeightCorrelated::g2(&d, wi, wo) >= Separable::g2(&d, wi, wo));
 /// ```
 pub trait ShadowingMasking {
-    /// `G2 ∈ [0, 1]` from `tan²θi` and `tan²θo` (each in `[0, +∞]`, `+∞`
-    /// at grazing): the fast form the BRDF's hot path calls. Symmetric in its
-    /// arguments bit for bit.
-    fn g2_tan2<D: MicrofacetDistribution>(d: &D, tan2_i: f32, tan2_o: f32) -> f32;
-
     /// `G2(ωi, ωo) ∈ [0, 1]` for directions in the upper hemisphere (the
-    /// BRDF excludes the others before calling this). Inputs of any length
-    /// are normalised robustly; degenerate ones count as grazing (`G2 = 0`).
-    #[inline]
-    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
-        Self::g2_tan2(d, tan2_theta_robust(wi), tan2_theta_robust(wo))
-    }
+    /// BRDF excludes the others before calling this).
+    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32;
+
+    /// The visibility term `V = G2(ωi, ωo) / (4 cos θi cos θo)` of unit
+    /// directions strictly above the horizon, from their cosines and the
+    /// projected areas `A(ω) = cos θ (1 + Λ(ω))` of the microsurface
+    /// ([`MicrofacetDistribution::projected_area`]). With it the BRDF is
+    /// `f_r = D(h) V F`, and the `1/cos` factors never appear on their own:
+    /// `V` stays finite as either cosine goes to 0 (its limit is the
+    /// grazing value of `f_r`, not a `0·∞`). Symmetric in `(i, o)` bit for bit.
+    fn visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32;
 
     /// Hidden hook of the `simd` feature: which vectorised `G2` (if any) the
     /// batched microfacet kernel may use. The default keeps the scalar loop.
@@ -70,11 +70,22 @@ impl ShadowingMasking for HeightCorrelated {
     const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::HeightCorrelated;
 
     #[inline]
-    fn g2_tan2<D: MicrofacetDistribution>(d: &D, tan2_i: f32, tan2_o: f32) -> f32 {
-        // 1 + (Λi + Λo): the inner sum commutes exactly, so G2 is reciprocal
-        // bit for bit. s ≥ 1, possibly +∞ (→ 0); never NaN since Λ ≥ 0.
-        let s = 1.0 + (d.lambda_tan2(tan2_i) + d.lambda_tan2(tan2_o));
+    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
+        let s = 1.0 + d.lambda(wi) + d.lambda(wo);
+        // s ≥ 1, possibly +∞ (→ 0); never NaN since Λ ≥ 0.
         if s >= 1.0 { 1.0 / s } else { 0.0 }
+    }
+
+    /// `V = 1 / (4 cos θi cos θo (1 + Λi + Λo))`, with
+    /// `cos θi cos θo (1 + Λi + Λo) = cos θo Ai + cos θi Ao − cos θi cos θo`
+    /// (each product is at least the subtracted one, so the difference loses
+    /// at most a factor 2 in relative accuracy). For GGX it is the familiar
+    /// `1 / (2 (cos θo √(cos²θi + α² sin²θi) + cos θi √(cos²θo + α² sin²θo)))`
+    /// (Heitz 2014, eq. 99 divided through).
+    #[inline(always)]
+    fn visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32 {
+        let den = (cos_o * area_i + cos_i * area_o) - cos_i * cos_o;
+        1.0 / (4.0 * den)
     }
 }
 
@@ -83,7 +94,14 @@ impl ShadowingMasking for Separable {
     const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::Separable;
 
     #[inline]
-    fn g2_tan2<D: MicrofacetDistribution>(d: &D, tan2_i: f32, tan2_o: f32) -> f32 {
-        d.g1_tan2(tan2_i) * d.g1_tan2(tan2_o)
+    fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
+        d.g1(wi) * d.g1(wo)
+    }
+
+    /// `V = G1(ωi) G1(ωo) / (4 cos θi cos θo) = 1 / (4 Ai Ao)`, since
+    /// `G1(ω) = cos θ / A(ω)`.
+    #[inline(always)]
+    fn visibility(_cos_i: f32, area_i: f32, _cos_o: f32, area_o: f32) -> f32 {
+        1.0 / (4.0 * (area_i * area_o))
     }
 }
