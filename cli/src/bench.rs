@@ -456,20 +456,29 @@ impl Run<'_> {
     }
 }
 
-/// SIMD-relevant target features: `(name, compiled in, CPU has it)`; the
-/// last is `None` where it cannot be detected at run time.
-fn simd_features() -> Vec<(&'static str, bool, Option<bool>)> {
+/// A SIMD-relevant target feature.
+#[derive(Clone, Copy, Debug)]
+struct Feature {
+    name: &'static str,
+    /// Enabled at compile time (`cfg!(target_feature = ...)`).
+    compiled: bool,
+    /// The CPU has it (run-time detection; `None` where not available).
+    cpu: Option<bool>,
+}
+
+/// The SIMD-relevant target features of this architecture.
+fn simd_features() -> Vec<Feature> {
     #[allow(unused_mut)]
     let mut v = Vec::new();
     #[cfg(target_arch = "x86_64")]
     {
         macro_rules! f {
             ($name:tt) => {
-                v.push((
-                    $name,
-                    cfg!(target_feature = $name),
-                    Some(std::arch::is_x86_feature_detected!($name)),
-                ))
+                v.push(Feature {
+                    name: $name,
+                    compiled: cfg!(target_feature = $name),
+                    cpu: Some(std::arch::is_x86_feature_detected!($name)),
+                })
             };
         }
         f!("sse2");
@@ -481,11 +490,11 @@ fn simd_features() -> Vec<(&'static str, bool, Option<bool>)> {
     }
     #[cfg(target_arch = "aarch64")]
     {
-        v.push((
-            "neon",
-            cfg!(target_feature = "neon"),
-            Some(std::arch::is_aarch64_feature_detected!("neon")),
-        ));
+        v.push(Feature {
+            name: "neon",
+            compiled: cfg!(target_feature = "neon"),
+            cpu: Some(std::arch::is_aarch64_feature_detected!("neon")),
+        });
     }
     v
 }
@@ -558,11 +567,11 @@ pub fn run(args: BenchArgs) -> ExitCode {
         Format::Json => {
             let compiled: serde_json::Map<_, _> = features
                 .iter()
-                .map(|&(f, on, _)| (f.to_string(), serde_json::Value::Bool(on)))
+                .map(|f| (f.name.to_string(), serde_json::Value::Bool(f.compiled)))
                 .collect();
             let detected: serde_json::Map<_, _> = features
                 .iter()
-                .filter_map(|&(f, _, has)| Some((f.to_string(), serde_json::Value::Bool(has?))))
+                .filter_map(|f| Some((f.name.to_string(), serde_json::Value::Bool(f.cpu?))))
                 .collect();
             let rows: Vec<_> = rows
                 .iter()
@@ -600,8 +609,8 @@ pub fn run(args: BenchArgs) -> ExitCode {
         Format::Text => {
             println!("radiometry bench: single-thread throughput of the BRDF plugins vs this CPU's limits");
             println!("cpu:      {cpu}");
-            let list = |pick: &dyn Fn(&(&str, bool, Option<bool>)) -> bool| {
-                let v: Vec<&str> = features.iter().filter(|f| pick(f)).map(|f| f.0).collect();
+            let list = |pick: fn(&Feature) -> bool| {
+                let v: Vec<&str> = features.iter().filter(|f| pick(f)).map(|f| f.name).collect();
                 if v.is_empty() {
                     "-".to_string()
                 } else {
@@ -610,9 +619,9 @@ pub fn run(args: BenchArgs) -> ExitCode {
             };
             println!(
                 "features: compiled in: {}; not compiled in: {}; CPU has but not compiled in: {}",
-                list(&|f| f.1),
-                list(&|f| !f.1),
-                list(&|f| !f.1 && f.2 == Some(true)),
+                list(|f| f.compiled),
+                list(|f| !f.compiled),
+                list(|f| !f.compiled && f.cpu == Some(true)),
             );
             println!(
                 "build:    radiometry-brdfs simd feature {}; profile {prof}, opt-level {opt}, debug-assertions {}",
