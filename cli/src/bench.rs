@@ -64,9 +64,10 @@ Columns:
                (eval_batch, eval_batch_soa, pdf_batch); json key `ref` names it
   vs_stream    m_per_s / m_per_s of stream at the same n
 
-Timing: per measurement a warm-up, then repetitions (each about a fifth of the minimum time)
-until at least 50 ms (--quick: 10 ms) in total and at least 5 repetitions; the figure is the
-BEST (fastest) repetition. The references are timed before and after the plugins and the best
+Timing: per measurement a warm-up, then repetitions of whole passes over the n elements (each
+repetition about a tenth of the minimum time, at least one pass) until at least 50 ms
+(--quick: 10 ms) in total and at least 3 repetitions; the figure is the BEST (fastest)
+repetition. The references are timed before and after the plugins and the best
 is kept. The machine's other load only slows runs down, so best-of is the least noisy estimate
 of the achievable rate.
 
@@ -78,7 +79,7 @@ The header says which SIMD target features were compiled in and which the CPU ha
 /// `radiometry bench` options.
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
-    /// Only n = 4096, 10 ms per measurement (a few seconds in all).
+    /// Only n = 4096, 10 ms per measurement (about 1 s in all; the full run takes about 20 s).
     #[arg(long)]
     quick: bool,
     /// Output format (json: {"header": {...}, "rows": [{plugin, path, n, m_per_s, ns_per_elem, vs_ref,
@@ -101,8 +102,13 @@ const REF_SOA: &str = "reference-ggx-soa";
 const STREAM: &str = "stream";
 /// α of the reference GGX (that of the `ggx-hc-a0.3` plugin).
 const REF_ALPHA: f32 = 0.3;
-/// Repetitions per measurement (at least), each about `min_time / REPS`.
-const REPS: u32 = 5;
+/// A repetition lasts about `min_time / REP_SLICES` (at least one pass):
+/// short repetitions give the best-of more chances to miss the machine's
+/// other load.
+const REP_SLICES: u32 = 10;
+/// Repetitions per measurement, at least (slow passes at n = 2²⁰ are one
+/// pass per repetition).
+const MIN_REPS: u32 = 3;
 
 /// One measured figure.
 #[derive(Clone, Debug)]
@@ -118,13 +124,24 @@ struct Row {
 }
 
 /// Deterministic inputs of the largest size; every run uses a prefix.
+///
+/// The arrays of one layout share one allocation with staggered starts (AoS
+/// `wi`, `wo` 192 B apart modulo 4 KiB; the six SoA components 64 B apart),
+/// so that the input streams of a loop do not alias modulo 4 KiB (the same
+/// L1 set, false store-to-load dependences), as they would if each sat at the
+/// start of its own page-aligned allocation.
 struct Inputs {
-    wi: Vec<Vec3>,
-    wo: Vec<Vec3>,
-    wi_soa: [Vec<f32>; 3],
-    wo_soa: [Vec<f32>; 3],
+    n: usize,
+    /// `wi` at `[0, n)`, `wo` at `[n + AOS_PAD, 2n + AOS_PAD)`.
+    aos: Vec<Vec3>,
+    /// Component `j` (`wi.x, wi.y, wi.z, wo.x, wo.y, wo.z`) at
+    /// `[j (n + SOA_PAD), j (n + SOA_PAD) + n)`.
+    soa: Vec<f32>,
     u: Vec<[f32; 2]>,
 }
+
+const AOS_PAD: usize = 16;
+const SOA_PAD: usize = 16;
 
 impl Inputs {
     /// Direction pairs spread over the upper hemisphere (θ uniform in
@@ -148,36 +165,51 @@ impl Inputs {
             // u from wi's sequences: sampling uses wo and u only, so the two are independent.
             u.push([below_one(a), below_one(b)]);
         }
-        let soa = |w: &[Vec3]| -> [Vec<f32>; 3] {
-            [
-                w.iter().map(|v| v.x).collect(),
-                w.iter().map(|v| v.y).collect(),
-                w.iter().map(|v| v.z).collect(),
-            ]
-        };
-        Inputs {
-            wi_soa: soa(&wi),
-            wo_soa: soa(&wo),
-            wi,
-            wo,
-            u,
+        let mut aos = wi.clone();
+        aos.extend(std::iter::repeat_n(Vec3::Z, AOS_PAD));
+        aos.extend_from_slice(&wo);
+        let mut soa = Vec::with_capacity(6 * (n + SOA_PAD));
+        for w in [&wi, &wo] {
+            for j in 0..3 {
+                soa.extend(w.iter().map(|v| v[j]));
+                soa.extend(std::iter::repeat_n(0.0, SOA_PAD));
+            }
         }
+        Inputs { n, aos, soa, u }
+    }
+
+    fn wi(&self, n: usize) -> &[Vec3] {
+        &self.aos[..n]
+    }
+
+    fn wo(&self, n: usize) -> &[Vec3] {
+        let s = self.n + AOS_PAD;
+        &self.aos[s..s + n]
+    }
+
+    fn soa(&self, first: usize, n: usize) -> Vec3Soa<'_> {
+        let c = |j: usize| {
+            let s = (first + j) * (self.n + SOA_PAD);
+            &self.soa[s..s + n]
+        };
+        Vec3Soa::new(c(0), c(1), c(2))
     }
 
     fn wi_soa(&self, n: usize) -> Vec3Soa<'_> {
-        Vec3Soa::new(&self.wi_soa[0][..n], &self.wi_soa[1][..n], &self.wi_soa[2][..n])
+        self.soa(0, n)
     }
 
     fn wo_soa(&self, n: usize) -> Vec3Soa<'_> {
-        Vec3Soa::new(&self.wo_soa[0][..n], &self.wo_soa[1][..n], &self.wo_soa[2][..n])
+        self.soa(3, n)
     }
 }
 
 /// Times `pass` (one pass over `n` elements): warm-up of at least a quarter
-/// of `min_time` (page faults, caches, clocks), then at least [`REPS`]
-/// repetitions of `iters` passes, `iters` chosen so that a repetition takes
-/// about `min_time / REPS`, until `min_time` has been spent. Returns the
-/// best (smallest) seconds per element over the repetitions.
+/// of `min_time` and at least one pass (page faults, caches, clocks), then
+/// repetitions of `iters` passes, `iters ≥ 1` chosen so that a repetition
+/// takes about `min_time / REP_SLICES`, until `min_time` has been spent and
+/// at least [`MIN_REPS`] were run. Returns the best (smallest) seconds per
+/// element over the repetitions.
 fn measure(n: usize, min_time: Duration, mut pass: impl FnMut()) -> f64 {
     let t0 = Instant::now();
     let mut passes = 0u64;
@@ -189,12 +221,12 @@ fn measure(n: usize, min_time: Duration, mut pass: impl FnMut()) -> f64 {
         }
     }
     let per_pass = t0.elapsed().as_secs_f64() / passes as f64;
-    let target = min_time.as_secs_f64() / REPS as f64;
+    let target = min_time.as_secs_f64() / REP_SLICES as f64;
     let iters = ((target / per_pass).ceil() as u64).max(1);
     let mut best = f64::INFINITY;
     let mut total = 0.0;
     let mut reps = 0;
-    while reps < REPS || total < min_time.as_secs_f64() {
+    while reps < MIN_REPS || total < min_time.as_secs_f64() {
         let t = Instant::now();
         for _ in 0..iters {
             pass();
@@ -289,7 +321,7 @@ impl Run<'_> {
     fn references(&self) -> [f64; 3] {
         self.note("references");
         let (n, mt) = (self.n, self.min_time);
-        let (wi, wo) = (&self.inputs.wi[..n], &self.inputs.wo[..n]);
+        let (wi, wo) = (self.inputs.wi(n), self.inputs.wo(n));
         let (si, so) = (self.inputs.wi_soa(n), self.inputs.wo_soa(n));
         let mut out = vec![0.0f32; n];
         let scalar = measure(n, mt, || {
@@ -318,7 +350,7 @@ impl Run<'_> {
     fn plugin<B: Brdf>(&mut self, name: &'static str, brdf: &B) {
         self.note(name);
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
-        let (wi, wo, u) = (&inputs.wi[..n], &inputs.wo[..n], &inputs.u[..n]);
+        let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
         let (si, so) = (inputs.wi_soa(n), inputs.wo_soa(n));
         let mut out = vec![B::Spectrum::default(); n];
         let mut out_f = vec![0.0f32; n];
@@ -523,7 +555,9 @@ fn profile() -> (&'static str, &'static str) {
 
 fn timing_text(min_time: Duration) -> String {
     format!(
-        "best of >= {REPS} repetitions, >= {} ms per measurement after a warm-up; single thread",
+        "best of the repetitions (each ~{} ms, >= 1 pass; >= {MIN_REPS} and >= {} ms per measurement, after a \
+warm-up); single thread",
+        min_time.as_secs_f64() * 1e3 / REP_SLICES as f64,
         min_time.as_secs_f64() * 1e3
     )
 }
