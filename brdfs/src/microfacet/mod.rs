@@ -504,7 +504,7 @@ where
     /// `V = G2/(4 cos θi cos θo)` of [`ShadowingMasking::visibility`]. Non-unit,
     /// degenerate or non-finite input goes to a `#[cold]` path that
     /// normalises robustly first.
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
         if is_unit(wi) && is_unit(wo) {
             self.eval_unit(wi, wo)

@@ -4,7 +4,9 @@
 //! * [`ggx_scalar`] — GGX written the way one would without the plugin
 //!   machinery: a plain indexed loop over AoS [`Vec3`] pairs, no input
 //!   checks (no horizon tests, no normalisation of the inputs, no special
-//!   cases), `F = 1`.
+//!   cases), `F = 1`, evaluated one pair at a time (the index is opaque to
+//!   the optimiser, which would otherwise vectorise the loop and turn the
+//!   scalar reference into a second vector one).
 //! * [`ggx_soa`] — the same formula over structure-of-arrays slices, a
 //!   branch-free indexed loop over `&[f32]` that LLVM auto-vectorises (to
 //!   whatever vector width the build's target features allow).
@@ -58,6 +60,10 @@ pub fn ggx_scalar(alpha: f32, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
     let (wi, wo) = (&wi[..n], &wo[..n]);
     let alpha2 = alpha * alpha;
     for k in 0..n {
+        // An opaque index keeps LLVM from vectorising across elements: this
+        // is the one-pair-at-a-time limit a scalar `eval` loop competes
+        // with (the vector limit is `ggx_soa`). It costs one register move.
+        let k = std::hint::black_box(k);
         let (i, o) = (wi[k], wo[k]);
         out[k] = ggx_hc(alpha2, [i.x, i.y, i.z], [o.x, o.y, o.z]);
     }
