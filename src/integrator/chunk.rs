@@ -1,0 +1,103 @@
+//! Chunked evaluation: the integrators hand the integrand up to [`CHUNK`]
+//! points at a time through [`Integrand::eval_batch`] /
+//! [`Integrand::sample_batch`] / [`Integrand::pdf_batch`], in fixed-size
+//! stack buffers, and then accumulate the values one by one in the same
+//! order as a point-by-point loop would (so estimates do not depend on the
+//! chunking).
+//!
+//! Errors: a chunk is evaluated whole, then checked in order; the first
+//! non-finite value (in point order) is reported, as the point-by-point
+//! loop would (the points after it are evaluated but discarded).
+
+use super::acc::{direction, to_unit_f32};
+use super::{Integrand, IntegrandSample, IntegrateError, WideOf, check_finite};
+use crate::spectrum::{Spectrum, WideSpectrum};
+use core::f64::consts::TAU;
+use glam::Vec3;
+
+/// Number of points an integrator passes to one call of the batch methods
+/// of [`Integrand`] (and the size of their stack buffers): 64, a multiple
+/// of every SIMD width in use (8 lanes of `f32`).
+pub const CHUNK: usize = 64;
+
+/// One draw of the integrand's sampling map as the importance weight
+/// `g(ω)/p(ω)` in `f64`, together with the direction and density.
+///
+/// * `None` (from [`Integrand::sample`]) is a zero-contribution sample.
+/// * A non-finite value or density is [`IntegrateError::NonFiniteIntegrand`].
+/// * A density `≤ 0` (outside the trait contract) contributes zero if the
+///   value is black, and is reported as `NonFiniteIntegrand` otherwise (the
+///   weight would be infinite).
+#[inline]
+pub(crate) fn sample_weight<S: Spectrum>(
+    s: Option<IntegrandSample<S>>,
+) -> Result<Option<(Vec3, f64, S::Wide)>, IntegrateError> {
+    let Some(s) = s else {
+        return Ok(None);
+    };
+    let v = check_finite(s.value.to_wide())?;
+    if !s.pdf.is_finite() {
+        return Err(IntegrateError::NonFiniteIntegrand);
+    }
+    if s.pdf <= 0.0 {
+        return if s.value.is_black() {
+            Ok(None)
+        } else {
+            Err(IntegrateError::NonFiniteIntegrand)
+        };
+    }
+    let p = s.pdf as f64;
+    Ok(Some((s.w, p, v.map(|x| x / p))))
+}
+
+/// The hemisphere in coordinates `(a, b) ∈ [0,1]²`: `μ = cos θ = a`,
+/// `φ = 2π turn(b)`, `dω = dμ dφ = 2π da db`:
+/// `out[k] = 2π g(ω(a_k, b_k))`, widened and checked for NaN/∞, for
+/// `k < min(p.len(), out.len())`. `turn` re-maps the azimuth fraction
+/// (identity, or a rotation of the periodic azimuth).
+pub(crate) fn hemisphere_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    turn: impl Fn(f64) -> f64,
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut dirs = [Vec3::ZERO; CHUNK];
+    let mut vals = [I::Spectrum::zero(); CHUNK];
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for (d, &[a, b]) in dirs[..n].iter_mut().zip(p) {
+            *d = direction(a, TAU * turn(b));
+        }
+        g.eval_batch(&dirs[..n], &mut vals[..n]);
+        for (o, v) in out[..n].iter_mut().zip(&vals[..n]) {
+            *o = check_finite(v.to_wide())?.map(|x| x * TAU);
+        }
+    }
+    Ok(())
+}
+
+/// The sampling-map square: `out[k] = g(ω)/p(ω)` at `u = (a_k, b_k)`
+/// (rounded to `f32` in `[0, 1)`), zero where the map has no direction
+/// (see [`sample_weight`]), for `k < min(p.len(), out.len())`.
+pub(crate) fn warped_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut us = [[0.0f32; 2]; CHUNK];
+    let mut ss = [None; CHUNK];
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for (u, &[a, b]) in us[..n].iter_mut().zip(p) {
+            *u = [to_unit_f32(a), to_unit_f32(b)];
+        }
+        g.sample_batch(&us[..n], &mut ss[..n]);
+        for (o, &s) in out[..n].iter_mut().zip(&ss[..n]) {
+            *o = match sample_weight(s)? {
+                Some((_, _, w)) => w,
+                None => WideOf::<I>::splat(0.0),
+            };
+        }
+    }
+    Ok(())
+}
