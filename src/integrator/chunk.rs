@@ -11,6 +11,7 @@
 
 use super::acc::{direction, to_unit_f32};
 use super::{Integrand, IntegrandSample, IntegrateError, WideOf, check_finite};
+use crate::brdf::Brdf;
 use crate::spectrum::{Spectrum, WideSpectrum};
 use core::f64::consts::TAU;
 use glam::Vec3;
@@ -100,4 +101,30 @@ pub(crate) fn warped_values<I: Integrand>(
         }
     }
     Ok(())
+}
+
+/// `out[k] = f_r(wi[k], wo)` where `wi[k]` is `Some` (other elements are
+/// left untouched), for `k < min(wi.len(), out.len())`: one
+/// [`Brdf::eval_batch`] per [`CHUNK`] over the compacted directions, so
+/// integrands that are zero on part of the hemisphere (a light's support,
+/// the horizon) do not evaluate the BRDF there.
+pub(crate) fn brdf_eval_where<B: Brdf>(brdf: &B, wo: Vec3, wi: &[Option<Vec3>], out: &mut [B::Spectrum]) {
+    let wos = [wo; CHUNK];
+    let mut dense = [Vec3::ZERO; CHUNK];
+    let mut index = [0usize; CHUNK];
+    let mut vals = [B::Spectrum::zero(); CHUNK];
+    for (wi, out) in wi.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let mut m = 0;
+        for (k, w) in wi.iter().take(out.len()).enumerate() {
+            if let Some(w) = *w {
+                dense[m] = w;
+                index[m] = k;
+                m += 1;
+            }
+        }
+        brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
+        for (&k, &v) in index[..m].iter().zip(&vals[..m]) {
+            out[k] = v;
+        }
+    }
 }

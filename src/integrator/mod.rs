@@ -286,7 +286,7 @@ pub fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
 }
 
 mod acc;
-mod chunk;
+pub(crate) mod chunk;
 pub mod gauss_legendre;
 pub mod points;
 
