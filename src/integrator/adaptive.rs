@@ -2,7 +2,7 @@
 //! Genz–Malik degree-7/degree-5 rule ([`Adaptive`]).
 
 use super::acc::{self, F32_FLOOR, WideSum};
-use super::chunk;
+use super::chunk::{self, BatchFn};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
 use crate::spectrum::WideSpectrum;
 
@@ -105,12 +105,6 @@ impl<W> Region<W> {
         self.h[0] * self.h[1] / (n * n)
     }
 }
-
-/// Values at a batch of points of `[0,1]²`: `f(p, out)` sets
-/// `out[k] = f(p[k])` for every `k < p.len()` (`out.len() == p.len()`),
-/// or fails on the first non-finite value.
-trait BatchFn<W>: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError> {}
-impl<W, F: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError>> BatchFn<W> for F {}
 
 /// Most regions whose points go to the integrand in one batch
 /// (`4 × 17 = 68` points: the initial 2 × 2 grid, or four cells of a

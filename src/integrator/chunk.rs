@@ -16,10 +16,20 @@ use crate::spectrum::{Spectrum, WideSpectrum};
 use core::f64::consts::TAU;
 use glam::Vec3;
 
-/// Number of points an integrator passes to one call of the batch methods
-/// of [`Integrand`] (and the size of their stack buffers): 64, a multiple
-/// of every SIMD width in use (8 lanes of `f32`).
+/// Most points an integrator passes to one call of the batch methods of
+/// [`Integrand`], and the length of their stack buffers: 64, a multiple of
+/// the SIMD widths in use (8 lanes of `f32`). The buffers of one chunk
+/// (directions, values, samples, their `f64` widenings) take a few KiB for
+/// `f32` and RGB spectra, growing linearly with the channel count of a
+/// sampled spectrum.
 pub const CHUNK: usize = 64;
+
+/// Integrand values at a batch of points of the unit square, as the
+/// quadrature rules consume them: `f(p, out)` sets `out[k] = f(p[k])` for
+/// every `k < p.len()` (`out.len() == p.len()`; any length, chunked
+/// inside), or fails on the first non-finite value in point order.
+pub(crate) trait BatchFn<W>: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError> {}
+impl<W, F: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError>> BatchFn<W> for F {}
 
 /// One draw of the integrand's sampling map as the importance weight
 /// `g(ω)/p(ω)` in `f64`, together with the direction and density.

@@ -4,7 +4,7 @@
 //! sampling map ([`WarpedGaussLegendre`]).
 
 use super::acc::{F32_FLOOR, WideSum};
-use super::chunk::{self, CHUNK};
+use super::chunk::{self, BatchFn, CHUNK};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
 use crate::spectrum::WideSpectrum;
 
@@ -118,12 +118,6 @@ impl UnitRule {
         r
     }
 }
-
-/// Values at a batch of points of `[0,1]²`: `f(p, out)` sets
-/// `out[k] = f(p[k])` for every `k < p.len()` (`out.len() == p.len()`),
-/// or fails on the first non-finite value.
-trait BatchFn<W>: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError> {}
-impl<W, F: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError>> BatchFn<W> for F {}
 
 /// `Σᵢ Σⱼ wᵢ wⱼ f(aᵢ, bⱼ)` over `[0,1]²` with `na × nb` nodes, and the
 /// channel-wise `Σ |wᵢ wⱼ f|` (for the rounding floor). Nodes go to `f` in

@@ -23,6 +23,16 @@
 //! [`DirectionalAlbedo`] adapts a [`Brdf`] and an outgoing direction into
 //! the integrand `g(ωi) = f_r(ωi, ωo) cos θi`, whose integral is the
 //! directional albedo `ρ(ωo)`.
+//!
+//! Every integrator evaluates its nodes or sample points in chunks of
+//! [`CHUNK`] through [`Integrand::eval_batch`], [`Integrand::sample_batch`]
+//! and [`Integrand::pdf_batch`] (fixed-size stack buffers), and accumulates
+//! the values in point order, so an estimate is the same, bit for bit, as
+//! that of a point-by-point loop whenever the batch methods agree with the
+//! scalar ones. [`DirectionalAlbedo`] and the light integrands of
+//! [`crate::light`] forward the chunks to [`Brdf::eval_batch`] /
+//! [`Brdf::sample_batch`] / [`Brdf::pdf_batch`], which is how vectorised
+//! BRDF kernels reach integration.
 
 use crate::brdf::Brdf;
 use crate::frame::cos_theta;

@@ -213,10 +213,11 @@ impl MonteCarlo {
     }
 }
 
-/// The estimators `out[k] = F(u1[k], u2[k])` of a chunk of draws
-/// (`n = u1.len() ≤ CHUNK`, `u2` and `out` at least as long; `u2` is used
-/// by MIS only), through the batch methods of the integrand; the first
-/// non-finite value in draw order is reported.
+/// The estimators `out[k] = F(u1[k], u2[k])` (see [`Strategy`]) of a chunk
+/// of draws (`n = u1.len() ≤ CHUNK`, `u2` and `out` at least as long; `u2`
+/// is used by MIS only), through the batch methods of the integrand; the
+/// first non-finite value in draw order is reported. (The cosine strategy
+/// evaluates `g` at `cos θ = 0` too, where `p = 0`, and ignores it there.)
 fn draw_batch<I: Integrand>(
     g: &I,
     strategy: Strategy,
@@ -230,7 +231,6 @@ fn draw_batch<I: Integrand>(
     let zero = WideOf::<I>::splat(0.0);
     let mut dirs = [Vec3::ZERO; CHUNK];
     let mut vals = [I::Spectrum::zero(); CHUNK];
-    let mut samples = [None; CHUNK];
     let cosine_dirs = |dirs: &mut [Vec3]| {
         for (d, &u) in dirs.iter_mut().zip(u1) {
             *d = if polar {
@@ -254,7 +254,6 @@ fn draw_batch<I: Integrand>(
             cosine_dirs(&mut dirs[..n]);
             g.eval_batch(&dirs[..n], &mut vals[..n]);
             for ((o, v), w) in out.iter_mut().zip(&vals[..n]).zip(&dirs[..n]) {
-                // `g` at cos θ = 0 (p = 0, a null set) is not used.
                 let p = w.z as f64 * FRAC_1_PI;
                 *o = if p <= 0.0 {
                     zero
@@ -264,6 +263,7 @@ fn draw_batch<I: Integrand>(
             }
         }
         Strategy::Integrand => {
+            let mut samples = [None; CHUNK];
             g.sample_batch(u1, &mut samples[..n]);
             for (o, &s) in out.iter_mut().zip(&samples[..n]) {
                 *o = match sample_weight(s)? {
@@ -281,6 +281,7 @@ fn draw_batch<I: Integrand>(
             // there; strategy 2 (the integrand's map) draws.
             cosine_dirs(&mut dirs[..n]);
             let mut pdfs = [0.0f32; CHUNK];
+            let mut samples = [None; CHUNK];
             g.eval_batch(&dirs[..n], &mut vals[..n]);
             g.pdf_batch(&dirs[..n], &mut pdfs[..n]);
             g.sample_batch(u2, &mut samples[..n]);
