@@ -18,7 +18,8 @@ Reference values come from mpmath (`erfc`, `erfinv`) at 60+ digits.
    in f32). Q is returned pre-multiplied by 2√π. The rationals are evaluated
    in f64 (coefficients kept in f64): Horner in f32 would add up to ~6 ulp.
 2. erfcx(y) = P(y)/Q(y), deg 4 / 5, on [0, ERFC_ZERO] (erfc < 2^-150 beyond).
-3. erfinv, in the form of M. Giles, "Approximating the erfinv function",
+3. erfinv (f64 coefficients, evaluated in f64), in the form of M. Giles,
+   "Approximating the erfinv function",
    GPU Computing Gems Jade Edition (2011), ch. 10 / 2010 preprint: with
    q = 1 − |x| and w = −ln(q (2 − q)) = −ln(1 − x²),
      central (w < 5):      erfinv(x) = x · P_c(w − 2.5),              deg 9
@@ -27,6 +28,10 @@ Reference values come from mpmath (`erfc`, `erfinv`) at 60+ digits.
    where S_MAX corresponds to erfcinv(q) = 9 (MAX_SLOPE). Giles' own single
    precision coefficients stop near q ≈ 1e-7; these are refitted (own fit) to
    reach q ≈ 4e-37.
+4. e^r = P(r) on |r| ≤ ln2/2, deg 6, for the Cody–Waite exp kernel.
+
+The slope sampler's fixed-step scheme is checked separately by
+beckmann_slope_sweep.py.
 """
 import mpmath as mp
 import numpy as np
@@ -122,28 +127,6 @@ def remez_linear(basis, g, f, xs, iters=40):
     return best[0]
 
 
-def rounded_numerator(f, xs, deg, centre, denom=None):
-    """Polynomial N(t) = Σ c_k t^k, t = x − centre, with N/denom ≈ f in the
-    minimax relative sense, its coefficients rounded to f32 one at a time,
-    highest degree first, refitting the lower ones after each rounding (they
-    absorb most of the rounding error; only c_0's half-ulp remains)."""
-    d = denom if denom is not None else (lambda x: mp.mpf(1))
-    fixed = {}
-    for k in range(deg, -1, -1):
-        free = list(range(0, k + 1))
-        basis = [(lambda x, j=j: (x - centre) ** j / d(x)) for j in free]
-        g = lambda x: f(x) - sum(c * (x - centre) ** i for i, c in fixed.items()) / d(x)
-        c = remez_linear(basis, g, f, xs)
-        fixed[k] = mp.mpf(f32(c[k]))
-    return [fixed[k] for k in range(deg + 1)]
-
-
-def remez_poly(f, lo, hi, deg, centre, npts=800):
-    """Minimax relative-error polynomial Σ c_k (x − centre)^k on [lo, hi],
-    coefficients rounded to f32 (sequentially, see rounded_numerator)."""
-    return rounded_numerator(f, cheb_grid(lo, hi, npts), deg, centre)
-
-
 def horner(c, t):
     p = mp.mpf(0)
     for k in reversed(range(len(c))):
@@ -199,11 +182,6 @@ def max_rel_err_poly(f, lo, hi, c, centre, n=4000):
     return worst
 
 
-def rust(name, coeffs):
-    body = ", ".join(str(np.float32(float(c))) for c in coeffs)
-    return f"const {name}: [f32; {len(coeffs)}] = [{body}];"
-
-
 def rust64(name, coeffs):
     body = ", ".join(repr(float(c)) for c in coeffs)
     return f"const {name}: [f64; {len(coeffs)}] = [{body}];"
@@ -242,22 +220,27 @@ def main():
     print(rust64("ERFCX_P", P64))
     print(rust64("ERFCX_Q", Q64))
 
-    # 3. erfinv
-    c = remez_poly(erfinv_over_x, mp.mpf(0), mp.mpf(5), 9, mp.mpf("2.5"))
-    c32 = c
-    e = max_rel_err_poly(erfinv_over_x, 0, 5, c32, mp.mpf("2.5"))
-    print(f"// erfinv(x)/x = P(w − 2.5), w ∈ [0, 5]: max rel error {mp.nstr(e, 3)} (f32 coefficients)")
-    print(rust("ERFINV_CENTRAL", c))
+    # 3. erfinv (f64 coefficients, evaluated in f64)
+    c = remez_poly64(erfinv_over_x, mp.mpf(0), mp.mpf(5), 9, mp.mpf("2.5"))
+    e = max_rel_err_poly(erfinv_over_x, 0, 5, c, mp.mpf("2.5"))
+    print(f"// erfinv(x)/x = P(w − 2.5), w ∈ [0, 5]: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
+    print(rust64("ERFINV_CENTRAL", c))
     s_max = mp.sqrt(-mp.log(mp.erfc(9) * (2 - mp.erfc(9))))
     s_max_f = f32(mp.ceil(s_max * 64) / 64)
     print(f"// erfcinv(q) = 9 at s = √w = {mp.nstr(s_max, 10)}")
     for lo, hi, deg, name in [(mp.sqrt(5), mp.mpf(4), 7, "ERFINV_TAIL1"), (mp.mpf(4), mp.mpf(s_max_f), 8, "ERFINV_TAIL2")]:
         centre = mp.mpf(f32((lo + hi) / 2))
-        c = remez_poly(erfcinv_of_s, lo, hi, deg, centre)
-        c32 = c
-        e = max_rel_err_poly(erfcinv_of_s, lo, hi, c32, centre)
-        print(f"// erfcinv = P(s − {f32(centre)!r}), s ∈ [{mp.nstr(lo, 8)}, {mp.nstr(hi, 8)}]: max rel error {mp.nstr(e, 3)} (f32 coefficients)")
-        print(rust(name, c))
+        c = remez_poly64(erfcinv_of_s, lo, hi, deg, centre)
+        e = max_rel_err_poly(erfcinv_of_s, lo, hi, c, centre)
+        print(f"// erfcinv = P(s − {f32(centre)!r}), s ∈ [{mp.nstr(lo, 8)}, {mp.nstr(hi, 8)}]: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
+        print(rust64(name, c))
+
+    # 4. e^r on |r| ≤ ln2/2 for the exp kernel
+    h = mp.log(2) / 2
+    c = remez_poly64(mp.exp, -h, h, 6, mp.mpf(0))
+    e = max_rel_err_poly(mp.exp, -h, h, c, mp.mpf(0))
+    print(f"// e^r = P(r), |r| ≤ ln2/2: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
+    print(rust64("EXP_POLY", c))
 
 
 if __name__ == "__main__":

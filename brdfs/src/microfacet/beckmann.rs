@@ -2,13 +2,12 @@
 
 use super::special::{
     FRAC_1_SQRT_PI, LAMBDA_ZERO_A, MAX_SLOPE, SQRT_PI, beckmann_s, erfcinv, erfcx, erfinv_2p_minus_1,
-    exp_neg_sq, exp_neg_sq64, lambda_from_exp,
+    exp_neg_sq, exp_neg64, lambda_from_exp,
 };
 use super::{
     MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, tan2_theta_robust, unitize,
 };
 use crate::error::{BrdfError, check_range};
-use core::f32::consts::{FRAC_1_PI, PI};
 use radiometry::glam::Vec3;
 
 /// The isotropic Beckmann microfacet distribution.
@@ -63,9 +62,10 @@ const TINY_A: f32 = 9.536_743e-7;
 /// `T(a) = 1 − √π a erfcx(a)` falls smoothly from 1 to `~1/(2a²)`: the erf
 /// form's cancellation for large `a` is inside `T`, which is fitted directly
 /// (rational of degree 4/6, relative error 4.2·10⁻⁹, see `special.rs`), so
-/// nothing cancels at run time. `e^{−a²}` is one `expf` of an exactly split
-/// `a²`; the rational and the final products are evaluated in `f64` and
-/// rounded once.
+/// nothing cancels at run time. `e^{−a²}` is one exponential of the exact
+/// `a²` ([`exp_neg64`](super::special::exp_neg64), a division-free
+/// Cody–Waite + polynomial kernel, 1.9·10⁻⁹); the rational and the products
+/// are evaluated in `f64` and rounded once.
 ///
 /// * `a ≥ 9.7656` (including `+∞`): `0` (the exact value is below half the
 ///   smallest subnormal);
@@ -73,10 +73,10 @@ const TINY_A: f32 = 9.536_743e-7;
 ///   `a < 8.3·10⁻⁴⁰` (subnormal `a`) — consistent with the limit;
 /// * `a ≤ 0` or NaN (grazing or degenerate): `+∞`.
 ///
-/// Never NaN, never negative. Max error 2 ulp of the exact `Λ(a)` at the
-/// given `f32` `a` for results `≥ f32::MIN_POSITIVE` (measured 1.49 ulp over
-/// a dense grid, unit test `lambda_of_a_matches_f64`, against libm's `f64`
-/// `erfc`); subnormal results (`a > 9.0`) to within one subnormal ulp.
+/// Never NaN, never negative. Max error 1 ulp of the exact `Λ(a)` at the
+/// given `f32` `a` for results `≥ f32::MIN_POSITIVE` (unit test
+/// `lambda_of_a_matches_f64`, dense grid, against libm's `f64` `erfc`);
+/// subnormal results (`a > 9.0`) to within one subnormal ulp.
 #[inline]
 pub(crate) fn lambda_of_a(a: f32) -> f32 {
     if a.is_nan() || a <= 0.0 {
@@ -88,19 +88,20 @@ pub(crate) fn lambda_of_a(a: f32) -> f32 {
     if a < TINY_A {
         return (FRAC_1_2SQRT_PI / a as f64 - 0.5) as f32;
     }
-    lambda_from_exp(a as f64, exp_neg_sq64(a))
+    let a = a as f64;
+    lambda_from_exp(a, exp_neg64(a * a))
 }
 
 /// `Λ` of Beckmann straight from `tan²θ` and `α`: `a² = 1/(α² tan²θ)`,
 /// `Λ = e^{−a²} T(a)/(2√π a)`, with `a²` formed in `f64` (so its rounding
-/// is not amplified by `Λ ∝ e^{−a²}`), one `expf` and one `f64` square root
-/// for `a` (the odd powers of `a` in `Λ` make a square root unavoidable).
+/// is not amplified by `Λ ∝ e^{−a²}`), one exponential and one `f64` square
+/// root for `a` (the odd powers of `a` in `Λ` make a square root
+/// unavoidable).
 ///
 /// `tan2 = 0` (normal incidence) gives 0, `tan2 = +∞` (grazing) `+∞`; NaN
 /// and negative `tan2` give `+∞` (degenerate directions are treated as
-/// grazing, so `G1 = 0`). Never NaN, never negative. Max error 2 ulp of the
-/// exact `Λ` of the given `α`, `tan²θ` (measured 1.29 ulp, unit test
-/// `lambda_tan2_matches_f64`).
+/// grazing, so `G1 = 0`). Never NaN, never negative. Max error 1 ulp of the
+/// exact `Λ` of the given `α`, `tan²θ` (unit test `lambda_tan2_matches_f64`).
 #[inline]
 pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
     if tan2.is_nan() || tan2 <= 0.0 {
@@ -113,12 +114,10 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
         return (FRAC_1_2SQRT_PI * libm::sqrt(x) - 0.5) as f32;
     }
     let a2 = 1.0 / x; // +∞ for tan2 = 0
-    if a2 >= (LAMBDA_ZERO_A * LAMBDA_ZERO_A) as f64 {
+    if a2 >= LAMBDA_ZERO_A as f64 * LAMBDA_ZERO_A as f64 {
         return 0.0;
     }
-    let hi = a2 as f32;
-    let e = libm::expf(-hi) as f64 * (1.0 - (a2 - hi as f64));
-    lambda_from_exp(libm::sqrt(a2), e)
+    lambda_from_exp(libm::sqrt(a2), exp_neg64(a2))
 }
 
 impl Beckmann {
@@ -199,6 +198,10 @@ impl Beckmann {
     }
 
     /// The `x̃ ≤ 0` branch of [`sample_slope_x`](Self::sample_slope_x).
+    ///
+    /// The Halley step `n/(1 − n g''/(2g'))`, `n = g/g'`, is written over a
+    /// common denominator so that it costs one division:
+    /// `Δ = 2 g√π H (c − xs) / (4(c − xs)²(1 + g/2) + g√π H (s + 2x(c − xs)))`.
     #[inline]
     fn slope_lower(c: f32, s: f32, u: f32, total2: f32, c0: f32) -> f32 {
         let inv_c0 = 1.0 / c0;
@@ -226,9 +229,8 @@ impl Beckmann {
                 lo = x;
             }
             let den = c - x * s;
-            let gp = 2.0 * den / (SQRT_PI * h);
-            let n = g / gp;
-            let next = x - n / (1.0 + n * (0.5 * s / den + 0.5 * gp + x));
+            let gh = g * SQRT_PI * h;
+            let next = x - 2.0 * gh * den / (4.0 * den * den * (1.0 + 0.5 * g) + gh * (s + 2.0 * x * den));
             x = if next >= lo && next <= hi {
                 next
             } else {
@@ -240,7 +242,9 @@ impl Beckmann {
         x.max(-MAX_SLOPE).min(0.0)
     }
 
-    /// The `x̃ > 0` branch of [`sample_slope_x`](Self::sample_slope_x).
+    /// The `x̃ > 0` branch of [`sample_slope_x`](Self::sample_slope_x); the
+    /// Halley step over a common denominator (one division):
+    /// `Δ = −2φG(c − xs) / (4p(c − xs)(1 + φ/2) − φG(s + 2x(c − xs)))`.
     #[inline]
     fn slope_upper(c: f32, s: f32, u: f32, b: f32, total2: f32, excess: f32) -> f32 {
         let gs = (1.0 - u) * total2;
@@ -257,14 +261,13 @@ impl Beckmann {
         if b < MAX_SLOPE {
             // b = cot θ, s > 0: endpoint bounds.
             let xe = (b - libm::sqrtf(SQRT_PI * gs / (s * exp_neg_sq(b)))).max(0.0);
-            x = x.min(b - libm::sqrtf(SQRT_PI * gs * libm::expf(xe * xe) / s));
+            x = x.min(b - libm::sqrtf(SQRT_PI * gs / (s * exp_neg_sq(xe))));
         }
         x = x.max(0.0);
         let (mut lo, mut hi) = (0.0f32, b);
         for _ in 0..2 {
-            let e = libm::expf(-x * x);
+            let e = exp_neg_sq(x);
             let den = c - x * s;
-            let p = den * e * FRAC_1_SQRT_PI;
             let g = excess + e * (c * erfcx(x) - s * FRAC_1_SQRT_PI);
             let next = if g > 0.0 {
                 let phi = libm::logf(g) - ln_gs;
@@ -273,8 +276,9 @@ impl Beckmann {
                 } else {
                     hi = x;
                 }
-                let n = -phi * g / (2.0 * p);
-                x - n / (1.0 + n * (0.5 * s / den + x - p / g))
+                let p4 = 4.0 * den * e * FRAC_1_SQRT_PI; // 4p
+                let pg = phi * g;
+                x + 2.0 * pg * den / (p4 * den * (1.0 + 0.5 * phi) - pg * (s + 2.0 * x * den))
             } else {
                 // x at (or rounded onto) the end point: step back.
                 hi = x;
@@ -307,23 +311,19 @@ impl MicrofacetDistribution for Beckmann {
         }
     }
 
-    /// `D = exp(−tan²θm/α²) / (π α² cos⁴θm)` with one division:
-    /// `r = 1/(α² cos²θm)`, `D = e^{−sin²θm · r} r² α²/π`.
-    /// For `cos²θm < 10⁻⁸` it is evaluated as
-    /// `exp(−tan²θm/α² − 2 ln cos²θm)/(π α²)` so that the vanishing
-    /// exponential and the exploding `1/cos⁴` never meet as `0·∞`.
+    /// `D = exp(−tan²θm/α²) / (π α² cos⁴θm)` in `f64` with one division:
+    /// `q = α² cos²θm`, `w = 1/(q cos²θm)`, `D = e^{−sin²θm cos²θm w} w/π`.
+    /// In `f64` neither factor can overflow or underflow prematurely (for
+    /// `e^{−x}` to be non-zero, `sin²θm/q ≤ 708` bounds `cos²θm` away from
+    /// 0), so no special grazing form is needed; `cos²θm = 0` gives 0.
     #[inline(always)]
     fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
-        let a2 = self.alpha * self.alpha;
-        let (c2, s2) = (cos2, sin2);
-        let v = if c2 >= 1e-8 {
-            // r ≤ 10¹⁶, r² ≤ 10³²: finite.
-            let r = 1.0 / (c2 * a2);
-            libm::expf(-s2 * r) * (r * r) * (a2 * FRAC_1_PI)
-        } else {
-            libm::expf(-s2 / (c2 * a2) - 2.0 * libm::logf(c2)) / (PI * a2)
-        };
-        finite_nonneg(v)
+        let a = self.alpha as f64;
+        let (c2, s2) = (cos2 as f64, sin2 as f64);
+        let q = a * a * c2;
+        let w = 1.0 / (q * c2); // ≤ 10¹⁹⁰ for c2 ≥ f32 subnormals: finite
+        let v = exp_neg64(s2 * c2 * w) * w * core::f64::consts::FRAC_1_PI;
+        finite_nonneg(v as f32)
     }
 
     /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form) of `ω`
@@ -487,7 +487,7 @@ mod tests {
             let e = ulps(v, r);
             if r >= f32::MIN_POSITIVE as f64 {
                 worst = worst.max(e);
-                assert!(e <= 2.0, "Λ({a}) = {v} vs {r}: {e} ulp");
+                assert!(e <= 1.0, "Λ({a}) = {v} vs {r}: {e} ulp");
             } else {
                 worst_sub = worst_sub.max(e);
                 assert!(e <= 1.0, "Λ({a}) = {v} vs {r}: {e} subnormal ulp");
@@ -531,7 +531,7 @@ mod tests {
                 if r >= f32::MIN_POSITIVE as f64 && r <= f32::MAX as f64 {
                     let e = ulps(v, r);
                     worst = worst.max(e);
-                    assert!(e <= 2.0, "α={alpha} tan²={t2}: {v} vs {r} ({e} ulp)");
+                    assert!(e <= 1.0, "α={alpha} tan²={t2}: {v} vs {r} ({e} ulp)");
                     // Agrees with lambda_of_a at the f32 a.
                     let va = lambda_of_a(a as f32);
                     assert!(ulps(va, r) <= 4.0 * (1.0 + 2.0 * a * a));
