@@ -1,145 +1,137 @@
-//! 8-wide `f32` kernels behind [`Brdf::eval_batch`] (feature `simd`).
+//! 8-wide `f32` kernels behind [`Brdf::eval_batch`], [`Brdf::eval_batch_soa`]
+//! and [`Brdf::pdf_batch`] (feature `simd`).
 //!
-//! # What is vectorised
+//! This module holds the shared vector math (eight directions in
+//! structure-of-arrays form, the chunk drivers for array-of-structures and
+//! structure-of-arrays input, vector `exp`/`ln` helpers, spectrum stores); it
+//! imports nothing from the plugins. Each plugin's kernel lives next to its
+//! scalar code and follows its formula operation for operation:
 //!
-//! | BRDF | kernel |
-//! |---|---|
-//! | [`Microfacet<Ggx, HeightCorrelated, F>`](crate::Microfacet) for every Fresnel `F` | GGX `D`, `Λ`/`G1`, `G2 = 1/(1 + Λ(ωi) + Λ(ωo))` |
-//! | [`Microfacet<Ggx, Separable, F>`](crate::Microfacet) for every Fresnel `F` | GGX `D`, `G2 = G1(ωi) G1(ωo)` |
-//! | [`Lambertian<S>`](crate::Lambertian) for every spectrum `S` (fully vector stores for `S = f32`) | horizon and finiteness tests |
-//! | [`ModifiedPhong<S>`](crate::ModifiedPhong) for every spectrum `S` | normalisation, horizon tests, `δ = 1 − cos α`, vector `exp(n ln(1 − δ))` (not bit-exact: see below) |
+//! | BRDF | `eval_batch` / `eval_batch_soa` | `pdf_batch` | vs scalar |
+//! |---|---|---|---|
+//! | [`Microfacet<Ggx, HeightCorrelated, F>`](crate::Microfacet), every Fresnel `F` | GGX `D` (Walter et al. 2007, eq. 33), projected areas `A = cos θ (1 + Λ)`, `V = 1/(4 (cos θo Ai + cos θi Ao − cos θi cos θo))` (Heitz 2014, eq. 99) | `D/(4 A(ωo))` | 0 ulp |
+//! | [`Microfacet<Ggx, Separable, F>`](crate::Microfacet), every Fresnel `F` | as above, `V = 1/(4 Ai Ao)` (Heitz 2014, eq. 98) | `D/(4 A(ωo))` | 0 ulp |
+//! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet) | scalar loop (see the crate's README) | scalar loop | — |
+//! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
+//! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
+//! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n ln(1 − δ))` | scalar loop | propagated (below) |
+//! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` | scalar loop | propagated (below) |
 //!
-//! Every other plugin keeps the default `eval_batch`, a loop over
-//! [`Brdf::eval`]. The formulas are those of the scalar code: the microfacet
-//! model of Walter et al. 2007 (EGSR, eq. 20) with the GGX distribution
-//! (eq. 33) and its Smith `Λ` (Heitz 2014, JCGT 3(2), eq. 86; `G2` variants
-//! eqs. 98–99); see [`crate::microfacet`] and [`crate::lambertian`].
+//! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
 //!
-//! # Accuracy: bit-identical to `eval` (Phong: propagated tolerance)
+//! # Accuracy
 //!
-//! The GGX and Lambertian kernels perform the *same* IEEE-754 operations as
-//! the scalar code, in
-//! the same order (`+ − × ÷ √` only, all correctly rounded both in `wide`'s
-//! `f32x8` and in scalar `f32`/`libm::sqrtf`; no fused multiply–add, no
-//! reciprocal approximations, no polynomial `exp`/`log`). Each lane is
-//! therefore bit-identical to `eval` of the same pair; the test
-//! `brdfs/tests/batch.rs` checks this (it asserts at most 2 ulp so that a
-//! future FMA-using target would still pass, and reports the measured
-//! maximum: 0 ulp on x86_64, both for the SSE2 baseline and with
-//! `-C target-cpu=native` on an AVX-512/FMA machine).
+//! **Bit-identical kernels.** The microfacet (GGX, every Fresnel term),
+//! Lambertian kernels perform the *same* IEEE-754 operations as the scalar
+//! code, in the same order: `+ − × ÷ √`, comparisons and selects, all
+//! correctly rounded in `wide`'s `f32x8` and in scalar `f32` / `libm::sqrtf`;
+//! no fused multiply–add, no reciprocal estimates, no polynomial `exp`/`log`.
+//! The one transcendental of these kernels, the `hypot` inside the complex
+//! square root of [`Conductor`](crate::Conductor), is `libm::hypotf` called
+//! per lane (it rounds a sum formed in `f64`, and `wide` has no `f64`
+//! conversion). Each lane is therefore bit-identical to `eval` / `pdf` of
+//! the same pair, on every target: `brdfs/tests/batch.rs` asserts 0 ulp for
+//! every kernel, array-of-structures and structure-of-arrays alike, over
+//! proptest cases and a deterministic sweep of 200 000 pairs (measured: 0 ulp
+//! on x86_64, SSE2 baseline and `-C target-cpu=native` with AVX-512).
 //!
-//! The exception is the modified-Phong lobe `cos^n α = exp(n ln(1 − δ))`,
-//! which uses `wide`'s vector `ln_1p`/`exp` (polynomials, a few ulp) rather
-//! than `libm`: its lanes differ from `eval` by the propagated rounding,
-//! relative `≤ 8 (1 + |n ln(1 − δ)|) 2⁻²⁴` (measured worst: 4.3 of these
-//! units), plus an absolute `10⁻⁴⁴ (1 + ks (n+2)/(2π))` where the lobe is
-//! subnormal. `|n ln(1 − δ)|` is the condition number of `exp`, so the
-//! scalar `libm` result carries a rounding error of the same order. Structural
-//! zeros (horizon, degenerate input) are exact.
+//! **Propagated tolerance (Phong family).** `cos^n α = exp(n ln(1 − δ))`
+//! (modified Phong; Blinn–Phong near the pole, `δ = 1 − cos θh`) and
+//! `cos^n θh = exp(n ln cos θh)` (Blinn–Phong away from it) use `wide`'s
+//! polynomial `exp`/`ln`/`ln_1p` rather than `libm`. Every other operation is
+//! the scalar one, so a lane differs from `eval` only by the two functions'
+//! rounding: relative `≤ 8 (1 + |y|) 2⁻²⁴` with `y = n ln cos` (`|y|` is the
+//! condition number of `exp(y)`, so the scalar `libm` result carries an error
+//! of the same order), plus an absolute `10⁻⁴⁴ (1 + ks·norm)` where the lobe
+//! is subnormal. Measured worst over the sweep: see the table in
+//! `brdfs/tests/batch.rs` (modified Phong 4.3, Blinn–Phong 2.1 of these
+//! units). Structural zeros (horizon, degenerate input) are exact.
 //!
-//! GGX inputs outside the kernel's fast path — a direction whose squared length
-//! is outside `[1e-30, 1e30]` (zero, subnormal-tiny, huge, infinite or NaN
-//! components) — are recomputed lane by lane with the scalar `eval`, so the
-//! special-case handling (`0` for degenerate input) is the scalar one by
-//! construction. Below-horizon, grazing (`cos θ = 0` or `1e-7`, or so small
-//! that `cos²θ` underflows) and `ωi = −ωo` inputs stay in the kernel and
-//! return `0` exactly where `eval` does (masked selects replace the scalar
-//! early returns). The Lambertian and Phong kernels evaluate the scalar
-//! degenerate-input tests (finiteness; `try_normalize`'s `‖w‖² ∈ (0, ∞)`)
-//! lane-wise themselves. A tail of `len % 8` elements goes through `eval` (or
-//! the identical scalar expression).
+//! # Special inputs
 //!
-//! # How the override reaches only GGX (no specialisation in Rust)
+//! The microfacet kernels evaluate lanes whose directions are unit to within
+//! `4ε` (`|‖ω‖² − 1| ≤ 4ε`, the scalar hot path's test) in vector form and
+//! recompute any other lane — non-unit, zero, subnormal, huge, infinite or
+//! NaN components: the scalar cold path — with the scalar `eval`/`pdf`, so
+//! the special-case handling is the scalar one by construction.
+//! Below-horizon, grazing (`cos θ = 0`, or so small that `cos²θ` underflows)
+//! and `ωi = −ωo` lanes stay in the kernel and give `0` exactly where `eval`
+//! does (masked selects replace the scalar early returns). The Lambertian and
+//! Phong-family kernels evaluate the scalar degenerate-input tests
+//! (finiteness; `try_normalize`'s `‖w‖² ∈ (0, ∞)`) lane-wise. A tail of
+//! `len % 8` elements goes through the scalar `eval`/`pdf`.
 //!
-//! `Microfacet<D, G, F>` has one generic `impl Brdf`. With this feature its
-//! `eval_batch` asks two hidden, defaulted trait items:
-//! `MicrofacetDistribution::batch_kind(&self) -> DistributionKind` (only
-//! [`Ggx`](crate::Ggx) returns `Ggx { alpha }`) and the associated constant
-//! `ShadowingMasking::BATCH_KIND: G2Kind` (`HeightCorrelated`/`Separable`).
-//! Both are known after monomorphisation, so the `match` folds away; a
-//! third-party distribution or shadowing type inherits the `Scalar` default
-//! and the plain loop. The Fresnel term is evaluated per lane with the
-//! scalar `Fresnel::eval` (it inlines to `1.0` for `NoFresnel`).
-//! [`Lambertian`](crate::Lambertian) and [`ModifiedPhong`](crate::ModifiedPhong)
-//! override `eval_batch` directly (for every spectrum type); for Lambertian with
-//! `S = f32` it stores whole `f32x8` vectors, found with a safe
+//! # How the overrides reach only the supported types
+//!
+//! `Microfacet<D, G, F>` has one generic `impl Brdf`; with this feature its
+//! batch methods ask two hidden, defaulted trait items (not a stable API):
+//! `MicrofacetDistribution::batch_kind` (only [`Ggx`](crate::Ggx) opts in)
+//! and the associated constant `ShadowingMasking::BATCH_KIND`. Both are known
+//! after monomorphisation, so the `match` folds away; a third-party
+//! distribution or shadowing type inherits the scalar loop. The Fresnel
+//! factor goes through the hidden provided method `Fresnel::eval_scaled_x8`
+//! (`F(cos θd)·s` for eight lanes), whose default is the per-lane scalar
+//! `eval`; the four Fresnel types of this crate override it with vector code.
+//! For `S = f32` whole `f32x8` vectors are stored, found with a safe
 //! `core::any::Any` downcast of the output chunk (`Spectrum: 'static`).
 //!
-//! No `unsafe` code: the module uses only `wide`'s safe API, so the crate
-//! keeps `#![forbid(unsafe_code)]`. `wide` selects AVX/SSE at compile time
-//! from the target features (`-C target-cpu=native` to get AVX on x86_64;
-//! the baseline is two SSE `f32x4` halves).
+//! No `unsafe` code: only `wide`'s safe API, so the crate keeps
+//! `#![forbid(unsafe_code)]`. `wide` selects AVX/SSE at compile time from the
+//! target features (`-C target-cpu=native` for AVX on x86_64; the baseline is
+//! two SSE `f32x4` halves).
 //!
 //! ```
-//! use radiometry::{Brdf, glam::Vec3};
-//! use radiometry_brdfs::{Ggx, Microfacet, NoFresnel, Separable};
+//! use radiometry::{Brdf, batch::Vec3Soa, glam::Vec3};
+//! use radiometry_brdfs::{Ggx, Microfacet, Schlick, Separable};
 //! # fn main() -> Result<(), radiometry_brdfs::BrdfError> {
-//! let b = Microfacet::<_, Separable, _>::new(Ggx::new(0.3)?, NoFresnel);
-//! let wi: Vec<Vec3> = (0..19).map(|k| Vec3::new(0.05 * k as f32, -0.3, 0.9)).collect();
-//! let wo = vec![Vec3::new(-0.2, 0.1, 0.7); 19];
+//! let b = Microfacet::<_, Separable, _>::new(Ggx::new(0.3)?, Schlick::new(0.04f32)?);
+//! let wi: Vec<Vec3> = (0..19).map(|k| Vec3::new(0.05 * k as f32, -0.3, 0.9).normalize()).collect();
+//! let wo = vec![Vec3::new(-0.2, 0.1, 0.7).normalize(); 19];
 //! let mut out = vec![0.0f32; 19];
 //! b.eval_batch(&wi, &wo, &mut out);
+//! // The same directions in structure-of-arrays form.
+//! let (x, y, z): (Vec<f32>, Vec<f32>, Vec<f32>) = (
+//!     wi.iter().map(|w| w.x).collect(),
+//!     wi.iter().map(|w| w.y).collect(),
+//!     wi.iter().map(|w| w.z).collect(),
+//! );
+//! let (ox, oy, oz) = (vec![wo[0].x; 19], vec![wo[0].y; 19], vec![wo[0].z; 19]);
+//! let mut soa = vec![0.0f32; 19];
+//! b.eval_batch_soa(Vec3Soa::new(&x, &y, &z), Vec3Soa::new(&ox, &oy, &oz), &mut soa);
 //! for k in 0..19 {
 //!     assert_eq!(out[k].to_bits(), b.eval(wi[k], wo[k]).to_bits());
+//!     assert_eq!(soa[k].to_bits(), out[k].to_bits());
 //! }
 //! # Ok(())
 //! # }
 //! ```
 //!
+//! [`Brdf`]: radiometry::Brdf
 //! [`Brdf::eval_batch`]: radiometry::Brdf::eval_batch
-//! [`Brdf::eval`]: radiometry::Brdf::eval
+//! [`Brdf::eval_batch_soa`]: radiometry::Brdf::eval_batch_soa
+//! [`Brdf::pdf_batch`]: radiometry::Brdf::pdf_batch
 
-use crate::microfacet::{Fresnel, Microfacet, MicrofacetDistribution, ShadowingMasking};
 use core::any::Any;
-use core::f32::consts::{FRAC_1_PI, PI};
-use radiometry::frame::{reflect_z, try_normalize};
+use radiometry::Spectrum;
+use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
-use radiometry::{Brdf, Spectrum};
 use wide::f32x8;
 
 /// Number of lanes of the kernels.
 pub const LANES: usize = 8;
 
-/// Which batched kernel a [`MicrofacetDistribution`] supports (hidden hook;
-/// not a stable API).
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum DistributionKind {
-    /// No kernel: `eval_batch` loops over `eval`.
-    Scalar,
-    /// GGX with this roughness.
-    Ggx {
-        /// The roughness `α`.
-        alpha: f32,
-    },
-}
-
-/// Which batched `G2` a [`ShadowingMasking`] supports (hidden hook; not a
-/// stable API).
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum G2Kind {
-    /// No kernel: `eval_batch` loops over `eval`.
-    Scalar,
-    /// `1/(1 + Λ(ωi) + Λ(ωo))`.
-    HeightCorrelated,
-    /// `G1(ωi) G1(ωo)`.
-    Separable,
-}
-
-/// Eight vectors in structure-of-arrays form.
+/// Eight directions in structure-of-arrays form.
 #[derive(Clone, Copy)]
-struct V8 {
-    x: f32x8,
-    y: f32x8,
-    z: f32x8,
+pub(crate) struct V8 {
+    pub(crate) x: f32x8,
+    pub(crate) y: f32x8,
+    pub(crate) z: f32x8,
 }
 
 impl V8 {
+    /// Gathers eight [`Vec3`] (array-of-structures input).
     #[inline(always)]
-    fn load(v: &[Vec3; LANES]) -> V8 {
+    pub(crate) fn from_aos(v: &[Vec3; LANES]) -> V8 {
         V8 {
             x: f32x8::new(core::array::from_fn(|k| v[k].x)),
             y: f32x8::new(core::array::from_fn(|k| v[k].y)),
@@ -147,14 +139,44 @@ impl V8 {
         }
     }
 
+    /// Loads eight consecutive components of each axis (structure-of-arrays
+    /// input): three plain vector loads.
+    #[inline(always)]
+    pub(crate) fn from_soa(x: &[f32; LANES], y: &[f32; LANES], z: &[f32; LANES]) -> V8 {
+        V8 {
+            x: f32x8::new(*x),
+            y: f32x8::new(*y),
+            z: f32x8::new(*z),
+        }
+    }
+
+    /// Lane `k` as a [`Vec3`] (exact).
+    #[inline(always)]
+    pub(crate) fn lane(&self, k: usize) -> Vec3 {
+        Vec3::new(self.x.as_array()[k], self.y.as_array()[k], self.z.as_array()[k])
+    }
+
     /// `(x·x' + y·y') + z·z'`, glam's order.
     #[inline(always)]
-    fn dot(self, o: V8) -> f32x8 {
+    pub(crate) fn dot(self, o: V8) -> f32x8 {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
+    /// `‖w‖²` in glam's order.
     #[inline(always)]
-    fn div(self, s: f32x8) -> V8 {
+    pub(crate) fn length_squared(self) -> f32x8 {
+        self.dot(self)
+    }
+
+    /// `x² + y²` (`sin²θ` of a unit direction).
+    #[inline(always)]
+    pub(crate) fn xy_length_squared(self) -> f32x8 {
+        self.x * self.x + self.y * self.y
+    }
+
+    /// Component-wise quotient by `s` (glam's `Vec3 / f32`).
+    #[inline(always)]
+    pub(crate) fn div(self, s: f32x8) -> V8 {
         V8 {
             x: self.x / s,
             y: self.y / s,
@@ -162,200 +184,54 @@ impl V8 {
         }
     }
 
+    /// Component-wise sum.
     #[inline(always)]
-    fn add(self, o: V8) -> V8 {
+    pub(crate) fn add(self, o: V8) -> V8 {
         V8 {
             x: self.x + o.x,
             y: self.y + o.y,
             z: self.z + o.z,
         }
     }
+
+    /// Mask of the lanes whose three components are finite.
+    #[inline(always)]
+    pub(crate) fn is_finite(self) -> f32x8 {
+        self.x.is_finite() & self.y.is_finite() & self.z.is_finite()
+    }
+
+    /// Mask of the lanes that are unit to within `4ε`
+    /// (`|‖w‖² − 1| ≤ 4ε`, the microfacet hot path's `is_unit`).
+    #[inline(always)]
+    pub(crate) fn is_unit(self) -> f32x8 {
+        (self.length_squared() - f32x8::ONE)
+            .abs()
+            .simd_le(f32x8::splat(4.0 * f32::EPSILON))
+    }
+
+    /// `radiometry::frame::try_normalize` lane-wise: `(w/√‖w‖², mask)` where
+    /// the mask holds `‖w‖² ∈ (0, ∞)` (the lanes `try_normalize` accepts).
+    #[inline(always)]
+    pub(crate) fn try_normalize(self) -> (V8, f32x8) {
+        let l2 = self.length_squared();
+        let ok = l2.simd_gt(f32x8::ZERO) & l2.is_finite();
+        (self.div(l2.sqrt()), ok)
+    }
 }
 
 /// `finite_nonneg`: `x > 0 ? min(x, f32::MAX) : 0` (NaN → 0).
 #[inline(always)]
-fn finite_nonneg(x: f32x8) -> f32x8 {
+pub(crate) fn finite_nonneg(x: f32x8) -> f32x8 {
     x.simd_gt(f32x8::ZERO)
         .select(x.min(f32x8::splat(f32::MAX)), f32x8::ZERO)
 }
 
-/// Scalar fallback: `out[k] = b.eval(wi[k], wo[k])`.
-#[inline]
-fn scalar<B: Brdf>(b: &B, wi: &[Vec3], wo: &[Vec3], out: &mut [B::Spectrum]) {
-    for ((o, &a), &c) in out.iter_mut().zip(wi).zip(wo) {
-        *o = b.eval(a, c);
-    }
-}
-
-/// `Brdf::eval_batch` of [`Microfacet`]: the GGX kernel when `D` and `G`
-/// opt in through the hidden hooks, else the scalar loop.
-#[inline]
-pub(crate) fn microfacet_eval_batch<D, G, F>(
-    b: &Microfacet<D, G, F>,
-    wi: &[Vec3],
-    wo: &[Vec3],
-    out: &mut [F::Spectrum],
-) where
-    D: MicrofacetDistribution,
-    G: ShadowingMasking,
-    F: Fresnel,
-{
-    match (b.distribution.batch_kind(), G::BATCH_KIND) {
-        (DistributionKind::Ggx { alpha }, G2Kind::HeightCorrelated) => {
-            ggx_batch::<false, _>(b, alpha, wi, wo, out)
-        }
-        (DistributionKind::Ggx { alpha }, G2Kind::Separable) => ggx_batch::<true, _>(b, alpha, wi, wo, out),
-        _ => scalar(b, wi, wo, out),
-    }
-}
-
-/// Drives [`ggx_x8`] over whole chunks of 8 and `eval` over the tail.
-#[inline]
-fn ggx_batch<const SEPARABLE: bool, B>(b: &B, alpha: f32, wi: &[Vec3], wo: &[Vec3], out: &mut [B::Spectrum])
-where
-    B: Brdf + FresnelOf,
-{
-    let n = wi.len().min(wo.len()).min(out.len());
-    let (wi, wo, out) = (&wi[..n], &wo[..n], &mut out[..n]);
-    let (ci, ti) = wi.as_chunks::<LANES>();
-    let (co, to) = wo.as_chunks::<LANES>();
-    let (cout, tout) = out.as_chunks_mut::<LANES>();
-    for ((a, c), o) in ci.iter().zip(co).zip(cout.iter_mut()) {
-        let (s, cos_d, fallback) = ggx_x8::<SEPARABLE>(alpha, V8::load(a), V8::load(c));
-        let (s, cos_d) = (s.to_array(), cos_d.to_array());
-        for k in 0..LANES {
-            o[k] = if fallback & (1 << k) != 0 {
-                b.eval(a[k], c[k])
-            } else if s[k] == 0.0 {
-                B::Spectrum::zero()
-            } else {
-                b.fresnel_times(cos_d[k], s[k])
-            };
-        }
-    }
-    scalar(b, ti, to, tout);
-}
-
-/// Access to `F(cos θd) · s` of a microfacet BRDF without naming `D, G`.
-trait FresnelOf: Brdf {
-    fn fresnel_times(&self, cos_d: f32, s: f32) -> Self::Spectrum;
-}
-
-impl<D, G, F> FresnelOf for Microfacet<D, G, F>
-where
-    D: MicrofacetDistribution,
-    G: ShadowingMasking,
-    F: Fresnel,
-{
-    /// The last line of `Microfacet::eval`: `F(cos θd) · s`.
-    #[inline(always)]
-    fn fresnel_times(&self, cos_d: f32, s: f32) -> F::Spectrum {
-        self.fresnel.eval(cos_d) * s
-    }
-}
-
-/// GGX `A(ω) = (cos θ + √(cos²θ + α² sin²θ))/2` of a unit `w`
-/// (`Ggx::projected_area` of the scalar code).
+/// `(1 − δ)^n` for `δ = 1 − cos` (`pow_one_minus` of the scalar code):
+/// `0` for `δ ≥ 1` or NaN, `1` for `δ ≤ 0`, else `exp(n · ln(1 − δ))` with
+/// `wide`'s `ln_1p` and `exp` (polynomial approximations, a few ulp;
+/// `ln_1p` keeps relative accuracy for tiny `δ`).
 #[inline(always)]
-fn ggx_area(a2: f32x8, w: V8) -> f32x8 {
-    f32x8::splat(0.5) * (w.z + (w.z * w.z + a2 * (w.x * w.x + w.y * w.y)).sqrt())
-}
-
-/// One chunk of `Microfacet<Ggx, G, F>::eval` without the Fresnel factor.
-///
-/// Returns `(s, cos θd, fallback)` where `s = finite_nonneg(D V)` (0 where
-/// `eval` returns 0), `cos θd = min(1, |ωi + ωo|/2)`, and `fallback` has
-/// bit `k` set when lane `k` must be recomputed by `eval` (a direction that
-/// is not unit to within `4ε`: `eval`'s cold path).
-#[inline(always)]
-fn ggx_x8<const SEPARABLE: bool>(alpha: f32, wi: V8, wo: V8) -> (f32x8, f32x8, u32) {
-    let one = f32x8::ONE;
-    let zero = f32x8::ZERO;
-    let four = f32x8::splat(4.0);
-    let alpha = f32x8::splat(alpha);
-
-    // is_unit of both directions, else the scalar (cold) path.
-    let tol = f32x8::splat(4.0 * f32::EPSILON);
-    let unit_i = (wi.dot(wi) - one).abs().simd_le(tol);
-    let unit_o = (wo.dot(wo) - one).abs().simd_le(tol);
-    let fallback = !(unit_i & unit_o);
-
-    // Half::of: both strictly above the horizon, |h|² > 1e-14, one division.
-    let up = wi.z.simd_gt(zero) & wo.z.simd_gt(zero);
-    let h = wi.add(wo);
-    let len2 = h.dot(h);
-    let h_ok = len2.simd_gt(f32x8::splat(1e-14));
-    let inv = one / len2;
-    let cos2 = (h.z * h.z) * inv;
-    let sin2 = (h.x * h.x + h.y * h.y) * inv;
-
-    // Ggx::d_cos2.
-    let a2 = alpha * alpha;
-    let t = a2 * cos2 + sin2;
-    let d = finite_nonneg(a2 / (f32x8::splat(PI) * t * t));
-
-    // ShadowingMasking::visibility from the projected areas.
-    let (ai, ao) = (ggx_area(a2, wi), ggx_area(a2, wo));
-    let v = if SEPARABLE {
-        one / (four * (ai * ao))
-    } else {
-        one / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
-    };
-
-    let s = finite_nonneg(d * v);
-    let s = (up & h_ok).select(s, zero);
-    // cos θd = |ωi + ωo|/2, as the scalar `Half::cos_theta_d`.
-    let cos_d = (f32x8::splat(0.5) * len2.sqrt()).min(one);
-    (s, cos_d, fallback.to_bitmask())
-}
-
-/// `Brdf::eval_batch` of [`Lambertian`](crate::Lambertian):
-/// `out[k] = value` when `cos θi > 0`, `cos θo > 0` and both directions are
-/// finite, else 0 — the scalar test of `Lambertian::eval`, with `value =
-/// ρ/π` computed by the caller exactly as `eval` computes it.
-#[inline]
-pub(crate) fn lambertian_eval_batch<S: Spectrum>(value: S, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-    let n = wi.len().min(wo.len()).min(out.len());
-    let (wi, wo, out) = (&wi[..n], &wo[..n], &mut out[..n]);
-    let (ci, ti) = wi.as_chunks::<LANES>();
-    let (co, to) = wo.as_chunks::<LANES>();
-    let (cout, tout) = out.as_chunks_mut::<LANES>();
-    let zero = f32x8::ZERO;
-    // `Some(ρ/π)` exactly when `S = f32`: then whole vectors are stored.
-    let mono = (&value as &dyn Any)
-        .downcast_ref::<f32>()
-        .map(|&v| f32x8::splat(v));
-    for ((a, c), o) in ci.iter().zip(co).zip(cout.iter_mut()) {
-        let (a8, c8) = (V8::load(a), V8::load(c));
-        let finite = a8.x.is_finite()
-            & a8.y.is_finite()
-            & a8.z.is_finite()
-            & c8.x.is_finite()
-            & c8.y.is_finite()
-            & c8.z.is_finite();
-        let mask = a8.z.simd_gt(zero) & c8.z.simd_gt(zero) & finite;
-        match (mono, (o as &mut dyn Any).downcast_mut::<[f32; LANES]>()) {
-            (Some(v), Some(o32)) => *o32 = mask.select(v, zero).to_array(),
-            _ => {
-                let bits = mask.to_bitmask();
-                for (k, ok) in o.iter_mut().enumerate() {
-                    *ok = if bits & (1 << k) != 0 { value } else { S::zero() };
-                }
-            }
-        }
-    }
-    for ((o, a), c) in tout.iter_mut().zip(ti).zip(to) {
-        let ok = a.z > 0.0 && c.z > 0.0 && a.is_finite() && c.is_finite();
-        *o = if ok { value } else { S::zero() };
-    }
-}
-
-/// `cos^n α = (1 − δ)^n` of the modified-Phong lobe (`pow_one_minus` of the
-/// scalar code): `0` for `δ ≥ 1` or NaN, `1` for `δ ≤ 0`, else
-/// `exp(n · ln(1 − δ))` with `wide`'s `ln_1p` and `exp` (polynomial
-/// approximations, a few ulp; `ln_1p` keeps relative accuracy for tiny `δ`).
-#[inline(always)]
-fn pow_one_minus(delta: f32x8, n: f32) -> f32x8 {
+pub(crate) fn pow_one_minus(delta: f32x8, n: f32) -> f32x8 {
     let zero = f32x8::ZERO;
     let one = f32x8::ONE;
     let lobe = (f32x8::splat(n) * (-delta).ln_1p()).exp();
@@ -363,64 +239,131 @@ fn pow_one_minus(delta: f32x8, n: f32) -> f32x8 {
     (delta.simd_ge(one) | delta.is_nan()).select(zero, lobe)
 }
 
-/// `Brdf::eval_batch` of [`ModifiedPhong`](crate::ModifiedPhong):
-/// `f = kd/π + ks (n+2)/(2π) cos^n α` (Lafortune & Willems 1994), zero unless
-/// both (normalised) directions are strictly above the horizon.
-///
-/// Everything but `cos^n α` is bit-identical to `eval`; `cos^n α =
-/// exp(n ln(1 − δ))` uses `wide`'s vector `ln_1p`/`exp` instead of `libm`,
-/// so lanes differ from `eval` by the propagated rounding of the exponent:
-/// relative `≲ (c₁ + c₂ |n ln(1 − δ)|) 2⁻²⁴` (the condition number of
-/// `exp(y)` is `|y|`; the test uses `c₁ = c₂ = 8`), plus an absolute
-/// `≈ 10⁻⁴⁵ ks (n+2)/(2π)` where `cos^n α` is subnormal or below `e^{−103.6}`.
-#[inline]
-pub(crate) fn phong_eval_batch<S: Spectrum>(kd: S, ks: S, n: f32, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-    let len = wi.len().min(wo.len()).min(out.len());
-    let (wi, wo, out) = (&wi[..len], &wo[..len], &mut out[..len]);
-    let (ci, ti) = wi.as_chunks::<LANES>();
-    let (co, to) = wo.as_chunks::<LANES>();
-    let (cout, tout) = out.as_chunks_mut::<LANES>();
-    let zero = f32x8::ZERO;
-    let diffuse = kd * FRAC_1_PI;
-    let norm = (n + 2.0) * (0.5 * FRAC_1_PI);
-    for ((a, c), o) in ci.iter().zip(co).zip(cout.iter_mut()) {
-        // `try_normalize`: `w/√‖w‖²` when `‖w‖² ∈ (0, ∞)`, else degenerate.
-        let (a, c) = (V8::load(a), V8::load(c));
-        let (la, lc) = (a.dot(a), c.dot(c));
-        let ok = la.simd_gt(zero) & la.is_finite() & lc.simd_gt(zero) & lc.is_finite();
-        let (a, c) = (a.div(la.sqrt()), c.div(lc.sqrt()));
-        let up = ok & a.z.simd_gt(zero) & c.z.simd_gt(zero);
-        // δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α.
-        let d = V8 {
-            x: a.x - (-c.x),
-            y: a.y - (-c.y),
-            z: a.z - c.z,
-        };
-        let delta = f32x8::splat(0.5) * d.dot(d);
-        let lobe = pow_one_minus(delta, n).to_array();
-        let bits = up.to_bitmask();
-        for (k, ok) in o.iter_mut().enumerate() {
-            *ok = if bits & (1 << k) != 0 {
-                diffuse + ks * (norm * lobe[k])
-            } else {
-                S::zero()
-            };
+/// `x^n` for `x ∈ (0, 1]` and `n ≥ 0` (`libm::powf` of the scalar code) as
+/// `exp(n ln x)` with `wide`'s `ln`/`exp`. `wide`'s `ln` maps subnormal
+/// arguments to `−∞`, so those are scaled by `2²⁴` first
+/// (`ln x = ln(2²⁴ x) − 24 ln 2`); `n = 0` gives exactly 1 (`powf(x, 0)`).
+/// Lanes outside `(0, 1]` are unspecified (the caller masks them).
+#[inline(always)]
+pub(crate) fn pow_unit(x: f32x8, n: f32) -> f32x8 {
+    if n == 0.0 {
+        return f32x8::ONE;
+    }
+    let tiny = x.simd_lt(f32x8::splat(f32::MIN_POSITIVE));
+    let scaled = tiny.select(x * f32x8::splat(16_777_216.0), x);
+    let ln = scaled.ln() - tiny.select(f32x8::splat(24.0 * core::f32::consts::LN_2), f32x8::ZERO);
+    (f32x8::splat(n) * ln).exp()
+}
+
+/// Stores eight spectra `out[k] = S::from_fn(|c| channel(c)[k])`, calling
+/// `channel` once per channel. For `S = f32` this is one whole-vector store
+/// (a safe `Any` downcast, folded at monomorphisation).
+#[inline(always)]
+pub(crate) fn store<S: Spectrum>(out: &mut [S; LANES], mut channel: impl FnMut(usize) -> f32x8) {
+    if let Some(o) = (out as &mut dyn Any).downcast_mut::<[f32; LANES]>() {
+        *o = channel(0).to_array();
+        return;
+    }
+    // Channels in groups of at most `GROUP` (a bounded stack buffer).
+    const GROUP: usize = 16;
+    let mut base = 0;
+    while base < S::CHANNELS {
+        let m = (S::CHANNELS - base).min(GROUP);
+        let mut buf = [[0.0f32; LANES]; GROUP];
+        for (c, b) in buf.iter_mut().enumerate().take(m) {
+            *b = channel(base + c).to_array();
+        }
+        for (k, o) in out.iter_mut().enumerate() {
+            let old = *o;
+            *o = S::from_fn(|c| {
+                if c >= base && c < base + m {
+                    buf[c - base][k]
+                } else {
+                    old.channel(c)
+                }
+            });
+        }
+        base += m;
+    }
+}
+
+/// A kernel over eight `(ωi, ωo)` pairs with its scalar counterpart for the
+/// tail.
+pub(crate) trait Kernel8 {
+    /// The value per pair.
+    type Out;
+    /// Writes the eight values of one chunk.
+    fn x8(&self, wi: V8, wo: V8, out: &mut [Self::Out; LANES]);
+    /// The scalar value of one pair (the tail; what `x8` must equal).
+    fn one(&self, wi: Vec3, wo: Vec3) -> Self::Out;
+}
+
+/// The inputs and output of one batch call, array-of-structures or
+/// structure-of-arrays: `out[k] = f(ωi[k], ωo[k])` for
+/// `k < min(len(ωi), len(ωo), len(out))`.
+pub(crate) enum Batch<'a, O> {
+    /// `&[Vec3]` inputs ([`Brdf::eval_batch`](radiometry::Brdf::eval_batch)).
+    Aos(&'a [Vec3], &'a [Vec3], &'a mut [O]),
+    /// [`Vec3Soa`] inputs ([`Brdf::eval_batch_soa`](radiometry::Brdf::eval_batch_soa)).
+    Soa(Vec3Soa<'a>, Vec3Soa<'a>, &'a mut [O]),
+}
+
+impl<O> Batch<'_, O> {
+    /// Runs `k` over whole chunks of eight and `k.one` over the tail.
+    #[inline(always)]
+    pub(crate) fn run<K: Kernel8<Out = O>>(self, k: &K) {
+        match self {
+            Batch::Aos(wi, wo, out) => {
+                let n = wi.len().min(wo.len()).min(out.len());
+                let (wi, wo, out) = (&wi[..n], &wo[..n], &mut out[..n]);
+                let (ci, ti) = wi.as_chunks::<LANES>();
+                let (co, to) = wo.as_chunks::<LANES>();
+                let (cout, tout) = out.as_chunks_mut::<LANES>();
+                for ((a, c), o) in ci.iter().zip(co).zip(cout) {
+                    k.x8(V8::from_aos(a), V8::from_aos(c), o);
+                }
+                for ((o, &a), &c) in tout.iter_mut().zip(ti).zip(to) {
+                    *o = k.one(a, c);
+                }
+            }
+            Batch::Soa(wi, wo, out) => {
+                let n = wi.len().min(wo.len()).min(out.len());
+                let (wi, wo, out) = (wi.truncate(n), wo.truncate(n), &mut out[..n]);
+                let (ix, _) = wi.x.as_chunks::<LANES>();
+                let (iy, _) = wi.y.as_chunks::<LANES>();
+                let (iz, _) = wi.z.as_chunks::<LANES>();
+                let (ox, _) = wo.x.as_chunks::<LANES>();
+                let (oy, _) = wo.y.as_chunks::<LANES>();
+                let (oz, _) = wo.z.as_chunks::<LANES>();
+                let (cout, tout) = out.as_chunks_mut::<LANES>();
+                let inputs = ix.iter().zip(iy).zip(iz).zip(ox.iter().zip(oy).zip(oz));
+                for ((((a, b), c), ((d, e), f)), o) in inputs.zip(cout) {
+                    k.x8(V8::from_soa(a, b, c), V8::from_soa(d, e, f), o);
+                }
+                let start = n - tout.len();
+                for (j, o) in (start..n).zip(tout) {
+                    let a = Vec3::new(wi.x[j], wi.y[j], wi.z[j]);
+                    let c = Vec3::new(wo.x[j], wo.y[j], wo.z[j]);
+                    *o = k.one(a, c);
+                }
+            }
         }
     }
-    for ((o, &a), &c) in tout.iter_mut().zip(ti).zip(to) {
-        *o = match (try_normalize(a), try_normalize(c)) {
-            (Some(a), Some(c)) if a.z > 0.0 && c.z > 0.0 => {
-                let delta = 0.5 * (a - reflect_z(c)).length_squared();
-                let lobe = if delta.is_nan() || delta >= 1.0 {
-                    0.0
-                } else if delta <= 0.0 {
-                    1.0
-                } else {
-                    libm::expf(n * libm::log1pf(-delta))
-                };
-                diffuse + ks * (norm * lobe)
+
+    /// The plain loop `out[k] = f(ωi[k], ωo[k])` (no kernel).
+    #[inline(always)]
+    pub(crate) fn scalar(self, mut f: impl FnMut(Vec3, Vec3) -> O) {
+        match self {
+            Batch::Aos(wi, wo, out) => {
+                for ((o, &a), &c) in out.iter_mut().zip(wi).zip(wo) {
+                    *o = f(a, c);
+                }
             }
-            _ => S::zero(),
-        };
+            Batch::Soa(wi, wo, out) => {
+                for ((o, a), c) in out.iter_mut().zip(wi.iter()).zip(wo.iter()) {
+                    *o = f(a, c);
+                }
+            }
+        }
     }
 }
