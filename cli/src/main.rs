@@ -7,6 +7,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+mod bench;
 mod model;
 mod reference;
 mod sensor_cmd;
@@ -123,6 +124,11 @@ enum Command {
     /// slanted edge (`edge`).
     #[command(subcommand)]
     Sensor(sensor_cmd::SensorCommand),
+    /// Single-thread throughput of every BRDF plugin's eval / eval_batch / eval_batch_soa / pdf / pdf_batch /
+    /// sample, also as fractions of this CPU's limits timed in the same run (a reference GGX kernel, scalar
+    /// and auto-vectorised, and the memory-stream bound).
+    #[command(after_help = bench::AFTER_HELP)]
+    Bench(bench::BenchArgs),
 }
 
 fn spec_error(e: spec::SpecError) -> ExitCode {
@@ -302,6 +308,7 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Sensor(cmd) => sensor_cmd::run(cmd),
+        Command::Bench(args) => bench::run(args),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
                 println!("{}", i.name());

@@ -234,7 +234,7 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
         return Some(w);
     }
     if (1e-30..=1e30).contains(&l2) {
-        return Some(w / libm::sqrtf(l2));
+        return Some(w * (1.0 / libm::sqrtf(l2)));
     }
     let s = w.abs().max_element();
     if !(s > 0.0 && s.is_finite()) {
@@ -243,7 +243,7 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
     let v = w / s;
     let l2 = v.length_squared();
     if l2 > 0.0 && l2.is_finite() {
-        Some(v / libm::sqrtf(l2))
+        Some(v * (1.0 / libm::sqrtf(l2)))
     } else {
         None
     }
@@ -510,7 +510,7 @@ where
     /// `V = G2/(4 cos θi cos θo)` of [`ShadowingMasking::visibility`]. Non-unit,
     /// degenerate or non-finite input goes to a `#[cold]` path that
     /// normalises robustly first.
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
         if is_unit(wi) && is_unit(wo) {
             self.eval_unit(wi, wo)

@@ -1,0 +1,695 @@
+//! `radiometry bench`: single-thread throughput of every BRDF plugin's hot
+//! paths, each figure also given as a fraction of this CPU's limits measured
+//! in the same run (the kernels of [`reference`]).
+//!
+//! Every timed pass is an `#[inline(never)]` function whose arguments (the
+//! BRDF, the input slices, the output slice) go through
+//! [`std::hint::black_box`]; nothing is black-boxed per element, so the
+//! loops are compiled as a renderer's loops would be. Outputs are written to
+//! memory, so no work can be dropped as dead.
+
+mod reference;
+
+use crate::{Format, json_num};
+use radiometry::batch::Vec3Soa;
+use radiometry::frame::spherical_direction;
+use radiometry::glam::Vec3;
+use radiometry::{Brdf, BrdfSample};
+use radiometry_brdfs::{
+    Beckmann, BlinnPhong, Conductor, Ggx, HeightCorrelated, Lambertian, Microfacet, ModifiedPhong, NoFresnel,
+    Schlick, Separable,
+};
+use std::hint::black_box;
+use std::io::IsTerminal;
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+/// Help text after the options (`radiometry bench --help`).
+pub const AFTER_HELP: &str = "\
+Plugins (F = 1 unless a Fresnel term is named):
+  lambertian                   Lambertian, albedo 0.5 (f32)
+  modified-phong-n100          ModifiedPhong kd 0.3, ks 0.7, n 100 (f32)
+  blinn-phong-n100             BlinnPhong kd 0.3, ks 0.7, n 100 (f32)
+  ggx-hc-a0.3                  Microfacet<Ggx, HeightCorrelated, NoFresnel>, α 0.3 (f32)
+  ggx-sep-a0.3                 Microfacet<Ggx, Separable, NoFresnel>, α 0.3 (f32)
+  ggx-hc-schlick-rgb-a0.3      Microfacet<Ggx, HeightCorrelated, Schlick<Vec3>>, f0 (1.0, 0.71, 0.29) (Vec3)
+  ggx-hc-conductor-rgb-a0.3    Microfacet<Ggx, HeightCorrelated, Conductor<Vec3>>, gold η, k (Vec3)
+  beckmann-hc-a0.3             Microfacet<Beckmann, HeightCorrelated, NoFresnel>, α 0.3 (f32)
+
+Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
+  eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
+  eval_batch      brdf.eval_batch(&wi, &wo, &mut out)              AoS &[Vec3]
+  eval_batch_soa  brdf.eval_batch_soa(wi_soa, wo_soa, &mut out)    SoA, radiometry::batch::Vec3Soa
+  pdf             for k { out[k] = brdf.pdf(wi[k], wo[k]) }
+  pdf_batch       brdf.pdf_batch(&wi, &wo, &mut out)
+  sample          for k { out[k] = brdf.sample(wo[k], u[k]) }      stores the Option<BrdfSample>
+Inputs: deterministic direction pairs spread over the upper hemisphere (θ < 88.8°, golden-ratio
+sequences), u in [0,1)².
+
+This CPU's limits, timed in the same process on the same inputs:
+  reference-ggx-scalar  GGX α 0.3, height-correlated Smith, F = 1, as a plain scalar loop over
+                        AoS Vec3 with no input checks:  h = normalize(wi + wo);
+                        D = α²/(π(α²h_z² + h_x² + h_y²)²);  Λ(w) = (sqrt(1 + α² tan²θ) − 1)/2;
+                        f = D/(1 + Λi + Λo)/(4 z_i z_o)
+  reference-ggx-soa     the same formula over SoA &[f32] slices, a branch-free loop LLVM
+                        auto-vectorises
+  stream                out[k] = x_i + y_i + z_i + x_o + y_o + z_o over SoA slices
+                        (reads 24 B, writes 4 B per element): the memory-stream bound
+
+Columns:
+  m_per_s      million elements (pairs, or samples) per second, single thread
+  ns_per_elem  1000 / m_per_s
+  vs_ref       m_per_s / m_per_s of the reference at the same n: reference-ggx-scalar for the
+               scalar paths (eval, pdf, sample), reference-ggx-soa for the batch paths
+               (eval_batch, eval_batch_soa, pdf_batch); json key `ref` names it
+  vs_stream    m_per_s / m_per_s of stream at the same n
+
+Timing: per measurement a warm-up, then repetitions of whole passes over the n elements (each
+repetition about a tenth of the minimum time, at least one pass) until at least 50 ms
+(--quick: 10 ms) in total and at least 3 repetitions; the figure is the BEST (fastest)
+repetition. The references are timed before and after the plugins and the best
+is kept. The machine's other load only slows runs down, so best-of is the least noisy estimate
+of the achievable rate.
+
+Build for meaningful numbers (release; the 8-wide kernels of radiometry-brdfs; the CPU's
+own vector width for them and for the auto-vectorised reference):
+  RUSTFLAGS=\"-C target-cpu=native\" cargo run --release -p radiometry-cli --features simd -- bench
+The header says which SIMD target features were compiled in and which the CPU has.";
+
+/// `radiometry bench` options.
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// Only n = 4096, 10 ms per measurement (about 1 s in all; the full run takes about 20 s).
+    #[arg(long)]
+    quick: bool,
+    /// Output format (json: {"header": {...}, "rows": [{plugin, path, n, m_per_s, ns_per_elem, vs_ref,
+    /// vs_stream, ref}]}).
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Minimum timed milliseconds per measurement (overrides 50 / --quick 10; for tests).
+    #[arg(long, hide = true)]
+    min_time_ms: Option<f64>,
+}
+
+/// Whether a path is a batch call (compared with the SoA reference) rather
+/// than a scalar loop (compared with the scalar reference).
+fn is_batch(path: &str) -> bool {
+    matches!(path, "eval_batch" | "eval_batch_soa" | "pdf_batch")
+}
+
+const REF_SCALAR: &str = "reference-ggx-scalar";
+const REF_SOA: &str = "reference-ggx-soa";
+const STREAM: &str = "stream";
+/// α of the reference GGX (that of the `ggx-hc-a0.3` plugin).
+const REF_ALPHA: f32 = 0.3;
+/// A repetition lasts about `min_time / REP_SLICES` (at least one pass):
+/// short repetitions give the best-of more chances to miss the machine's
+/// other load.
+const REP_SLICES: u32 = 10;
+/// Repetitions per measurement, at least (slow passes at n = 2²⁰ are one
+/// pass per repetition).
+const MIN_REPS: u32 = 3;
+
+/// One measured figure.
+#[derive(Clone, Debug)]
+struct Row {
+    plugin: &'static str,
+    path: &'static str,
+    n: usize,
+    m_per_s: f64,
+    /// The reference row `vs_ref` divides by (`None` for `stream`).
+    reference: Option<&'static str>,
+    vs_ref: Option<f64>,
+    vs_stream: f64,
+}
+
+/// Deterministic inputs of the largest size; every run uses a prefix.
+///
+/// The arrays of one layout share one allocation with staggered starts (AoS
+/// `wi`, `wo` 192 B apart modulo 4 KiB; the six SoA components 64 B apart),
+/// so that the input streams of a loop do not alias modulo 4 KiB (the same
+/// L1 set, false store-to-load dependences), as they would if each sat at the
+/// start of its own page-aligned allocation.
+struct Inputs {
+    n: usize,
+    /// `wi` at `[0, n)`, `wo` at `[n + AOS_PAD, 2n + AOS_PAD)`.
+    aos: Vec<Vec3>,
+    /// Component `j` (`wi.x, wi.y, wi.z, wo.x, wo.y, wo.z`) at
+    /// `[j (n + SOA_PAD), j (n + SOA_PAD) + n)`.
+    soa: Vec<f32>,
+    u: Vec<[f32; 2]>,
+}
+
+const AOS_PAD: usize = 16;
+const SOA_PAD: usize = 16;
+
+impl Inputs {
+    /// Direction pairs spread over the upper hemisphere (θ uniform in
+    /// [0, 1.55) rad, φ in [0, 2π)) from golden-ratio (R2) sequences in f64,
+    /// which stay well spread for 2²⁰ points; `u` in [0,1)².
+    fn new(n: usize) -> Self {
+        let frac = |k: usize, g: f64| (k as f64 * g).fract();
+        // Largest f32 below 1: a fraction just below 1 must not round up to 1.
+        let below_one = |x: f64| (x as f32).min(1.0 - f32::EPSILON / 2.0);
+        let mut wi = Vec::with_capacity(n);
+        let mut wo = Vec::with_capacity(n);
+        let mut u = Vec::with_capacity(n);
+        for k in 0..n {
+            let a = frac(k, 0.618_033_988_749_894_9);
+            let b = frac(k, 0.381_966_011_250_105_1);
+            let c = frac(k, 0.754_877_666_246_692_7);
+            let d = frac(k, 0.569_840_290_998_053_2);
+            let tau = std::f64::consts::TAU;
+            wi.push(spherical_direction((a * 1.55) as f32, (b * tau) as f32));
+            wo.push(spherical_direction((c * 1.55) as f32, (d * tau) as f32));
+            // u from wi's sequences: sampling uses wo and u only, so the two are independent.
+            u.push([below_one(a), below_one(b)]);
+        }
+        let mut aos = wi.clone();
+        aos.extend(std::iter::repeat_n(Vec3::Z, AOS_PAD));
+        aos.extend_from_slice(&wo);
+        let mut soa = Vec::with_capacity(6 * (n + SOA_PAD));
+        for w in [&wi, &wo] {
+            for j in 0..3 {
+                soa.extend(w.iter().map(|v| v[j]));
+                soa.extend(std::iter::repeat_n(0.0, SOA_PAD));
+            }
+        }
+        Inputs { n, aos, soa, u }
+    }
+
+    fn wi(&self, n: usize) -> &[Vec3] {
+        &self.aos[..n]
+    }
+
+    fn wo(&self, n: usize) -> &[Vec3] {
+        let s = self.n + AOS_PAD;
+        &self.aos[s..s + n]
+    }
+
+    fn soa(&self, first: usize, n: usize) -> Vec3Soa<'_> {
+        let c = |j: usize| {
+            let s = (first + j) * (self.n + SOA_PAD);
+            &self.soa[s..s + n]
+        };
+        Vec3Soa::new(c(0), c(1), c(2))
+    }
+
+    fn wi_soa(&self, n: usize) -> Vec3Soa<'_> {
+        self.soa(0, n)
+    }
+
+    fn wo_soa(&self, n: usize) -> Vec3Soa<'_> {
+        self.soa(3, n)
+    }
+}
+
+/// Times `pass` (one pass over `n` elements): warm-up of at least a quarter
+/// of `min_time` and at least one pass (page faults, caches, clocks), then
+/// repetitions of `iters` passes, `iters ≥ 1` chosen so that a repetition
+/// takes about `min_time / REP_SLICES`, until `min_time` has been spent and
+/// at least [`MIN_REPS`] were run. Returns the best (smallest) seconds per
+/// element over the repetitions.
+fn measure(n: usize, min_time: Duration, mut pass: impl FnMut()) -> f64 {
+    let t0 = Instant::now();
+    let mut passes = 0u64;
+    loop {
+        pass();
+        passes += 1;
+        if t0.elapsed() >= min_time / 4 {
+            break;
+        }
+    }
+    let per_pass = t0.elapsed().as_secs_f64() / passes as f64;
+    let target = min_time.as_secs_f64() / REP_SLICES as f64;
+    let iters = ((target / per_pass).ceil() as u64).max(1);
+    let mut best = f64::INFINITY;
+    let mut total = 0.0;
+    let mut reps = 0;
+    while reps < MIN_REPS || total < min_time.as_secs_f64() {
+        let t = Instant::now();
+        for _ in 0..iters {
+            pass();
+        }
+        let dt = t.elapsed().as_secs_f64();
+        total += dt;
+        reps += 1;
+        if dt > 0.0 {
+            best = best.min(dt / iters as f64);
+        }
+    }
+    best / n as f64
+}
+
+// --- The timed passes. `#[inline(never)]` keeps each loop a standalone
+// kernel; callers pass every argument through `black_box`.
+
+#[inline(never)]
+#[allow(clippy::needless_range_loop)] // the indexed loop is the point: it is what a renderer writes
+fn pass_eval<B: Brdf>(brdf: &B, wi: &[Vec3], wo: &[Vec3], out: &mut [B::Spectrum]) {
+    let n = out.len();
+    let (wi, wo) = (&wi[..n], &wo[..n]);
+    for k in 0..n {
+        out[k] = brdf.eval(wi[k], wo[k]);
+    }
+}
+
+#[inline(never)]
+fn pass_eval_batch<B: Brdf>(brdf: &B, wi: &[Vec3], wo: &[Vec3], out: &mut [B::Spectrum]) {
+    brdf.eval_batch(wi, wo, out);
+}
+
+#[inline(never)]
+fn pass_eval_batch_soa<B: Brdf>(brdf: &B, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [B::Spectrum]) {
+    brdf.eval_batch_soa(wi, wo, out);
+}
+
+#[inline(never)]
+#[allow(clippy::needless_range_loop)]
+fn pass_pdf<B: Brdf>(brdf: &B, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    let n = out.len();
+    let (wi, wo) = (&wi[..n], &wo[..n]);
+    for k in 0..n {
+        out[k] = brdf.pdf(wi[k], wo[k]);
+    }
+}
+
+#[inline(never)]
+fn pass_pdf_batch<B: Brdf>(brdf: &B, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    brdf.pdf_batch(wi, wo, out);
+}
+
+#[inline(never)]
+#[allow(clippy::needless_range_loop)]
+fn pass_sample<B: Brdf>(brdf: &B, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<B::Spectrum>>]) {
+    let n = out.len();
+    let (wo, u) = (&wo[..n], &u[..n]);
+    for k in 0..n {
+        out[k] = brdf.sample(wo[k], u[k]);
+    }
+}
+
+/// Measurements at one `n`.
+struct Run<'a> {
+    inputs: &'a Inputs,
+    n: usize,
+    min_time: Duration,
+    progress: bool,
+    rows: Vec<Row>,
+}
+
+impl Run<'_> {
+    fn push(&mut self, plugin: &'static str, path: &'static str, secs_per_elem: f64) {
+        self.rows.push(Row {
+            plugin,
+            path,
+            n: self.n,
+            m_per_s: 1e-6 / secs_per_elem,
+            reference: None,
+            vs_ref: None,
+            vs_stream: f64::NAN,
+        });
+    }
+
+    fn note(&self, what: &str) {
+        if self.progress {
+            eprint!("\r\x1b[2Kbench: n = {}: {what}", self.n);
+        }
+    }
+
+    /// Seconds per element of the three reference kernels.
+    fn references(&self) -> [f64; 3] {
+        self.note("references");
+        let (n, mt) = (self.n, self.min_time);
+        let (wi, wo) = (self.inputs.wi(n), self.inputs.wo(n));
+        let (si, so) = (self.inputs.wi_soa(n), self.inputs.wo_soa(n));
+        let mut out = vec![0.0f32; n];
+        let scalar = measure(n, mt, || {
+            reference::ggx_scalar(
+                black_box(REF_ALPHA),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out[..]),
+            )
+        });
+        let soa = measure(n, mt, || {
+            reference::ggx_soa(
+                black_box(REF_ALPHA),
+                black_box(si),
+                black_box(so),
+                black_box(&mut out[..]),
+            )
+        });
+        let stream = measure(n, mt, || {
+            reference::stream(black_box(si), black_box(so), black_box(&mut out[..]))
+        });
+        [scalar, soa, stream]
+    }
+
+    /// Times the six paths of one plugin.
+    fn plugin<B: Brdf>(&mut self, name: &'static str, brdf: &B) {
+        self.note(name);
+        let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
+        let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
+        let (si, so) = (inputs.wi_soa(n), inputs.wo_soa(n));
+        let mut out = vec![B::Spectrum::default(); n];
+        let mut out_f = vec![0.0f32; n];
+        let mut out_s: Vec<Option<BrdfSample<B::Spectrum>>> = vec![None; n];
+        let t = measure(n, mt, || {
+            pass_eval(
+                black_box(brdf),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out[..]),
+            )
+        });
+        self.push(name, "eval", t);
+        let t = measure(n, mt, || {
+            pass_eval_batch(
+                black_box(brdf),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out[..]),
+            )
+        });
+        self.push(name, "eval_batch", t);
+        let t = measure(n, mt, || {
+            pass_eval_batch_soa(
+                black_box(brdf),
+                black_box(si),
+                black_box(so),
+                black_box(&mut out[..]),
+            )
+        });
+        self.push(name, "eval_batch_soa", t);
+        let t = measure(n, mt, || {
+            pass_pdf(
+                black_box(brdf),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out_f[..]),
+            )
+        });
+        self.push(name, "pdf", t);
+        let t = measure(n, mt, || {
+            pass_pdf_batch(
+                black_box(brdf),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out_f[..]),
+            )
+        });
+        self.push(name, "pdf_batch", t);
+        let t = measure(n, mt, || {
+            pass_sample(
+                black_box(brdf),
+                black_box(wo),
+                black_box(u),
+                black_box(&mut out_s[..]),
+            )
+        });
+        self.push(name, "sample", t);
+        black_box((&out, &out_f, &out_s));
+    }
+
+    /// Every plugin (see [`AFTER_HELP`] for the list).
+    fn plugins(&mut self) {
+        const BAD: &str = "bench plugin parameters are valid";
+        let ggx = Ggx::new(0.3).expect(BAD);
+        self.plugin("lambertian", &Lambertian::new(0.5f32).expect(BAD));
+        self.plugin(
+            "modified-phong-n100",
+            &ModifiedPhong::new(0.3f32, 0.7, 100.0).expect(BAD),
+        );
+        self.plugin(
+            "blinn-phong-n100",
+            &BlinnPhong::new(0.3f32, 0.7, 100.0).expect(BAD),
+        );
+        self.plugin(
+            "ggx-hc-a0.3",
+            &Microfacet::<_, HeightCorrelated, _>::new(ggx, NoFresnel),
+        );
+        self.plugin(
+            "ggx-sep-a0.3",
+            &Microfacet::<_, Separable, _>::new(ggx, NoFresnel),
+        );
+        self.plugin(
+            "ggx-hc-schlick-rgb-a0.3",
+            &Microfacet::<_, HeightCorrelated, _>::new(
+                ggx,
+                Schlick::new(Vec3::new(1.0, 0.71, 0.29)).expect(BAD),
+            ),
+        );
+        self.plugin(
+            "ggx-hc-conductor-rgb-a0.3",
+            &Microfacet::<_, HeightCorrelated, _>::new(
+                ggx,
+                Conductor::new(Vec3::new(0.143, 0.374, 1.442), Vec3::new(3.983, 2.385, 1.603)).expect(BAD),
+            ),
+        );
+        self.plugin(
+            "beckmann-hc-a0.3",
+            &Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(0.3).expect(BAD), NoFresnel),
+        );
+    }
+
+    /// References, plugins, references again (best of both kept); then the
+    /// ratio columns.
+    fn measure_all(mut self) -> Vec<Row> {
+        let before = self.references();
+        self.plugins();
+        let after = self.references();
+        let best = |k: usize| before[k].min(after[k]);
+        let plugin_rows = std::mem::take(&mut self.rows);
+        self.push(REF_SCALAR, "eval", best(0));
+        self.push(REF_SOA, "eval_batch_soa", best(1));
+        self.push(STREAM, "stream", best(2));
+        self.rows.extend(plugin_rows);
+        let rate = |name: &str| {
+            self.rows
+                .iter()
+                .find(|r| r.plugin == name)
+                .map_or(f64::NAN, |r| r.m_per_s)
+        };
+        let (scalar, soa, stream) = (rate(REF_SCALAR), rate(REF_SOA), rate(STREAM));
+        for r in &mut self.rows {
+            r.vs_stream = r.m_per_s / stream;
+            if r.plugin != STREAM {
+                let (name, m) = if is_batch(r.path) {
+                    (REF_SOA, soa)
+                } else {
+                    (REF_SCALAR, scalar)
+                };
+                r.reference = Some(name);
+                r.vs_ref = Some(r.m_per_s / m);
+            }
+        }
+        self.rows
+    }
+}
+
+/// A SIMD-relevant target feature.
+#[derive(Clone, Copy, Debug)]
+struct Feature {
+    name: &'static str,
+    /// Enabled at compile time (`cfg!(target_feature = ...)`).
+    compiled: bool,
+    /// The CPU has it (run-time detection; `None` where not available).
+    cpu: Option<bool>,
+}
+
+/// The SIMD-relevant target features of this architecture.
+fn simd_features() -> Vec<Feature> {
+    #[allow(unused_mut)]
+    let mut v = Vec::new();
+    #[cfg(target_arch = "x86_64")]
+    {
+        macro_rules! f {
+            ($name:tt) => {
+                v.push(Feature {
+                    name: $name,
+                    compiled: cfg!(target_feature = $name),
+                    cpu: Some(std::arch::is_x86_feature_detected!($name)),
+                })
+            };
+        }
+        f!("sse2");
+        f!("sse4.1");
+        f!("avx");
+        f!("avx2");
+        f!("fma");
+        f!("avx512f");
+    }
+    #[cfg(target_arch = "aarch64")]
+    {
+        v.push(Feature {
+            name: "neon",
+            compiled: cfg!(target_feature = "neon"),
+            cpu: Some(std::arch::is_aarch64_feature_detected!("neon")),
+        });
+    }
+    v
+}
+
+/// `model name` from `/proc/cpuinfo`, or `"unknown"`.
+fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().to_string())
+        })
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "unknown".into())
+}
+
+/// Build profile as recorded by `build.rs` (`PROFILE`, `OPT_LEVEL`).
+fn profile() -> (&'static str, &'static str) {
+    (
+        option_env!("RADIOMETRY_BUILD_PROFILE").unwrap_or("unknown"),
+        option_env!("RADIOMETRY_BUILD_OPT_LEVEL").unwrap_or("unknown"),
+    )
+}
+
+fn timing_text(min_time: Duration) -> String {
+    format!(
+        "best of the repetitions (each ~{} ms, >= 1 pass; >= {MIN_REPS} and >= {} ms per measurement, after a \
+warm-up); single thread",
+        min_time.as_secs_f64() * 1e3 / REP_SLICES as f64,
+        min_time.as_secs_f64() * 1e3
+    )
+}
+
+const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf, sample) or / reference-ggx-soa \
+(eval_batch, eval_batch_soa, pdf_batch) at the same n; vs_stream = m_per_s / stream at the same n";
+
+/// Runs the command.
+pub fn run(args: BenchArgs) -> ExitCode {
+    let min_ms = args.min_time_ms.unwrap_or(if args.quick { 10.0 } else { 50.0 });
+    if !(min_ms.is_finite() && min_ms > 0.0 && min_ms <= 60_000.0) {
+        eprintln!("error: --min-time-ms {min_ms} must be in (0, 60000]");
+        return ExitCode::from(2);
+    }
+    let min_time = Duration::from_secs_f64(min_ms * 1e-3);
+    let ns: &[usize] = if args.quick { &[4096] } else { &[4096, 1 << 20] };
+    let inputs = Inputs::new(*ns.iter().max().unwrap_or(&4096));
+    let progress = std::io::stderr().is_terminal();
+    let mut rows = Vec::new();
+    for &n in ns {
+        rows.extend(
+            Run {
+                inputs: &inputs,
+                n,
+                min_time,
+                progress,
+                rows: Vec::new(),
+            }
+            .measure_all(),
+        );
+    }
+    if progress {
+        eprint!("\r\x1b[2K");
+    }
+    let cpu = cpu_model();
+    let features = simd_features();
+    let simd = cfg!(feature = "simd");
+    let (prof, opt) = profile();
+    let debug_assertions = cfg!(debug_assertions);
+    match args.format {
+        Format::Json => {
+            let compiled: serde_json::Map<_, _> = features
+                .iter()
+                .map(|f| (f.name.to_string(), serde_json::Value::Bool(f.compiled)))
+                .collect();
+            let detected: serde_json::Map<_, _> = features
+                .iter()
+                .filter_map(|f| Some((f.name.to_string(), serde_json::Value::Bool(f.cpu?))))
+                .collect();
+            let rows: Vec<_> = rows
+                .iter()
+                .map(|r| {
+                    serde_json::json!({
+                        "plugin": r.plugin,
+                        "path": r.path,
+                        "n": r.n,
+                        "m_per_s": json_num(r.m_per_s),
+                        "ns_per_elem": json_num(1e3 / r.m_per_s),
+                        "vs_ref": r.vs_ref.map(json_num),
+                        "vs_stream": json_num(r.vs_stream),
+                        "ref": r.reference,
+                    })
+                })
+                .collect();
+            let j = serde_json::json!({
+                "header": {
+                    "cpu": cpu,
+                    "target_features": compiled,
+                    "cpu_features": detected,
+                    "simd_feature": simd,
+                    "profile": prof,
+                    "opt_level": opt,
+                    "debug_assertions": debug_assertions,
+                    "threads": 1,
+                    "timing": timing_text(min_time),
+                    "min_time_ms": json_num(min_ms),
+                    "ratios": RATIO_TEXT,
+                },
+                "rows": rows,
+            });
+            println!("{j}");
+        }
+        Format::Text => {
+            println!("radiometry bench: single-thread throughput of the BRDF plugins vs this CPU's limits");
+            println!("cpu:      {cpu}");
+            let list = |pick: fn(&Feature) -> bool| {
+                let v: Vec<&str> = features.iter().filter(|f| pick(f)).map(|f| f.name).collect();
+                if v.is_empty() {
+                    "-".to_string()
+                } else {
+                    v.join(" ")
+                }
+            };
+            println!(
+                "features: compiled in: {}; not compiled in: {}; CPU has but not compiled in: {}",
+                list(|f| f.compiled),
+                list(|f| !f.compiled),
+                list(|f| !f.compiled && f.cpu == Some(true)),
+            );
+            println!(
+                "build:    radiometry-brdfs simd feature {}; profile {prof}, opt-level {opt}, debug-assertions {}",
+                if simd { "on" } else { "off" },
+                if debug_assertions { "on" } else { "off" },
+            );
+            if debug_assertions || prof != "release" {
+                println!("          (not a release build: the figures are not representative)");
+            }
+            println!("timing:   {}", timing_text(min_time));
+            println!("ratios:   {RATIO_TEXT}");
+            let mut last_n = 0;
+            for r in &rows {
+                if r.n != last_n {
+                    println!();
+                    println!(
+                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9}",
+                        "plugin", "path", "n", "m_per_s", "ns_per_elem", "vs_ref", "vs_stream"
+                    );
+                    last_n = r.n;
+                }
+                let vs_ref = r.vs_ref.map_or("-".to_string(), |v| format!("{v:.3}"));
+                println!(
+                    "{:<26} {:<15} {:>8} {:>10.1} {:>11.2} {:>7} {:>9.3}",
+                    r.plugin,
+                    r.path,
+                    r.n,
+                    r.m_per_s,
+                    1e3 / r.m_per_s,
+                    vs_ref,
+                    r.vs_stream
+                );
+            }
+        }
+    }
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,152 @@
+//! Integration tests of `radiometry bench`: output shapes and the internal
+//! consistency of the ratio columns (the rates themselves are machine
+//! dependent). `--min-time-ms` (hidden) keeps the runs short.
+
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_radiometry"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+const PLUGINS: [&str; 8] = [
+    "lambertian",
+    "modified-phong-n100",
+    "blinn-phong-n100",
+    "ggx-hc-a0.3",
+    "ggx-sep-a0.3",
+    "ggx-hc-schlick-rgb-a0.3",
+    "ggx-hc-conductor-rgb-a0.3",
+    "beckmann-hc-a0.3",
+];
+const PATHS: [&str; 6] = [
+    "eval",
+    "eval_batch",
+    "eval_batch_soa",
+    "pdf",
+    "pdf_batch",
+    "sample",
+];
+const BATCH_PATHS: [&str; 3] = ["eval_batch", "eval_batch_soa", "pdf_batch"];
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+}
+
+#[test]
+fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
+    let o = run(&["bench", "--quick", "--format", "json", "--min-time-ms", "1"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value =
+        serde_json::from_str(stdout(&o).trim()).unwrap_or_else(|e| panic!("not JSON ({e}): {}", stdout(&o)));
+
+    let h = &j["header"];
+    assert!(!h["cpu"].as_str().expect("cpu").is_empty(), "{h}");
+    assert!(h["target_features"].is_object(), "{h}");
+    assert!(h["simd_feature"].is_boolean(), "{h}");
+    assert!(h["profile"].is_string() && h["opt_level"].is_string(), "{h}");
+    assert!(h["timing"].as_str().expect("timing").contains("best of"), "{h}");
+
+    let rows = j["rows"].as_array().expect("rows");
+    let get = |plugin: &str, path: &str| {
+        let v: Vec<_> = rows
+            .iter()
+            .filter(|r| r["plugin"] == plugin && r["path"] == path)
+            .collect();
+        assert_eq!(v.len(), 1, "{plugin} {path}: {} rows", v.len());
+        v[0]
+    };
+    let rate = |r: &serde_json::Value| r["m_per_s"].as_f64().expect("m_per_s");
+    let stream = rate(get("stream", "stream"));
+    let ref_scalar = rate(get("reference-ggx-scalar", "eval"));
+    let ref_soa = rate(get("reference-ggx-soa", "eval_batch_soa"));
+    assert_eq!(rows.len(), 3 + PLUGINS.len() * PATHS.len());
+    for r in rows {
+        assert_eq!(r["n"], 4096, "--quick is n = 4096 only: {r}");
+        let m = rate(r);
+        assert!(m.is_finite() && m > 0.0, "{r}");
+        let ns = r["ns_per_elem"].as_f64().expect("ns_per_elem");
+        assert!(close(ns, 1e3 / m), "{r}");
+        assert!(
+            close(r["vs_stream"].as_f64().expect("vs_stream"), m / stream),
+            "{r}"
+        );
+        if r["plugin"] == "stream" {
+            assert!(r["vs_ref"].is_null() && r["ref"].is_null(), "{r}");
+            continue;
+        }
+        let batch = BATCH_PATHS.iter().any(|p| r["path"] == *p);
+        let (name, denom) = if batch {
+            ("reference-ggx-soa", ref_soa)
+        } else {
+            ("reference-ggx-scalar", ref_scalar)
+        };
+        assert_eq!(r["ref"], name, "{r}");
+        assert!(close(r["vs_ref"].as_f64().expect("vs_ref"), m / denom), "{r}");
+    }
+    for p in PLUGINS {
+        for path in PATHS {
+            get(p, path);
+        }
+    }
+}
+
+#[test]
+fn quick_table_has_the_header_and_ratio_columns() {
+    let o = run(&["bench", "--quick", "--min-time-ms", "1"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = stdout(&o);
+    for key in ["cpu:", "features:", "simd feature", "profile", "best of"] {
+        assert!(s.contains(key), "missing `{key}`:\n{s}");
+    }
+    let head = s
+        .lines()
+        .find(|l| l.starts_with("plugin"))
+        .unwrap_or_else(|| panic!("no column header:\n{s}"));
+    let cols: Vec<&str> = head.split_whitespace().collect();
+    assert_eq!(
+        cols,
+        [
+            "plugin",
+            "path",
+            "n",
+            "m_per_s",
+            "ns_per_elem",
+            "vs_ref",
+            "vs_stream"
+        ]
+    );
+    for p in PLUGINS {
+        let lines = s
+            .lines()
+            .filter(|l| l.split_whitespace().next() == Some(p))
+            .count();
+        assert_eq!(lines, PATHS.len(), "{p}:\n{s}");
+    }
+}
+
+#[test]
+fn help_documents_method_and_native_build() {
+    let o = run(&["bench", "--help"]);
+    assert!(o.status.success());
+    let s = stdout(&o);
+    for key in [
+        "target-cpu=native",
+        "--features simd",
+        "BEST",
+        "vs_ref",
+        "vs_stream",
+        "--quick",
+    ] {
+        assert!(s.contains(key), "missing `{key}`:\n{s}");
+    }
+    assert!(!s.contains("min-time-ms"), "the test flag stays hidden:\n{s}");
+    let o = run(&["bench", "--min-time-ms", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+}
