@@ -213,7 +213,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (self.norm * lobe)
     }
 
-    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]); it
+    /// With the `simd` feature a vector kernel ([`crate::simd`]); it
     /// matches `eval` to the tolerance documented there (vector
     /// `exp`/`ln_1p`/`ln` for `cos^n θh`).
     #[cfg(feature = "simd")]
@@ -281,7 +281,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
 
 impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 
-/// The 8-wide `eval` kernel (feature `simd`): `f = kd/π + ks N(n) cos^n θh`
+/// The vector `eval` kernel (feature `simd`): `f = kd/π + ks N(n) cos^n θh`
 /// with the scalar code's normalisations (`try_normalize` of both
 /// directions, `half_vector`: `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for
 /// `|ωi + ωo|² ≤ 10⁻¹⁴`) and its two forms of the lobe:
@@ -296,21 +296,21 @@ impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 #[cfg(feature = "simd")]
 mod batch {
     use super::BlinnPhong;
-    use crate::simd::{Kernel8, LANES, V8, pow_one_minus, pow_unit, store};
+    use crate::simd::Vf;
+    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, pow_unit, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
-    use wide::f32x8;
 
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a BlinnPhong<S>);
 
-    impl<S: Spectrum> Kernel8 for Eval<'_, S> {
+    impl<S: Spectrum> Kernel for Eval<'_, S> {
         type Out = S;
 
         #[inline(always)]
-        fn x8(&self, wi: V8, wo: V8, out: &mut [S; LANES]) {
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
-            let (zero, one) = (f32x8::ZERO, f32x8::ONE);
+            let (zero, one) = (Vf::ZERO, Vf::ONE);
             // `upper_pair`: `try_normalize` both, both strictly above the horizon.
             let (a, ok_a) = wi.try_normalize();
             let (c, ok_c) = wo.try_normalize();
@@ -319,20 +319,21 @@ mod batch {
             // flip to the upper hemisphere never applies).
             let h = a.add(c);
             let len2 = h.length_squared();
-            let defined = len2.simd_gt(f32x8::splat(1e-14)) & len2.is_finite();
+            let defined = len2.simd_gt(Vf::splat(1e-14)) & len2.is_finite();
             let h = h.div(len2.sqrt());
             // `lobe(h)`.
-            let pole = h.z.simd_ge(f32x8::splat(0.5));
+            let pole = h.z.simd_ge(Vf::splat(0.5));
             let delta = h.xy_length_squared() / (one + h.z);
             let near = pow_one_minus(delta, b.exponent);
             let far = pow_unit(h.z, b.exponent);
             let lobe = pole.select(near, h.z.simd_gt(zero).select(far, zero));
-            let lobe = f32x8::splat(b.norm) * defined.select(lobe, zero);
+            let lobe = Vf::splat(b.norm) * defined.select(lobe, zero);
             let diffuse = b.kd * FRAC_1_PI;
             store(out, |ch| {
-                let f = f32x8::splat(diffuse.channel(ch)) + f32x8::splat(b.ks.channel(ch)) * lobe;
+                let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
                 up.select(f, zero)
             });
+            0
         }
 
         #[inline(always)]

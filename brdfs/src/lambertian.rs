@@ -98,7 +98,7 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
         }
     }
 
-    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]) tests the
+    /// With the `simd` feature a vector kernel ([`crate::simd`]) tests the
     /// horizon/finiteness conditions; results equal [`Brdf::eval`] exactly.
     #[cfg(feature = "simd")]
     #[inline]
@@ -106,7 +106,7 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
         crate::simd::Batch::Aos(wi, wo, out).run(&batch::Eval(self))
     }
 
-    /// With the `simd` feature the 8-wide kernel of
+    /// With the `simd` feature the vector kernel of
     /// [`eval_batch`](Brdf::eval_batch) on plain vector loads; results equal
     /// [`Brdf::eval`] exactly.
     #[cfg(feature = "simd")]
@@ -115,7 +115,7 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
         crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
     }
 
-    /// With the `simd` feature an 8-wide kernel for `cos θi/π`; results
+    /// With the `simd` feature a vector kernel for `cos θi/π`; results
     /// equal [`Brdf::pdf`] exactly.
     #[cfg(feature = "simd")]
     #[inline]
@@ -154,31 +154,32 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
 
 impl<S: Spectrum> IsotropicBrdf for Lambertian<S> {}
 
-/// The 8-wide kernels (feature `simd`): the scalar tests of `eval` and
+/// The vector kernels (feature `simd`): the scalar tests of `eval` and
 /// `pdf` as lane masks, the same values selected (0 ulp; see
 /// [`crate::simd`]).
 #[cfg(feature = "simd")]
 mod batch {
     use super::Lambertian;
-    use crate::simd::{Kernel8, LANES, V8, store};
+    use crate::simd::Vf;
+    use crate::simd::{Dirs, Kernel, LANES, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
-    use wide::f32x8;
 
     /// `eval`: `ρ/π` where `cos θi > 0`, `cos θo > 0` and both directions
     /// are finite, else 0.
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a Lambertian<S>);
 
-    impl<S: Spectrum> Kernel8 for Eval<'_, S> {
+    impl<S: Spectrum> Kernel for Eval<'_, S> {
         type Out = S;
 
         #[inline(always)]
-        fn x8(&self, wi: V8, wo: V8, out: &mut [S; LANES]) {
-            let zero = f32x8::ZERO;
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
+            let zero = Vf::ZERO;
             let mask = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & wi.is_finite() & wo.is_finite();
             let value = self.0.albedo * FRAC_1_PI;
-            store(out, |c| mask.select(f32x8::splat(value.channel(c)), zero));
+            store(out, |c| mask.select(Vf::splat(value.channel(c)), zero));
+            0
         }
 
         #[inline(always)]
@@ -191,15 +192,16 @@ mod batch {
     /// the normalised `ωi` is defined and above it, else 0.
     pub(super) struct Pdf<'a, S: Spectrum>(pub(super) &'a Lambertian<S>);
 
-    impl<S: Spectrum> Kernel8 for Pdf<'_, S> {
+    impl<S: Spectrum> Kernel for Pdf<'_, S> {
         type Out = f32;
 
         #[inline(always)]
-        fn x8(&self, wi: V8, wo: V8, out: &mut [f32; LANES]) {
-            let zero = f32x8::ZERO;
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
+            let zero = Vf::ZERO;
             let (w, ok) = wi.try_normalize();
             let mask = wo.is_finite() & wo.z.simd_gt(zero) & ok & w.z.simd_gt(zero);
-            *out = mask.select(w.z * f32x8::splat(FRAC_1_PI), zero).to_array();
+            *out = mask.select(w.z * Vf::splat(FRAC_1_PI), zero).to_array();
+            0
         }
 
         #[inline(always)]

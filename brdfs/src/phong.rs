@@ -188,7 +188,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (norm * self.lobe(wi, wo))
     }
 
-    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]); it
+    /// With the `simd` feature a vector kernel ([`crate::simd`]); it
     /// matches `eval` to the tolerance documented there (vector `exp`/`ln_1p`
     /// for `cos^n α`).
     #[cfg(feature = "simd")]
@@ -243,7 +243,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
 
 impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 
-/// The 8-wide `eval` kernel (feature `simd`):
+/// The vector `eval` kernel (feature `simd`):
 /// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both (normalised)
 /// directions are strictly above the horizon.
 ///
@@ -256,39 +256,40 @@ impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 #[cfg(feature = "simd")]
 mod batch {
     use super::ModifiedPhong;
-    use crate::simd::{Kernel8, LANES, V8, pow_one_minus, store};
+    use crate::simd::Vf;
+    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
-    use wide::f32x8;
 
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
 
-    impl<S: Spectrum> Kernel8 for Eval<'_, S> {
+    impl<S: Spectrum> Kernel for Eval<'_, S> {
         type Out = S;
 
         #[inline(always)]
-        fn x8(&self, wi: V8, wo: V8, out: &mut [S; LANES]) {
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
-            let zero = f32x8::ZERO;
+            let zero = Vf::ZERO;
             // `upper_pair`: `try_normalize` both, both strictly above the horizon.
             let (a, ok_a) = wi.try_normalize();
             let (c, ok_c) = wo.try_normalize();
             let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
             // δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α.
-            let d = V8 {
+            let d = Dirs {
                 x: a.x - (-c.x),
                 y: a.y - (-c.y),
                 z: a.z - c.z,
             };
-            let delta = f32x8::splat(0.5) * d.length_squared();
+            let delta = Vf::splat(0.5) * d.length_squared();
             let norm = (b.exponent + 2.0) * (0.5 * FRAC_1_PI);
-            let lobe = f32x8::splat(norm) * pow_one_minus(delta, b.exponent);
+            let lobe = Vf::splat(norm) * pow_one_minus(delta, b.exponent);
             let diffuse = b.kd * FRAC_1_PI;
             store(out, |ch| {
-                let f = f32x8::splat(diffuse.channel(ch)) + f32x8::splat(b.ks.channel(ch)) * lobe;
+                let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
                 up.select(f, zero)
             });
+            0
         }
 
         #[inline(always)]

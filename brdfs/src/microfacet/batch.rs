@@ -1,4 +1,4 @@
-//! The 8-wide kernels of [`Microfacet`] (feature `simd`): `eval_batch`,
+//! The vector kernels of [`Microfacet`] (feature `simd`): `eval_batch`,
 //! `eval_batch_soa` and `pdf_batch`, lane for lane the scalar hot path
 //! `f_r = D(h) V F(cos θd)` and `pdf = D(h)/(4 A(ωo))` of
 //! [`Microfacet::eval`](radiometry::Brdf::eval) (Walter et al. 2007, eq. 20,
@@ -11,11 +11,11 @@
 //! math comes from [`crate::simd`], which imports nothing from this module.
 
 use super::{Fresnel, Microfacet, MicrofacetDistribution, ShadowingMasking};
-use crate::simd::{Batch, Kernel8, LANES, V8, finite_nonneg};
+use crate::simd::Vf;
+use crate::simd::{Batch, Dirs, Kernel, LANES, finite_nonneg};
 use core::f32::consts::PI;
 use radiometry::Brdf;
 use radiometry::glam::Vec3;
-use wide::f32x8;
 
 /// Which batched kernel a [`MicrofacetDistribution`] supports (hidden hook;
 /// not a stable API).
@@ -49,38 +49,38 @@ pub enum G2Kind {
 /// The distribution half of a kernel: `D` from `cos²θh`, `sin²θh`, and the
 /// projected area `A(cos θ, sin²θ)`, lane-wise and bit-identical to
 /// [`MicrofacetDistribution::d_cos2`] / [`projected_area`](MicrofacetDistribution::projected_area).
-trait DistX8 {
-    fn d_cos2(&self, cos2: f32x8, sin2: f32x8) -> f32x8;
-    fn area(&self, cos_theta: f32x8, sin2: f32x8) -> f32x8;
+trait DistV {
+    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> Vf;
+    fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf;
 }
 
 /// GGX: `D = α²/(π (α² cos²θh + sin²θh)²)` (Walter et al. 2007, eq. 33),
 /// `A = (cos θ + √(cos²θ + α² sin²θ))/2`.
 #[derive(Clone, Copy)]
-struct GgxX8 {
+struct GgxV {
     /// `α²`, rounded as `Ggx` rounds it.
-    a2: f32x8,
+    a2: Vf,
 }
 
-impl GgxX8 {
+impl GgxV {
     #[inline(always)]
-    fn new(alpha: f32) -> GgxX8 {
-        GgxX8 {
-            a2: f32x8::splat(alpha * alpha),
+    fn new(alpha: f32) -> GgxV {
+        GgxV {
+            a2: Vf::splat(alpha * alpha),
         }
     }
 }
 
-impl DistX8 for GgxX8 {
+impl DistV for GgxV {
     #[inline(always)]
-    fn d_cos2(&self, cos2: f32x8, sin2: f32x8) -> f32x8 {
+    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> Vf {
         let t = self.a2 * cos2 + sin2;
-        finite_nonneg(self.a2 / (f32x8::splat(PI) * t * t))
+        finite_nonneg(self.a2 / (Vf::splat(PI) * t * t))
     }
 
     #[inline(always)]
-    fn area(&self, cos_theta: f32x8, sin2: f32x8) -> f32x8 {
-        f32x8::splat(0.5) * (cos_theta + (cos_theta * cos_theta + self.a2 * sin2).sqrt())
+    fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
+        Vf::splat(0.5) * (cos_theta + (cos_theta * cos_theta + self.a2 * sin2).sqrt())
     }
 }
 
@@ -88,19 +88,20 @@ impl DistX8 for GgxX8 {
 /// valid where both directions are strictly above the horizon and
 /// `|h|² > 10⁻¹⁴` (NaN → invalid).
 #[inline(always)]
-fn half(wi: V8, wo: V8) -> (f32x8, f32x8, f32x8, f32x8) {
-    let zero = f32x8::ZERO;
+fn half(wi: Dirs, wo: Dirs) -> (Vf, Vf, Vf, Vf) {
+    let zero = Vf::ZERO;
     let h = wi.add(wo);
     let len2 = h.length_squared();
-    let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & len2.simd_gt(f32x8::splat(1e-14));
-    let inv = f32x8::ONE / len2;
+    let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & len2.simd_gt(Vf::splat(1e-14));
+    let inv = Vf::ONE / len2;
     (valid, len2, (h.z * h.z) * inv, h.xy_length_squared() * inv)
 }
 
 /// Bit `k` set when lane `k` is not on the hot path (a direction that is
-/// not unit to within `4ε`): the scalar method recomputes it.
+/// not unit to within `4ε`): the driver recomputes it with the scalar
+/// method.
 #[inline(always)]
-fn cold_lanes(wi: V8, wo: V8) -> u32 {
+fn cold_lanes(wi: Dirs, wo: Dirs) -> u32 {
     (!(wi.is_unit() & wo.is_unit())).to_bitmask()
 }
 
@@ -110,58 +111,39 @@ struct Eval<'a, D, G, F, X, const SEPARABLE: bool> {
     dist: X,
 }
 
-impl<D, G, F, X, const SEPARABLE: bool> Kernel8 for Eval<'_, D, G, F, X, SEPARABLE>
+impl<D, G, F, X, const SEPARABLE: bool> Kernel for Eval<'_, D, G, F, X, SEPARABLE>
 where
     D: MicrofacetDistribution,
     G: ShadowingMasking,
     F: Fresnel,
-    X: DistX8,
+    X: DistV,
 {
     type Out = F::Spectrum;
 
     #[inline(always)]
-    fn x8(&self, wi: V8, wo: V8, out: &mut [F::Spectrum; LANES]) {
+    fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [F::Spectrum; LANES]) -> u32 {
         let cold = cold_lanes(wi, wo);
         let (valid, len2, cos2, sin2) = half(wi, wo);
         let d = self.dist.d_cos2(cos2, sin2);
         let ai = self.dist.area(wi.z, wi.xy_length_squared());
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
-        let four = f32x8::splat(4.0);
+        let four = Vf::splat(4.0);
         let v = if SEPARABLE {
-            f32x8::ONE / (four * (ai * ao))
+            Vf::ONE / (four * (ai * ao))
         } else {
-            f32x8::ONE / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
+            Vf::ONE / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
         };
-        let s = valid.select(finite_nonneg(d * v), f32x8::ZERO);
+        let s = valid.select(finite_nonneg(d * v), Vf::ZERO);
         // cos θd = |ωi + ωo|/2 (`Half::cos_theta_d`).
-        let cos_d = (f32x8::splat(0.5) * len2.sqrt()).min(f32x8::ONE);
-        self.b.fresnel.eval_scaled_x8(cos_d, s, out);
-        if cold != 0 {
-            self.fix_cold(cold, wi, wo, out);
-        }
+        // (`fast_min` differs from `min` only for NaN, which only cold lanes hold.)
+        let cos_d = (Vf::splat(0.5) * len2.sqrt()).fast_min(Vf::ONE);
+        self.b.fresnel.eval_scaled_lanes(cos_d, s, out);
+        cold
     }
 
     #[inline(always)]
     fn one(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
         self.b.eval(wi, wo)
-    }
-}
-
-impl<D, G, F, X, const SEPARABLE: bool> Eval<'_, D, G, F, X, SEPARABLE>
-where
-    D: MicrofacetDistribution,
-    G: ShadowingMasking,
-    F: Fresnel,
-{
-    /// Recomputes the lanes in `cold` with the scalar `eval`.
-    #[cold]
-    #[inline(never)]
-    fn fix_cold(&self, cold: u32, wi: V8, wo: V8, out: &mut [F::Spectrum; LANES]) {
-        for (k, o) in out.iter_mut().enumerate() {
-            if cold & (1 << k) != 0 {
-                *o = self.b.eval(wi.lane(k), wo.lane(k));
-            }
-        }
     }
 }
 
@@ -172,30 +154,23 @@ struct Pdf<'a, D, G, F, X> {
     dist: X,
 }
 
-impl<D, G, F, X> Kernel8 for Pdf<'_, D, G, F, X>
+impl<D, G, F, X> Kernel for Pdf<'_, D, G, F, X>
 where
     D: MicrofacetDistribution,
     G: ShadowingMasking,
     F: Fresnel,
-    X: DistX8,
+    X: DistV,
 {
     type Out = f32;
 
     #[inline(always)]
-    fn x8(&self, wi: V8, wo: V8, out: &mut [f32; LANES]) {
-        let cold = cold_lanes(wi, wo);
+    fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
         let (valid, _, cos2, sin2) = half(wi, wo);
         let d = self.dist.d_cos2(cos2, sin2);
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
-        let p = finite_nonneg(d / (f32x8::splat(4.0) * ao));
-        *out = valid.select(p, f32x8::ZERO).to_array();
-        if cold != 0 {
-            for (k, o) in out.iter_mut().enumerate() {
-                if cold & (1 << k) != 0 {
-                    *o = self.b.pdf(wi.lane(k), wo.lane(k));
-                }
-            }
-        }
+        let p = finite_nonneg(d / (Vf::splat(4.0) * ao));
+        *out = valid.select(p, Vf::ZERO).to_array();
+        cold_lanes(wi, wo)
     }
 
     #[inline(always)]
@@ -216,11 +191,11 @@ where
     match (b.distribution.batch_kind(), G::BATCH_KIND) {
         (DistributionKind::Ggx { alpha }, G2Kind::HeightCorrelated) => io.run(&Eval::<_, _, _, _, false> {
             b,
-            dist: GgxX8::new(alpha),
+            dist: GgxV::new(alpha),
         }),
         (DistributionKind::Ggx { alpha }, G2Kind::Separable) => io.run(&Eval::<_, _, _, _, true> {
             b,
-            dist: GgxX8::new(alpha),
+            dist: GgxV::new(alpha),
         }),
         _ => io.scalar(|wi, wo| b.eval(wi, wo)),
     }
@@ -237,7 +212,7 @@ where
     match b.distribution.batch_kind() {
         DistributionKind::Ggx { alpha } => io.run(&Pdf {
             b,
-            dist: GgxX8::new(alpha),
+            dist: GgxV::new(alpha),
         }),
         _ => io.scalar(|wi, wo| b.pdf(wi, wo)),
     }

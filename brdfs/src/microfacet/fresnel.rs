@@ -2,11 +2,11 @@
 
 use crate::error::{BrdfError, check_range};
 #[cfg(feature = "simd")]
+use crate::simd::Vf;
+#[cfg(feature = "simd")]
 use crate::simd::{LANES, store};
 use radiometry::Spectrum;
 use radiometry::math::safe_sqrt;
-#[cfg(feature = "simd")]
-use wide::f32x8;
 
 /// Smallest accepted (real part of the) relative index of refraction `η`.
 pub const MIN_ETA: f32 = 1e-3;
@@ -33,7 +33,7 @@ pub trait Fresnel {
     fn eval(&self, cos_theta_d: f32) -> Self::Spectrum;
 
     /// Hidden hook of the `simd` feature (not a stable API): the last factor
-    /// of the microfacet BRDF for eight lanes,
+    /// of the microfacet BRDF for one vector of lanes,
     /// `out[k] = F(cos θd[k]) · scale[k]`, and exactly `0` where
     /// `scale[k] = 0` — what `Microfacet::eval` computes from the same two
     /// numbers, bit for bit. `scale[k] ≥ 0` is finite; `cos θd[k] ∈ [0, 1]`
@@ -45,7 +45,7 @@ pub trait Fresnel {
     #[cfg(feature = "simd")]
     #[doc(hidden)]
     #[inline]
-    fn eval_scaled_x8(&self, cos_theta_d: f32x8, scale: f32x8, out: &mut [Self::Spectrum; LANES]) {
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [Self::Spectrum; LANES]) {
         let (c, s) = (cos_theta_d.to_array(), scale.to_array());
         for (k, o) in out.iter_mut().enumerate() {
             *o = if s[k] == 0.0 {
@@ -65,8 +65,8 @@ fn clamp_cos(c: f32) -> f32 {
 /// [`clamp_cos`] lane-wise (NaN → 0).
 #[cfg(feature = "simd")]
 #[inline(always)]
-fn clamp_cos_x8(c: f32x8) -> f32x8 {
-    c.simd_gt(f32x8::ZERO).select(c.min(f32x8::ONE), f32x8::ZERO)
+fn clamp_cos_v(c: Vf) -> Vf {
+    c.simd_gt(Vf::ZERO).select(c.min(Vf::ONE), Vf::ZERO)
 }
 
 /// No Fresnel effect: `F = 1` (zero-sized; costs nothing).
@@ -88,7 +88,7 @@ impl Fresnel for NoFresnel {
     /// `1 · s = s` exactly: one vector store.
     #[cfg(feature = "simd")]
     #[inline(always)]
-    fn eval_scaled_x8(&self, _cos_theta_d: f32x8, scale: f32x8, out: &mut [f32; LANES]) {
+    fn eval_scaled_lanes(&self, _cos_theta_d: Vf, scale: Vf, out: &mut [f32; LANES]) {
         *out = scale.to_array();
     }
 }
@@ -137,13 +137,13 @@ impl<S: Spectrum> Fresnel for Schlick<S> {
     /// Per channel `(f0 + (1 − f0) w) · s`, the scalar operations in order.
     #[cfg(feature = "simd")]
     #[inline(always)]
-    fn eval_scaled_x8(&self, cos_theta_d: f32x8, scale: f32x8, out: &mut [S; LANES]) {
-        let m = f32x8::ONE - clamp_cos_x8(cos_theta_d);
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [S; LANES]) {
+        let m = Vf::ONE - clamp_cos_v(cos_theta_d);
         let m2 = m * m;
         let w = m2 * m2 * m;
         let one_minus = S::splat(1.0) - self.f0;
         store(out, |c| {
-            (f32x8::splat(self.f0.channel(c)) + f32x8::splat(one_minus.channel(c)) * w) * scale
+            (Vf::splat(self.f0.channel(c)) + Vf::splat(one_minus.channel(c)) * w) * scale
         });
     }
 }
@@ -212,16 +212,16 @@ impl Fresnel for Dielectric {
     /// selects.
     #[cfg(feature = "simd")]
     #[inline(always)]
-    fn eval_scaled_x8(&self, cos_theta_d: f32x8, scale: f32x8, out: &mut [f32; LANES]) {
-        let (zero, one) = (f32x8::ZERO, f32x8::ONE);
-        let ci = clamp_cos_x8(cos_theta_d);
-        let eta = f32x8::splat(self.eta);
-        let sin2_t = (one - ci * ci) / f32x8::splat(self.eta * self.eta);
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [f32; LANES]) {
+        let (zero, one) = (Vf::ZERO, Vf::ONE);
+        let ci = clamp_cos_v(cos_theta_d);
+        let eta = Vf::splat(self.eta);
+        let sin2_t = (one - ci * ci) / Vf::splat(self.eta * self.eta);
         let ct = (one - sin2_t).max(zero).sqrt();
         let (np, dp) = (eta * ci - ct, eta * ci + ct);
         let (ns, ds) = (ci - eta * ct, ci + eta * ct);
         let (rp, rs) = (np / dp, ns / ds);
-        let f = (f32x8::splat(0.5) * (rp * rp + rs * rs)).max(zero).min(one);
+        let f = (Vf::splat(0.5) * (rp * rp + rs * rs)).max(zero).min(one);
         let limit = sin2_t.simd_ge(one) | dp.simd_le(zero) | ds.simd_le(zero);
         *out = (limit.select(one, f) * scale).to_array();
     }
@@ -374,37 +374,37 @@ impl<S: Spectrum> Fresnel for Conductor<S> {
         S::from_fn(|i| fr_complex(ci, self.eta.channel(i), self.k.channel(i)))
     }
 
-    /// [`fr_complex`] lane-wise per channel (`fr_complex_x8`), times `s`.
+    /// [`fr_complex`] lane-wise per channel (`fr_complex_v`), times `s`.
     #[cfg(feature = "simd")]
     #[inline(always)]
-    fn eval_scaled_x8(&self, cos_theta_d: f32x8, scale: f32x8, out: &mut [S; LANES]) {
-        let ci = clamp_cos_x8(cos_theta_d);
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [S; LANES]) {
+        let ci = clamp_cos_v(cos_theta_d);
         store(out, |c| {
-            fr_complex_x8(ci, self.eta.channel(c), self.k.channel(c)) * scale
+            fr_complex_v(ci, self.eta.channel(c), self.k.channel(c)) * scale
         });
     }
 }
 
-/// Eight complex numbers (`re`, `im` lanes) for [`fr_complex_x8`].
+/// A vector of complex numbers (`re`, `im` lanes) for [`fr_complex_v`].
 #[cfg(feature = "simd")]
 #[derive(Clone, Copy)]
-struct Cx8 {
-    re: f32x8,
-    im: f32x8,
+struct CxV {
+    re: Vf,
+    im: Vf,
 }
 
 #[cfg(feature = "simd")]
-impl Cx8 {
+impl CxV {
     #[inline(always)]
-    fn add(self, o: Cx8) -> Cx8 {
-        Cx8 {
+    fn add(self, o: CxV) -> CxV {
+        CxV {
             re: self.re + o.re,
             im: self.im + o.im,
         }
     }
     #[inline(always)]
-    fn sub(self, o: Cx8) -> Cx8 {
-        Cx8 {
+    fn sub(self, o: CxV) -> CxV {
+        CxV {
             re: self.re - o.re,
             im: self.im - o.im,
         }
@@ -412,36 +412,36 @@ impl Cx8 {
     /// `Cx::mul` of the lane-constant `e` and `self` (same products, same
     /// order).
     #[inline(always)]
-    fn const_mul(e: Cx, o: Cx8) -> Cx8 {
-        let (er, ei) = (f32x8::splat(e.re), f32x8::splat(e.im));
-        Cx8 {
+    fn const_mul(e: Cx, o: CxV) -> CxV {
+        let (er, ei) = (Vf::splat(e.re), Vf::splat(e.im));
+        CxV {
             re: er * o.re - ei * o.im,
             im: er * o.im + ei * o.re,
         }
     }
     #[inline(always)]
-    fn norm2(self) -> f32x8 {
+    fn norm2(self) -> Vf {
         self.re * self.re + self.im * self.im
     }
     /// [`Cx::sqrt`] lane-wise: both branches, then a select; `hypot` is
-    /// `libm::hypotf` per lane (it rounds an `f64` sum, which `f32x8` cannot
+    /// `libm::hypotf` per lane (it rounds an `f64` sum, which `Vf` cannot
     /// reproduce), so the result is bit-identical.
     #[inline(always)]
-    fn sqrt(self) -> Cx8 {
+    fn sqrt(self) -> CxV {
         let (re, im) = (self.re.to_array(), self.im.to_array());
-        let r = f32x8::new(core::array::from_fn(|k| libm::hypotf(re[k], im[k])));
-        let half = f32x8::splat(0.5);
-        let two = f32x8::splat(2.0);
-        let pos = self.re.simd_ge(f32x8::ZERO);
+        let r = Vf::new(core::array::from_fn(|k| libm::hypotf(re[k], im[k])));
+        let half = Vf::splat(0.5);
+        let two = Vf::splat(2.0);
+        let pos = self.re.simd_ge(Vf::ZERO);
         // re ≥ 0: t = √((r + re)/2), (t, im/(2t)).
         let tp = (half * (r + self.re)).sqrt();
         // re < 0: t = √((r − re)/2), (|im|/(2t), copysign(t, im)).
         let tn = (half * (r - self.re)).sqrt();
         let tn_signed = self.im.is_sign_negative().select(-tn, tn);
-        let zero = r.simd_eq(f32x8::ZERO);
-        Cx8 {
-            re: zero.select(f32x8::ZERO, pos.select(tp, self.im.abs() / (two * tn))),
-            im: zero.select(f32x8::ZERO, pos.select(self.im / (two * tp), tn_signed)),
+        let zero = r.simd_eq(Vf::ZERO);
+        CxV {
+            re: zero.select(Vf::ZERO, pos.select(tp, self.im.abs() / (two * tn))),
+            im: zero.select(Vf::ZERO, pos.select(self.im / (two * tp), tn_signed)),
         }
     }
 }
@@ -449,18 +449,18 @@ impl Cx8 {
 /// [`ratio_norm2`] lane-wise.
 #[cfg(feature = "simd")]
 #[inline(always)]
-fn ratio_norm2_x8(a: Cx8, b: Cx8) -> f32x8 {
+fn ratio_norm2_v(a: CxV, b: CxV) -> Vf {
     let nb = b.norm2();
-    let r = (a.norm2() / nb).max(f32x8::ZERO).min(f32x8::ONE);
-    nb.simd_gt(f32x8::ZERO).select(r, f32x8::ONE)
+    let r = (a.norm2() / nb).max(Vf::ZERO).min(Vf::ONE);
+    nb.simd_gt(Vf::ZERO).select(r, Vf::ONE)
 }
 
-/// [`fr_complex`] of eight cosines `ci ∈ [0, 1]` and one channel `η + ik`:
+/// [`fr_complex`] of a vector of cosines `ci ∈ [0, 1]` and one channel `η + ik`:
 /// the lane-constant `1/η²` is formed in scalar exactly as `fr_complex`
 /// forms it, every per-lane operation is the scalar one.
 #[cfg(feature = "simd")]
 #[inline(always)]
-fn fr_complex_x8(ci: f32x8, eta: f32, k: f32) -> f32x8 {
+fn fr_complex_v(ci: Vf, eta: f32, k: f32) -> Vf {
     let e = Cx { re: eta, im: k };
     let e2 = e.mul(e);
     let inv_e2 = Cx {
@@ -468,21 +468,21 @@ fn fr_complex_x8(ci: f32x8, eta: f32, k: f32) -> f32x8 {
         im: -e2.im,
     }
     .scale(1.0 / e2.norm2());
-    let (zero, one) = (f32x8::ZERO, f32x8::ONE);
+    let (zero, one) = (Vf::ZERO, Vf::ONE);
     let sin2_i = (one - ci * ci).max(zero);
     // sin²θt = inv_e2 · sin²θi; ct = √(1 − sin²θt).
-    let ct = Cx8 {
-        re: one - f32x8::splat(inv_e2.re) * sin2_i,
-        im: -(f32x8::splat(inv_e2.im) * sin2_i),
+    let ct = CxV {
+        re: one - Vf::splat(inv_e2.re) * sin2_i,
+        im: -(Vf::splat(inv_e2.im) * sin2_i),
     }
     .sqrt();
-    let c = Cx8 { re: ci, im: zero };
-    let ec = Cx8 {
-        re: f32x8::splat(eta) * ci,
-        im: f32x8::splat(k) * ci,
+    let c = CxV { re: ci, im: zero };
+    let ec = CxV {
+        re: Vf::splat(eta) * ci,
+        im: Vf::splat(k) * ci,
     };
-    let ect = Cx8::const_mul(e, ct);
-    let rp = ratio_norm2_x8(ec.sub(ct), ec.add(ct));
-    let rs = ratio_norm2_x8(c.sub(ect), c.add(ect));
-    (f32x8::splat(0.5) * (rp + rs)).max(zero).min(one)
+    let ect = CxV::const_mul(e, ct);
+    let rp = ratio_norm2_v(ec.sub(ct), ec.add(ct));
+    let rs = ratio_norm2_v(c.sub(ect), c.add(ect));
+    (Vf::splat(0.5) * (rp + rs)).max(zero).min(one)
 }

@@ -520,7 +520,7 @@ where
     }
 
     /// With the `simd` feature, GGX with either shadowing–masking variant
-    /// (any Fresnel term) uses an 8-wide kernel ([`crate::simd`]) that
+    /// (any Fresnel term) uses a vector kernel ([`crate::simd`]) that
     /// returns exactly the bits [`Brdf::eval`] returns; other combinations
     /// loop over `eval`.
     #[cfg(feature = "simd")]
@@ -529,7 +529,7 @@ where
         batch::eval(self, crate::simd::Batch::Aos(wi, wo, out))
     }
 
-    /// As [`eval_batch`](Brdf::eval_batch), loading eight `x`, `y`, `z`
+    /// As [`eval_batch`](Brdf::eval_batch), loading [`LANES`](crate::simd::LANES) `x`, `y`, `z`
     /// components at a time straight from the slices (bit-identical to
     /// `eval`).
     #[cfg(feature = "simd")]
@@ -538,7 +538,7 @@ where
         batch::eval(self, crate::simd::Batch::Soa(wi, wo, out))
     }
 
-    /// With the `simd` feature, GGX (either `G`, any `F`) uses an 8-wide
+    /// With the `simd` feature, GGX (either `G`, any `F`) uses a vector
     /// kernel for `D(h)/(4 A(ωo))`, bit-identical to [`Brdf::pdf`].
     #[cfg(feature = "simd")]
     #[inline]
