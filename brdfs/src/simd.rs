@@ -272,6 +272,63 @@ pub(crate) fn pow_unit(x: Vf, n: f32) -> Vf {
     (Vf::splat(n) * ln).exp()
 }
 
+/// `libm::expf` lane-wise, **bit for bit** (a port of its algorithm, FreeBSD
+/// `e_expf.c`, with the same operations in the same order; no FMA):
+///
+/// * `|x| ≤ 2⁻¹⁴`: `1 + x`;
+/// * otherwise `k = round(x/ln 2)` (`trunc(x/ln 2 ± 1/2)`, or `±1` for
+///   `|x| ≤ 1.5 ln 2`, or `0` for `|x| ≤ ln 2/2`), `r = (x − k ln2_hi) − k ln2_lo`,
+///   the Remez form `c = r − r²(P1 + r² P2)`, `y = 1 + (r c/(2 − c) − lo + hi)`
+///   and `scalbnf(y, k)` — a product by `2^k` with one rounding, formed here
+///   as `(y · 2^{k₁}) · 2^{k₂}` with an exact first factor;
+/// * `x ≥ 88.7228`: `+∞`; `x ≤ −103.972`: `0`; NaN: NaN.
+///
+/// The `brdfs` unit test `expf_is_libm_bit_for_bit` compares it with
+/// `libm::expf` on every `f32` in `[−104, 89]` with a stride and on the
+/// special values.
+#[inline(always)]
+pub(crate) fn expf(x: Vf) -> Vf {
+    const LN2_HI: f32 = 6.931_457_5e-1; // 0x3f317200
+    const LN2_LO: f32 = 1.428_606_8e-6; // 0x35bfbe8e
+    const INV_LN2: f32 = 1.442_695_f32; // 0x3fb8aa3b
+    const P1: f32 = 1.666_662_5e-1; // 0xaaaa8f.0p-26
+    const P2: f32 = -2.766_733_3e-3; // -0xb55215.0p-32
+    let (zero, one) = (Vf::ZERO, Vf::ONE);
+    let ax = x.abs();
+    let neg = x.is_sign_negative();
+    let above = |bits: u32| ax.simd_gt(Vf::splat(f32::from_bits(bits)));
+    // k as a float: |x| > 1.5 ln2, |x| > ln2/2, else 0.
+    let half = neg.select(Vf::splat(-0.5), Vf::splat(0.5));
+    let k_big = (Vf::splat(INV_LN2) * x + half).trunc();
+    let k_mid = neg.select(-one, one);
+    let k = above(0x3f85_1592).select(k_big, above(0x3eb1_7218).select(k_mid, zero));
+    // (For k = 0 these are hi = x, lo = 0, r = x, exactly as the scalar branch.)
+    let hi = x - k * Vf::splat(LN2_HI);
+    let lo = k * Vf::splat(LN2_LO);
+    let r = hi - lo;
+    let rr = r * r;
+    let c = r - rr * (Vf::splat(P1) + rr * Vf::splat(P2));
+    let y = one + (r * c / (Vf::splat(2.0) - c) - lo + hi);
+    // scalbnf(y, k), k ∈ [−150, 128]: prescale by 2^-102 below −126 and by
+    // 2^127 above 127 (exact), then one rounding multiply by 2^{k₂}.
+    let low = k.simd_lt(Vf::splat(-126.0));
+    let high = k.simd_gt(Vf::splat(127.0));
+    let pre = low.select(
+        Vf::splat(f32::from_bits(0x0c80_0000)),
+        high.select(Vf::splat(f32::from_bits(0x7f00_0000)), one),
+    );
+    let k2 = low.select(k + Vf::splat(102.0), high.select(k - Vf::splat(127.0), k));
+    // 2^{k₂}: k₂ ∈ [−126, 127] after the prescale on every lane that is kept.
+    let k2 = k2.max(Vf::splat(-126.0)).min(Vf::splat(127.0));
+    let pow2: Vf = wide::bytemuck::cast(((k2 + Vf::splat(127.0)).trunc_int()) << 23);
+    let v = (y * pre) * pow2;
+    // Special cases, in the scalar order of precedence.
+    let v = above(0x3900_0000).select(v, one + x);
+    let v = (!neg & ax.simd_ge(Vf::splat(f32::from_bits(0x42b1_7218)))).select(Vf::splat(f32::INFINITY), v);
+    let v = (neg & ax.simd_ge(Vf::splat(f32::from_bits(0x42cf_f1b5)))).select(zero, v);
+    x.is_nan().select(x, v)
+}
+
 /// Stores [`LANES`] spectra `out[k] = S::from_fn(|c| channel(c)[k])`, calling
 /// `channel` once per channel. For `S = f32` this is one whole-vector store
 /// (a safe `Any` downcast, folded at monomorphisation).
@@ -402,6 +459,80 @@ impl<O> Batch<'_, O> {
                 for ((o, a), c) in out.iter_mut().zip(wi.iter()).zip(wo.iter()) {
                     *o = f(a, c);
                 }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec;
+
+    /// `expf` equals `libm::expf` bit for bit: every 7th `f32` of
+    /// `[−104, 89]` (both signs; about 150 million values), plus the special
+    /// values and the thresholds of the scalar branches ± 1 ulp.
+    #[test]
+    fn expf_is_libm_bit_for_bit() {
+        let mut specials = vec![
+            0.0f32,
+            -0.0,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            1e-45,
+            -1e-45,
+            1.0,
+            -1.0,
+        ];
+        for bits in [
+            0x3900_0000u32,
+            0x3eb1_7218,
+            0x3f85_1592,
+            0x42ae_ac50,
+            0x42b1_7218,
+            0x42cf_f1b5,
+        ] {
+            for d in [-2i32, -1, 0, 1, 2] {
+                let v = f32::from_bits(bits.wrapping_add_signed(d));
+                specials.push(v);
+                specials.push(-v);
+            }
+        }
+        let check = |xs: &[f32; LANES]| {
+            let got = expf(Vf::new(*xs)).to_array();
+            for (x, g) in xs.iter().zip(got) {
+                let want = libm::expf(*x);
+                assert!(
+                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
+                    "expf({x:e} = {:#x}): libm {want:e}, vector {g:e}",
+                    x.to_bits()
+                );
+            }
+        };
+        for chunk in specials.chunks(LANES) {
+            let mut xs = [0.5f32; LANES];
+            xs[..chunk.len()].copy_from_slice(chunk);
+            check(&xs);
+        }
+        let mut xs = [0.0f32; LANES];
+        let mut n = 0;
+        for sign in [0u32, 0x8000_0000] {
+            let end = if sign == 0 { 89.0f32 } else { 104.0 };
+            let mut bits = 0u32;
+            while f32::from_bits(bits) <= end {
+                xs[n] = f32::from_bits(bits | sign);
+                n += 1;
+                if n == LANES {
+                    check(&xs);
+                    n = 0;
+                }
+                bits += 7;
             }
         }
     }

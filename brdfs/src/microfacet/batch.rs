@@ -12,7 +12,7 @@
 
 use super::{Fresnel, Microfacet, MicrofacetDistribution, ShadowingMasking};
 use crate::simd::Vf;
-use crate::simd::{Batch, Dirs, Kernel, LANES, finite_nonneg};
+use crate::simd::{Batch, Dirs, Kernel, LANES, expf, finite_nonneg};
 use core::f32::consts::PI;
 use radiometry::Brdf;
 use radiometry::glam::Vec3;
@@ -27,6 +27,11 @@ pub enum DistributionKind {
     Scalar,
     /// GGX with this roughness.
     Ggx {
+        /// The roughness `α`.
+        alpha: f32,
+    },
+    /// Beckmann with this roughness.
+    Beckmann {
         /// The roughness `α`.
         alpha: f32,
     },
@@ -50,7 +55,9 @@ pub enum G2Kind {
 /// projected area `A(cos θ, sin²θ)`, lane-wise and bit-identical to
 /// [`MicrofacetDistribution::d_cos2`] / [`projected_area`](MicrofacetDistribution::projected_area).
 trait DistV {
-    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> Vf;
+    /// `(D, cold)`: `cold` masks the lanes this kernel does not evaluate
+    /// (handed back to the scalar method).
+    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf);
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf;
 }
 
@@ -73,14 +80,54 @@ impl GgxV {
 
 impl DistV for GgxV {
     #[inline(always)]
-    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> Vf {
+    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
         let t = self.a2 * cos2 + sin2;
-        finite_nonneg(self.a2 / (Vf::splat(PI) * t * t))
+        (finite_nonneg(self.a2 / (Vf::splat(PI) * t * t)), Vf::ZERO)
     }
 
     #[inline(always)]
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
         Vf::splat(0.5) * (cos_theta + (cos_theta * cos_theta + self.a2 * sin2).sqrt())
+    }
+}
+
+/// Beckmann: `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007,
+/// eq. 25) with the exponential of [`crate::simd::expf`] (`libm::expf` bit for
+/// bit); lanes with `cos²θh < 10⁻⁸` (the scalar code's other branch,
+/// `exp(−tan²θh/α² − 2 ln cos²θh)`) are handed back. The projected area
+/// `A = cos θ (1 + Λ)` calls the scalar
+/// [`projected_area`](MicrofacetDistribution::projected_area) per lane.
+struct BeckmannV<'a, D> {
+    d: &'a D,
+    /// `α²` and `π α²`, rounded as `Beckmann::d_cos2` rounds them.
+    a2: Vf,
+    pi_a2: Vf,
+}
+
+impl<'a, D: MicrofacetDistribution> BeckmannV<'a, D> {
+    #[inline(always)]
+    fn new(d: &'a D, alpha: f32) -> Self {
+        let a2 = alpha * alpha;
+        BeckmannV {
+            d,
+            a2: Vf::splat(a2),
+            pi_a2: Vf::splat(PI * a2),
+        }
+    }
+}
+
+impl<D: MicrofacetDistribution> DistV for BeckmannV<'_, D> {
+    #[inline(always)]
+    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
+        let e = sin2 / (cos2 * self.a2);
+        let v = expf(-e) / (cos2 * cos2);
+        (finite_nonneg(v / self.pi_a2), cos2.simd_lt(Vf::splat(1e-8)))
+    }
+
+    #[inline(always)]
+    fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
+        let (c, s) = (cos_theta.to_array(), sin2.to_array());
+        Vf::new(core::array::from_fn(|k| self.d.projected_area(c[k], s[k])))
     }
 }
 
@@ -122,9 +169,8 @@ where
 
     #[inline(always)]
     fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [F::Spectrum; LANES]) -> u32 {
-        let cold = cold_lanes(wi, wo);
         let (valid, len2, cos2, sin2) = half(wi, wo);
-        let d = self.dist.d_cos2(cos2, sin2);
+        let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
         let ai = self.dist.area(wi.z, wi.xy_length_squared());
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
         let four = Vf::splat(4.0);
@@ -138,7 +184,7 @@ where
         // (`fast_min` differs from `min` only for NaN, which only cold lanes hold.)
         let cos_d = (Vf::splat(0.5) * len2.sqrt()).fast_min(Vf::ONE);
         self.b.fresnel.eval_scaled_lanes(cos_d, s, out);
-        cold
+        cold_lanes(wi, wo) | (valid & d_cold).to_bitmask()
     }
 
     #[inline(always)]
@@ -166,11 +212,11 @@ where
     #[inline(always)]
     fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
         let (valid, _, cos2, sin2) = half(wi, wo);
-        let d = self.dist.d_cos2(cos2, sin2);
+        let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
         let p = finite_nonneg(d / (Vf::splat(4.0) * ao));
         *out = valid.select(p, Vf::ZERO).to_array();
-        cold_lanes(wi, wo)
+        cold_lanes(wi, wo) | (valid & d_cold).to_bitmask()
     }
 
     #[inline(always)]
@@ -197,6 +243,16 @@ where
             b,
             dist: GgxV::new(alpha),
         }),
+        (DistributionKind::Beckmann { alpha }, G2Kind::HeightCorrelated) => {
+            io.run(&Eval::<_, _, _, _, false> {
+                b,
+                dist: BeckmannV::new(&b.distribution, alpha),
+            })
+        }
+        (DistributionKind::Beckmann { alpha }, G2Kind::Separable) => io.run(&Eval::<_, _, _, _, true> {
+            b,
+            dist: BeckmannV::new(&b.distribution, alpha),
+        }),
         _ => io.scalar(|wi, wo| b.eval(wi, wo)),
     }
 }
@@ -213,6 +269,10 @@ where
         DistributionKind::Ggx { alpha } => io.run(&Pdf {
             b,
             dist: GgxV::new(alpha),
+        }),
+        DistributionKind::Beckmann { alpha } => io.run(&Pdf {
+            b,
+            dist: BeckmannV::new(&b.distribution, alpha),
         }),
         _ => io.scalar(|wi, wo| b.pdf(wi, wo)),
     }

@@ -198,6 +198,12 @@ impl MicrofacetDistribution for Beckmann {
         cos_theta + alpha_s * a_lambda
     }
 
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn batch_kind(&self) -> super::DistributionKind {
+        super::DistributionKind::Beckmann { alpha: self.alpha }
+    }
+
     /// `Λ(a)` with `a = 1/(α tan θ)` (the erf form above): `0` for
     /// `tan²θ = 0`, `+∞` for `tan²θ = +∞` or NaN.
     #[inline(always)]
