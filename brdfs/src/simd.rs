@@ -288,11 +288,12 @@ pub(crate) fn pow_unit(x: Vf, n: f32) -> Vf {
 /// special values.
 #[inline(always)]
 pub(crate) fn expf(x: Vf) -> Vf {
-    const LN2_HI: f32 = 6.931_457_5e-1; // 0x3f317200
-    const LN2_LO: f32 = 1.428_606_8e-6; // 0x35bfbe8e
-    const INV_LN2: f32 = 1.442_695_f32; // 0x3fb8aa3b
-    const P1: f32 = 1.666_662_5e-1; // 0xaaaa8f.0p-26
-    const P2: f32 = -2.766_733_3e-3; // -0xb55215.0p-32
+    // libm's constants, by their bits.
+    const LN2_HI: f32 = f32::from_bits(0x3f31_7200); // 6.9314575195e-01
+    const LN2_LO: f32 = f32::from_bits(0x35bf_be8e); // 1.4286067653e-06
+    const INV_LN2: f32 = f32::from_bits(0x3fb8_aa3b); // 1.4426950216e+00
+    const P1: f32 = f32::from_bits(0x3e2a_aa8f); // 1.6666625440e-1
+    const P2: f32 = f32::from_bits(0xbb35_5215); // -2.7667332906e-3
     let (zero, one) = (Vf::ZERO, Vf::ONE);
     let ax = x.abs();
     let neg = x.is_sign_negative();
