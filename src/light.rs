@@ -44,8 +44,9 @@
 
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
+use crate::integrator::chunk::brdf_eval_where;
 use crate::integrator::{
-    DirectionalAlbedo, Estimate, Integrand, IntegrandSample, IntegrateError, Integrator,
+    CHUNK, DirectionalAlbedo, Estimate, Integrand, IntegrandSample, IntegrateError, Integrator,
 };
 use crate::math::safe_sqrt;
 use crate::radiometric;
@@ -814,27 +815,30 @@ impl<B: Brdf> CapIntegrand<B> {
         }
     }
 
-    /// `g'` at `u0 = 1 − cos θ' ∈ [0,1]` and hemisphere azimuth `φ'`.
+    /// Where `g'` at `u0 = 1 − cos θ' ∈ [0,1]` and hemisphere azimuth `φ'`
+    /// needs the BRDF.
     #[inline]
-    fn eval_at(&self, u0: f32, phi: f32) -> B::Spectrum {
+    fn point_at(&self, u0: f32, phi: f32) -> CapPoint {
         let (beta, dbeta) = self.beta(phi);
         if dbeta <= 0.0 {
-            return B::Spectrum::zero();
+            return CapPoint { w: None, dbeta: None };
         }
         let (sb, cb) = libm::sincosf(beta);
-        self.eval_param(u0, cb, sb) * dbeta
+        CapPoint {
+            w: self.point_param(u0, cb, sb),
+            dbeta: Some(dbeta),
+        }
     }
 
-    /// `g'` (without the azimuth Jacobian) at `u0 = 1 − cos θ' ∈ [0,1]` and
-    /// cap azimuth `(cos β, sin β)`.
+    /// The direction `ω` and the factor `cos θ · J` of `g'` (without the
+    /// azimuth Jacobian) at `u0 = 1 − cos θ' ∈ [0,1]` and cap azimuth
+    /// `(cos β, sin β)`; `None` where `g'` is zero.
     #[inline]
-    fn eval_param(&self, u0: f32, cos_b: f32, sin_b: f32) -> B::Spectrum {
-        let Some((v_lo, v_hi)) = self.v_range(cos_b) else {
-            return B::Spectrum::zero();
-        };
+    fn point_param(&self, u0: f32, cos_b: f32, sin_b: f32) -> Option<(Vec3, f32)> {
+        let (v_lo, v_hi) = self.v_range(cos_b)?;
         let jac = v_hi - v_lo;
         if jac.is_nan() || jac <= 0.0 {
-            return B::Spectrum::zero();
+            return None;
         }
         let v = (v_lo + u0.clamp(0.0, 1.0) * jac).min(v_hi);
         let sin_a = safe_sqrt(v * (2.0 - v));
@@ -842,17 +846,14 @@ impl<B: Brdf> CapIntegrand<B> {
         let w = cos_a * self.a + sin_a * (cos_b * self.e1 + sin_b * self.e2);
         let cz = w.z;
         if cz.is_nan() || cz <= 0.0 {
-            return B::Spectrum::zero();
+            return None;
         }
-        self.brdf.eval(w, self.wo) * self.radiance * (cz * jac)
+        Some((w, cz * jac))
     }
-}
 
-impl<B: Brdf> Integrand for CapIntegrand<B> {
-    type Spectrum = B::Spectrum;
-
+    /// Where [`Integrand::eval`] at the hemisphere direction `w` needs the BRDF.
     #[inline]
-    fn eval(&self, w: Vec3) -> B::Spectrum {
+    fn point(&self, w: Vec3) -> CapPoint {
         let u0 = 1.0 - w.z.clamp(0.0, 1.0);
         if self.azimuth == Azimuth::Full {
             // β = φ': no trigonometry needed.
@@ -862,9 +863,67 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
             } else {
                 (1.0, 0.0)
             };
-            return self.eval_param(u0, cb, sb);
+            return CapPoint {
+                w: self.point_param(u0, cb, sb),
+                dbeta: None,
+            };
         }
-        self.eval_at(u0, crate::frame::spherical_phi(w))
+        self.point_at(u0, crate::frame::spherical_phi(w))
+    }
+
+    /// `g' = ((f_r L) · cos θ J) · dβ/dφ'` from `f = f_r(ω, ωo)` at `p`.
+    #[inline]
+    fn finish(&self, f: B::Spectrum, p: &CapPoint) -> B::Spectrum {
+        let base = match p.w {
+            Some((_, s)) => f * self.radiance * s,
+            None => B::Spectrum::zero(),
+        };
+        match p.dbeta {
+            Some(d) => base * d,
+            None => base,
+        }
+    }
+
+    /// `g'` at `p` (one BRDF evaluation where needed).
+    #[inline]
+    fn value(&self, p: &CapPoint) -> B::Spectrum {
+        let f = match p.w {
+            Some((w, _)) => self.brdf.eval(w, self.wo),
+            None => B::Spectrum::zero(),
+        };
+        self.finish(f, p)
+    }
+
+    /// `out[k] = g'(p[k])` with one [`Brdf::eval_batch`] over the points
+    /// that need the BRDF (`p.len() ≤ CHUNK`).
+    fn values(&self, p: &[CapPoint], out: &mut [B::Spectrum]) {
+        let mut wi = [None; CHUNK];
+        let n = p.len().min(out.len()).min(CHUNK);
+        for (d, p) in wi[..n].iter_mut().zip(p) {
+            *d = p.w.map(|(w, _)| w);
+        }
+        brdf_eval_where(&self.brdf, self.wo, &wi[..n], &mut out[..n]);
+        for (o, p) in out[..n].iter_mut().zip(p) {
+            *o = self.finish(*o, p);
+        }
+    }
+}
+
+/// Where the cap integrand needs the BRDF: the direction with the factor
+/// `cos θ · J` (`None`: zero), and the azimuth Jacobian to apply (`None`:
+/// none).
+#[derive(Clone, Copy, Debug)]
+struct CapPoint {
+    w: Option<(Vec3, f32)>,
+    dbeta: Option<f32>,
+}
+
+impl<B: Brdf> Integrand for CapIntegrand<B> {
+    type Spectrum = B::Spectrum;
+
+    #[inline]
+    fn eval(&self, w: Vec3) -> B::Spectrum {
+        self.value(&self.point(w))
     }
 
     fn has_sampling_map(&self) -> bool {
@@ -880,13 +939,47 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
         Some(IntegrandSample {
             w,
             pdf: 0.5 * FRAC_1_PI,
-            value: self.eval_at(u0, TAU * u[1].clamp(0.0, 1.0)),
+            value: self.value(&self.point_at(u0, TAU * u[1].clamp(0.0, 1.0))),
         })
     }
 
     #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if w.z >= 0.0 { 0.5 * FRAC_1_PI } else { 0.0 }
+    }
+
+    /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per chunk over
+    /// the points inside the visible cap.
+    fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        let mut p = [CapPoint { w: None, dbeta: None }; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            for (p, &w) in p[..n].iter_mut().zip(w) {
+                *p = self.point(w);
+            }
+            self.values(&p[..n], &mut out[..n]);
+        }
+    }
+
+    /// As [`Integrand::sample`], with one [`Brdf::eval_batch`] per chunk.
+    fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        let mut p = [CapPoint { w: None, dbeta: None }; CHUNK];
+        let mut v = [B::Spectrum::zero(); CHUNK];
+        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = u.len().min(out.len());
+            for (p, u) in p[..n].iter_mut().zip(u) {
+                *p = self.point_at(u[0].clamp(0.0, 1.0), TAU * u[1].clamp(0.0, 1.0));
+            }
+            self.values(&p[..n], &mut v[..n]);
+            for ((o, u), &value) in out[..n].iter_mut().zip(u).zip(&v[..n]) {
+                let u0 = u[0].clamp(0.0, 1.0);
+                *o = Some(IntegrandSample {
+                    w: square_to_uniform_hemisphere([1.0 - u0, u[1]]),
+                    pdf: 0.5 * FRAC_1_PI,
+                    value,
+                });
+            }
+        }
     }
 }
 
@@ -1085,6 +1178,61 @@ impl<B: Brdf, L: Light<Spectrum = B::Spectrum> + ?Sized> Integrand for Environme
     #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         self.brdf.pdf(w, self.wo)
+    }
+
+    /// As [`Integrand::eval`]: [`Light::radiance`] point by point, then one
+    /// [`Brdf::eval_batch`] per chunk over the points above the horizon
+    /// with non-black radiance.
+    fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        let mut l = [B::Spectrum::zero(); CHUNK];
+        let mut wi = [None; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            for ((l, d), &w) in l[..n].iter_mut().zip(&mut wi[..n]).zip(w) {
+                *d = None;
+                if w.z <= 0.0 {
+                    continue;
+                }
+                *l = self.light.radiance(w);
+                if !l.is_black() {
+                    *d = Some(w);
+                }
+            }
+            brdf_eval_where(&self.brdf, self.wo, &wi[..n], &mut out[..n]);
+            for (((o, l), d), &w) in out[..n].iter_mut().zip(&l[..n]).zip(&wi[..n]).zip(w) {
+                *o = match d {
+                    Some(_) => *o * *l * w.z,
+                    None => B::Spectrum::zero(),
+                };
+            }
+        }
+    }
+
+    /// [`Brdf::sample_batch`] with `wo` broadcast, then the radiance at each
+    /// sampled direction, as [`Integrand::sample`].
+    fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        let wo = [self.wo; CHUNK];
+        let mut s = [None; CHUNK];
+        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = u.len().min(out.len());
+            self.brdf.sample_batch(&wo[..n], &u[..n], &mut s[..n]);
+            for (o, s) in out[..n].iter_mut().zip(&s[..n]) {
+                *o = s.map(|s| IntegrandSample {
+                    w: s.wi,
+                    pdf: s.pdf,
+                    value: s.weight * s.pdf * self.light.radiance(s.wi),
+                });
+            }
+        }
+    }
+
+    /// [`Brdf::pdf_batch`] with `wo` broadcast.
+    fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        let wo = [self.wo; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            self.brdf.pdf_batch(&w[..n], &wo[..n], &mut out[..n]);
+        }
     }
 }
 

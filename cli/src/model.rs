@@ -2,7 +2,7 @@
 //!
 //! The plugins are generic (`Microfacet<D, G, F>`), so the CLI erases their
 //! types behind [`AnyBrdf`] (a boxed trait object; one virtual call per
-//! evaluation) and picks integrators through [`AnyIntegrator`] (an enum,
+//! evaluation, or per batch through the batch methods the integrators use) and picks integrators through [`AnyIntegrator`] (an enum,
 //! statically dispatched per variant).
 
 use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, SpecError};
@@ -26,6 +26,13 @@ pub trait DynBrdf: Send + Sync {
     fn sample_dyn(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>>;
     /// See [`Brdf::pdf`].
     fn pdf_dyn(&self, wi: Vec3, wo: Vec3) -> f32;
+    /// See [`Brdf::eval_batch`] (one virtual call per batch, so the
+    /// plugin's vector kernel runs).
+    fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]);
+    /// See [`Brdf::pdf_batch`].
+    fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]);
+    /// See [`Brdf::sample_batch`].
+    fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]);
 }
 
 impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
@@ -37,6 +44,15 @@ impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
     }
     fn pdf_dyn(&self, wi: Vec3, wo: Vec3) -> f32 {
         self.pdf(wi, wo)
+    }
+    fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        self.eval_batch(wi, wo, out)
+    }
+    fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        self.pdf_batch(wi, wo, out)
+    }
+    fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
+        self.sample_batch(wo, u, out)
     }
 }
 
@@ -56,6 +72,18 @@ impl Brdf for AnyBrdf {
     #[inline]
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         self.0.pdf_dyn(wi, wo)
+    }
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        self.0.eval_batch_dyn(wi, wo, out)
+    }
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        self.0.pdf_batch_dyn(wi, wo, out)
+    }
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
+        self.0.sample_batch_dyn(wo, u, out)
     }
 }
 

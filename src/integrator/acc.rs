@@ -1,11 +1,9 @@
 //! Shared internals of the integrators: channel-wise compensated sums,
-//! shifted-data moment accumulators, and the two ways of turning a point of
-//! the unit square into an integrand value (the hemisphere parameterisation
-//! and the integrand's own sampling map).
+//! shifted-data moment accumulators, the hemisphere direction of a point
+//! `(μ, φ)` and the rounding of unit-square coordinates to `f32` (the
+//! chunked evaluation of integrand values is in [`super::chunk`]).
 
-use super::{Integrand, IntegrateError, WideOf, check_finite};
-use crate::spectrum::{Spectrum, WideSpectrum};
-use core::f64::consts::TAU;
+use crate::spectrum::WideSpectrum;
 use glam::Vec3;
 
 /// Channel-wise Neumaier compensated sum of wide spectra
@@ -113,12 +111,6 @@ impl<W: WideSpectrum> Moments<W> {
     }
 }
 
-/// The integrand at a direction, widened and checked for NaN/∞.
-#[inline]
-pub(crate) fn eval_wide<I: Integrand>(g: &I, w: Vec3) -> Result<WideOf<I>, IntegrateError> {
-    check_finite(g.eval(w).to_wide())
-}
-
 /// Direction for `cos θ = mu`, azimuth `phi` (PBRT 4th ed. §3.8.3):
 /// `(sin θ cos φ, sin θ sin φ, cos θ)` with `sin θ = √(1 − μ²)`.
 #[inline]
@@ -127,55 +119,6 @@ pub(crate) fn direction(mu: f64, phi: f64) -> Vec3 {
     let s = libm::sqrt((1.0 - mu * mu).max(0.0));
     let (sp, cp) = libm::sincos(phi);
     Vec3::new((s * cp) as f32, (s * sp) as f32, mu as f32)
-}
-
-/// The hemisphere in coordinates `(a, b) ∈ [0,1]²`: `μ = cos θ = a`,
-/// `φ = 2π b`, `dω = dμ dφ = 2π da db`. Returns `g(ω(a, b)) · 2π`.
-#[inline]
-pub(crate) fn hemisphere_point<I: Integrand>(g: &I, a: f64, b: f64) -> Result<WideOf<I>, IntegrateError> {
-    Ok(eval_wide(g, direction(a, TAU * b))?.map(|v| v * TAU))
-}
-
-/// One draw of the integrand's sampling map at `u`, as the importance weight
-/// `g(ω)/p(ω)` in `f64` together with the direction and density.
-///
-/// * `None` from [`Integrand::sample`] is a zero-contribution sample.
-/// * A non-finite value or density is [`IntegrateError::NonFiniteIntegrand`].
-/// * A density `≤ 0` (outside the trait contract) contributes zero if the
-///   value is black, and is reported as `NonFiniteIntegrand` otherwise (the
-///   weight would be infinite).
-#[inline]
-pub(crate) fn sampled_point<I: Integrand>(
-    g: &I,
-    u: [f32; 2],
-) -> Result<Option<(Vec3, f64, WideOf<I>)>, IntegrateError> {
-    let Some(s) = g.sample(u) else {
-        return Ok(None);
-    };
-    let v = check_finite(s.value.to_wide())?;
-    if !s.pdf.is_finite() {
-        return Err(IntegrateError::NonFiniteIntegrand);
-    }
-    if s.pdf <= 0.0 {
-        return if s.value.is_black() {
-            Ok(None)
-        } else {
-            Err(IntegrateError::NonFiniteIntegrand)
-        };
-    }
-    let p = s.pdf as f64;
-    Ok(Some((s.w, p, v.map(|x| x / p))))
-}
-
-/// `value/pdf` of the sampling map at `(a, b) ∈ [0,1]²` (zero where the map
-/// has no direction). See [`sampled_point`].
-#[inline]
-pub(crate) fn warped_point<I: Integrand>(g: &I, a: f64, b: f64) -> Result<WideOf<I>, IntegrateError> {
-    let u = [to_unit_f32(a), to_unit_f32(b)];
-    Ok(match sampled_point(g, u)? {
-        Some((_, _, w)) => w,
-        None => WideOf::<I>::splat(0.0),
-    })
 }
 
 /// Rounds `x ∈ [0, 1]` to an `f32` in `[0, 1)` (at most `1 − 2⁻²⁴`).

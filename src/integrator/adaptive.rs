@@ -2,6 +2,7 @@
 //! Genz–Malik degree-7/degree-5 rule ([`Adaptive`]).
 
 use super::acc::{self, F32_FLOOR, WideSum};
+use super::chunk::{self, BatchFn};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
 use crate::spectrum::WideSpectrum;
 
@@ -105,28 +106,64 @@ impl<W> Region<W> {
     }
 }
 
+/// Most regions whose points go to the integrand in one batch
+/// (`4 × 17 = 68` points: the initial 2 × 2 grid, or four cells of a
+/// composite rule).
+const BATCH_REGIONS: usize = 4;
+
+/// Applies the rule to the rectangles `c[r] ± h[r]`,
+/// `r < min(c.len(), h.len(), BATCH_REGIONS)`, evaluating all their points
+/// in one batch, and passes the regions to `each` in order.
+fn rules<W: WideSpectrum>(
+    c: &[[f64; 2]],
+    h: &[[f64; 2]],
+    f: &mut impl BatchFn<W>,
+    mut each: impl FnMut(Region<W>),
+) -> Result<(), IntegrateError> {
+    let m = c.len().min(h.len()).min(BATCH_REGIONS);
+    let mut pts = [[0.0f64; 2]; BATCH_REGIONS * GM_POINTS];
+    let mut vals = [W::splat(0.0); BATCH_REGIONS * GM_POINTS];
+    for (r, p) in pts.chunks_exact_mut(GM_POINTS).take(m).enumerate() {
+        rule_points(c[r], h[r], p);
+    }
+    f(&pts[..m * GM_POINTS], &mut vals[..m * GM_POINTS])?;
+    for (r, v) in vals.chunks_exact(GM_POINTS).take(m).enumerate() {
+        each(rule(c[r], h[r], v));
+    }
+    Ok(())
+}
+
 /// The Genz–Malik rule compounded over an `n × n` grid of equal cells of
-/// the rectangle `c ± h` (value, error and Σ|w f| are sums over the cells).
+/// the rectangle `c ± h` (value, error and Σ|w f| are sums over the cells
+/// in row-major order; the points of [`BATCH_REGIONS`] cells are evaluated
+/// at a time).
 fn composite<W: WideSpectrum>(
     c: [f64; 2],
     h: [f64; 2],
     n: u32,
     axis: u8,
-    f: &mut impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+    f: &mut impl BatchFn<W>,
 ) -> Result<Region<W>, IntegrateError> {
     let hc = [h[0] / n as f64, h[1] / n as f64];
     let (mut v, mut e, mut a) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
-    for i in 0..n {
-        for j in 0..n {
-            let cc = [
+    let cells = n as u64 * n as u64;
+    let mut centres = [[0.0f64; 2]; BATCH_REGIONS];
+    let mut start = 0u64;
+    while start < cells {
+        let m = (cells - start).min(BATCH_REGIONS as u64) as usize;
+        for (k, cc) in centres[..m].iter_mut().enumerate() {
+            let (i, j) = ((start + k as u64) / n as u64, (start + k as u64) % n as u64);
+            *cc = [
                 c[0] - h[0] + (2 * i + 1) as f64 * hc[0],
                 c[1] - h[1] + (2 * j + 1) as f64 * hc[1],
             ];
-            let r = rule(cc, hc, f)?;
+        }
+        rules(&centres[..m], &[hc; BATCH_REGIONS], f, |r| {
             v.add(r.value);
             e.add(r.error);
             a.add(r.abs);
-        }
+        })?;
+        start += m as u64;
     }
     let (value, error, abs) = (v.value(), e.value(), a.value());
     Ok(Region {
@@ -141,17 +178,17 @@ fn composite<W: WideSpectrum>(
     })
 }
 
-/// Applies the rule to the rectangle `c ± h`.
-fn rule<W: WideSpectrum>(
-    c: [f64; 2],
-    h: [f64; 2],
-    f: &mut impl FnMut(f64, f64) -> Result<W, IntegrateError>,
-) -> Result<Region<W>, IntegrateError> {
-    let pts = gm_points();
-    let mut vals = [W::splat(0.0); GM_POINTS];
-    for (k, &(t0, t1, _)) in pts.iter().enumerate() {
-        vals[k] = f(c[0] + h[0] * t0, c[1] + h[1] * t1)?;
+/// The 17 points of the rule on the rectangle `c ± h`, into `out[..17]`.
+fn rule_points(c: [f64; 2], h: [f64; 2], out: &mut [[f64; 2]]) {
+    for (o, &(t0, t1, _)) in out.iter_mut().zip(gm_points().iter()) {
+        *o = [c[0] + h[0] * t0, c[1] + h[1] * t1];
     }
+}
+
+/// The rule on the rectangle `c ± h` from the values `vals[..17]` at its
+/// [`rule_points`].
+fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
+    let pts = gm_points();
     let vol = 4.0 * h[0] * h[1];
     let mut i7 = WideSum::<W>::new();
     let mut i5 = WideSum::<W>::new();
@@ -186,7 +223,7 @@ fn rule<W: WideSpectrum>(
     // among regions whose 17 values agree (|I₇ − I₅| ≈ 0) the larger ones
     // are split first and the small ones frozen first.
     let key = acc::max_abs(acc::add(error, abs.map(|a| a * F32_FLOOR)));
-    Ok(Region {
+    Region {
         c,
         h,
         value: i7,
@@ -201,7 +238,7 @@ fn rule<W: WideSpectrum>(
             0
         },
         n: 1,
-    })
+    }
 }
 
 /// Two-level check after splitting `p` into `a` and `b`: the difference
@@ -351,7 +388,7 @@ impl Adaptive {
     fn run<W: WideSpectrum>(
         &self,
         budget: u32,
-        mut f: impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+        mut f: impl BatchFn<W>,
     ) -> Result<Estimate<W>, IntegrateError> {
         if budget < Self::MIN_BUDGET {
             return Err(IntegrateError::BudgetTooSmall {
@@ -382,15 +419,16 @@ impl Adaptive {
                 (FIRST_CUT, 1.0)
             }
         };
-        for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+        let (mut c0, mut h0) = ([[0.0; 2]; 4], [[0.0; 2]; 4]);
+        for (k, (i, j)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
             let ((x0, x1), (y0, y1)) = (span(i), span(j));
-            regions[live] = rule(
-                [0.5 * (x0 + x1), 0.5 * (y0 + y1)],
-                [0.5 * (x1 - x0), 0.5 * (y1 - y0)],
-                &mut f,
-            )?;
-            live += 1;
+            c0[k] = [0.5 * (x0 + x1), 0.5 * (y0 + y1)];
+            h0[k] = [0.5 * (x1 - x0), 0.5 * (y1 - y0)];
         }
+        rules(&c0, &h0, &mut f, |r| {
+            regions[live] = r;
+            live += 1;
+        })?;
         let mut evals = 4 * GM_POINTS as u64;
         let mut splits = 0u64;
         loop {
@@ -463,8 +501,13 @@ impl Adaptive {
             let mut c2 = r.c;
             c1[ax] -= h[ax];
             c2[ax] += h[ax];
-            let mut a = rule(c1, h, &mut f)?;
-            let mut b = rule(c2, h, &mut f)?;
+            let mut ab = [empty; 2];
+            let mut k = 0;
+            rules(&[c1, c2], &[h, h], &mut f, |q| {
+                ab[k] = q;
+                k += 1;
+            })?;
+            let [mut a, mut b] = ab;
             evals += 2 * GM_POINTS as u64;
             splits += 1;
             two_level(&r, &mut a, &mut b);
@@ -492,11 +535,16 @@ impl Integrator for Adaptive {
             if !g.has_sampling_map() {
                 return Err(IntegrateError::NoSamplingMap);
             }
-            self.run(budget, |a, b| acc::warped_point(g, a, b))
+            self.run(budget, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+                chunk::warped_values(g, p, out)
+            })
         } else {
-            self.run(budget, |a, b| {
+            let turn = |b: f64| {
                 let s = b + PHI_OFFSET;
-                acc::hemisphere_point(g, a, if s >= 1.0 { s - 1.0 } else { s })
+                if s >= 1.0 { s - 1.0 } else { s }
+            };
+            self.run(budget, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+                chunk::hemisphere_values(g, p, turn, out)
             })
         }
     }

@@ -3,7 +3,8 @@
 //! the product rule on the unit square pulled through the integrand's
 //! sampling map ([`WarpedGaussLegendre`]).
 
-use super::acc::{self, F32_FLOOR, WideSum};
+use super::acc::{F32_FLOOR, WideSum};
+use super::chunk::{self, BatchFn, CHUNK};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
 use crate::spectrum::WideSpectrum;
 
@@ -119,23 +120,37 @@ impl UnitRule {
 }
 
 /// `Σᵢ Σⱼ wᵢ wⱼ f(aᵢ, bⱼ)` over `[0,1]²` with `na × nb` nodes, and the
-/// channel-wise `Σ |wᵢ wⱼ f|` (for the rounding floor).
+/// channel-wise `Σ |wᵢ wⱼ f|` (for the rounding floor). Nodes go to `f` in
+/// row-major order, [`CHUNK`] at a time; the sums are accumulated in that
+/// order.
 fn product_square<W: WideSpectrum>(
     na: usize,
     nb: usize,
-    mut f: impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+    f: &mut impl BatchFn<W>,
 ) -> Result<(W, W), IntegrateError> {
     let ra = UnitRule::new(na);
     let rb = UnitRule::new(nb);
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
-    for i in 0..ra.n {
-        for j in 0..rb.n {
-            let wt = ra.w[i] * rb.w[j];
-            let v = f(ra.x[i], rb.x[j])?.map(|c| c * wt);
+    let mut pts = [[0.0f64; 2]; CHUNK];
+    let mut wts = [0.0f64; CHUNK];
+    let mut vals = [W::splat(0.0); CHUNK];
+    let total = ra.n * rb.n;
+    let mut start = 0;
+    while start < total {
+        let n = (total - start).min(CHUNK);
+        for k in 0..n {
+            let (i, j) = ((start + k) / rb.n, (start + k) % rb.n);
+            pts[k] = [ra.x[i], rb.x[j]];
+            wts[k] = ra.w[i] * rb.w[j];
+        }
+        f(&pts[..n], &mut vals[..n])?;
+        for (v, &wt) in vals[..n].iter().zip(&wts[..n]) {
+            let v = v.map(|c| c * wt);
             sum.add(v);
             abs.add(v.map(f64::abs));
         }
+        start += n;
     }
     Ok((sum.value(), abs.value()))
 }
@@ -182,7 +197,7 @@ fn levels_cost(na: usize, nb: usize) -> usize {
 fn with_comparison_rules<W: WideSpectrum>(
     na: usize,
     nb: usize,
-    mut f: impl FnMut(f64, f64) -> Result<W, IntegrateError>,
+    mut f: impl BatchFn<W>,
 ) -> Result<Estimate<W>, IntegrateError> {
     let (lv, count) = levels(na, nb);
     let (q0, abs) = product_square(na, nb, &mut f)?;
@@ -299,7 +314,9 @@ impl Integrator for GaussLegendre {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        with_comparison_rules(nt, np, |a, b| acc::hemisphere_point(g, a, b))
+        with_comparison_rules(nt, np, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+            chunk::hemisphere_values(g, p, |b| b, out)
+        })
     }
 
     fn name(&self) -> &'static str {
@@ -378,7 +395,9 @@ impl Integrator for WarpedGaussLegendre {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        with_comparison_rules(n, n, |a, b| acc::warped_point(g, a, b))
+        with_comparison_rules(n, n, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+            chunk::warped_values(g, p, out)
+        })
     }
 
     fn name(&self) -> &'static str {

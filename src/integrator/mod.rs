@@ -23,6 +23,16 @@
 //! [`DirectionalAlbedo`] adapts a [`Brdf`] and an outgoing direction into
 //! the integrand `g(ωi) = f_r(ωi, ωo) cos θi`, whose integral is the
 //! directional albedo `ρ(ωo)`.
+//!
+//! Every integrator evaluates its nodes or sample points in chunks of
+//! [`CHUNK`] through [`Integrand::eval_batch`], [`Integrand::sample_batch`]
+//! and [`Integrand::pdf_batch`] (fixed-size stack buffers), and accumulates
+//! the values in point order, so an estimate is the same, bit for bit, as
+//! that of a point-by-point loop whenever the batch methods agree with the
+//! scalar ones. [`DirectionalAlbedo`] and the light integrands of
+//! [`crate::light`] forward the chunks to [`Brdf::eval_batch`] /
+//! [`Brdf::sample_batch`] / [`Brdf::pdf_batch`], which is how vectorised
+//! BRDF kernels reach integration.
 
 use crate::brdf::Brdf;
 use crate::frame::cos_theta;
@@ -70,6 +80,53 @@ pub trait Integrand {
     fn pdf(&self, w: Vec3) -> f32 {
         let _ = w;
         0.0
+    }
+
+    /// `out[k] = g(w[k])` for `k < min(w.len(), out.len())`; extra elements
+    /// of the longer slice are left untouched.
+    ///
+    /// The integrators evaluate through this method, [`CHUNK`] points at a
+    /// time, so an integrand wrapping a vectorised kernel (such as
+    /// [`Brdf::eval_batch`]) hands the whole chunk on. An override must
+    /// return what [`Integrand::eval`] returns at each point (bit for bit
+    /// where the kernel allows: estimates then do not depend on batching).
+    /// The default loops over [`Integrand::eval`].
+    ///
+    /// ```
+    /// use radiometry::integrator::Integrand;
+    /// use radiometry::glam::Vec3;
+    /// struct Cos;
+    /// impl Integrand for Cos {
+    ///     type Spectrum = f32;
+    ///     fn eval(&self, w: Vec3) -> f32 { w.z }
+    /// }
+    /// let mut out = [9.0f32; 3];
+    /// Cos.eval_batch(&[Vec3::Z, Vec3::X], &mut out);
+    /// assert_eq!(out, [1.0, 0.0, 9.0]);
+    /// ```
+    fn eval_batch(&self, w: &[Vec3], out: &mut [Self::Spectrum]) {
+        for (o, &v) in out.iter_mut().zip(w) {
+            *o = self.eval(v);
+        }
+    }
+
+    /// `out[k] = sample(u[k])` for `k < min(u.len(), out.len())`; extra
+    /// elements are left untouched. Same contract as
+    /// [`Integrand::eval_batch`] (agree with [`Integrand::sample`] at every
+    /// point). The default loops over [`Integrand::sample`].
+    fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<Self::Spectrum>>]) {
+        for (o, &v) in out.iter_mut().zip(u) {
+            *o = self.sample(v);
+        }
+    }
+
+    /// `out[k] = pdf(w[k])` [sr⁻¹] for `k < min(w.len(), out.len())`; extra
+    /// elements are left untouched. Same contract as
+    /// [`Integrand::eval_batch`]. The default loops over [`Integrand::pdf`].
+    fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        for (o, &v) in out.iter_mut().zip(w) {
+            *o = self.pdf(v);
+        }
     }
 }
 
@@ -185,6 +242,47 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
     fn pdf(&self, w: Vec3) -> f32 {
         self.brdf.pdf(w, self.wo)
     }
+
+    /// [`Brdf::eval_batch`] with `wo` broadcast, then `· cos θi` (zero at
+    /// and below the horizon), as [`Integrand::eval`] does.
+    fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        let wo = [self.wo; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            self.brdf.eval_batch(&w[..n], &wo[..n], &mut out[..n]);
+            for (o, &wi) in out[..n].iter_mut().zip(w) {
+                let c = cos_theta(wi);
+                *o = if c <= 0.0 { B::Spectrum::zero() } else { *o * c };
+            }
+        }
+    }
+
+    /// [`Brdf::sample_batch`] with `wo` broadcast; value `weight · pdf` as
+    /// in [`Integrand::sample`].
+    fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        let wo = [self.wo; CHUNK];
+        let mut s = [None; CHUNK];
+        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = u.len().min(out.len());
+            self.brdf.sample_batch(&wo[..n], &u[..n], &mut s[..n]);
+            for (o, s) in out[..n].iter_mut().zip(&s[..n]) {
+                *o = s.map(|s| IntegrandSample {
+                    w: s.wi,
+                    pdf: s.pdf,
+                    value: s.weight * s.pdf,
+                });
+            }
+        }
+    }
+
+    /// [`Brdf::pdf_batch`] with `wo` broadcast.
+    fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        let wo = [self.wo; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            self.brdf.pdf_batch(&w[..n], &wo[..n], &mut out[..n]);
+        }
+    }
 }
 
 /// Checks that every channel of `v` is finite.
@@ -198,6 +296,7 @@ pub fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
 }
 
 mod acc;
+pub(crate) mod chunk;
 pub mod gauss_legendre;
 pub mod points;
 
@@ -209,6 +308,7 @@ pub use points::PointSet;
 pub mod adaptive;
 
 pub use adaptive::Adaptive;
+pub use chunk::CHUNK;
 mod tolerance;
 
 pub use tolerance::{DEFAULT_MAX_BUDGET, StopReason, ToleranceOutcome, integrate_to_tolerance};

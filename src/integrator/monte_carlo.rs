@@ -4,14 +4,16 @@
 //! balance or power heuristic, over any [`PointSet`].
 
 use super::acc::{self, Moments};
+use super::chunk::{CHUNK, sample_weight};
 use super::points::{
     Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed, sobol_point,
     square_to_cosine_hemisphere_polar,
 };
-use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
-use crate::spectrum::WideSpectrum;
+use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf, check_finite};
+use crate::spectrum::{Spectrum, WideSpectrum};
 use crate::warp::{square_to_cosine_hemisphere, square_to_uniform_hemisphere};
 use core::f64::consts::{FRAC_1_PI, TAU};
+use glam::Vec3;
 
 /// The MIS weighting heuristic (Veach 1997, PhD thesis, §9.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -211,73 +213,153 @@ impl MonteCarlo {
     }
 }
 
-/// The estimator `F` for one draw with unit-square points `u1` (first
-/// strategy) and `u2` (second, MIS only).
-#[inline]
-fn draw<I: Integrand>(
+/// The estimators `out[k] = F(u1[k], u2[k])` (see [`Strategy`]) of a chunk
+/// of draws (`n = u1.len() ≤ CHUNK`, `u2` and `out` at least as long; `u2`
+/// is used by MIS only), through the batch methods of the integrand; the
+/// first non-finite value in draw order is reported. (The cosine strategy
+/// evaluates `g` at `cos θ = 0` too, where `p = 0`, and ignores it there.)
+fn draw_batch<I: Integrand>(
     g: &I,
     strategy: Strategy,
     polar: bool,
-    u1: [f32; 2],
-    u2: [f32; 2],
-) -> Result<WideOf<I>, IntegrateError> {
+    u1: &[[f32; 2]],
+    u2: &[[f32; 2]],
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let n = u1.len().min(CHUNK);
+    let (u1, u2, out) = (&u1[..n], &u2[..n], &mut out[..n]);
     let zero = WideOf::<I>::splat(0.0);
-    let cosine_dir = |u: [f32; 2]| {
-        if polar {
-            square_to_cosine_hemisphere_polar(u)
-        } else {
-            square_to_cosine_hemisphere(u)
+    let mut dirs = [Vec3::ZERO; CHUNK];
+    let mut vals = [I::Spectrum::zero(); CHUNK];
+    let cosine_dirs = |dirs: &mut [Vec3]| {
+        for (d, &u) in dirs.iter_mut().zip(u1) {
+            *d = if polar {
+                square_to_cosine_hemisphere_polar(u)
+            } else {
+                square_to_cosine_hemisphere(u)
+            };
         }
     };
     match strategy {
         Strategy::Uniform => {
-            let w = square_to_uniform_hemisphere(u1);
-            Ok(acc::eval_wide(g, w)?.map(|v| v * TAU))
+            for (d, &u) in dirs[..n].iter_mut().zip(u1) {
+                *d = square_to_uniform_hemisphere(u);
+            }
+            g.eval_batch(&dirs[..n], &mut vals[..n]);
+            for (o, v) in out.iter_mut().zip(&vals[..n]) {
+                *o = check_finite(v.to_wide())?.map(|v| v * TAU);
+            }
         }
         Strategy::Cosine => {
-            let w = cosine_dir(u1);
-            let p = w.z as f64 * FRAC_1_PI;
-            if p <= 0.0 {
-                return Ok(zero);
+            cosine_dirs(&mut dirs[..n]);
+            g.eval_batch(&dirs[..n], &mut vals[..n]);
+            for ((o, v), w) in out.iter_mut().zip(&vals[..n]).zip(&dirs[..n]) {
+                let p = w.z as f64 * FRAC_1_PI;
+                *o = if p <= 0.0 {
+                    zero
+                } else {
+                    check_finite(v.to_wide())?.map(|v| v / p)
+                };
             }
-            Ok(acc::eval_wide(g, w)?.map(|v| v / p))
         }
-        Strategy::Integrand => Ok(match acc::sampled_point(g, u1)? {
-            Some((_, _, weight)) => weight,
-            None => zero,
-        }),
+        Strategy::Integrand => {
+            let mut samples = [None; CHUNK];
+            g.sample_batch(u1, &mut samples[..n]);
+            for (o, &s) in out.iter_mut().zip(&samples[..n]) {
+                *o = match sample_weight(s)? {
+                    Some((_, _, weight)) => weight,
+                    None => zero,
+                };
+            }
+        }
         Strategy::Mis(h) => {
             let pw = |p: f64| match h {
                 Heuristic::Balance => p,
                 Heuristic::Power => p * p,
             };
-            let other_pdf = |w| {
-                let p = g.pdf(w);
-                if p.is_finite() {
-                    Ok((p as f64).max(0.0))
-                } else {
-                    Err(IntegrateError::NonFiniteIntegrand)
+            // Strategy 1 (cosine) values and the other technique's density
+            // there; strategy 2 (the integrand's map) draws.
+            cosine_dirs(&mut dirs[..n]);
+            let mut pdfs = [0.0f32; CHUNK];
+            let mut samples = [None; CHUNK];
+            g.eval_batch(&dirs[..n], &mut vals[..n]);
+            g.pdf_batch(&dirs[..n], &mut pdfs[..n]);
+            g.sample_batch(u2, &mut samples[..n]);
+            for k in 0..n {
+                let p1 = dirs[k].z as f64 * FRAC_1_PI;
+                let mut total = zero;
+                if p1 > 0.0 {
+                    let f = check_finite(vals[k].to_wide())?;
+                    let q = pdfs[k];
+                    if !q.is_finite() {
+                        return Err(IntegrateError::NonFiniteIntegrand);
+                    }
+                    let q = (q as f64).max(0.0);
+                    // w₁ f/p₁ = f · pw(p₁)/p₁ / (pw(p₁) + pw(q))
+                    let k1 = (pw(p1) / p1) / (pw(p1) + pw(q));
+                    total = f.map(|v| v * k1);
                 }
-            };
-            // Strategy 1: cosine.
-            let w1 = cosine_dir(u1);
-            let p1 = w1.z as f64 * FRAC_1_PI;
-            let mut total = zero;
-            if p1 > 0.0 {
-                let f = acc::eval_wide(g, w1)?;
-                let q = other_pdf(w1)?;
-                // w₁ f/p₁ = f · pw(p₁)/p₁ / (pw(p₁) + pw(q))
-                let k = (pw(p1) / p1) / (pw(p1) + pw(q));
-                total = f.map(|v| v * k);
+                if let Some((w2, p2, weight)) = sample_weight(samples[k])? {
+                    let c = (w2.z as f64 * FRAC_1_PI).max(0.0);
+                    let k2 = pw(p2) / (pw(p2) + pw(c));
+                    total = acc::add(total, weight.map(|v| v * k2));
+                }
+                out[k] = total;
             }
-            // Strategy 2: the integrand's map.
-            if let Some((w2, p2, weight)) = acc::sampled_point(g, u2)? {
-                let c = (w2.z as f64 * FRAC_1_PI).max(0.0);
-                let k = pw(p2) / (pw(p2) + pw(c));
-                total = acc::add(total, weight.map(|v| v * k));
-            }
-            Ok(total)
         }
+    }
+    Ok(())
+}
+
+/// Buffers the unit-square points of up to [`CHUNK`] draws, evaluates them
+/// with [`draw_batch`] when full (or on [`Draws::flush`]) and pushes the
+/// estimators into the moments in draw order.
+struct Draws<'g, I> {
+    g: &'g I,
+    strategy: Strategy,
+    polar: bool,
+    n: usize,
+    u1: [[f32; 2]; CHUNK],
+    u2: [[f32; 2]; CHUNK],
+}
+
+impl<'g, I: Integrand> Draws<'g, I> {
+    fn new(g: &'g I, strategy: Strategy, polar: bool) -> Self {
+        Self {
+            g,
+            strategy,
+            polar,
+            n: 0,
+            u1: [[0.0; 2]; CHUNK],
+            u2: [[0.0; 2]; CHUNK],
+        }
+    }
+
+    /// Queues the draw `(u1, u2)`.
+    #[inline]
+    fn push(&mut self, u1: [f32; 2], u2: [f32; 2], m: &mut Moments<WideOf<I>>) -> Result<(), IntegrateError> {
+        self.u1[self.n] = u1;
+        self.u2[self.n] = u2;
+        self.n += 1;
+        if self.n == CHUNK { self.flush(m) } else { Ok(()) }
+    }
+
+    /// Evaluates the queued draws into `m`.
+    fn flush(&mut self, m: &mut Moments<WideOf<I>>) -> Result<(), IntegrateError> {
+        let n = core::mem::replace(&mut self.n, 0);
+        let mut vals = [WideOf::<I>::splat(0.0); CHUNK];
+        draw_batch(
+            self.g,
+            self.strategy,
+            self.polar,
+            &self.u1[..n],
+            &self.u2[..n],
+            &mut vals[..n],
+        )?;
+        for &v in &vals[..n] {
+            m.push(v);
+        }
+        Ok(())
     }
 }
 
@@ -294,7 +376,7 @@ impl Integrator for MonteCarlo {
         let cost = self.strategy.cost();
         let draws = budget.min(MAX_MC_EVALUATIONS) / cost;
         let polar = self.points == PointSet::Fibonacci;
-        let s = self.strategy;
+        let mut batch = Draws::new(g, self.strategy, polar);
 
         if self.points == PointSet::Prng {
             let mut rng = Pcg32::new(self.seed, 0x5851_f42d);
@@ -306,8 +388,9 @@ impl Integrator for MonteCarlo {
                 } else {
                     [0.0; 2]
                 };
-                m.push(draw(g, s, polar, u1, u2)?);
+                batch.push(u1, u2, &mut m)?;
             }
+            batch.flush(&mut m)?;
             return Ok(Estimate {
                 value: m.mean(),
                 error: m.standard_error(),
@@ -336,7 +419,7 @@ impl Integrator for MonteCarlo {
                         } else {
                             [0.0; 2]
                         };
-                        m.push(draw(g, s, polar, u1, u2)?);
+                        batch.push(u1, u2, &mut m)?;
                     }
                 }
                 PointSet::Sobol => {
@@ -348,7 +431,7 @@ impl Integrator for MonteCarlo {
                         } else {
                             [0.0; 2]
                         };
-                        m.push(draw(g, s, polar, u1, u2)?);
+                        batch.push(u1, u2, &mut m)?;
                     }
                 }
                 PointSet::Fibonacci | PointSet::Prng => {
@@ -361,10 +444,11 @@ impl Integrator for MonteCarlo {
                         } else {
                             [0.0; 2]
                         };
-                        m.push(draw(g, s, polar, u1, u2)?);
+                        batch.push(u1, u2, &mut m)?;
                     }
                 }
             }
+            batch.flush(&mut m)?;
             spent += m.count() * cost as u64;
             reps.push(m.mean());
         }

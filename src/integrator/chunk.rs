@@ -1,0 +1,140 @@
+//! Chunked evaluation: the integrators hand the integrand up to [`CHUNK`]
+//! points at a time through [`Integrand::eval_batch`] /
+//! [`Integrand::sample_batch`] / [`Integrand::pdf_batch`], in fixed-size
+//! stack buffers, and then accumulate the values one by one in the same
+//! order as a point-by-point loop would (so estimates do not depend on the
+//! chunking).
+//!
+//! Errors: a chunk is evaluated whole, then checked in order; the first
+//! non-finite value (in point order) is reported, as the point-by-point
+//! loop would (the points after it are evaluated but discarded).
+
+use super::acc::{direction, to_unit_f32};
+use super::{Integrand, IntegrandSample, IntegrateError, WideOf, check_finite};
+use crate::brdf::Brdf;
+use crate::spectrum::{Spectrum, WideSpectrum};
+use core::f64::consts::TAU;
+use glam::Vec3;
+
+/// Most points an integrator passes to one call of the batch methods of
+/// [`Integrand`], and the length of their stack buffers: 64, a multiple of
+/// the SIMD widths in use (8 lanes of `f32`). The buffers of one chunk
+/// (directions, values, samples, their `f64` widenings) take a few KiB for
+/// `f32` and RGB spectra, growing linearly with the channel count of a
+/// sampled spectrum.
+pub const CHUNK: usize = 64;
+
+/// Integrand values at a batch of points of the unit square, as the
+/// quadrature rules consume them: `f(p, out)` sets `out[k] = f(p[k])` for
+/// every `k < p.len()` (`out.len() == p.len()`; any length, chunked
+/// inside), or fails on the first non-finite value in point order.
+pub(crate) trait BatchFn<W>: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError> {}
+impl<W, F: FnMut(&[[f64; 2]], &mut [W]) -> Result<(), IntegrateError>> BatchFn<W> for F {}
+
+/// One draw of the integrand's sampling map as the importance weight
+/// `g(ω)/p(ω)` in `f64`, together with the direction and density.
+///
+/// * `None` (from [`Integrand::sample`]) is a zero-contribution sample.
+/// * A non-finite value or density is [`IntegrateError::NonFiniteIntegrand`].
+/// * A density `≤ 0` (outside the trait contract) contributes zero if the
+///   value is black, and is reported as `NonFiniteIntegrand` otherwise (the
+///   weight would be infinite).
+#[inline]
+pub(crate) fn sample_weight<S: Spectrum>(
+    s: Option<IntegrandSample<S>>,
+) -> Result<Option<(Vec3, f64, S::Wide)>, IntegrateError> {
+    let Some(s) = s else {
+        return Ok(None);
+    };
+    let v = check_finite(s.value.to_wide())?;
+    if !s.pdf.is_finite() {
+        return Err(IntegrateError::NonFiniteIntegrand);
+    }
+    if s.pdf <= 0.0 {
+        return if s.value.is_black() {
+            Ok(None)
+        } else {
+            Err(IntegrateError::NonFiniteIntegrand)
+        };
+    }
+    let p = s.pdf as f64;
+    Ok(Some((s.w, p, v.map(|x| x / p))))
+}
+
+/// The hemisphere in coordinates `(a, b) ∈ [0,1]²`: `μ = cos θ = a`,
+/// `φ = 2π turn(b)`, `dω = dμ dφ = 2π da db`:
+/// `out[k] = 2π g(ω(a_k, b_k))`, widened and checked for NaN/∞, for
+/// `k < min(p.len(), out.len())`. `turn` re-maps the azimuth fraction
+/// (identity, or a rotation of the periodic azimuth).
+pub(crate) fn hemisphere_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    turn: impl Fn(f64) -> f64,
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut dirs = [Vec3::ZERO; CHUNK];
+    let mut vals = [I::Spectrum::zero(); CHUNK];
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for (d, &[a, b]) in dirs[..n].iter_mut().zip(p) {
+            *d = direction(a, TAU * turn(b));
+        }
+        g.eval_batch(&dirs[..n], &mut vals[..n]);
+        for (o, v) in out[..n].iter_mut().zip(&vals[..n]) {
+            *o = check_finite(v.to_wide())?.map(|x| x * TAU);
+        }
+    }
+    Ok(())
+}
+
+/// The sampling-map square: `out[k] = g(ω)/p(ω)` at `u = (a_k, b_k)`
+/// (rounded to `f32` in `[0, 1)`), zero where the map has no direction
+/// (see [`sample_weight`]), for `k < min(p.len(), out.len())`.
+pub(crate) fn warped_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut us = [[0.0f32; 2]; CHUNK];
+    let mut ss = [None; CHUNK];
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for (u, &[a, b]) in us[..n].iter_mut().zip(p) {
+            *u = [to_unit_f32(a), to_unit_f32(b)];
+        }
+        g.sample_batch(&us[..n], &mut ss[..n]);
+        for (o, &s) in out[..n].iter_mut().zip(&ss[..n]) {
+            *o = match sample_weight(s)? {
+                Some((_, _, w)) => w,
+                None => WideOf::<I>::splat(0.0),
+            };
+        }
+    }
+    Ok(())
+}
+
+/// `out[k] = f_r(wi[k], wo)` where `wi[k]` is `Some` (other elements are
+/// left untouched), for `k < min(wi.len(), out.len())`: one
+/// [`Brdf::eval_batch`] per [`CHUNK`] over the compacted directions, so
+/// integrands that are zero on part of the hemisphere (a light's support,
+/// the horizon) do not evaluate the BRDF there.
+pub(crate) fn brdf_eval_where<B: Brdf>(brdf: &B, wo: Vec3, wi: &[Option<Vec3>], out: &mut [B::Spectrum]) {
+    let wos = [wo; CHUNK];
+    let mut dense = [Vec3::ZERO; CHUNK];
+    let mut index = [0usize; CHUNK];
+    let mut vals = [B::Spectrum::zero(); CHUNK];
+    for (wi, out) in wi.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let mut m = 0;
+        for (k, w) in wi.iter().take(out.len()).enumerate() {
+            if let Some(w) = *w {
+                dense[m] = w;
+                index[m] = k;
+                m += 1;
+            }
+        }
+        brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
+        for (&k, &v) in index[..m].iter().zip(&vals[..m]) {
+            out[k] = v;
+        }
+    }
+}
