@@ -188,9 +188,8 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (norm * self.lobe(wi, wo))
     }
 
-    /// With the `simd` feature a vector kernel ([`crate::simd`]); it
-    /// matches `eval` to the tolerance documented there (vector `exp`/`ln_1p`
-    /// for `cos^n α`).
+    /// With the `simd` feature a vector kernel ([`crate::simd`]),
+    /// bit-identical to [`Brdf::eval`].
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
@@ -198,7 +197,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
     }
 
     /// The kernel of [`eval_batch`](Brdf::eval_batch) on plain vector loads
-    /// (same tolerance).
+    /// (bit-identical to [`Brdf::eval`]).
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
@@ -245,14 +244,12 @@ impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 
 /// The vector `eval` kernel (feature `simd`):
 /// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both (normalised)
-/// directions are strictly above the horizon.
+/// directions are strictly above the horizon, with
+/// `cos^n α = exp(n log1p(−δ))`, `δ = |ωi − reflect_z(ωo)|²/2`.
 ///
-/// Everything but `cos^n α` is bit-identical to `eval`; `cos^n α =
-/// exp(n ln(1 − δ))` uses `wide`'s vector `ln_1p`/`exp` instead of `libm`,
-/// so lanes differ from `eval` by the propagated rounding of the exponent:
-/// relative `≲ (c₁ + c₂ |n ln(1 − δ)|) 2⁻²⁴` (the condition number of
-/// `exp(y)` is `|y|`; the test uses `c₁ = c₂ = 8`), plus an absolute
-/// `≈ 10⁻⁴⁵ ks (n+2)/(2π)` where `cos^n α` is subnormal or below `e^{−103.6}`.
+/// Bit-identical to `eval`: the same operations in the same order, and
+/// `exp`/`log1p` are the bit-exact ports [`crate::simd::expf`] /
+/// [`crate::simd::log1pf`] of `libm`'s.
 #[cfg(feature = "simd")]
 mod batch {
     use super::ModifiedPhong;

@@ -1,51 +1,53 @@
-//! Vector `f32` kernels (8 or 16 lanes) behind [`Brdf::eval_batch`], [`Brdf::eval_batch_soa`]
-//! and [`Brdf::pdf_batch`] (feature `simd`).
+//! Vector `f32` kernels (8 or 16 lanes) behind [`Brdf::eval_batch`],
+//! [`Brdf::eval_batch_soa`] and [`Brdf::pdf_batch`] (feature `simd`).
 //!
 //! This module holds the shared vector math ([`LANES`] directions in
 //! structure-of-arrays form, the chunk drivers for array-of-structures and
-//! structure-of-arrays input, vector `exp`/`ln` helpers, spectrum stores); it
-//! imports nothing from the plugins. Each plugin's kernel lives next to its
-//! scalar code and follows its formula operation for operation:
+//! structure-of-arrays input, bit-exact vector ports of `libm`'s `expf` and
+//! `log1pf`, spectrum stores); it imports nothing from the plugins. Each
+//! plugin's kernel lives next to its scalar code and follows its formula
+//! operation for operation:
 //!
 //! | BRDF | `eval_batch` / `eval_batch_soa` | `pdf_batch` | vs scalar |
 //! |---|---|---|---|
 //! | [`Microfacet<Ggx, HeightCorrelated, F>`](crate::Microfacet), every Fresnel `F` | GGX `D` (Walter et al. 2007, eq. 33), projected areas `A = cos θ (1 + Λ)`, `V = 1/(4 (cos θo Ai + cos θi Ao − cos θi cos θo))` (Heitz 2014, eq. 99) | `D/(4 A(ωo))` | 0 ulp |
 //! | [`Microfacet<Ggx, Separable, F>`](crate::Microfacet), every Fresnel `F` | as above, `V = 1/(4 Ai Ao)` (Heitz 2014, eq. 98) | `D/(4 A(ωo))` | 0 ulp |
-//! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet) | scalar loop (see the crate's README) | scalar loop | — |
+//! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | Beckmann `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25) in vector form; `A` per lane through the scalar `projected_area` | `D/(4 A(ωo))` | 0 ulp |
 //! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
 //! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
-//! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n ln(1 − δ))` | scalar loop | propagated (below) |
-//! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` | scalar loop | propagated (below) |
+//! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | scalar loop | 0 ulp |
+//! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | scalar loop | 0 ulp for `cos θh ≥ 1/2`, else propagated (below) |
 //!
 //! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
 //!
 //! # Accuracy
 //!
-//! **Bit-identical kernels.** The microfacet (GGX, every Fresnel term),
-//! Lambertian kernels perform the *same* IEEE-754 operations as the scalar
-//! code, in the same order: `+ − × ÷ √`, comparisons and selects, all
-//! correctly rounded in `wide`'s vectors and in scalar `f32` / `libm::sqrtf`;
-//! no fused multiply–add, no reciprocal estimates, no polynomial `exp`/`log`.
-//! The one transcendental of these kernels, the `hypot` inside the complex
-//! square root of [`Conductor`](crate::Conductor), is `libm::hypotf` called
-//! per lane (it rounds a sum formed in `f64`, and `wide` has no `f64`
-//! conversion). Each lane is therefore bit-identical to `eval` / `pdf` of
-//! the same pair, on every target: `brdfs/tests/batch.rs` asserts 0 ulp for
-//! every kernel, array-of-structures and structure-of-arrays alike, over
-//! proptest cases and a deterministic sweep of 200 000 pairs (measured: 0 ulp
-//! on x86_64, SSE2 baseline and `-C target-cpu=native` with AVX-512).
+//! **Bit-identical kernels.** The kernels perform the *same* IEEE-754
+//! operations as the scalar code, in the same order: `+ − × ÷ √`,
+//! comparisons and selects, all correctly rounded in `wide`'s vectors and in
+//! scalar `f32` / `libm::sqrtf`; no fused multiply–add, no reciprocal
+//! estimates. The transcendentals are bit-exact vector ports of the `libm`
+//! functions the scalar code calls — `expf` (FreeBSD `e_expf.c`) and
+//! `log1pf` (`s_log1pf.c`), checked against `libm` on every 7th `f32` of
+//! their ranges by this module's unit tests — except the `hypot` inside the
+//! complex square root of [`Conductor`](crate::Conductor), which is
+//! `libm::hypotf` called per lane (it rounds a sum formed in `f64`, and
+//! `wide` has no `f64` conversion). Each lane is therefore bit-identical to
+//! `eval` / `pdf` of the same pair, on every target: `brdfs/tests/batch.rs`
+//! asserts 0 ulp for every such kernel, array-of-structures and
+//! structure-of-arrays alike, over proptest cases, hard cases in every lane
+//! position and a deterministic sweep of 200 000 pairs (x86_64, SSE2
+//! baseline with 8 lanes and `-C target-cpu=native` with AVX-512 and 16
+//! lanes).
 //!
-//! **Propagated tolerance (Phong family).** `cos^n α = exp(n ln(1 − δ))`
-//! (modified Phong; Blinn–Phong near the pole, `δ = 1 − cos θh`) and
-//! `cos^n θh = exp(n ln cos θh)` (Blinn–Phong away from it) use `wide`'s
-//! polynomial `exp`/`ln`/`ln_1p` rather than `libm`. Every other operation is
-//! the scalar one, so a lane differs from `eval` only by the two functions'
-//! rounding: relative `≤ 8 (1 + |y|) 2⁻²⁴` with `y = n ln cos` (`|y|` is the
-//! condition number of `exp(y)`, so the scalar `libm` result carries an error
-//! of the same order), plus an absolute `10⁻⁴⁴ (1 + ks·norm)` where the lobe
-//! is subnormal. Measured worst over the sweep: see the table in
-//! `brdfs/tests/batch.rs` (modified Phong 4.3, Blinn–Phong 4.3 of these
-//! units). Structural zeros (horizon, degenerate input) are exact.
+//! **Propagated tolerance (Blinn–Phong below `cos θh = 1/2`).** There the
+//! scalar lobe is `powf(cos θh, n)`; the kernel computes `exp(n ln cos θh)`
+//! with `wide`'s polynomial `exp`/`ln`. Every other operation is the scalar
+//! one, so such a lane differs from `eval` only by that rounding: relative
+//! `≤ 8 (1 + |y|) 2⁻²⁴` with `y = n ln cos θh` (`|y|` is the condition number
+//! of `exp(y)`), plus an absolute `10⁻⁴⁴ (1 + ks N(n))` where the lobe is
+//! subnormal; measured worst over the sweep 2.1 of these units. Structural
+//! zeros (horizon, degenerate input) are exact.
 //!
 //! # Special inputs
 //!
@@ -53,7 +55,9 @@
 //! `4ε` (`|‖ω‖² − 1| ≤ 4ε`, the scalar hot path's test) in vector form and
 //! recompute any other lane — non-unit, zero, subnormal, huge, infinite or
 //! NaN components: the scalar cold path — with the scalar `eval`/`pdf`, so
-//! the special-case handling is the scalar one by construction.
+//! the special-case handling is the scalar one by construction. The Beckmann
+//! kernel also hands back lanes with `cos²θh < 10⁻⁸` (the scalar `D`'s
+//! separate grazing form).
 //! Below-horizon, grazing (`cos θ = 0`, or so small that `cos²θ` underflows)
 //! and `ωi = −ωo` lanes stay in the kernel and give `0` exactly where `eval`
 //! does (masked selects replace the scalar early returns). The Lambertian and
@@ -65,7 +69,8 @@
 //!
 //! `Microfacet<D, G, F>` has one generic `impl Brdf`; with this feature its
 //! batch methods ask two hidden, defaulted trait items (not a stable API):
-//! `MicrofacetDistribution::batch_kind` (only [`Ggx`](crate::Ggx) opts in)
+//! `MicrofacetDistribution::batch_kind` (only [`Ggx`](crate::Ggx) and
+//! [`Beckmann`](crate::Beckmann) opt in)
 //! and the associated constant `ShadowingMasking::BATCH_KIND`. Both are known
 //! after monomorphisation, so the `match` folds away; a third-party
 //! distribution or shadowing type inherits the scalar loop. The Fresnel
@@ -244,14 +249,14 @@ pub(crate) fn finite_nonneg(x: Vf) -> Vf {
 }
 
 /// `(1 − δ)^n` for `δ = 1 − cos` (`pow_one_minus` of the scalar code):
-/// `0` for `δ ≥ 1` or NaN, `1` for `δ ≤ 0`, else `exp(n · ln(1 − δ))` with
-/// `wide`'s `ln_1p` and `exp` (polynomial approximations, a few ulp;
-/// `ln_1p` keeps relative accuracy for tiny `δ`).
+/// `0` for `δ ≥ 1` or NaN, `1` for `δ ≤ 0`, else `exp(n · log1p(−δ))` with
+/// the bit-exact ports [`expf`] and [`log1pf`]: bit-identical to the scalar
+/// `libm::expf(n * libm::log1pf(-delta))`.
 #[inline(always)]
 pub(crate) fn pow_one_minus(delta: Vf, n: f32) -> Vf {
     let zero = Vf::ZERO;
     let one = Vf::ONE;
-    let lobe = (Vf::splat(n) * (-delta).ln_1p()).exp();
+    let lobe = expf(Vf::splat(n) * log1pf(-delta));
     let lobe = delta.simd_le(zero).select(one, lobe);
     (delta.simd_ge(one) | delta.is_nan()).select(zero, lobe)
 }
@@ -328,6 +333,77 @@ pub(crate) fn expf(x: Vf) -> Vf {
     let v = (!neg & ax.simd_ge(Vf::splat(f32::from_bits(0x42b1_7218)))).select(Vf::splat(f32::INFINITY), v);
     let v = (neg & ax.simd_ge(Vf::splat(f32::from_bits(0x42cf_f1b5)))).select(zero, v);
     x.is_nan().select(x, v)
+}
+
+/// The integer vector of the same width as [`Vf`] (bit manipulation in
+/// [`log1pf`]).
+#[cfg(target_feature = "avx512f")]
+type Vi = wide::i32x16;
+#[cfg(not(target_feature = "avx512f"))]
+type Vi = wide::i32x8;
+
+/// `i32` lanes to `f32` (exact for `|k| < 2²⁴`).
+#[inline(always)]
+fn int_to_float(k: Vi) -> Vf {
+    #[cfg(target_feature = "avx512f")]
+    return Vf::from_i32x16(k);
+    #[cfg(not(target_feature = "avx512f"))]
+    return Vf::from_i32x8(k);
+}
+
+/// `libm::log1pf` lane-wise, **bit for bit** (a port of its algorithm,
+/// FreeBSD `s_log1pf.c`, same operations in the same order; no FMA):
+///
+/// * `|x| < 2⁻²⁴`: `x`; `x = −1`: `−∞`; `x < −1`, NaN: NaN; `+∞`: `+∞`;
+/// * `−0.2929 ≤ x < 0.4142` (`√2/2 ≤ 1 + x < √2`): `k = 0`, `f = x`, `c = 0`;
+/// * otherwise `u = 1 + x` is split as `2^k (1 + f)` with `1 + f ∈ [√2/2, √2)`
+///   by integer operations on its bits, and `c` is the rounding error of
+///   `1 + x` divided by `u` (0 for `k ≥ 25`);
+/// * `s = f/(2 + f)`, the Remez polynomial `R(s²)` (`LG1…LG4`) and
+///   `log1p = s (f²/2 + R) + (k ln2_lo + c) − f²/2 + f + k ln2_hi`.
+///
+/// The `brdfs` unit test `log1pf_is_libm_bit_for_bit` compares it with
+/// `libm::log1pf` on every 7th `f32` of `[−1, 2¹²⁸)` and on the special
+/// values.
+#[inline(always)]
+pub(crate) fn log1pf(x: Vf) -> Vf {
+    const LN2_HI: f32 = f32::from_bits(0x3f31_7180); // 6.9313812256e-01
+    const LN2_LO: f32 = f32::from_bits(0x3717_f7d1); // 9.0580006145e-06
+    const LG1: f32 = f32::from_bits(0x3f2a_aaaa); // 0.66666662693
+    const LG2: f32 = f32::from_bits(0x3ecc_ce13); // 0.40000972152
+    const LG3: f32 = f32::from_bits(0x3e91_e9ee); // 0.28498786688
+    const LG4: f32 = f32::from_bits(0x3e78_9e26); // 0.24279078841
+    let (zero, one) = (Vf::ZERO, Vf::ONE);
+    // √2/2 ≤ 1 + x < √2: no reduction.
+    let k0 =
+        x.simd_lt(Vf::splat(f32::from_bits(0x3ed4_13d0))) & x.simd_ge(Vf::splat(f32::from_bits(0xbe95_f619)));
+    // u = 1 + x = 2^k (1 + f) by the bits of u (u > 0 on every kept lane).
+    let u = one + x;
+    let iu: Vi = wide::bytemuck::cast::<Vf, Vi>(u) + Vi::splat(0x3f80_0000 - 0x3f35_04f3);
+    let k_int = (iu >> 23_u32) - Vi::splat(0x7f);
+    let k = int_to_float(k_int);
+    let c = k.simd_ge(Vf::splat(2.0)).select(one - (u - x), x - (u - one)) / u;
+    let c = k.simd_lt(Vf::splat(25.0)).select(c, zero);
+    let m: Vf = wide::bytemuck::cast((iu & Vi::splat(0x007f_ffff)) + Vi::splat(0x3f35_04f3));
+    let f = k0.select(x, m - one);
+    let c = k0.select(zero, c);
+    let dk = k0.select(zero, k);
+    let s = f / (Vf::splat(2.0) + f);
+    let z = s * s;
+    let w = z * z;
+    let t1 = w * (Vf::splat(LG2) + w * Vf::splat(LG4));
+    let t2 = z * (Vf::splat(LG1) + w * Vf::splat(LG3));
+    let r = t2 + t1;
+    let hfsq = Vf::splat(0.5) * f * f;
+    let v = s * (hfsq + r) + (dk * Vf::splat(LN2_LO) + c) - hfsq + f + dk * Vf::splat(LN2_HI);
+    // Special cases, in the scalar order of precedence.
+    let v = x
+        .abs()
+        .simd_lt(Vf::splat(f32::from_bits(0x3380_0000)))
+        .select(x, v);
+    let v = x.simd_eq(Vf::splat(f32::INFINITY)).select(x, v);
+    let v = x.simd_eq(-one).select(Vf::splat(f32::NEG_INFINITY), v);
+    (x.simd_lt(-one) | x.is_nan()).select(Vf::splat(f32::NAN), v)
 }
 
 /// Stores [`LANES`] spectra `out[k] = S::from_fn(|c| channel(c)[k])`, calling
@@ -521,10 +597,15 @@ mod tests {
             xs[..chunk.len()].copy_from_slice(chunk);
             check(&xs);
         }
+        sweep(&check, &[(0, 89.0), (0x8000_0000, 104.0)]);
+    }
+
+    /// Calls `check` on every 7th `f32` from 0 to `end` with the given sign
+    /// bit, for each `(sign, end)`.
+    fn sweep(check: &dyn Fn(&[f32; LANES]), ranges: &[(u32, f32)]) {
         let mut xs = [0.0f32; LANES];
         let mut n = 0;
-        for sign in [0u32, 0x8000_0000] {
-            let end = if sign == 0 { 89.0f32 } else { 104.0 };
+        for &(sign, end) in ranges {
             let mut bits = 0u32;
             while f32::from_bits(bits) <= end {
                 xs[n] = f32::from_bits(bits | sign);
@@ -536,5 +617,61 @@ mod tests {
                 bits += 7;
             }
         }
+    }
+
+    /// `log1pf` equals `libm::log1pf` bit for bit: every 7th `f32` of
+    /// `[−1, f32::MAX]` (about 300 million values), the special values and
+    /// the branch thresholds ± 2 ulp.
+    #[test]
+    fn log1pf_is_libm_bit_for_bit() {
+        let mut specials = vec![
+            0.0f32,
+            -0.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MAX,
+            f32::MIN,
+            -1.0,
+            -1.0 - f32::EPSILON,
+            -1.0 + f32::EPSILON / 2.0,
+            -2.0,
+            1e-45,
+            -1e-45,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+        ];
+        for bits in [
+            0x3380_0000u32,
+            0x3ed4_13d0,
+            0xbe95_f619,
+            0x3f80_0000,
+            0x4b80_0000,
+            0x4c00_0000,
+        ] {
+            for d in [-2i32, -1, 0, 1, 2] {
+                let v = f32::from_bits(bits.wrapping_add_signed(d));
+                specials.push(v);
+                specials.push(-v);
+            }
+        }
+        let check = |xs: &[f32; LANES]| {
+            let got = log1pf(Vf::new(*xs)).to_array();
+            for (x, g) in xs.iter().zip(got) {
+                let want = libm::log1pf(*x);
+                assert!(
+                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
+                    "log1pf({x:e} = {:#x}): libm {want:e}, vector {g:e}",
+                    x.to_bits()
+                );
+            }
+        };
+        for chunk in specials.chunks(LANES) {
+            let mut xs = [0.5f32; LANES];
+            xs[..chunk.len()].copy_from_slice(chunk);
+            check(&xs);
+        }
+        sweep(&check, &[(0, f32::MAX), (0x8000_0000, 1.0)]);
     }
 }
