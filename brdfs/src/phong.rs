@@ -204,6 +204,14 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
     }
 
+    /// With the `simd` feature a vector kernel for the mixture density,
+    /// bit-identical to [`Brdf::pdf`].
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Pdf(self))
+    }
+
     /// Mixture sampling (see the module documentation). `None` when `wo`
     /// is at or below the horizon, when `kd = ks = 0`, or when the lobe
     /// sample falls at or below the horizon.
@@ -259,6 +267,24 @@ mod batch {
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
 
+    /// `(up, ωi/‖ωi‖, cos^n α)`: `upper_pair` (`try_normalize` both, both
+    /// strictly above the horizon) and the lobe `(1 − δ)^n`,
+    /// `δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α`, as the scalar `lobe`.
+    #[inline(always)]
+    fn upper_lobe<S: Spectrum>(b: &ModifiedPhong<S>, wi: Dirs, wo: Dirs) -> (Vf, Dirs, Vf) {
+        let zero = Vf::ZERO;
+        let (a, ok_a) = wi.try_normalize();
+        let (c, ok_c) = wo.try_normalize();
+        let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+        let d = Dirs {
+            x: a.x - (-c.x),
+            y: a.y - (-c.y),
+            z: a.z - c.z,
+        };
+        let delta = Vf::splat(0.5) * d.length_squared();
+        (up, a, pow_one_minus(delta, b.exponent))
+    }
+
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
 
     impl<S: Spectrum> Kernel for Eval<'_, S> {
@@ -268,19 +294,9 @@ mod batch {
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
             let zero = Vf::ZERO;
-            // `upper_pair`: `try_normalize` both, both strictly above the horizon.
-            let (a, ok_a) = wi.try_normalize();
-            let (c, ok_c) = wo.try_normalize();
-            let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
-            // δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α.
-            let d = Dirs {
-                x: a.x - (-c.x),
-                y: a.y - (-c.y),
-                z: a.z - c.z,
-            };
-            let delta = Vf::splat(0.5) * d.length_squared();
+            let (up, _, lobe) = upper_lobe(b, wi, wo);
             let norm = (b.exponent + 2.0) * (0.5 * FRAC_1_PI);
-            let lobe = Vf::splat(norm) * pow_one_minus(delta, b.exponent);
+            let lobe = Vf::splat(norm) * lobe;
             let diffuse = b.kd * FRAC_1_PI;
             store(out, |ch| {
                 let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
@@ -292,6 +308,33 @@ mod batch {
         #[inline(always)]
         fn one(&self, wi: Vec3, wo: Vec3) -> S {
             self.0.eval(wi, wo)
+        }
+    }
+
+    /// `pdf = pd cos θi/π + ps (n+1)/(2π) cos^n α` where both directions are
+    /// above the horizon, else 0.
+    pub(super) struct Pdf<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
+
+    impl<S: Spectrum> Kernel for Pdf<'_, S> {
+        type Out = f32;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
+            let b = self.0;
+            let (up, a, lobe) = upper_lobe(b, wi, wo);
+            let diffuse = Vf::splat(b.p_diffuse) * a.z * Vf::splat(FRAC_1_PI);
+            let lobe = if b.p_lobe > 0.0 {
+                Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI))) * lobe
+            } else {
+                Vf::ZERO
+            };
+            *out = up.select(diffuse + lobe, Vf::ZERO).to_array();
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> f32 {
+            self.0.pdf(wi, wo)
         }
     }
 }

@@ -15,7 +15,7 @@
 //! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | Beckmann `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25) in vector form; `A` per lane through the scalar `projected_area` | `D/(4 A(ωo))` | 0 ulp |
 //! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
 //! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
-//! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | scalar loop | 0 ulp |
+//! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | `pd cos θi/π + ps (n+1)/(2π) cos^n α` | 0 ulp |
 //! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | scalar loop | 0 ulp for `cos θh ≥ 1/2`, else propagated (below) |
 //!
 //! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
