@@ -213,10 +213,8 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (self.norm * lobe)
     }
 
-    /// With the `simd` feature a vector kernel ([`crate::simd`]);
-    /// bit-identical to [`Brdf::eval`] where `cos θh ≥ 1/2`, within the
-    /// propagated tolerance documented there below (`wide`'s `exp`/`ln` for
-    /// `cos^n θh`).
+    /// With the `simd` feature a vector kernel ([`crate::simd`]),
+    /// bit-identical to [`Brdf::eval`].
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
@@ -224,7 +222,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
     }
 
     /// The kernel of [`eval_batch`](Brdf::eval_batch) on plain vector loads
-    /// (same tolerance).
+    /// (bit-identical to [`Brdf::eval`]).
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
@@ -286,22 +284,17 @@ impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 /// with the scalar code's normalisations (`try_normalize` of both
 /// directions, `half_vector`: `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for
 /// `|ωi + ωo|² ≤ 10⁻¹⁴`) and its two forms of the lobe:
-/// `(1 − δ)^n = exp(n ln(1 − δ))`, `δ = (h_x² + h_y²)/(1 + h_z)`, for
-/// `h_z ≥ 1/2`, and `h_z^n = exp(n ln h_z)` below.
+/// `(1 − δ)^n = exp(n log1p(−δ))`, `δ = (h_x² + h_y²)/(1 + h_z)`, for
+/// `h_z ≥ 1/2`, and `powf(h_z, n)` below.
 ///
-/// Lanes with `h_z ≥ 1/2` are bit-identical to `eval` (the same operations,
-/// and the bit-exact ports [`crate::simd::expf`] / [`crate::simd::log1pf`]).
-/// Below, `h_z^n` is `exp(n ln h_z)` with `wide`'s polynomial `exp`/`ln`
-/// instead of `libm::powf`, so those lanes differ by the propagated
-/// rounding: relative `≲ (c₁ + c₂ |n ln h_z|) 2⁻²⁴` (`|n ln h_z|` is the
-/// condition number of `exp`; the test asserts `c₁ = c₂ = 8` and measures at
-/// most 2.1 of these units), plus an absolute `≈ 10⁻⁴⁵ ks N(n)` where the
-/// lobe is subnormal.
+/// Bit-identical to `eval`: the same operations in the same order, and the
+/// bit-exact ports [`crate::simd::expf`], [`crate::simd::log1pf`] and
+/// [`crate::simd::powf`] of `libm`'s functions.
 #[cfg(feature = "simd")]
 mod batch {
     use super::BlinnPhong;
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, pow_unit, store};
+    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, powf, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
@@ -329,7 +322,7 @@ mod batch {
             let pole = h.z.simd_ge(Vf::splat(0.5));
             let delta = h.xy_length_squared() / (one + h.z);
             let near = pow_one_minus(delta, b.exponent);
-            let far = pow_unit(h.z, b.exponent);
+            let far = powf(h.z, b.exponent);
             let lobe = pole.select(near, h.z.simd_gt(zero).select(far, zero));
             let lobe = Vf::splat(b.norm) * defined.select(lobe, zero);
             let diffuse = b.kd * FRAC_1_PI;
