@@ -4,7 +4,7 @@
 //! This module holds the shared vector math ([`LANES`] directions in
 //! structure-of-arrays form, the chunk drivers for array-of-structures and
 //! structure-of-arrays input, bit-exact vector ports of `libm`'s `expf`,
-//! `log1pf` and `powf`, spectrum stores); it imports nothing from the plugins. Each
+//! `log1pf` and `powf`, `f32` ↔ `f64` lane conversions, spectrum stores); it imports nothing from the plugins. Each
 //! plugin's kernel lives next to its scalar code and follows its formula
 //! operation for operation:
 //!
@@ -12,7 +12,7 @@
 //! |---|---|---|---|
 //! | [`Microfacet<Ggx, HeightCorrelated, F>`](crate::Microfacet), every Fresnel `F` | GGX `D` (Walter et al. 2007, eq. 33), projected areas `A = cos θ (1 + Λ)`, `V = 1/(4 (cos θo Ai + cos θi Ao − cos θi cos θo))` (Heitz 2014, eq. 99) | `D/(4 A(ωo))` | 0 ulp |
 //! | [`Microfacet<Ggx, Separable, F>`](crate::Microfacet), every Fresnel `F` | as above, `V = 1/(4 Ai Ao)` (Heitz 2014, eq. 98) | `D/(4 A(ωo))` | 0 ulp |
-//! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | Beckmann `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25) in vector form; `A` per lane through the scalar `projected_area` | `D/(4 A(ωo))` | 0 ulp |
+//! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | Beckmann `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25), `A = cos θ + α sin θ · aΛ(a)` with the loop-free `Λ = e^{−a²} T(a)/(2√π a)` (its `f64` rational on `f64` vectors) | `D/(4 A(ωo))` | 0 ulp |
 //! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
 //! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
 //! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | `pd cos θi/π + ps (n+1)/(2π) cos^n α` | 0 ulp |
@@ -252,6 +252,36 @@ pub(crate) fn pow_one_minus(delta: Vf, n: f32) -> Vf {
     let lobe = expf(Vf::splat(n) * log1pf(-delta));
     let lobe = delta.simd_le(zero).select(one, lobe);
     (delta.simd_ge(one) | delta.is_nan()).select(zero, lobe)
+}
+
+/// The `f64` vector holding half of a [`Vf`] (`f64x8` with AVX-512, else
+/// `f64x4`): for kernels whose scalar code computes in `f64`.
+#[cfg(target_feature = "avx512f")]
+pub(crate) type Vd = wide::f64x8;
+/// The `f64` vector holding half of a [`Vf`].
+#[cfg(not(target_feature = "avx512f"))]
+pub(crate) type Vd = wide::f64x4;
+
+/// Lanes per [`Vd`].
+const HALF: usize = LANES / 2;
+
+/// `x as f64` per lane (exact), in two halves.
+#[inline(always)]
+pub(crate) fn widen(x: Vf) -> [Vd; 2] {
+    let a = x.to_array();
+    [
+        Vd::new(core::array::from_fn(|k| a[k] as f64)),
+        Vd::new(core::array::from_fn(|k| a[HALF + k] as f64)),
+    ]
+}
+
+/// `d as f32` per lane (round to nearest, as the scalar `as f32`).
+#[inline(always)]
+pub(crate) fn narrow(d: [Vd; 2]) -> Vf {
+    let (a, b) = (d[0].to_array(), d[1].to_array());
+    Vf::new(core::array::from_fn(|k| {
+        if k < HALF { a[k] as f32 } else { b[k - HALF] as f32 }
+    }))
 }
 
 /// The integer vectors of the same width as [`Vf`] (bit manipulation in

@@ -12,7 +12,7 @@
 
 use super::{Fresnel, Microfacet, MicrofacetDistribution, ShadowingMasking};
 use crate::simd::Vf;
-use crate::simd::{Batch, Dirs, Kernel, LANES, expf, finite_nonneg};
+use crate::simd::{Batch, Dirs, Kernel, LANES, finite_nonneg};
 use core::f32::consts::PI;
 use radiometry::Brdf;
 use radiometry::glam::Vec3;
@@ -92,42 +92,23 @@ impl DistV for GgxV {
 }
 
 /// Beckmann: `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007,
-/// eq. 25) with the exponential of [`crate::simd::expf`] (`libm::expf` bit for
-/// bit); lanes with `cos²θh < 10⁻⁸` (the scalar code's other branch,
-/// `exp(−tan²θh/α² − 2 ln cos²θh)`) are handed back. The projected area
-/// `A = cos θ (1 + Λ)` calls the scalar
-/// [`projected_area`](MicrofacetDistribution::projected_area) per lane.
-struct BeckmannV<'a, D> {
-    d: &'a D,
-    /// `α²` and `π α²`, rounded as `Beckmann::d_cos2` rounds them.
-    a2: Vf,
-    pi_a2: Vf,
+/// eq. 25) and `A = cos θ (1 + Λ)` with the loop-free `Λ` (Heitz 2014,
+/// eq. 80 through a fitted `T(a)`), both the scalar code lane for lane
+/// (`super::beckmann::lanes`); lanes with `cos²θh < 10⁻⁸` (the scalar `D`'s
+/// other form) are handed back.
+struct BeckmannV {
+    alpha: f32,
 }
 
-impl<'a, D: MicrofacetDistribution> BeckmannV<'a, D> {
-    #[inline(always)]
-    fn new(d: &'a D, alpha: f32) -> Self {
-        let a2 = alpha * alpha;
-        BeckmannV {
-            d,
-            a2: Vf::splat(a2),
-            pi_a2: Vf::splat(PI * a2),
-        }
-    }
-}
-
-impl<D: MicrofacetDistribution> DistV for BeckmannV<'_, D> {
+impl DistV for BeckmannV {
     #[inline(always)]
     fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        let e = sin2 / (cos2 * self.a2);
-        let v = expf(-e) / (cos2 * cos2);
-        (finite_nonneg(v / self.pi_a2), cos2.simd_lt(Vf::splat(1e-8)))
+        super::beckmann::lanes::d_cos2(self.alpha, cos2, sin2)
     }
 
     #[inline(always)]
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
-        let (c, s) = (cos_theta.to_array(), sin2.to_array());
-        Vf::new(core::array::from_fn(|k| self.d.projected_area(c[k], s[k])))
+        super::beckmann::lanes::projected_area(self.alpha, cos_theta, sin2)
     }
 }
 
@@ -246,12 +227,12 @@ where
         (DistributionKind::Beckmann { alpha }, G2Kind::HeightCorrelated) => {
             io.run(&Eval::<_, _, _, _, false> {
                 b,
-                dist: BeckmannV::new(&b.distribution, alpha),
+                dist: BeckmannV { alpha },
             })
         }
         (DistributionKind::Beckmann { alpha }, G2Kind::Separable) => io.run(&Eval::<_, _, _, _, true> {
             b,
-            dist: BeckmannV::new(&b.distribution, alpha),
+            dist: BeckmannV { alpha },
         }),
         _ => io.scalar(|wi, wo| b.eval(wi, wo)),
     }
@@ -272,7 +253,7 @@ where
         }),
         DistributionKind::Beckmann { alpha } => io.run(&Pdf {
             b,
-            dist: BeckmannV::new(&b.distribution, alpha),
+            dist: BeckmannV { alpha },
         }),
         _ => io.scalar(|wi, wo| b.pdf(wi, wo)),
     }
