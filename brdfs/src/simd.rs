@@ -89,6 +89,24 @@
 //! No `unsafe` code: only `wide`'s safe API, so the crate keeps
 //! `#![forbid(unsafe_code)]`.
 //!
+//! # Throughput
+//!
+//! GGX height-correlated, `F = 1`, `α = 0.3`, n = 4096 pairs in cache, one
+//! thread of a shared AMD EPYC (Zen 4), best of 400 repetitions; the
+//! reference is a branch-free loop of the same formula over `&[f32]` slices
+//! that LLVM auto-vectorises (no input checks; same bits on these inputs):
+//!
+//! | build | `eval` loop | `eval_batch` | `eval_batch_soa` | reference | batch / ref | soa / ref |
+//! |---|---|---|---|---|---|---|
+//! | `-C target-cpu=native` (16 lanes) | 8.48 ns | 1.51 ns | 0.79–1.07 ns | 0.69–0.94 ns | 0.46–0.62 | 0.88 |
+//! | x86_64 baseline (SSE2, 8 lanes) | 9.66 ns | 3.42 ns | 2.33 ns | 1.59 ns | 0.47 | 0.68 |
+//!
+//! (Ratios are rates: reference time / kernel time, each pair from one run;
+//! the machine alternated between two speeds, which moved both columns
+//! together.) `eval_batch` pays for gathering `&[Vec3]` into vectors: `wide`
+//! has no shuffles, and LLVM builds the vectors with one insert per element;
+//! structure-of-arrays input is three plain loads per direction.
+//!
 //! ```
 //! use radiometry::{Brdf, batch::Vec3Soa, glam::Vec3};
 //! use radiometry_brdfs::{Ggx, Microfacet, Schlick, Separable};
