@@ -3,10 +3,11 @@
 //! `cargo bench --bench throughput` — reports time per batch of 4096
 //! evaluations / samples for each plugin, scalar `eval` vs `eval_batch`.
 //!
-//! With the 8-wide `eval_batch` kernels of `radiometry-brdfs` (feature
-//! `simd`; GGX with either Smith `G2` and any Fresnel, Lambertian), enable
-//! the feature on the dev-dependency from the command line (the root crate's
-//! own `simd` feature does not reach its dev-dependency):
+//! With the vector `eval_batch` kernels of `radiometry-brdfs` (feature
+//! `simd`; GGX and Beckmann with either Smith `G2` and any Fresnel,
+//! Lambertian, modified Phong, Blinn–Phong; see `radiometry_brdfs::simd`),
+//! enable the feature on the dev-dependency from the command line (the root
+//! crate's own `simd` feature does not reach its dev-dependency):
 //!
 //! ```text
 //! cargo bench -p radiometry --bench throughput --features radiometry-brdfs/simd
@@ -15,7 +16,9 @@
 //!     --features radiometry-brdfs/simd -- 'brdf/eval'
 //! ```
 //!
-//! Without `target-cpu` flags `wide::f32x8` runs as two SSE2 halves on x86_64.
+//! Without `target-cpu` flags the kernels' `wide::f32x8` runs as two SSE2
+//! halves on x86_64; with AVX-512 they use `wide::f32x16`. `radiometry bench`
+//! (the CLI) reports the same paths against reference kernels.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use radiometry::glam::Vec3;

@@ -89,6 +89,8 @@ use crate::phong::{
     check_kd_ks, choose_strategy, finish_sample, pow_one_minus, sample_cos_power, strategy_probabilities,
 };
 use core::f32::consts::FRAC_1_PI;
+#[cfg(feature = "simd")]
+use radiometry::batch::Vec3Soa;
 use radiometry::frame::{half_vector, try_normalize};
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
@@ -211,6 +213,22 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (self.norm * lobe)
     }
 
+    /// With the `simd` feature a vector kernel ([`crate::simd`]),
+    /// bit-identical to [`Brdf::eval`].
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Eval(self))
+    }
+
+    /// The kernel of [`eval_batch`](Brdf::eval_batch) on plain vector loads
+    /// (bit-identical to [`Brdf::eval`]).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
+    }
+
     /// Mixture sampling (see the module documentation). `None` when `wo`
     /// is at or below the horizon, when `kd = ks = 0`, or when the
     /// reflected direction is at or below the horizon.
@@ -261,6 +279,66 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
 }
 
 impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
+
+/// The vector `eval` kernel (feature `simd`): `f = kd/π + ks N(n) cos^n θh`
+/// with the scalar code's normalisations (`try_normalize` of both
+/// directions, `half_vector`: `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for
+/// `|ωi + ωo|² ≤ 10⁻¹⁴`) and its two forms of the lobe:
+/// `(1 − δ)^n = exp(n log1p(−δ))`, `δ = (h_x² + h_y²)/(1 + h_z)`, for
+/// `h_z ≥ 1/2`, and `powf(h_z, n)` below.
+///
+/// Bit-identical to `eval`: the same operations in the same order, and the
+/// bit-exact ports [`crate::simd::expf`], [`crate::simd::log1pf`] and
+/// [`crate::simd::powf`] of `libm`'s functions.
+#[cfg(feature = "simd")]
+mod batch {
+    use super::BlinnPhong;
+    use crate::simd::Vf;
+    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, powf, store};
+    use core::f32::consts::FRAC_1_PI;
+    use radiometry::glam::Vec3;
+    use radiometry::{Brdf, Spectrum};
+
+    pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a BlinnPhong<S>);
+
+    impl<S: Spectrum> Kernel for Eval<'_, S> {
+        type Out = S;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
+            let b = self.0;
+            let (zero, one) = (Vf::ZERO, Vf::ONE);
+            // `upper_pair`: `try_normalize` both, both strictly above the horizon.
+            let (a, ok_a) = wi.try_normalize();
+            let (c, ok_c) = wo.try_normalize();
+            let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+            // `half_vector` (h_z > 0 for every pair above the horizon, so its
+            // flip to the upper hemisphere never applies).
+            let h = a.add(c);
+            let len2 = h.length_squared();
+            let defined = len2.simd_gt(Vf::splat(1e-14)) & len2.is_finite();
+            let h = h.div(len2.sqrt());
+            // `lobe(h)`.
+            let pole = h.z.simd_ge(Vf::splat(0.5));
+            let delta = h.xy_length_squared() / (one + h.z);
+            let near = pow_one_minus(delta, b.exponent);
+            let far = powf(h.z, b.exponent);
+            let lobe = pole.select(near, h.z.simd_gt(zero).select(far, zero));
+            let lobe = Vf::splat(b.norm) * defined.select(lobe, zero);
+            let diffuse = b.kd * FRAC_1_PI;
+            store(out, |ch| {
+                let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
+                up.select(f, zero)
+            });
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> S {
+            self.0.eval(wi, wo)
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {

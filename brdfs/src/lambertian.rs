@@ -43,6 +43,8 @@
 
 use crate::error::{BrdfError, check_range};
 use core::f32::consts::FRAC_1_PI;
+#[cfg(feature = "simd")]
+use radiometry::batch::Vec3Soa;
 use radiometry::frame::try_normalize;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
@@ -96,12 +98,29 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
         }
     }
 
-    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]) tests the
+    /// With the `simd` feature a vector kernel ([`crate::simd`]) tests the
     /// horizon/finiteness conditions; results equal [`Brdf::eval`] exactly.
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-        crate::simd::lambertian_eval_batch(self.albedo * FRAC_1_PI, wi, wo, out)
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Eval(self))
+    }
+
+    /// With the `simd` feature the vector kernel of
+    /// [`eval_batch`](Brdf::eval_batch) on plain vector loads; results equal
+    /// [`Brdf::eval`] exactly.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
+    }
+
+    /// With the `simd` feature a vector kernel for `cos θi/π`; results
+    /// equal [`Brdf::pdf`] exactly.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Pdf(self))
     }
 
     /// Cosine-weighted sampling; `weight = ρ`. `None` when `wo` is at or
@@ -134,6 +153,63 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
 }
 
 impl<S: Spectrum> IsotropicBrdf for Lambertian<S> {}
+
+/// The vector kernels (feature `simd`): the scalar tests of `eval` and
+/// `pdf` as lane masks, the same values selected (0 ulp; see
+/// [`crate::simd`]).
+#[cfg(feature = "simd")]
+mod batch {
+    use super::Lambertian;
+    use crate::simd::Vf;
+    use crate::simd::{Dirs, Kernel, LANES, store};
+    use core::f32::consts::FRAC_1_PI;
+    use radiometry::glam::Vec3;
+    use radiometry::{Brdf, Spectrum};
+
+    /// `eval`: `ρ/π` where `cos θi > 0`, `cos θo > 0` and both directions
+    /// are finite, else 0.
+    pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a Lambertian<S>);
+
+    impl<S: Spectrum> Kernel for Eval<'_, S> {
+        type Out = S;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
+            let zero = Vf::ZERO;
+            let mask = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & wi.is_finite() & wo.is_finite();
+            let value = self.0.albedo * FRAC_1_PI;
+            store(out, |c| mask.select(Vf::splat(value.channel(c)), zero));
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> S {
+            self.0.eval(wi, wo)
+        }
+    }
+
+    /// `pdf`: `(ωi/‖ωi‖)_z/π` where `ωo` is finite and above the horizon and
+    /// the normalised `ωi` is defined and above it, else 0.
+    pub(super) struct Pdf<'a, S: Spectrum>(pub(super) &'a Lambertian<S>);
+
+    impl<S: Spectrum> Kernel for Pdf<'_, S> {
+        type Out = f32;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
+            let zero = Vf::ZERO;
+            let (w, ok) = wi.try_normalize();
+            let mask = wo.is_finite() & wo.z.simd_gt(zero) & ok & w.z.simd_gt(zero);
+            *out = mask.select(w.z * Vf::splat(FRAC_1_PI), zero).to_array();
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> f32 {
+            self.0.pdf(wi, wo)
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -81,6 +81,8 @@
 
 use crate::error::{BrdfError, check_range};
 use core::f32::consts::{FRAC_1_PI, TAU};
+#[cfg(feature = "simd")]
+use radiometry::batch::Vec3Soa;
 use radiometry::frame::{Frame, reflect_z, spherical_direction_sc, try_normalize};
 use radiometry::glam::Vec3;
 use radiometry::math::{ONE_MINUS_EPSILON, safe_sqrt};
@@ -186,13 +188,28 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         self.kd * FRAC_1_PI + self.ks * (norm * self.lobe(wi, wo))
     }
 
-    /// With the `simd` feature an 8-wide kernel ([`crate::simd`]); it
-    /// matches `eval` to the tolerance documented there (vector `exp`/`ln_1p`
-    /// for `cos^n α`).
+    /// With the `simd` feature a vector kernel ([`crate::simd`]),
+    /// bit-identical to [`Brdf::eval`].
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-        crate::simd::phong_eval_batch(self.kd, self.ks, self.exponent, wi, wo, out)
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Eval(self))
+    }
+
+    /// The kernel of [`eval_batch`](Brdf::eval_batch) on plain vector loads
+    /// (bit-identical to [`Brdf::eval`]).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
+    }
+
+    /// With the `simd` feature a vector kernel for the mixture density,
+    /// bit-identical to [`Brdf::pdf`].
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Pdf(self))
     }
 
     /// Mixture sampling (see the module documentation). `None` when `wo`
@@ -232,6 +249,95 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
 }
 
 impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
+
+/// The vector `eval` kernel (feature `simd`):
+/// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both (normalised)
+/// directions are strictly above the horizon, with
+/// `cos^n α = exp(n log1p(−δ))`, `δ = |ωi − reflect_z(ωo)|²/2`.
+///
+/// Bit-identical to `eval`: the same operations in the same order, and
+/// `exp`/`log1p` are the bit-exact ports [`crate::simd::expf`] /
+/// [`crate::simd::log1pf`] of `libm`'s.
+#[cfg(feature = "simd")]
+mod batch {
+    use super::ModifiedPhong;
+    use crate::simd::Vf;
+    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, store};
+    use core::f32::consts::FRAC_1_PI;
+    use radiometry::glam::Vec3;
+    use radiometry::{Brdf, Spectrum};
+
+    /// `(up, ωi/‖ωi‖, cos^n α)`: `upper_pair` (`try_normalize` both, both
+    /// strictly above the horizon) and the lobe `(1 − δ)^n`,
+    /// `δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α`, as the scalar `lobe`.
+    #[inline(always)]
+    fn upper_lobe<S: Spectrum>(b: &ModifiedPhong<S>, wi: Dirs, wo: Dirs) -> (Vf, Dirs, Vf) {
+        let zero = Vf::ZERO;
+        let (a, ok_a) = wi.try_normalize();
+        let (c, ok_c) = wo.try_normalize();
+        let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+        let d = Dirs {
+            x: a.x - (-c.x),
+            y: a.y - (-c.y),
+            z: a.z - c.z,
+        };
+        let delta = Vf::splat(0.5) * d.length_squared();
+        (up, a, pow_one_minus(delta, b.exponent))
+    }
+
+    pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
+
+    impl<S: Spectrum> Kernel for Eval<'_, S> {
+        type Out = S;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
+            let b = self.0;
+            let zero = Vf::ZERO;
+            let (up, _, lobe) = upper_lobe(b, wi, wo);
+            let norm = (b.exponent + 2.0) * (0.5 * FRAC_1_PI);
+            let lobe = Vf::splat(norm) * lobe;
+            let diffuse = b.kd * FRAC_1_PI;
+            store(out, |ch| {
+                let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
+                up.select(f, zero)
+            });
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> S {
+            self.0.eval(wi, wo)
+        }
+    }
+
+    /// `pdf = pd cos θi/π + ps (n+1)/(2π) cos^n α` where both directions are
+    /// above the horizon, else 0.
+    pub(super) struct Pdf<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
+
+    impl<S: Spectrum> Kernel for Pdf<'_, S> {
+        type Out = f32;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
+            let b = self.0;
+            let (up, a, lobe) = upper_lobe(b, wi, wo);
+            let diffuse = Vf::splat(b.p_diffuse) * a.z * Vf::splat(FRAC_1_PI);
+            let lobe = if b.p_lobe > 0.0 {
+                Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI))) * lobe
+            } else {
+                Vf::ZERO
+            };
+            *out = up.select(diffuse + lobe, Vf::ZERO).to_array();
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> f32 {
+            self.0.pdf(wi, wo)
+        }
+    }
+}
 
 // ---------------------------------------------------------------------------
 // Helpers shared with `blinn_phong` (crate-private).

@@ -71,7 +71,7 @@ repetition. The references are timed before and after the plugins and the best
 is kept. The machine's other load only slows runs down, so best-of is the least noisy estimate
 of the achievable rate.
 
-Build for meaningful numbers (release; the 8-wide kernels of radiometry-brdfs; the CPU's
+Build for meaningful numbers (release; the vector kernels of radiometry-brdfs; the CPU's
 own vector width for them and for the auto-vectorised reference):
   RUSTFLAGS=\"-C target-cpu=native\" cargo run --release -p radiometry-cli --features simd -- bench
 The header says which SIMD target features were compiled in and which the CPU has.";

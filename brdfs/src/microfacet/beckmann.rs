@@ -120,7 +120,55 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
     lambda_from_exp(libm::sqrt(a2), exp_neg64(a2))
 }
 
+/// The vector forms of [`Beckmann::d_cos2`] and [`Beckmann::projected_area`]
+/// (feature `simd`), lane for lane the scalar operations (bit-identical):
+/// `expf` is the bit-exact vector port, and the `f64` parts of `Λ` run on
+/// `f64` vectors.
+#[cfg(feature = "simd")]
+pub(super) mod lanes {
+    use super::super::special::{FRAC_1_SQRT_PI, LAMBDA_ZERO_A, lambda_of_a_fit_v, lambda_of_small_a_v};
+    use super::{FRAC_1_2SQRT_PI, TINY_A};
+    use crate::simd::{Vf, expf, finite_nonneg};
+    use core::f32::consts::FRAC_1_PI;
+
+    /// `Beckmann::d_cos2` for `cos²θ ≥ 10⁻⁸`:
+    /// `r = 1/(α² cos²θ)`, `D = e^{−sin²θ r} r² α²/π`. Returns `(D, cold)`
+    /// with `cold` the lanes `cos²θ < 10⁻⁸` (the scalar code's other form),
+    /// which the caller hands back to the scalar method.
+    #[inline(always)]
+    pub(in super::super) fn d_cos2(alpha: f32, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
+        let a2 = alpha * alpha;
+        let r = Vf::ONE / (cos2 * Vf::splat(a2));
+        let v = expf(-sin2 * r) * (r * r) * Vf::splat(a2 * FRAC_1_PI);
+        (finite_nonneg(v), cos2.simd_lt(Vf::splat(1e-8)))
+    }
+
+    /// `lambda_of_a` lane-wise.
+    #[inline(always)]
+    fn lambda_of_a(a: Vf) -> Vf {
+        let l = a
+            .simd_lt(Vf::splat(TINY_A))
+            .select(lambda_of_small_a_v(a, FRAC_1_2SQRT_PI), lambda_of_a_fit_v(a));
+        let l = a.simd_ge(Vf::splat(LAMBDA_ZERO_A)).select(Vf::ZERO, l);
+        (a.is_nan() | a.simd_le(Vf::ZERO)).select(Vf::splat(f32::INFINITY), l)
+    }
+
+    /// `Beckmann::projected_area` lane-wise:
+    /// `A = cos θ + α sin θ · aΛ(a)`, `a = cos θ/(α sin θ)`.
+    #[inline(always)]
+    pub(in super::super) fn projected_area(alpha: f32, cos_theta: Vf, sin2: Vf) -> Vf {
+        let alpha_s = Vf::splat(alpha) * sin2.sqrt();
+        let a = cos_theta / alpha_s;
+        let a_lambda = a
+            .simd_lt(Vf::splat(1e-20))
+            .select(Vf::splat(0.5 * FRAC_1_SQRT_PI), a * lambda_of_a(a));
+        let area = cos_theta + alpha_s * a_lambda;
+        (alpha_s.simd_le(Vf::ZERO) | a.simd_eq(Vf::splat(f32::INFINITY))).select(cos_theta, area)
+    }
+}
+
 impl Beckmann {
+    /// The CDF (unnormalised) of the visible slopeimpl Beckmann {
     /// The CDF (unnormalised) of the visible slope `x̃` of the standard
     /// (`α = 1`) Beckmann surface seen at angle θ (Heitz & d'Eon 2014,
     /// §4.2): `C(x) = ∫_{−∞}^x (cos θ − t sin θ) e^{−t²}/√π dt
@@ -355,6 +403,12 @@ impl MicrofacetDistribution for Beckmann {
             a * lambda_of_a(a)
         };
         cos_theta + alpha_s * a_lambda
+    }
+
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn batch_kind(&self) -> super::DistributionKind {
+        super::DistributionKind::Beckmann { alpha: self.alpha }
     }
 
     /// `Λ` straight from `tan²θ` (one `expf`, a fitted rational, no iteration): `0` for

@@ -1,6 +1,10 @@
 //! Fresnel reflectance terms, chosen by type.
 
 use crate::error::{BrdfError, check_range};
+#[cfg(feature = "simd")]
+use crate::simd::Vf;
+#[cfg(feature = "simd")]
+use crate::simd::{LANES, store};
 use radiometry::Spectrum;
 use radiometry::math::safe_sqrt;
 
@@ -27,11 +31,42 @@ pub trait Fresnel {
     type Spectrum: Spectrum;
     /// `F(cos θd)` per channel.
     fn eval(&self, cos_theta_d: f32) -> Self::Spectrum;
+
+    /// Hidden hook of the `simd` feature (not a stable API): the last factor
+    /// of the microfacet BRDF for one vector of lanes,
+    /// `out[k] = F(cos θd[k]) · scale[k]`, and exactly `0` where
+    /// `scale[k] = 0` — what `Microfacet::eval` computes from the same two
+    /// numbers, bit for bit. `scale[k] ≥ 0` is finite; `cos θd[k] ∈ [0, 1]`
+    /// where `scale[k] > 0` (other lanes may hold anything).
+    ///
+    /// The default calls [`eval`](Self::eval) per lane; [`NoFresnel`],
+    /// [`Schlick`], [`Dielectric`] and [`Conductor`] override it with vector
+    /// code that performs the scalar operations in the scalar order (0 ulp).
+    #[cfg(feature = "simd")]
+    #[doc(hidden)]
+    #[inline]
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [Self::Spectrum; LANES]) {
+        let (c, s) = (cos_theta_d.to_array(), scale.to_array());
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = if s[k] == 0.0 {
+                Self::Spectrum::zero()
+            } else {
+                self.eval(c[k]) * s[k]
+            };
+        }
+    }
 }
 
 #[inline]
 fn clamp_cos(c: f32) -> f32 {
     if c > 0.0 { c.min(1.0) } else { 0.0 }
+}
+
+/// [`clamp_cos`] lane-wise (NaN → 0).
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn clamp_cos_v(c: Vf) -> Vf {
+    c.simd_gt(Vf::ZERO).select(c.min(Vf::ONE), Vf::ZERO)
 }
 
 /// No Fresnel effect: `F = 1` (zero-sized; costs nothing).
@@ -48,6 +83,13 @@ impl Fresnel for NoFresnel {
     #[inline(always)]
     fn eval(&self, _cos_theta_d: f32) -> f32 {
         1.0
+    }
+
+    /// `1 · s = s` exactly: one vector store.
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn eval_scaled_lanes(&self, _cos_theta_d: Vf, scale: Vf, out: &mut [f32; LANES]) {
+        *out = scale.to_array();
     }
 }
 
@@ -90,6 +132,19 @@ impl<S: Spectrum> Fresnel for Schlick<S> {
         let m2 = m * m;
         let w = m2 * m2 * m;
         self.f0 + (S::splat(1.0) - self.f0) * w
+    }
+
+    /// Per channel `(f0 + (1 − f0) w) · s`, the scalar operations in order.
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [S; LANES]) {
+        let m = Vf::ONE - clamp_cos_v(cos_theta_d);
+        let m2 = m * m;
+        let w = m2 * m2 * m;
+        let one_minus = S::splat(1.0) - self.f0;
+        store(out, |c| {
+            (Vf::splat(self.f0.channel(c)) + Vf::splat(one_minus.channel(c)) * w) * scale
+        });
     }
 }
 
@@ -150,6 +205,25 @@ impl Fresnel for Dielectric {
         }
         let (rp, rs) = (np / dp, ns / ds);
         (0.5 * (rp * rp + rs * rs)).clamp(0.0, 1.0)
+    }
+
+    /// The scalar formula lane-wise; the two early returns (`F = 1` under
+    /// total internal reflection and at the `η = 1` grazing limit) become
+    /// selects.
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [f32; LANES]) {
+        let (zero, one) = (Vf::ZERO, Vf::ONE);
+        let ci = clamp_cos_v(cos_theta_d);
+        let eta = Vf::splat(self.eta);
+        let sin2_t = (one - ci * ci) / Vf::splat(self.eta * self.eta);
+        let ct = (one - sin2_t).max(zero).sqrt();
+        let (np, dp) = (eta * ci - ct, eta * ci + ct);
+        let (ns, ds) = (ci - eta * ct, ci + eta * ct);
+        let (rp, rs) = (np / dp, ns / ds);
+        let f = (Vf::splat(0.5) * (rp * rp + rs * rs)).max(zero).min(one);
+        let limit = sin2_t.simd_ge(one) | dp.simd_le(zero) | ds.simd_le(zero);
+        *out = (limit.select(one, f) * scale).to_array();
     }
 }
 
@@ -299,4 +373,116 @@ impl<S: Spectrum> Fresnel for Conductor<S> {
         let ci = clamp_cos(cos_theta_d);
         S::from_fn(|i| fr_complex(ci, self.eta.channel(i), self.k.channel(i)))
     }
+
+    /// [`fr_complex`] lane-wise per channel (`fr_complex_v`), times `s`.
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [S; LANES]) {
+        let ci = clamp_cos_v(cos_theta_d);
+        store(out, |c| {
+            fr_complex_v(ci, self.eta.channel(c), self.k.channel(c)) * scale
+        });
+    }
+}
+
+/// A vector of complex numbers (`re`, `im` lanes) for [`fr_complex_v`].
+#[cfg(feature = "simd")]
+#[derive(Clone, Copy)]
+struct CxV {
+    re: Vf,
+    im: Vf,
+}
+
+#[cfg(feature = "simd")]
+impl CxV {
+    #[inline(always)]
+    fn add(self, o: CxV) -> CxV {
+        CxV {
+            re: self.re + o.re,
+            im: self.im + o.im,
+        }
+    }
+    #[inline(always)]
+    fn sub(self, o: CxV) -> CxV {
+        CxV {
+            re: self.re - o.re,
+            im: self.im - o.im,
+        }
+    }
+    /// `Cx::mul` of the lane-constant `e` and `self` (same products, same
+    /// order).
+    #[inline(always)]
+    fn const_mul(e: Cx, o: CxV) -> CxV {
+        let (er, ei) = (Vf::splat(e.re), Vf::splat(e.im));
+        CxV {
+            re: er * o.re - ei * o.im,
+            im: er * o.im + ei * o.re,
+        }
+    }
+    #[inline(always)]
+    fn norm2(self) -> Vf {
+        self.re * self.re + self.im * self.im
+    }
+    /// [`Cx::sqrt`] lane-wise: both branches, then a select; `hypot` is
+    /// `libm::hypotf` per lane (it rounds an `f64` sum, which `Vf` cannot
+    /// reproduce), so the result is bit-identical.
+    #[inline(always)]
+    fn sqrt(self) -> CxV {
+        let (re, im) = (self.re.to_array(), self.im.to_array());
+        let r = Vf::new(core::array::from_fn(|k| libm::hypotf(re[k], im[k])));
+        let half = Vf::splat(0.5);
+        let two = Vf::splat(2.0);
+        let pos = self.re.simd_ge(Vf::ZERO);
+        // re ≥ 0: t = √((r + re)/2), (t, im/(2t)).
+        let tp = (half * (r + self.re)).sqrt();
+        // re < 0: t = √((r − re)/2), (|im|/(2t), copysign(t, im)).
+        let tn = (half * (r - self.re)).sqrt();
+        let tn_signed = self.im.is_sign_negative().select(-tn, tn);
+        let zero = r.simd_eq(Vf::ZERO);
+        CxV {
+            re: zero.select(Vf::ZERO, pos.select(tp, self.im.abs() / (two * tn))),
+            im: zero.select(Vf::ZERO, pos.select(self.im / (two * tp), tn_signed)),
+        }
+    }
+}
+
+/// [`ratio_norm2`] lane-wise.
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn ratio_norm2_v(a: CxV, b: CxV) -> Vf {
+    let nb = b.norm2();
+    let r = (a.norm2() / nb).max(Vf::ZERO).min(Vf::ONE);
+    nb.simd_gt(Vf::ZERO).select(r, Vf::ONE)
+}
+
+/// [`fr_complex`] of a vector of cosines `ci ∈ [0, 1]` and one channel `η + ik`:
+/// the lane-constant `1/η²` is formed in scalar exactly as `fr_complex`
+/// forms it, every per-lane operation is the scalar one.
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn fr_complex_v(ci: Vf, eta: f32, k: f32) -> Vf {
+    let e = Cx { re: eta, im: k };
+    let e2 = e.mul(e);
+    let inv_e2 = Cx {
+        re: e2.re,
+        im: -e2.im,
+    }
+    .scale(1.0 / e2.norm2());
+    let (zero, one) = (Vf::ZERO, Vf::ONE);
+    let sin2_i = (one - ci * ci).max(zero);
+    // sin²θt = inv_e2 · sin²θi; ct = √(1 − sin²θt).
+    let ct = CxV {
+        re: one - Vf::splat(inv_e2.re) * sin2_i,
+        im: -(Vf::splat(inv_e2.im) * sin2_i),
+    }
+    .sqrt();
+    let c = CxV { re: ci, im: zero };
+    let ec = CxV {
+        re: Vf::splat(eta) * ci,
+        im: Vf::splat(k) * ci,
+    };
+    let ect = CxV::const_mul(e, ct);
+    let rp = ratio_norm2_v(ec.sub(ct), ec.add(ct));
+    let rs = ratio_norm2_v(c.sub(ect), c.add(ect));
+    (Vf::splat(0.5) * (rp + rs)).max(zero).min(one)
 }

@@ -122,8 +122,8 @@ impl MicrofacetDistribution for Ggx {
 
     #[cfg(feature = "simd")]
     #[inline]
-    fn batch_kind(&self) -> crate::simd::DistributionKind {
-        crate::simd::DistributionKind::Ggx { alpha: self.alpha }
+    fn batch_kind(&self) -> super::DistributionKind {
+        super::DistributionKind::Ggx { alpha: self.alpha }
     }
 
     /// Visible-normal sampling by spherical caps (Dupuy & Benyoub 2023,

@@ -37,6 +37,8 @@
 //! # }
 //! ```
 
+#[cfg(feature = "simd")]
+mod batch;
 mod beckmann;
 mod fresnel;
 mod ggx;
@@ -46,12 +48,17 @@ mod special;
 #[cfg(test)]
 mod tests;
 
+#[cfg(feature = "simd")]
+#[doc(hidden)]
+pub use batch::{DistributionKind, G2Kind};
 pub use beckmann::Beckmann;
 pub use fresnel::{Conductor, Dielectric, Fresnel, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
 pub use ggx::Ggx;
 pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 
 use core::marker::PhantomData;
+#[cfg(feature = "simd")]
+use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
@@ -183,15 +190,14 @@ pub trait MicrofacetDistribution {
     fn sample_visible(&self, wo: Vec3, u: [f32; 2]) -> Vec3;
 
     /// Hidden hook of the `simd` feature: which vectorised kernel (if any)
-    /// [`Brdf::eval_batch`] of [`Microfacet`] may use for this distribution.
-    /// The default, [`DistributionKind::Scalar`](crate::simd::DistributionKind),
-    /// keeps the scalar loop; only [`Ggx`] overrides it. Not part of the
-    /// stable API.
+    /// the batch methods of [`Microfacet`] may use for this distribution.
+    /// The default, `DistributionKind::Scalar`, keeps the scalar loop; only
+    /// [`Ggx`] overrides it. Not part of the stable API.
     #[cfg(feature = "simd")]
     #[doc(hidden)]
     #[inline]
-    fn batch_kind(&self) -> crate::simd::DistributionKind {
-        crate::simd::DistributionKind::Scalar
+    fn batch_kind(&self) -> DistributionKind {
+        DistributionKind::Scalar
     }
 
     /// The density of [`sample_visible`](Self::sample_visible) with respect to
@@ -514,13 +520,30 @@ where
     }
 
     /// With the `simd` feature, GGX with either shadowing–masking variant
-    /// (any Fresnel term) uses the 8-wide kernel of [`crate::simd`], which
-    /// returns exactly what [`Brdf::eval`] returns; other combinations loop
-    /// over `eval`.
+    /// (any Fresnel term) uses a vector kernel ([`crate::simd`]) that
+    /// returns exactly the bits [`Brdf::eval`] returns; other combinations
+    /// loop over `eval`.
     #[cfg(feature = "simd")]
     #[inline]
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [F::Spectrum]) {
-        crate::simd::microfacet_eval_batch(self, wi, wo, out)
+        batch::eval(self, crate::simd::Batch::Aos(wi, wo, out))
+    }
+
+    /// As [`eval_batch`](Brdf::eval_batch), loading [`LANES`](crate::simd::LANES) `x`, `y`, `z`
+    /// components at a time straight from the slices (bit-identical to
+    /// `eval`).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [F::Spectrum]) {
+        batch::eval(self, crate::simd::Batch::Soa(wi, wo, out))
+    }
+
+    /// With the `simd` feature, GGX (either `G`, any `F`) uses a vector
+    /// kernel for `D(h)/(4 A(ωo))`, bit-identical to [`Brdf::pdf`].
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        batch::pdf(self, crate::simd::Batch::Aos(wi, wo, out))
     }
 
     /// Visible-normal sampling (Heitz & d'Eon 2014) followed by mirror

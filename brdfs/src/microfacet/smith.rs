@@ -38,7 +38,7 @@ pub trait ShadowingMasking {
     /// Not part of the stable API.
     #[cfg(feature = "simd")]
     #[doc(hidden)]
-    const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::Scalar;
+    const BATCH_KIND: super::G2Kind = super::G2Kind::Scalar;
 }
 
 /// Height-correlated Smith `G2 = 1/(1 + Λ(ωi) + Λ(ωo))` (Heitz 2014,
@@ -67,7 +67,7 @@ pub struct Separable;
 
 impl ShadowingMasking for HeightCorrelated {
     #[cfg(feature = "simd")]
-    const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::HeightCorrelated;
+    const BATCH_KIND: super::G2Kind = super::G2Kind::HeightCorrelated;
 
     #[inline]
     fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {
@@ -91,7 +91,7 @@ impl ShadowingMasking for HeightCorrelated {
 
 impl ShadowingMasking for Separable {
     #[cfg(feature = "simd")]
-    const BATCH_KIND: crate::simd::G2Kind = crate::simd::G2Kind::Separable;
+    const BATCH_KIND: super::G2Kind = super::G2Kind::Separable;
 
     #[inline]
     fn g2<D: MicrofacetDistribution>(d: &D, wi: Vec3, wo: Vec3) -> f32 {

@@ -38,6 +38,9 @@ pub(crate) const LAMBDA_ZERO_A: f32 = 9.765625;
 /// `MAX_SLOPE` in [`erfinv_2p_minus_1`].
 const ERFC_MAX_SLOPE: f32 = 4.137_031e-37;
 
+#[cfg(feature = "simd")]
+use crate::simd::{Vd, Vf, expf, narrow, widen};
+
 // ------------------------------------------------------------ coefficients
 
 /// `T(a) = 1 − √π a erfcx(a) ≈ 2√π P(a)/Q(a)` on `[0, LAMBDA_ZERO_A]`,
@@ -322,6 +325,59 @@ pub(crate) fn beckmann_s(a: f32) -> f32 {
 pub(crate) fn lambda_from_exp(a: f64, e: f64) -> f32 {
     let a2 = a * a;
     (e * poly4(&LAMBDA_P, a, a2) / (a * poly6(&LAMBDA_Q, a, a2))) as f32
+}
+
+// ------------------------------------------------- vector forms (simd)
+
+/// [`rational64`] lane-wise: the same Horner steps in `f64` (no FMA).
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn rational64_v<const N: usize, const M: usize>(p: &[f64; N], q: &[f64; M], x: Vd) -> Vd {
+    let mut n = Vd::ZERO;
+    let mut k = N;
+    while k > 0 {
+        k -= 1;
+        n = n * x + Vd::splat(p[k]);
+    }
+    let mut d = Vd::ZERO;
+    let mut k = M;
+    while k > 0 {
+        k -= 1;
+        d = d * x + Vd::splat(q[k]);
+    }
+    n / d
+}
+
+/// [`lambda_from_exp`]`(a as f64, exp_neg_sq64(a))` lane-wise, bit for bit:
+/// `x² = a²` in `f64` (exact), `hi = f32(x²)`, `e = expf(−hi)·(1 − (x² − hi))`
+/// with the bit-exact vector [`expf`](crate::simd::expf), then
+/// `f32(e · P(a)/(a Q(a)))` in `f64`. For `0 < a < LAMBDA_ZERO_A`; other
+/// lanes are unspecified.
+#[cfg(feature = "simd")]
+#[inline(always)]
+pub(crate) fn lambda_of_a_fit_v(a: Vf) -> Vf {
+    let a64 = widen(a);
+    let x2 = [a64[0] * a64[0], a64[1] * a64[1]];
+    let hi = narrow(x2);
+    let hi64 = widen(hi);
+    let e = widen(expf(-hi));
+    let one = Vd::ONE;
+    let lam = |h: usize| {
+        let e = e[h] * (one - (x2[h] - hi64[h]));
+        e * rational64_v(&LAMBDA_P, &LAMBDA_Q, a64[h]) / a64[h]
+    };
+    narrow([lam(0), lam(1)])
+}
+
+/// `f32(1/(2√π a) − 1/2)` in `f64`, lane-wise (the small-`a` branch of the
+/// Beckmann `Λ`).
+#[cfg(feature = "simd")]
+#[inline(always)]
+pub(crate) fn lambda_of_small_a_v(a: Vf, frac_1_2sqrt_pi: f64) -> Vf {
+    let a64 = widen(a);
+    let c = Vd::splat(frac_1_2sqrt_pi);
+    let h = Vd::splat(0.5);
+    narrow([c / a64[0] - h, c / a64[1] - h])
 }
 
 // -------------------------------------------------------------- erfinv
