@@ -126,21 +126,26 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
 /// `f64` vectors.
 #[cfg(feature = "simd")]
 pub(super) mod lanes {
-    use super::super::special::{FRAC_1_SQRT_PI, LAMBDA_ZERO_A, lambda_of_a_fit_v, lambda_of_small_a_v};
+    use super::super::special::{
+        FRAC_1_SQRT_PI, LAMBDA_ZERO_A, exp_neg64_v, lambda_of_a_fit_v, lambda_of_small_a_v,
+    };
     use super::{FRAC_1_2SQRT_PI, TINY_A};
-    use crate::simd::{Vf, expf, finite_nonneg};
-    use core::f32::consts::FRAC_1_PI;
+    use crate::simd::{Vd, Vf, finite_nonneg, narrow, widen};
 
-    /// `Beckmann::d_cos2` for `cos²θ ≥ 10⁻⁸`:
-    /// `r = 1/(α² cos²θ)`, `D = e^{−sin²θ r} r² α²/π`. Returns `(D, cold)`
-    /// with `cold` the lanes `cos²θ < 10⁻⁸` (the scalar code's other form),
-    /// which the caller hands back to the scalar method.
+    /// `Beckmann::d_cos2` lane-wise, bit for bit: in `f64`,
+    /// `q = α² cos²θ`, `w = 1/(q cos²θ)`, `D = e^{−sin²θ cos²θ w} w/π`
+    /// (the shared exponential [`exp_neg64_v`]). Returns `(D, cold)`; no
+    /// lane is cold (the `f64` form covers grazing half vectors too).
     #[inline(always)]
     pub(in super::super) fn d_cos2(alpha: f32, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        let a2 = alpha * alpha;
-        let r = Vf::ONE / (cos2 * Vf::splat(a2));
-        let v = expf(-sin2 * r) * (r * r) * Vf::splat(a2 * FRAC_1_PI);
-        (finite_nonneg(v), cos2.simd_lt(Vf::splat(1e-8)))
+        let a = Vd::splat(alpha as f64);
+        let (c2, s2) = (widen(cos2), widen(sin2));
+        let d = |h: usize| {
+            let q = a * a * c2[h];
+            let w = Vd::ONE / (q * c2[h]);
+            exp_neg64_v(s2[h] * c2[h] * w) * w * Vd::splat(core::f64::consts::FRAC_1_PI)
+        };
+        (finite_nonneg(narrow([d(0), d(1)])), Vf::ZERO)
     }
 
     /// `lambda_of_a` lane-wise.
@@ -168,7 +173,6 @@ pub(super) mod lanes {
 }
 
 impl Beckmann {
-    /// The CDF (unnormalised) of the visible slopeimpl Beckmann {
     /// The CDF (unnormalised) of the visible slope `x̃` of the standard
     /// (`α = 1`) Beckmann surface seen at angle θ (Heitz & d'Eon 2014,
     /// §4.2): `C(x) = ∫_{−∞}^x (cos θ − t sin θ) e^{−t²}/√π dt

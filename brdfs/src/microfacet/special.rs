@@ -39,7 +39,7 @@ pub(crate) const LAMBDA_ZERO_A: f32 = 9.765625;
 const ERFC_MAX_SLOPE: f32 = 4.137_031e-37;
 
 #[cfg(feature = "simd")]
-use crate::simd::{Vd, Vf, expf, narrow, widen};
+use crate::simd::{Vd, Vf, narrow, widen};
 
 // ------------------------------------------------------------ coefficients
 
@@ -131,24 +131,53 @@ const ERFINV_TAIL2: [f64; 9] = [
 ];
 const TAIL2_CENTRE: f64 = 6.5625;
 
+/// The `f64` arithmetic the Estrin polynomials and the exponential need,
+/// implemented by `f64` and (feature `simd`) by the `f64` lane vector, so
+/// that the scalar and the vector Beckmann code run the same operations in
+/// the same order — bit-identical by construction, not by transcription.
+pub(crate) trait F64Arith:
+    Copy + core::ops::Add<Output = Self> + core::ops::Sub<Output = Self> + core::ops::Mul<Output = Self>
+{
+    /// The constant in every lane.
+    fn splat(c: f64) -> Self;
+}
+
+impl F64Arith for f64 {
+    #[inline(always)]
+    fn splat(c: f64) -> f64 {
+        c
+    }
+}
+
+#[cfg(feature = "simd")]
+impl F64Arith for Vd {
+    #[inline(always)]
+    fn splat(c: f64) -> Vd {
+        Vd::splat(c)
+    }
+}
+
 /// Degree-4 polynomial `Σ c_k x^k` in `f64`, Estrin's scheme (shorter
 /// dependency chain than Horner; in `f64` the rounding is immaterial).
 #[inline(always)]
-fn poly4(c: &[f64; 5], x: f64, x2: f64) -> f64 {
-    (c[0] + c[1] * x) + x2 * ((c[2] + c[3] * x) + x2 * c[4])
+pub(crate) fn poly4<T: F64Arith>(c: &[f64; 5], x: T, x2: T) -> T {
+    let k = T::splat;
+    (k(c[0]) + k(c[1]) * x) + x2 * ((k(c[2]) + k(c[3]) * x) + x2 * k(c[4]))
 }
 
 /// Degree-5 polynomial in `f64`, Estrin's scheme.
 #[inline(always)]
-fn poly5(c: &[f64; 6], x: f64, x2: f64) -> f64 {
-    (c[0] + c[1] * x) + x2 * ((c[2] + c[3] * x) + x2 * (c[4] + c[5] * x))
+fn poly5<T: F64Arith>(c: &[f64; 6], x: T, x2: T) -> T {
+    let k = T::splat;
+    (k(c[0]) + k(c[1]) * x) + x2 * ((k(c[2]) + k(c[3]) * x) + x2 * (k(c[4]) + k(c[5]) * x))
 }
 
 /// Degree-6 polynomial in `f64`, Estrin's scheme.
 #[inline(always)]
-fn poly6(c: &[f64; 7], x: f64, x2: f64) -> f64 {
+pub(crate) fn poly6<T: F64Arith>(c: &[f64; 7], x: T, x2: T) -> T {
+    let k = T::splat;
     let x4 = x2 * x2;
-    ((c[0] + c[1] * x) + x2 * (c[2] + c[3] * x)) + x4 * ((c[4] + c[5] * x) + x2 * c[6])
+    ((k(c[0]) + k(c[1]) * x) + x2 * (k(c[2]) + k(c[3]) * x)) + x4 * ((k(c[4]) + k(c[5]) * x) + x2 * k(c[6]))
 }
 
 /// Degree-7 polynomial in `f64`, Estrin's scheme.
@@ -218,13 +247,37 @@ pub(crate) fn exp_neg64(x: f64) -> f64 {
     if x > 708.0 {
         return 0.0;
     }
+    let (t, p) = exp_neg64_parts(x);
     // k = round(x / ln 2) ∈ [0, 1022], in the low bits of `t`.
-    let t = x * core::f64::consts::LOG2_E + ROUND_SHIFTER;
-    let kf = t - ROUND_SHIFTER;
     let k = t.to_bits() & 0x7ff;
-    let r = x - kf * LN2;
-    let p = poly6(&EXP_POLY, -r, r * r);
     p * f64::from_bits((1023 - k) << 52)
+}
+
+/// The arithmetic of [`exp_neg64`], shared with its vector form: the
+/// shifted `t = x log₂e + 1.5·2⁵²` (whose low bits hold `k`) and the
+/// polynomial `e^{−r}`, `r = x − k ln 2`.
+#[inline(always)]
+fn exp_neg64_parts<T: F64Arith>(x: T) -> (T, T) {
+    let t = x * T::splat(core::f64::consts::LOG2_E) + T::splat(ROUND_SHIFTER);
+    let kf = t - T::splat(ROUND_SHIFTER);
+    let r = x - kf * T::splat(LN2);
+    let neg_r = T::splat(0.0) - r;
+    (t, poly6(&EXP_POLY, neg_r, r * r))
+}
+
+/// [`exp_neg64`] lane-wise, bit for bit (the same [`exp_neg64_parts`];
+/// `2^{−k}` assembled per lane from the same bits; `0` where `x > 708`).
+#[cfg(feature = "simd")]
+#[inline(always)]
+pub(crate) fn exp_neg64_v(x: Vd) -> Vd {
+    let (t, p) = exp_neg64_parts(x);
+    let tb = t.to_array();
+    // Lanes with x > 708 are replaced below; wrapping keeps their (unused)
+    // scale computation panic-free.
+    let scale = Vd::new(core::array::from_fn(|i| {
+        f64::from_bits(1023u64.wrapping_sub(tb[i].to_bits() & 0x7ff) << 52)
+    }));
+    x.simd_gt(Vd::splat(708.0)).select(Vd::ZERO, p * scale)
 }
 
 /// `e^{−x²}` in `f64` for `f32` `x` (`x²` is exact in `f64`).
@@ -329,44 +382,19 @@ pub(crate) fn lambda_from_exp(a: f64, e: f64) -> f32 {
 
 // ------------------------------------------------- vector forms (simd)
 
-/// [`rational64`] lane-wise: the same Horner steps in `f64` (no FMA).
-#[cfg(feature = "simd")]
-#[inline(always)]
-fn rational64_v<const N: usize, const M: usize>(p: &[f64; N], q: &[f64; M], x: Vd) -> Vd {
-    let mut n = Vd::ZERO;
-    let mut k = N;
-    while k > 0 {
-        k -= 1;
-        n = n * x + Vd::splat(p[k]);
-    }
-    let mut d = Vd::ZERO;
-    let mut k = M;
-    while k > 0 {
-        k -= 1;
-        d = d * x + Vd::splat(q[k]);
-    }
-    n / d
-}
-
-/// [`lambda_from_exp`]`(a as f64, exp_neg_sq64(a))` lane-wise, bit for bit:
-/// `x² = a²` in `f64` (exact), `hi = f32(x²)`, `e = expf(−hi)·(1 − (x² − hi))`
-/// with the bit-exact vector [`expf`](crate::simd::expf), then
-/// `f32(e · P(a)/(a Q(a)))` in `f64`. For `0 < a < LAMBDA_ZERO_A`; other
-/// lanes are unspecified.
+/// `lambda_from_exp(a, exp_neg64(a²))` in `f64` lane-wise, bit for bit
+/// with the scalar `lambda_of_a` for `0 < a < LAMBDA_ZERO_A` (the same
+/// generic polynomials and exponential); other lanes are unspecified.
 #[cfg(feature = "simd")]
 #[inline(always)]
 pub(crate) fn lambda_of_a_fit_v(a: Vf) -> Vf {
     let a64 = widen(a);
-    let x2 = [a64[0] * a64[0], a64[1] * a64[1]];
-    let hi = narrow(x2);
-    let hi64 = widen(hi);
-    let e = widen(expf(-hi));
-    let one = Vd::ONE;
-    let lam = |h: usize| {
-        let e = e[h] * (one - (x2[h] - hi64[h]));
-        e * rational64_v(&LAMBDA_P, &LAMBDA_Q, a64[h]) / a64[h]
+    let lam = |a: Vd| {
+        let a2 = a * a;
+        let e = exp_neg64_v(a2);
+        e * poly4(&LAMBDA_P, a, a2) / (a * poly6(&LAMBDA_Q, a, a2))
     };
-    narrow([lam(0), lam(1)])
+    narrow([lam(a64[0]), lam(a64[1])])
 }
 
 /// `f32(1/(2√π a) − 1/2)` in `f64`, lane-wise (the small-`a` branch of the
