@@ -339,8 +339,8 @@ impl MicrofacetDistribution for Beckmann {
         finite_nonneg(v as f32)
     }
 
-    /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form) via
-    /// [`lambda_of_a`]; `+∞` at grazing, `0` at normal incidence.
+    /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form); `+∞` at
+    /// grazing, `0` at normal incidence.
     #[inline]
     fn lambda(&self, w: Vec3) -> f32 {
         lambda_of_a(self.a_of(w))
