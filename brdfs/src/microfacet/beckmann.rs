@@ -71,8 +71,8 @@ const TINY_A: f32 = 9.536_743e-7;
 ///   `a < 8.3·10⁻⁴⁰` (subnormal `a`) — consistent with the limit;
 /// * `a ≤ 0` or NaN (grazing or degenerate): `+∞`.
 ///
-/// Never NaN, never negative. Max error 1 ulp of the exact `Λ(a)` at the
-/// given `f32` `a` for results `≥ f32::MIN_POSITIVE` (unit test
+/// Never NaN, never negative. Max error 1 ulp (measured 0.60) of the exact
+/// `Λ(a)` at the given `f32` `a` for results `≥ f32::MIN_POSITIVE` (unit test
 /// `lambda_of_a_matches_f64`, dense grid, against libm's `f64` `erfc`);
 /// subnormal results (`a > 9.0`) to within one subnormal ulp.
 #[inline]
@@ -98,8 +98,9 @@ pub(crate) fn lambda_of_a(a: f32) -> f32 {
 ///
 /// `tan2 = 0` (normal incidence) gives 0, `tan2 = +∞` (grazing) `+∞`; NaN
 /// and negative `tan2` give `+∞` (degenerate directions are treated as
-/// grazing, so `G1 = 0`). Never NaN, never negative. Max error 1 ulp of the
-/// exact `Λ` of the given `α`, `tan²θ` (unit test `lambda_tan2_matches_f64`).
+/// grazing, so `G1 = 0`). Never NaN, never negative. Max error 1 ulp
+/// (measured 0.58) of the exact `Λ` of the given `α`, `tan²θ` (unit test
+/// `lambda_tan2_matches_f64`).
 #[inline]
 #[allow(dead_code)] // entry point for the tan²θ-based trait methods
 pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
