@@ -127,6 +127,14 @@ def remez_linear(basis, g, f, xs, iters=40):
     return best[0]
 
 
+def remez_poly64(f, lo, hi, deg, centre, npts=800):
+    """Minimax relative-error polynomial Σ c_k (x − centre)^k on [lo, hi],
+    coefficients rounded to f64 (negligible)."""
+    xs = cheb_grid(lo, hi, npts)
+    basis = [(lambda x, j=j: (x - centre) ** j) for j in range(deg + 1)]
+    return [mp.mpf(float(v)) for v in remez_linear(basis, f, f, xs)]
+
+
 def horner(c, t):
     p = mp.mpf(0)
     for k in reversed(range(len(c))):
