@@ -28,7 +28,8 @@ Reference values come from mpmath (`erfc`, `erfinv`) at 60+ digits.
    where S_MAX corresponds to erfcinv(q) = 9 (MAX_SLOPE). Giles' own single
    precision coefficients stop near q ≈ 1e-7; these are refitted (own fit) to
    reach q ≈ 4e-37.
-4. e^r = P(r) on |r| ≤ ln2/2, deg 6, for the Cody–Waite exp kernel.
+4. e^r = P(r) on |r| ≤ ln2/2, deg 6, for the exp kernel.
+5. ln(1 + f)/f = P(f) on [√½ − 1, √2 − 1], deg 9, for the log kernel.
 
 The slope sampler's fixed-step scheme is checked separately by
 beckmann_slope_sweep.py.
@@ -249,6 +250,14 @@ def main():
     e = max_rel_err_poly(mp.exp, -h, h, c, mp.mpf(0))
     print(f"// e^r = P(r), |r| ≤ ln2/2: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
     print(rust64("EXP_POLY", c))
+
+    # 5. ln(1 + f) = f P(f) on f ∈ [√½ − 1, √2 − 1] for the log kernel
+    lo, hi = mp.sqrt(2) / 2 - 1, mp.sqrt(2) - 1
+    log1p_over = lambda f: mp.log1p(f) / f if f != 0 else mp.mpf(1)
+    c = remez_poly64(log1p_over, lo, hi, 9, mp.mpf(0), npts=400)
+    e = max_rel_err_poly(log1p_over, lo, hi, c, mp.mpf(0))
+    print(f"// ln(1+f)/f = P(f), f ∈ [√½−1, √2−1]: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
+    print(rust64("LOG_POLY", c))
 
 
 if __name__ == "__main__":
