@@ -28,7 +28,8 @@ Reference values come from mpmath (`erfc`, `erfinv`) at 60+ digits.
    where S_MAX corresponds to erfcinv(q) = 9 (MAX_SLOPE). Giles' own single
    precision coefficients stop near q ≈ 1e-7; these are refitted (own fit) to
    reach q ≈ 4e-37.
-4. e^r = P(r) on |r| ≤ ln2/2, deg 6, for the Cody–Waite exp kernel.
+4. e^r = P(r) on |r| ≤ ln2/2, deg 6, for the exp kernel.
+5. ln(1 + f)/f = P(f) on [√½ − 1, √2 − 1], deg 9, for the log kernel.
 
 The slope sampler's fixed-step scheme is checked separately by
 beckmann_slope_sweep.py.
@@ -125,6 +126,14 @@ def remez_linear(basis, g, f, xs, iters=40):
         if abs(emax - lev) < 1e-4 * lev:
             break
     return best[0]
+
+
+def remez_poly64(f, lo, hi, deg, centre, npts=800):
+    """Minimax relative-error polynomial Σ c_k (x − centre)^k on [lo, hi],
+    coefficients rounded to f64 (negligible)."""
+    xs = cheb_grid(lo, hi, npts)
+    basis = [(lambda x, j=j: (x - centre) ** j) for j in range(deg + 1)]
+    return [mp.mpf(float(v)) for v in remez_linear(basis, f, f, xs)]
 
 
 def horner(c, t):
@@ -241,6 +250,14 @@ def main():
     e = max_rel_err_poly(mp.exp, -h, h, c, mp.mpf(0))
     print(f"// e^r = P(r), |r| ≤ ln2/2: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
     print(rust64("EXP_POLY", c))
+
+    # 5. ln(1 + f) = f P(f) on f ∈ [√½ − 1, √2 − 1] for the log kernel
+    lo, hi = mp.sqrt(2) / 2 - 1, mp.sqrt(2) - 1
+    log1p_over = lambda f: mp.log1p(f) / f if f != 0 else mp.mpf(1)
+    c = remez_poly64(log1p_over, lo, hi, 9, mp.mpf(0), npts=400)
+    e = max_rel_err_poly(log1p_over, lo, hi, c, mp.mpf(0))
+    print(f"// ln(1+f)/f = P(f), f ∈ [√½−1, √2−1]: max rel error {mp.nstr(e, 3)} (f64 coefficients)")
+    print(rust64("LOG_POLY", c))
 
 
 if __name__ == "__main__":

@@ -1,14 +1,18 @@
-//! Special functions for the Beckmann distribution, in `f32`, without
-//! iteration: each is a fixed sequence of at most one `expf` or `logf`, a
-//! square root, and rational / polynomial approximations.
+//! Special functions for the Beckmann distribution with `f32` results,
+//! without iteration: each is a fixed sequence of at most one exponential
+//! (the division-free kernel [`exp_neg64`]) or one logarithm, a square root,
+//! and rational / polynomial approximations. Intermediate values are `f64`
+//! where that buys accuracy at no cost on x86-64 / AArch64 (scalar `f64`
+//! multiply–adds cost the same as `f32` ones), so the results are within
+//! about half an ulp plus the final rounding.
 //!
 //! Every coefficient table below is produced by `brdfs/tools/fit_beckmann.py`
 //! (mpmath + numpy; run it to reproduce them). That script fits minimax
-//! relative-error approximations against 60-digit mpmath references, rounds
-//! the coefficients to `f32` and reports the approximation error of the
-//! rounded coefficients (quoted on each table). The errors quoted on the
-//! functions are end-to-end `f32` errors, measured by the unit tests at the
-//! bottom of this file against independent `f64` references (libm's `f64`
+//! relative-error approximations against 60-digit mpmath references and
+//! prints the approximation error of the coefficients as stored (quoted on
+//! each table). The errors quoted on the functions are end-to-end errors of
+//! the `f32` results, measured by the unit tests at the bottom of this file
+//! (and of `beckmann.rs`) against independent `f64` references (libm's `f64`
 //! `erfc` / `exp`, and `f64` bisection), in units of `f32` ulp of the exact
 //! result.
 
@@ -307,6 +311,52 @@ pub(crate) fn exp_neg64_v(x: Vd) -> Vd {
     x.simd_gt(Vd::splat(708.0)).select(Vd::ZERO, p * scale)
 }
 
+/// `ln(1 + f)/f ≈ P(f)` on `f ∈ [√½ − 1, √2 − 1]`, degree 9. Own fit (Remez,
+/// `fit_beckmann.py`): max relative error 4.1·10⁻⁹.
+const LOG_POLY: [f64; 10] = [
+    0.9999999999593766,
+    -0.4999998828980863,
+    0.33333325993351576,
+    -0.25001586527882386,
+    0.2000196832806912,
+    -0.16609013215993162,
+    0.141818382134565,
+    -0.1324346148725159,
+    0.12904647850085388,
+    -0.0762110577965736,
+];
+
+/// Bits of `√½` (`f64`).
+const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
+
+/// `ln x` in `f64` for finite `x > 0` (the callers pass positive `f32`
+/// values, normal in `f64`), to 4·10⁻⁹ relative in the mantissa part:
+/// `x = 2^k m` with `m ∈ [√½, √2)` read off the bits (subtracting the bits
+/// of `√½` puts `k` in the exponent field), `ln x = k ln2 + f P(f)`,
+/// `f = m − 1`. Division-free, unlike libm's `logf` (SunPro port,
+/// `s = f/(2 + f)`), whose latency dominated the slope sampler's chain.
+/// Zero, negative, infinite and NaN arguments are outside the contract
+/// (the result is then unspecified, never a panic).
+#[inline]
+pub(crate) fn ln64(x: f64) -> f64 {
+    let bits = x.to_bits();
+    let k = (bits.wrapping_sub(SQRT_HALF_BITS) as i64) >> 52;
+    let m = f64::from_bits(bits.wrapping_sub((k as u64) << 52));
+    let f = m - 1.0;
+    let f2 = f * f;
+    let f4 = f2 * f2;
+    let c = &LOG_POLY;
+    let p = ((c[0] + c[1] * f) + f2 * (c[2] + c[3] * f))
+        + f4 * (((c[4] + c[5] * f) + f2 * (c[6] + c[7] * f)) + f4 * (c[8] + c[9] * f));
+    k as f64 * LN2 + f * p
+}
+
+/// `ln x` rounded to `f32`, for finite `x > 0` (see [`ln64`]).
+#[inline]
+pub(crate) fn lnf(x: f32) -> f32 {
+    ln64(x as f64) as f32
+}
+
 /// `e^{−x²}` in `f64` for `f32` `x` (`x²` is exact in `f64`).
 #[inline]
 pub(crate) fn exp_neg_sq64(x: f32) -> f64 {
@@ -314,8 +364,8 @@ pub(crate) fn exp_neg_sq64(x: f32) -> f64 {
     exp_neg64(x * x)
 }
 
-/// `e^{−x²}` rounded to `f32` (≤ 0.52 ulp: the `f32` rounding plus
-/// [`exp_neg64`]'s 1.9·10⁻⁹).
+/// `e^{−x²}` rounded to `f32` (≤ 0.55 ulp, measured 0.53: the `f32`
+/// rounding plus [`exp_neg64`]'s 1.9·10⁻⁹).
 #[inline]
 pub(crate) fn exp_neg_sq(x: f32) -> f32 {
     exp_neg_sq64(x) as f32
@@ -362,8 +412,8 @@ pub(crate) fn erfcx(y: f32) -> f32 {
 /// `x > ERFC_ZERO` (the exact value is below half the smallest subnormal),
 /// `2` for `x < −ERFC_ZERO`, NaN for NaN.
 ///
-/// Max relative error 1 ulp for results `≥ f32::MIN_POSITIVE`, ≤ 1
-/// subnormal ulp below it (unit test `erfc_matches_f64`).
+/// Max relative error 1 ulp for results `≥ f32::MIN_POSITIVE` (measured
+/// 0.61 ulp), ≤ 1 subnormal ulp below it (unit test `erfc_matches_f64`).
 #[inline]
 #[cfg_attr(not(test), allow(dead_code))] // the samplers use the scaled erfcx
 pub(crate) fn erfc(x: f32) -> f32 {
@@ -385,8 +435,8 @@ pub(crate) fn erfc(x: f32) -> f32 {
 /// `S` is the numerator of the Beckmann `Λ(a) = S(a)/(2√π a)`, and
 /// `s·S(cot θ)/√π` is the excess `2 cos θ · Λ` of the visible-slope CDF.
 ///
-/// Max error 1 ulp, 1 subnormal ulp for subnormal results (unit test
-/// `beckmann_s_matches_f64`).
+/// Max error 1 ulp (measured 0.59), 1 subnormal ulp for subnormal results
+/// (unit test `beckmann_s_matches_f64`).
 #[inline]
 pub(crate) fn beckmann_s(a: f32) -> f32 {
     if a.is_nan() || a >= LAMBDA_ZERO_A {
@@ -437,7 +487,8 @@ pub(crate) fn a_lambda_of_a_v(a: Vf) -> Vf {
 #[inline]
 pub(crate) fn lambda_from_exp(a: f64, e: f64) -> f32 {
     let a2 = a * a;
-    (e * poly4(&LAMBDA_P, a, a2) / (a * poly6(&LAMBDA_Q, a, a2))) as f32
+    // The division does not wait for the exponential (shorter latency).
+    (e * (poly4(&LAMBDA_P, a, a2) / (a * poly6(&LAMBDA_Q, a, a2)))) as f32
 }
 
 // ------------------------------------------------- vector forms (simd)
@@ -464,7 +515,7 @@ pub(crate) fn lambda_from_exp(a: f64, e: f64) -> f32 {
 /// ones here are refitted (`fit_beckmann.py`) to reach `q = erfc(9)`. One
 /// logarithm, one square root in the tail, no iteration; evaluated in
 /// `f64` (`q` is exact in `f64`, so are `1 − q` and `q(2 − q)`; Estrin for the
-/// polynomials). Max error 1 ulp of `y` for `q` formed
+/// polynomials). Max error 1 ulp (measured 0.69) of `y` for `q` formed
 /// exactly, plus the conditioning of forming `2p − 1` (unit tests
 /// `erfinv_matches_bisection`, `erfinv_tails`, `erfinv_ulp_grid`).
 pub(crate) fn erfinv_2p_minus_1(p: f32) -> f32 {
@@ -498,7 +549,7 @@ fn erfcinv_upper(q: f32) -> f32 {
         return MAX_SLOPE;
     }
     let q = q as f64;
-    let w = -libm::log(q * (2.0 - q));
+    let w = -ln64(q * (2.0 - q));
     let y = if w < 5.0 {
         (1.0 - q) * poly9(&ERFINV_CENTRAL, w - 2.5)
     } else {
@@ -640,6 +691,38 @@ mod tests {
         assert!(exp_neg64(f64::NAN).is_nan());
         assert!(exp_neg64(5e-324) > 0.999);
         println!("exp_neg64: worst relative error {worst:.2e}");
+    }
+
+    /// `ln64` against libm's `f64` `log`: absolute error ≤ 2·10⁻⁹·max(1, |ln x|)
+    /// over every binade of positive `f32` values (subnormals included).
+    #[test]
+    fn ln64_matches_libm() {
+        let mut worst = 0.0f64;
+        let mut x = f32::from_bits(1); // smallest subnormal
+        while x.is_finite() {
+            for j in 0..64 {
+                let v = x * (1.0 + j as f32 / 64.0);
+                if !v.is_finite() {
+                    break;
+                }
+                let r = libm::log(v as f64);
+                let e = (ln64(v as f64) - r).abs() / r.abs().max(1.0);
+                worst = worst.max(e);
+                assert!(e <= 2e-9, "ln({v}): {} vs {r}", ln64(v as f64));
+            }
+            x *= 2.0;
+        }
+        for v in [
+            1.0f64,
+            0.5,
+            2.0,
+            core::f64::consts::SQRT_2,
+            core::f64::consts::FRAC_1_SQRT_2,
+        ] {
+            assert!((ln64(v) - libm::log(v)).abs() <= 2e-9 * libm::log(v).abs().max(1.0));
+        }
+        assert_eq!(ln64(1.0), 0.0);
+        println!("ln64: worst error {worst:.2e}");
     }
 
     #[test]
