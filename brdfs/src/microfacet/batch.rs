@@ -258,3 +258,24 @@ where
         _ => io.scalar(|wi, wo| b.pdf(wi, wo)),
     }
 }
+
+#[cfg(test)]
+mod wiring_tests {
+    use super::DistributionKind;
+    use crate::microfacet::{Beckmann, Ggx, MicrofacetDistribution};
+
+    /// Both built-in distributions opt into their vector kernels (a lost
+    /// `batch_kind` override would silently fall back to the scalar loop,
+    /// which the bit-identity tests cannot notice).
+    #[test]
+    fn builtin_distributions_select_their_kernels() {
+        assert!(matches!(
+            Ggx::new(0.3).unwrap().batch_kind(),
+            DistributionKind::Ggx { .. }
+        ));
+        assert!(matches!(
+            Beckmann::new(0.3).unwrap().batch_kind(),
+            DistributionKind::Beckmann { .. }
+        ));
+    }
+}

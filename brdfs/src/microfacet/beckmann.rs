@@ -387,6 +387,12 @@ impl MicrofacetDistribution for Beckmann {
         cos_theta + alpha_s * a_lambda_of_a(a)
     }
 
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn batch_kind(&self) -> super::DistributionKind {
+        super::DistributionKind::Beckmann { alpha: self.alpha }
+    }
+
     /// `Λ` straight from `tan²θ` (one `expf`, a fitted rational, no iteration): `0` for
     /// `tan²θ = 0`, `+∞` for `tan²θ = +∞` or NaN.
     #[inline(always)]
