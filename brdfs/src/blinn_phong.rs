@@ -86,7 +86,8 @@
 use crate::error::{BrdfError, check_range};
 pub use crate::phong::MAX_EXPONENT;
 use crate::phong::{
-    check_kd_ks, choose_strategy, finish_sample, pow_one_minus, sample_cos_power, strategy_probabilities,
+    check_kd_ks, choose_strategy, finish_with, pow_one_minus, sample_cos_power, strategy_probabilities,
+    unit_or_normalize,
 };
 use core::f32::consts::FRAC_1_PI;
 #[cfg(feature = "simd")]
@@ -180,6 +181,24 @@ impl<S: Spectrum> BlinnPhong<S> {
         (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
     }
 
+    /// The lobe term `ps (n+1)/(2π) cos^n θh/(4 ωo·h)` of the pdf from
+    /// `cos^n θh` for unit `wi`, `wo` above the horizon with a defined half
+    /// vector (the arithmetic of [`Brdf::pdf`], shared with `sample`).
+    #[inline(always)]
+    fn lobe_pdf(&self, wi: Vec3, wo: Vec3, lobe: f32) -> f32 {
+        // For unit ωi, ωo above the horizon, ωo·h = |ωi + ωo|/2
+        // exactly; computing it that way (not as a dot product of
+        // rounded vectors, which can be ~1e-30 for ωi ≈ −ωo) keeps
+        // it ≥ 5·10⁻⁸ whenever h is defined, so the quotient is
+        // ≤ 2·10¹³ (finite). Found by the `brdf_eval` fuzz target.
+        let wo_h = 0.5 * (wi + wo).length();
+        if wo_h > 0.0 {
+            self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * lobe / (4.0 * wo_h)
+        } else {
+            0.0
+        }
+    }
+
     /// `cos^n θh` of the unit half vector `h` (`h_z ≥ 0`).
     ///
     /// Near the pole (`cos θh ≥ 1/2`) it is `(1 − δ)^n` with
@@ -246,9 +265,26 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
             if wo_h.is_nan() || wo_h <= 0.0 {
                 return None;
             }
-            try_normalize(2.0 * wo_h * h - wo_n)?
+            unit_or_normalize(2.0 * wo_h * h - wo_n)?
         };
-        finish_sample(self, wi, wo)
+        // `eval(wi, wo)` and `pdf(wi, wo)` with one half vector and one lobe
+        // evaluation: the same arithmetic on the same values (`upper_pair`
+        // normalises `wo` exactly as above), so the returned pdf is
+        // bit-identical to `pdf(wi, wo)` and the weight to
+        // `eval(wi, wo)/pdf · cos θi`.
+        let wi_n = try_normalize(wi)?;
+        if wi_n.z <= 0.0 {
+            return None;
+        }
+        let h = half_vector(wi_n, wo_n);
+        let lobe = h.map_or(0.0, |h| self.lobe(h));
+        let lobe_pdf = if h.is_some() && self.p_lobe > 0.0 {
+            self.lobe_pdf(wi_n, wo_n, lobe)
+        } else {
+            0.0
+        };
+        let pdf = self.p_diffuse * wi_n.z * FRAC_1_PI + lobe_pdf;
+        finish_with(wi, pdf, self.kd * FRAC_1_PI + self.ks * (self.norm * lobe))
     }
 
     /// `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` [sr⁻¹]; zero unless
@@ -259,19 +295,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         };
         let diffuse = self.p_diffuse * wi.z * FRAC_1_PI;
         let lobe = match half_vector(wi, wo) {
-            Some(h) if self.p_lobe > 0.0 => {
-                // For unit ωi, ωo above the horizon, ωo·h = |ωi + ωo|/2
-                // exactly; computing it that way (not as a dot product of
-                // rounded vectors, which can be ~1e-30 for ωi ≈ −ωo) keeps
-                // it ≥ 5·10⁻⁸ whenever h is defined, so the quotient is
-                // ≤ 2·10¹³ (finite). Found by the `brdf_eval` fuzz target.
-                let wo_h = 0.5 * (wi + wo).length();
-                if wo_h > 0.0 {
-                    self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * self.lobe(h) / (4.0 * wo_h)
-                } else {
-                    0.0
-                }
-            }
+            Some(h) if self.p_lobe > 0.0 => self.lobe_pdf(wi, wo, self.lobe(h)),
             _ => 0.0,
         };
         diffuse + lobe

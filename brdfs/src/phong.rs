@@ -166,6 +166,28 @@ impl<S: Spectrum> ModifiedPhong<S> {
         pow_one_minus(delta, self.exponent)
     }
 
+    /// `f` from `cos^n α` (the arithmetic of [`Brdf::eval`], shared with
+    /// `sample`): `kd/π + ks ((n + 2)/(2π) · cos^n α)`.
+    #[inline(always)]
+    fn f_of_lobe(&self, lobe: f32) -> S {
+        let norm = (self.exponent + 2.0) * (0.5 * FRAC_1_PI);
+        self.kd * FRAC_1_PI + self.ks * (norm * lobe)
+    }
+
+    /// The mixture density from `cos θi` and `cos^n α` (the arithmetic of
+    /// [`Brdf::pdf`], shared with `sample`): `pd cos θi/π + ps (n+1)/(2π)
+    /// cos^n α`, the lobe term `0` when `ps = 0`.
+    #[inline(always)]
+    fn pdf_of_lobe(&self, cos_i: f32, lobe: f32) -> f32 {
+        let diffuse = self.p_diffuse * cos_i * FRAC_1_PI;
+        let lobe = if self.p_lobe > 0.0 {
+            self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * lobe
+        } else {
+            0.0
+        };
+        diffuse + lobe
+    }
+
     /// Normalised directions with both strictly above the horizon, or `None`.
     #[inline]
     fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
@@ -184,8 +206,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         let Some((wi, wo)) = Self::upper_pair(wi, wo) else {
             return S::zero();
         };
-        let norm = (self.exponent + 2.0) * (0.5 * FRAC_1_PI);
-        self.kd * FRAC_1_PI + self.ks * (norm * self.lobe(wi, wo))
+        self.f_of_lobe(self.lobe(wi, wo))
     }
 
     /// With the `simd` feature a vector kernel ([`crate::simd`]),
@@ -225,10 +246,18 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
             square_to_cosine_hemisphere([u0, u[1]])
         } else {
             let local = sample_cos_power([u0, u[1]], self.exponent);
-            let frame = Frame::from_normal(reflect_z(wo_n))?;
-            try_normalize(frame.to_world(local))?
+            unit_or_normalize(frame_around_upper(reflect_z(wo_n)).to_world(local))?
         };
-        finish_sample(self, wi, wo)
+        // `eval(wi, wo)` and `pdf(wi, wo)` with one lobe evaluation: the
+        // same arithmetic on the same values (`upper_pair` normalises `wo`
+        // exactly as above), so the returned pdf is bit-identical to
+        // `pdf(wi, wo)` and the weight to `eval(wi, wo)/pdf · cos θi`.
+        let wi_n = try_normalize(wi)?;
+        if wi_n.z <= 0.0 {
+            return None;
+        }
+        let lobe = self.lobe(wi_n, wo_n);
+        finish_with(wi, self.pdf_of_lobe(wi_n.z, lobe), self.f_of_lobe(lobe))
     }
 
     /// The mixture density `pd cos θi/π + ps (n+1)/(2π) cos^n α` [sr⁻¹];
@@ -238,13 +267,8 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         let Some((wi, wo)) = Self::upper_pair(wi, wo) else {
             return 0.0;
         };
-        let diffuse = self.p_diffuse * wi.z * FRAC_1_PI;
-        let lobe = if self.p_lobe > 0.0 {
-            self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * self.lobe(wi, wo)
-        } else {
-            0.0
-        };
-        diffuse + lobe
+        let lobe = if self.p_lobe > 0.0 { self.lobe(wi, wo) } else { 0.0 };
+        self.pdf_of_lobe(wi.z, lobe)
     }
 }
 
@@ -423,20 +447,54 @@ pub(crate) fn sample_cos_power(u: [f32; 2], n: f32) -> Vec3 {
     spherical_direction_sc(sin_t, 1.0 - delta, TAU * clamp_unit(u[1]))
 }
 
-/// Completes a sample: rejects `wi` at or below the horizon, reports
-/// `pdf = brdf.pdf(wi, wo)` and `weight = (f/pdf)·cos θi`, and rejects
-/// non-positive pdfs or non-finite weights (possible only when the pdf
-/// underflows).
-pub(crate) fn finish_sample<B: Brdf>(brdf: &B, wi: Vec3, wo: Vec3) -> Option<BrdfSample<B::Spectrum>> {
-    if wi.z.is_nan() || wi.z <= 0.0 {
-        return None;
-    }
-    let pdf = brdf.pdf(wi, wo);
+/// Completes a sample from `wi`, its density `pdf` (computed by the
+/// caller with exactly the arithmetic of `Brdf::pdf(wi, wo)`) and
+/// `f = Brdf::eval(wi, wo)` (likewise): `weight = (f/pdf)·cos θi`, and
+/// `None` for a non-positive or non-finite pdf or a non-finite weight
+/// (possible only when the pdf underflows).
+#[inline]
+pub(crate) fn finish_with<S: Spectrum>(wi: Vec3, pdf: f32, f: S) -> Option<BrdfSample<S>> {
     if !pdf.is_finite() || pdf <= 0.0 {
         return None;
     }
-    let weight = (brdf.eval(wi, wo) / pdf) * wi.z;
+    let weight = (f / pdf) * wi.z;
     weight.is_finite().then_some(BrdfSample { wi, pdf, weight })
+}
+
+/// `w` itself when it is already unit to rounding (`||w|² − 1| ≤ 4ε`, so
+/// `||w| − 1| ≤ 2ε`: the accuracy a sampler's rotated or reflected unit
+/// vector has anyway), else [`try_normalize`] (the `#[cold]` path: zero,
+/// non-finite or clearly non-unit input).
+#[inline]
+pub(crate) fn unit_or_normalize(w: Vec3) -> Option<Vec3> {
+    let l2 = w.length_squared();
+    if (l2 - 1.0).abs() <= 4.0 * f32::EPSILON {
+        Some(w)
+    } else {
+        normalize_cold(w)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn normalize_cold(w: Vec3) -> Option<Vec3> {
+    try_normalize(w)
+}
+
+/// The orthonormal basis around the unit `n` with `n.z > 0`: the
+/// `sign = +1` branch of [`Frame::from_normal`] (Duff et al. 2017,
+/// *Building an Orthonormal Basis, Revisited*, JCGT 6(1)), without its
+/// renormalisation of an already-unit `n` and with `1 + n.z ∈ (1, 2]`, so
+/// the one division is always well-conditioned.
+#[inline]
+fn frame_around_upper(n: Vec3) -> Frame {
+    let a = -1.0 / (1.0 + n.z);
+    let b = n.x * n.y * a;
+    Frame {
+        s: Vec3::new(1.0 + n.x * n.x * a, b, -n.x),
+        t: Vec3::new(b, 1.0 + n.y * n.y * a, -n.y),
+        n,
+    }
 }
 
 /// Test support shared by the Lambertian / Phong-family unit tests:
