@@ -119,6 +119,8 @@ pub struct BlinnPhong<S: Spectrum = f32> {
     norm: f32,
     p_diffuse: f32,
     p_lobe: f32,
+    /// `1/(n + 1)`, the sampler's power `cos θ = ξ^{1/(n+1)}`.
+    inv_n1: f32,
 }
 
 impl<S: Spectrum> BlinnPhong<S> {
@@ -141,6 +143,7 @@ impl<S: Spectrum> BlinnPhong<S> {
             norm: Self::normalization(exponent),
             p_diffuse,
             p_lobe,
+            inv_n1: 1.0 / (exponent + 1.0),
         })
     }
 
@@ -260,7 +263,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         let wi = if diffuse {
             square_to_cosine_hemisphere([u0, u[1]])
         } else {
-            let h = sample_cos_power([u0, u[1]], self.exponent);
+            let h = sample_cos_power([u0, u[1]], self.inv_n1);
             let wo_h = wo_n.dot(h);
             if wo_h.is_nan() || wo_h <= 0.0 {
                 return None;
