@@ -92,7 +92,7 @@ use crate::phong::{
 use core::f32::consts::FRAC_1_PI;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
-use radiometry::frame::{half_vector, try_normalize};
+use radiometry::frame::half_vector;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
 use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
@@ -176,12 +176,12 @@ impl<S: Spectrum> BlinnPhong<S> {
         self.exponent
     }
 
-    /// Normalised `(ωi, ωo)` with both strictly above the horizon, or `None`.
+    /// Unit `(ωi, ωo)` with both strictly above the horizon, or `None`
+    /// ([`crate::phong::upper_pair`]: used as given when both are unit to
+    /// rounding, else normalised).
     #[inline]
     fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
-        let wi = try_normalize(wi)?;
-        let wo = try_normalize(wo)?;
-        (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
+        crate::phong::upper_pair(wi, wo)
     }
 
     /// The lobe term `ps (n+1)/(2π) cos^n θh/(4 ωo·h)` of the pdf from
@@ -255,7 +255,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
     /// is at or below the horizon, when `kd = ks = 0`, or when the
     /// reflected direction is at or below the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
-        let wo_n = try_normalize(wo)?;
+        let wo_n = unit_or_normalize(wo)?;
         if wo_n.z <= 0.0 {
             return None;
         }
@@ -270,15 +270,11 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
             }
             unit_or_normalize(2.0 * wo_h * h - wo_n)?
         };
-        // `eval(wi, wo)` and `pdf(wi, wo)` with one half vector and one lobe
-        // evaluation: the same arithmetic on the same values (`upper_pair`
-        // normalises `wo` exactly as above), so the returned pdf is
-        // bit-identical to `pdf(wi, wo)` and the weight to
-        // `eval(wi, wo)/pdf · cos θi`.
-        let wi_n = try_normalize(wi)?;
-        if wi_n.z <= 0.0 {
-            return None;
-        }
+        // `eval(wi, wo)` and `pdf(wi, wo)` with one `upper_pair`, one half
+        // vector and one lobe evaluation: the same arithmetic on the same
+        // values, so the returned pdf is bit-identical to `pdf(wi, wo)` and
+        // the weight to `eval(wi, wo)/pdf · cos θi`.
+        let (wi_n, wo_n) = Self::upper_pair(wi, wo)?;
         let h = half_vector(wi_n, wo_n);
         let lobe = h.map_or(0.0, |h| self.lobe(h));
         let lobe_pdf = if h.is_some() && self.p_lobe > 0.0 {
@@ -321,7 +317,7 @@ impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 mod batch {
     use super::BlinnPhong;
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, powf, store};
+    use crate::simd::{Dirs, Kernel, LANES, cold_lanes, pow_one_minus, powf, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
@@ -335,10 +331,12 @@ mod batch {
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
             let (zero, one) = (Vf::ZERO, Vf::ONE);
-            // `upper_pair`: `try_normalize` both, both strictly above the horizon.
-            let (a, ok_a) = wi.try_normalize();
-            let (c, ok_c) = wo.try_normalize();
-            let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+            // The hot path of `upper_pair`: both used as given, both strictly
+            // above the horizon; lanes where one is not unit to within 4ε
+            // are recomputed by the driver with the scalar method.
+            let (a, c) = (wi, wo);
+            let cold = cold_lanes(a, c);
+            let up = a.z.simd_gt(zero) & c.z.simd_gt(zero);
             // `half_vector` (h_z > 0 for every pair above the horizon, so its
             // flip to the upper hemisphere never applies).
             let h = a.add(c);
@@ -357,7 +355,7 @@ mod batch {
                 let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
                 up.select(f, zero)
             });
-            0
+            cold
         }
 
         #[inline(always)]

@@ -80,6 +80,7 @@
 //! ```
 
 use crate::error::{BrdfError, check_range};
+use crate::microfacet::is_unit;
 use core::f32::consts::{FRAC_1_PI, TAU};
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
@@ -191,12 +192,11 @@ impl<S: Spectrum> ModifiedPhong<S> {
         diffuse + lobe
     }
 
-    /// Normalised directions with both strictly above the horizon, or `None`.
+    /// Unit directions with both strictly above the horizon, or `None`
+    /// ([`upper_pair`]).
     #[inline]
     fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
-        let wi = try_normalize(wi)?;
-        let wo = try_normalize(wo)?;
-        (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
+        upper_pair(wi, wo)
     }
 }
 
@@ -240,7 +240,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
     /// is at or below the horizon, when `kd = ks = 0`, or when the lobe
     /// sample falls at or below the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
-        let wo_n = try_normalize(wo)?;
+        let wo_n = unit_or_normalize(wo)?;
         if wo_n.z <= 0.0 {
             return None;
         }
@@ -251,14 +251,11 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
             let local = sample_cos_power([u0, u[1]], self.inv_n1);
             unit_or_normalize(frame_around_upper(reflect_z(wo_n)).to_world(local))?
         };
-        // `eval(wi, wo)` and `pdf(wi, wo)` with one lobe evaluation: the
-        // same arithmetic on the same values (`upper_pair` normalises `wo`
-        // exactly as above), so the returned pdf is bit-identical to
-        // `pdf(wi, wo)` and the weight to `eval(wi, wo)/pdf · cos θi`.
-        let wi_n = try_normalize(wi)?;
-        if wi_n.z <= 0.0 {
-            return None;
-        }
+        // `eval(wi, wo)` and `pdf(wi, wo)` with one `upper_pair` and one
+        // lobe evaluation: the same arithmetic on the same values, so the
+        // returned pdf is bit-identical to `pdf(wi, wo)` and the weight to
+        // `eval(wi, wo)/pdf · cos θi`.
+        let (wi_n, wo_n) = Self::upper_pair(wi, wo)?;
         let lobe = self.lobe(wi_n, wo_n);
         finish_with(wi, self.pdf_of_lobe(wi_n.z, lobe), self.f_of_lobe(lobe))
     }
@@ -289,27 +286,28 @@ impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 mod batch {
     use super::ModifiedPhong;
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, store};
+    use crate::simd::{Dirs, Kernel, LANES, cold_lanes, pow_one_minus, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
 
-    /// `(up, ωi/‖ωi‖, cos^n α)`: `upper_pair` (`try_normalize` both, both
-    /// strictly above the horizon) and the lobe `(1 − δ)^n`,
+    /// `(up, cold, cos^n α)`: the hot path of `upper_pair` (both directions
+    /// used as given, both strictly above the horizon; `cold` marks the
+    /// lanes where one is not unit to within `4ε`, which the driver
+    /// recomputes with the scalar method) and the lobe `(1 − δ)^n`,
     /// `δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α`, as the scalar `lobe`.
     #[inline(always)]
-    fn upper_lobe<S: Spectrum>(b: &ModifiedPhong<S>, wi: Dirs, wo: Dirs) -> (Vf, Dirs, Vf) {
+    fn upper_lobe<S: Spectrum>(b: &ModifiedPhong<S>, a: Dirs, c: Dirs) -> (Vf, u32, Vf) {
         let zero = Vf::ZERO;
-        let (a, ok_a) = wi.try_normalize();
-        let (c, ok_c) = wo.try_normalize();
-        let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+        let cold = cold_lanes(a, c);
+        let up = a.z.simd_gt(zero) & c.z.simd_gt(zero);
         let d = Dirs {
             x: a.x - (-c.x),
             y: a.y - (-c.y),
             z: a.z - c.z,
         };
         let delta = Vf::splat(0.5) * d.length_squared();
-        (up, a, pow_one_minus(delta, b.exponent))
+        (up, cold, pow_one_minus(delta, b.exponent))
     }
 
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
@@ -321,7 +319,7 @@ mod batch {
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
             let zero = Vf::ZERO;
-            let (up, _, lobe) = upper_lobe(b, wi, wo);
+            let (up, cold, lobe) = upper_lobe(b, wi, wo);
             let norm = (b.exponent + 2.0) * (0.5 * FRAC_1_PI);
             let lobe = Vf::splat(norm) * lobe;
             let diffuse = b.kd * FRAC_1_PI;
@@ -329,7 +327,7 @@ mod batch {
                 let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
                 up.select(f, zero)
             });
-            0
+            cold
         }
 
         #[inline(always)]
@@ -348,15 +346,15 @@ mod batch {
         #[inline(always)]
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
             let b = self.0;
-            let (up, a, lobe) = upper_lobe(b, wi, wo);
-            let diffuse = Vf::splat(b.p_diffuse) * a.z * Vf::splat(FRAC_1_PI);
+            let (up, cold, lobe) = upper_lobe(b, wi, wo);
+            let diffuse = Vf::splat(b.p_diffuse) * wi.z * Vf::splat(FRAC_1_PI);
             let lobe = if b.p_lobe > 0.0 {
                 Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI))) * lobe
             } else {
                 Vf::ZERO
             };
             *out = up.select(diffuse + lobe, Vf::ZERO).to_array();
-            0
+            cold
         }
 
         #[inline(always)]
@@ -449,6 +447,32 @@ pub(crate) fn sample_cos_power(u: [f32; 2], inv_n1: f32) -> Vec3 {
     let delta = (-libm::expm1f(libm::logf(xi) * inv_n1)).clamp(0.0, 1.0);
     let sin_t = safe_sqrt(delta * (2.0 - delta));
     spherical_direction_sc(sin_t, 1.0 - delta, TAU * clamp_unit(u[1]))
+}
+
+/// `(ωi, ωo)` as unit vectors with both strictly above the horizon, or
+/// `None` (the input handling of `eval` and `pdf` of the Phong family).
+///
+/// Hot path: when both are already unit to rounding
+/// ([`is_unit`]: `|‖w‖² − 1| ≤ 4ε`, so `|‖w‖ − 1| ≤ 2ε`, the accuracy a
+/// normalised vector has anyway) they are used as given — no square root
+/// or division. Otherwise (`#[cold]`) both are normalised by
+/// [`try_normalize`]; a zero or non-finite vector gives `None`. The
+/// vector kernels (feature `simd`) take the hot path lane-wise and hand the
+/// other lanes to the scalar method.
+#[inline]
+pub(crate) fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
+    let (wi, wo) = if is_unit(wi) && is_unit(wo) {
+        (wi, wo)
+    } else {
+        normalize_pair_cold(wi, wo)?
+    };
+    (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
+}
+
+#[cold]
+#[inline(never)]
+fn normalize_pair_cold(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
+    Some((try_normalize(wi)?, try_normalize(wo)?))
 }
 
 /// Completes a sample from `wi`, its density `pdf` (computed by the
