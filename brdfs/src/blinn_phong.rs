@@ -87,7 +87,7 @@ use crate::error::{BrdfError, check_range};
 pub use crate::phong::MAX_EXPONENT;
 use crate::phong::{
     check_kd_ks, choose_strategy, finish_with, pow_one_minus, sample_cos_power, strategy_probabilities,
-    unit_or_normalize,
+    strategy_reciprocals, unit_or_normalize,
 };
 use core::f32::consts::FRAC_1_PI;
 #[cfg(feature = "simd")]
@@ -121,6 +121,8 @@ pub struct BlinnPhong<S: Spectrum = f32> {
     p_lobe: f32,
     /// `1/(n + 1)`, the sampler's power `cos θ = ξ^{1/(n+1)}`.
     inv_n1: f32,
+    /// `[1/pd, 1/ps]` ([`strategy_reciprocals`]).
+    inv_p: [f32; 2],
 }
 
 impl<S: Spectrum> BlinnPhong<S> {
@@ -144,6 +146,7 @@ impl<S: Spectrum> BlinnPhong<S> {
             p_diffuse,
             p_lobe,
             inv_n1: 1.0 / (exponent + 1.0),
+            inv_p: strategy_reciprocals(p_diffuse, p_lobe),
         })
     }
 
@@ -259,7 +262,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         if wo_n.z <= 0.0 {
             return None;
         }
-        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe)?;
+        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe, self.inv_p)?;
         let wi = if diffuse {
             square_to_cosine_hemisphere([u0, u[1]])
         } else {

@@ -122,6 +122,8 @@ pub struct ModifiedPhong<S: Spectrum = f32> {
     p_lobe: f32,
     /// `1/(n + 1)`, the sampler's power `cos θ = ξ^{1/(n+1)}`.
     inv_n1: f32,
+    /// `[1/pd, 1/ps]` ([`strategy_reciprocals`]).
+    inv_p: [f32; 2],
 }
 
 impl<S: Spectrum> ModifiedPhong<S> {
@@ -144,6 +146,7 @@ impl<S: Spectrum> ModifiedPhong<S> {
             p_diffuse,
             p_lobe,
             inv_n1: 1.0 / (exponent + 1.0),
+            inv_p: strategy_reciprocals(p_diffuse, p_lobe),
         })
     }
 
@@ -244,7 +247,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         if wo_n.z <= 0.0 {
             return None;
         }
-        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe)?;
+        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe, self.inv_p)?;
         let wi = if diffuse {
             square_to_cosine_hemisphere([u0, u[1]])
         } else {
@@ -396,11 +399,23 @@ pub(crate) fn strategy_probabilities<S: Spectrum>(kd: S, ks: S) -> (f32, f32) {
     }
 }
 
+/// `[1/pd, 1/ps]` for [`choose_strategy`], at most `f32::MAX` (so that the
+/// rescaled `u₀` is never NaN; it is clamped anyway); a component is `0`
+/// where its probability is not positive (it is then never used).
+pub(crate) fn strategy_reciprocals(pd: f32, ps: f32) -> [f32; 2] {
+    let inv = |p: f32| if p > 0.0 { (1.0 / p).min(f32::MAX) } else { 0.0 };
+    [inv(pd), inv(ps)]
+}
+
 /// Picks a strategy from `u₀` and rescales it to `[0, 1 − 2⁻²⁴]`:
 /// `Some((true, u₀/pd))` for the diffuse strategy (`u₀ < pd`),
 /// `Some((false, (u₀ − pd)/ps))` for the lobe, `None` when both
-/// probabilities are zero. NaN maps to 0.
-pub(crate) fn choose_strategy(u0: f32, pd: f32, ps: f32) -> Option<(bool, f32)> {
+/// probabilities are zero. NaN maps to 0. `inv` is
+/// [`strategy_reciprocals`]`(pd, ps)`: the rescaling multiplies by it
+/// (the result may differ from the quotient by an ulp, which only moves
+/// the sample by as much; the clamp keeps it in range).
+#[inline]
+pub(crate) fn choose_strategy(u0: f32, pd: f32, ps: f32, inv: [f32; 2]) -> Option<(bool, f32)> {
     if pd.is_nan() || ps.is_nan() || pd + ps <= 0.0 {
         return None;
     }
@@ -410,9 +425,9 @@ pub(crate) fn choose_strategy(u0: f32, pd: f32, ps: f32) -> Option<(bool, f32)> 
     } else if pd <= 0.0 {
         (false, u0)
     } else if u0 < pd {
-        (true, u0 / pd)
+        (true, u0 * inv[0])
     } else {
-        (false, (u0 - pd) / ps)
+        (false, (u0 - pd) * inv[1])
     };
     Some((diffuse, clamp_unit(v)))
 }
