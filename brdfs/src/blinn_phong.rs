@@ -38,7 +38,8 @@
 //!   (with `2⁻²³` of rounding slack), as for
 //!   [`ModifiedPhong`](crate::phong::ModifiedPhong).
 //! * `n` (`exponent`): `0 ≤ n ≤` [`MAX_EXPONENT`] `= 1e7`.
-//! * Directions: any finite vectors; normalised internally. When
+//! * Directions: any finite vectors; normalised internally (vectors
+//!   already unit to rounding, `|‖ω‖² − 1| ≤ 4ε`, are used as given). When
 //!   `|ωi + ωo| ≤ 10⁻⁷` the half vector is undefined
 //!   ([`half_vector`]) and only the diffuse term remains (this needs both
 //!   directions within 10⁻⁷ of the horizon and opposite).
@@ -307,9 +308,11 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
 impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 
 /// The vector `eval` kernel (feature `simd`): `f = kd/π + ks N(n) cos^n θh`
-/// with the scalar code's normalisations (`try_normalize` of both
-/// directions, `half_vector`: `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for
-/// `|ωi + ωo|² ≤ 10⁻¹⁴`) and its two forms of the lobe:
+/// with the scalar code's input handling (the hot path of `upper_pair`:
+/// both directions unit to within `4ε` and used as given, the other lanes
+/// recomputed by the scalar method; `half_vector`:
+/// `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for `|ωi + ωo|² ≤ 10⁻¹⁴`) and
+/// its two forms of the lobe:
 /// `(1 − δ)^n = exp(n log1p(−δ))`, `δ = (h_x² + h_y²)/(1 + h_z)`, for
 /// `h_z ≥ 1/2`, and `powf(h_z, n)` below.
 ///

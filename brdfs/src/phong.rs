@@ -28,7 +28,9 @@
 //!   sum is accepted so that e.g. `0.3 + 0.7` is valid).
 //! * `n` (`exponent`): `0 ≤ n ≤` [`MAX_EXPONENT`] `= 1e7`.
 //! * Directions: any finite vectors; they are normalised internally (the
-//!   zero vector gives `f = 0`).
+//!   zero vector gives `f = 0`). Vectors that are already unit to rounding
+//!   (`|‖ω‖² − 1| ≤ 4ε`) are used as given, without a square root or
+//!   division.
 //!
 //! # Numerics
 //!
@@ -278,8 +280,9 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
 impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 
 /// The vector `eval` kernel (feature `simd`):
-/// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both (normalised)
-/// directions are strictly above the horizon, with
+/// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both directions are
+/// strictly above the horizon, on the hot path of `upper_pair` (both unit
+/// to within `4ε`; the other lanes are recomputed by the scalar method), with
 /// `cos^n α = exp(n log1p(−δ))`, `δ = |ωi − reflect_z(ωo)|²/2`.
 ///
 /// Bit-identical to `eval`: the same operations in the same order, and
