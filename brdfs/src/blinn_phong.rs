@@ -507,6 +507,7 @@ mod tests {
                     "blinn sampling {kd} {ks} n={n} θo={t}: {some}/121 some, pdf err {ep:.1e}, weight err {ew:.1e}"
                 );
                 assert!(some > 0, "no sample for {kd} {ks} {n} {t}");
+                assert!(check_sample_bits(&b, dir_xz(t)) > 0);
             }
         }
         let b = bp(0.0, 0.0, 3.0);

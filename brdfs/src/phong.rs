@@ -663,6 +663,29 @@ pub(crate) mod test_support {
         d
     }
 
+    /// The fused `sample` reports exactly `pdf(wi, wo)` (bit-identical, not
+    /// just close) and `weight = (eval(wi, wo)/pdf)·cos θi` exactly, for
+    /// `wo` and `3.5·wo` (the non-unit, cold input path) on `U_GRID²`.
+    /// Returns the number of `Some`s.
+    pub fn check_sample_bits<B: Brdf>(b: &B, wo: Vec3) -> usize {
+        let mut some = 0;
+        for wo in [wo, wo * 3.5] {
+            for &u0 in &U_GRID {
+                for &u1 in &U_GRID {
+                    let Some(s) = b.sample(wo, [u0, u1]) else { continue };
+                    some += 1;
+                    assert_eq!(
+                        s.pdf.to_bits(),
+                        b.pdf(s.wi, wo).to_bits(),
+                        "{wo:?} {u0} {u1} {s:?}"
+                    );
+                    assert_eq!(s.weight, (b.eval(s.wi, wo) / s.pdf) * s.wi.z, "{wo:?} {u0} {u1}");
+                }
+            }
+        }
+        some
+    }
+
     /// Stratified (m × m midpoint grid) estimate of the albedo of channel 0
     /// from `sample` weights (`None` counts as 0): unbiased iff the samples
     /// follow `pdf`.
@@ -816,6 +839,7 @@ mod tests {
                     "phong sampling {kd} {ks} n={n} θo={t}: {some}/121 some, pdf err {ep:.1e}, weight err {ew:.1e}"
                 );
                 assert!(some > 0, "no sample for {kd} {ks} {n} {t}");
+                assert!(check_sample_bits(&b, wo) > 0);
                 // Non-unit wo gives the same samples.
                 let s1 = b.sample(wo * 3.5, [0.3, 0.6]);
                 let s2 = b.sample(wo, [0.3, 0.6]);
