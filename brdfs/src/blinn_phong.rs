@@ -38,7 +38,8 @@
 //!   (with `2⁻²³` of rounding slack), as for
 //!   [`ModifiedPhong`](crate::phong::ModifiedPhong).
 //! * `n` (`exponent`): `0 ≤ n ≤` [`MAX_EXPONENT`] `= 1e7`.
-//! * Directions: any finite vectors; normalised internally. When
+//! * Directions: any finite vectors; normalised internally (vectors
+//!   already unit to rounding, `|‖ω‖² − 1| ≤ 4ε`, are used as given). When
 //!   `|ωi + ωo| ≤ 10⁻⁷` the half vector is undefined
 //!   ([`half_vector`]) and only the diffuse term remains (this needs both
 //!   directions within 10⁻⁷ of the horizon and opposite).
@@ -86,12 +87,13 @@
 use crate::error::{BrdfError, check_range};
 pub use crate::phong::MAX_EXPONENT;
 use crate::phong::{
-    check_kd_ks, choose_strategy, finish_sample, pow_one_minus, sample_cos_power, strategy_probabilities,
+    check_kd_ks, choose_strategy, finish_with, pow_one_minus, sample_cos_power, strategy_probabilities,
+    strategy_reciprocals, unit_or_normalize,
 };
 use core::f32::consts::FRAC_1_PI;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
-use radiometry::frame::{half_vector, try_normalize};
+use radiometry::frame::half_vector;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
 use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
@@ -118,6 +120,10 @@ pub struct BlinnPhong<S: Spectrum = f32> {
     norm: f32,
     p_diffuse: f32,
     p_lobe: f32,
+    /// `1/(n + 1)`, the sampler's power `cos θ = ξ^{1/(n+1)}`.
+    inv_n1: f32,
+    /// `[1/pd, 1/ps]` ([`strategy_reciprocals`]).
+    inv_p: [f32; 2],
 }
 
 impl<S: Spectrum> BlinnPhong<S> {
@@ -140,6 +146,8 @@ impl<S: Spectrum> BlinnPhong<S> {
             norm: Self::normalization(exponent),
             p_diffuse,
             p_lobe,
+            inv_n1: 1.0 / (exponent + 1.0),
+            inv_p: strategy_reciprocals(p_diffuse, p_lobe),
         })
     }
 
@@ -172,12 +180,30 @@ impl<S: Spectrum> BlinnPhong<S> {
         self.exponent
     }
 
-    /// Normalised `(ωi, ωo)` with both strictly above the horizon, or `None`.
+    /// Unit `(ωi, ωo)` with both strictly above the horizon, or `None`
+    /// ([`crate::phong::upper_pair`]: used as given when both are unit to
+    /// rounding, else normalised).
     #[inline]
     fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
-        let wi = try_normalize(wi)?;
-        let wo = try_normalize(wo)?;
-        (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
+        crate::phong::upper_pair(wi, wo)
+    }
+
+    /// The lobe term `ps (n+1)/(2π) cos^n θh/(4 ωo·h)` of the pdf from
+    /// `cos^n θh` for unit `wi`, `wo` above the horizon with a defined half
+    /// vector (the arithmetic of [`Brdf::pdf`], shared with `sample`).
+    #[inline(always)]
+    fn lobe_pdf(&self, wi: Vec3, wo: Vec3, lobe: f32) -> f32 {
+        // For unit ωi, ωo above the horizon, ωo·h = |ωi + ωo|/2
+        // exactly; computing it that way (not as a dot product of
+        // rounded vectors, which can be ~1e-30 for ωi ≈ −ωo) keeps
+        // it ≥ 5·10⁻⁸ whenever h is defined, so the quotient is
+        // ≤ 2·10¹³ (finite). Found by the `brdf_eval` fuzz target.
+        let wo_h = 0.5 * (wi + wo).length();
+        if wo_h > 0.0 {
+            self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * lobe / (4.0 * wo_h)
+        } else {
+            0.0
+        }
     }
 
     /// `cos^n θh` of the unit half vector `h` (`h_z ≥ 0`).
@@ -233,22 +259,35 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
     /// is at or below the horizon, when `kd = ks = 0`, or when the
     /// reflected direction is at or below the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
-        let wo_n = try_normalize(wo)?;
+        let wo_n = unit_or_normalize(wo)?;
         if wo_n.z <= 0.0 {
             return None;
         }
-        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe)?;
+        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe, self.inv_p)?;
         let wi = if diffuse {
             square_to_cosine_hemisphere([u0, u[1]])
         } else {
-            let h = sample_cos_power([u0, u[1]], self.exponent);
+            let h = sample_cos_power([u0, u[1]], self.inv_n1);
             let wo_h = wo_n.dot(h);
             if wo_h.is_nan() || wo_h <= 0.0 {
                 return None;
             }
-            try_normalize(2.0 * wo_h * h - wo_n)?
+            unit_or_normalize(2.0 * wo_h * h - wo_n)?
         };
-        finish_sample(self, wi, wo)
+        // `eval(wi, wo)` and `pdf(wi, wo)` with one `upper_pair`, one half
+        // vector and one lobe evaluation: the same arithmetic on the same
+        // values, so the returned pdf is bit-identical to `pdf(wi, wo)` and
+        // the weight to `eval(wi, wo)/pdf · cos θi`.
+        let (wi_n, wo_n) = Self::upper_pair(wi, wo)?;
+        let h = half_vector(wi_n, wo_n);
+        let lobe = h.map_or(0.0, |h| self.lobe(h));
+        let lobe_pdf = if h.is_some() && self.p_lobe > 0.0 {
+            self.lobe_pdf(wi_n, wo_n, lobe)
+        } else {
+            0.0
+        };
+        let pdf = self.p_diffuse * wi_n.z * FRAC_1_PI + lobe_pdf;
+        finish_with(wi, pdf, self.kd * FRAC_1_PI + self.ks * (self.norm * lobe))
     }
 
     /// `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` [sr⁻¹]; zero unless
@@ -259,19 +298,7 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         };
         let diffuse = self.p_diffuse * wi.z * FRAC_1_PI;
         let lobe = match half_vector(wi, wo) {
-            Some(h) if self.p_lobe > 0.0 => {
-                // For unit ωi, ωo above the horizon, ωo·h = |ωi + ωo|/2
-                // exactly; computing it that way (not as a dot product of
-                // rounded vectors, which can be ~1e-30 for ωi ≈ −ωo) keeps
-                // it ≥ 5·10⁻⁸ whenever h is defined, so the quotient is
-                // ≤ 2·10¹³ (finite). Found by the `brdf_eval` fuzz target.
-                let wo_h = 0.5 * (wi + wo).length();
-                if wo_h > 0.0 {
-                    self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * self.lobe(h) / (4.0 * wo_h)
-                } else {
-                    0.0
-                }
-            }
+            Some(h) if self.p_lobe > 0.0 => self.lobe_pdf(wi, wo, self.lobe(h)),
             _ => 0.0,
         };
         diffuse + lobe
@@ -281,9 +308,11 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
 impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 
 /// The vector `eval` kernel (feature `simd`): `f = kd/π + ks N(n) cos^n θh`
-/// with the scalar code's normalisations (`try_normalize` of both
-/// directions, `half_vector`: `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for
-/// `|ωi + ωo|² ≤ 10⁻¹⁴`) and its two forms of the lobe:
+/// with the scalar code's input handling (the hot path of `upper_pair`:
+/// both directions unit to within `4ε` and used as given, the other lanes
+/// recomputed by the scalar method; `half_vector`:
+/// `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for `|ωi + ωo|² ≤ 10⁻¹⁴`) and
+/// its two forms of the lobe:
 /// `(1 − δ)^n = exp(n log1p(−δ))`, `δ = (h_x² + h_y²)/(1 + h_z)`, for
 /// `h_z ≥ 1/2`, and `powf(h_z, n)` below.
 ///
@@ -294,7 +323,7 @@ impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 mod batch {
     use super::BlinnPhong;
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, powf, store};
+    use crate::simd::{Dirs, Kernel, LANES, cold_lanes, pow_one_minus, powf, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
@@ -308,10 +337,12 @@ mod batch {
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
             let (zero, one) = (Vf::ZERO, Vf::ONE);
-            // `upper_pair`: `try_normalize` both, both strictly above the horizon.
-            let (a, ok_a) = wi.try_normalize();
-            let (c, ok_c) = wo.try_normalize();
-            let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+            // The hot path of `upper_pair`: both used as given, both strictly
+            // above the horizon; lanes where one is not unit to within 4ε
+            // are recomputed by the driver with the scalar method.
+            let (a, c) = (wi, wo);
+            let cold = cold_lanes(a, c);
+            let up = a.z.simd_gt(zero) & c.z.simd_gt(zero);
             // `half_vector` (h_z > 0 for every pair above the horizon, so its
             // flip to the upper hemisphere never applies).
             let h = a.add(c);
@@ -330,7 +361,7 @@ mod batch {
                 let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
                 up.select(f, zero)
             });
-            0
+            cold
         }
 
         #[inline(always)]
@@ -476,6 +507,7 @@ mod tests {
                     "blinn sampling {kd} {ks} n={n} θo={t}: {some}/121 some, pdf err {ep:.1e}, weight err {ew:.1e}"
                 );
                 assert!(some > 0, "no sample for {kd} {ks} {n} {t}");
+                assert!(check_sample_bits(&b, dir_xz(t)) > 0);
             }
         }
         let b = bp(0.0, 0.0, 3.0);

@@ -28,7 +28,9 @@
 //!   sum is accepted so that e.g. `0.3 + 0.7` is valid).
 //! * `n` (`exponent`): `0 ≤ n ≤` [`MAX_EXPONENT`] `= 1e7`.
 //! * Directions: any finite vectors; they are normalised internally (the
-//!   zero vector gives `f = 0`).
+//!   zero vector gives `f = 0`). Vectors that are already unit to rounding
+//!   (`|‖ω‖² − 1| ≤ 4ε`) are used as given, without a square root or
+//!   division.
 //!
 //! # Numerics
 //!
@@ -80,6 +82,7 @@
 //! ```
 
 use crate::error::{BrdfError, check_range};
+use crate::microfacet::is_unit;
 use core::f32::consts::{FRAC_1_PI, TAU};
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
@@ -119,6 +122,10 @@ pub struct ModifiedPhong<S: Spectrum = f32> {
     p_diffuse: f32,
     /// `ks̄/(kd̄ + ks̄)` (0 when both are zero).
     p_lobe: f32,
+    /// `1/(n + 1)`, the sampler's power `cos θ = ξ^{1/(n+1)}`.
+    inv_n1: f32,
+    /// `[1/pd, 1/ps]` ([`strategy_reciprocals`]).
+    inv_p: [f32; 2],
 }
 
 impl<S: Spectrum> ModifiedPhong<S> {
@@ -140,6 +147,8 @@ impl<S: Spectrum> ModifiedPhong<S> {
             exponent,
             p_diffuse,
             p_lobe,
+            inv_n1: 1.0 / (exponent + 1.0),
+            inv_p: strategy_reciprocals(p_diffuse, p_lobe),
         })
     }
 
@@ -166,12 +175,33 @@ impl<S: Spectrum> ModifiedPhong<S> {
         pow_one_minus(delta, self.exponent)
     }
 
-    /// Normalised directions with both strictly above the horizon, or `None`.
+    /// `f` from `cos^n α` (the arithmetic of [`Brdf::eval`], shared with
+    /// `sample`): `kd/π + ks ((n + 2)/(2π) · cos^n α)`.
+    #[inline(always)]
+    fn f_of_lobe(&self, lobe: f32) -> S {
+        let norm = (self.exponent + 2.0) * (0.5 * FRAC_1_PI);
+        self.kd * FRAC_1_PI + self.ks * (norm * lobe)
+    }
+
+    /// The mixture density from `cos θi` and `cos^n α` (the arithmetic of
+    /// [`Brdf::pdf`], shared with `sample`): `pd cos θi/π + ps (n+1)/(2π)
+    /// cos^n α`, the lobe term `0` when `ps = 0`.
+    #[inline(always)]
+    fn pdf_of_lobe(&self, cos_i: f32, lobe: f32) -> f32 {
+        let diffuse = self.p_diffuse * cos_i * FRAC_1_PI;
+        let lobe = if self.p_lobe > 0.0 {
+            self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * lobe
+        } else {
+            0.0
+        };
+        diffuse + lobe
+    }
+
+    /// Unit directions with both strictly above the horizon, or `None`
+    /// ([`upper_pair`]).
     #[inline]
     fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
-        let wi = try_normalize(wi)?;
-        let wo = try_normalize(wo)?;
-        (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
+        upper_pair(wi, wo)
     }
 }
 
@@ -184,8 +214,7 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         let Some((wi, wo)) = Self::upper_pair(wi, wo) else {
             return S::zero();
         };
-        let norm = (self.exponent + 2.0) * (0.5 * FRAC_1_PI);
-        self.kd * FRAC_1_PI + self.ks * (norm * self.lobe(wi, wo))
+        self.f_of_lobe(self.lobe(wi, wo))
     }
 
     /// With the `simd` feature a vector kernel ([`crate::simd`]),
@@ -216,19 +245,24 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
     /// is at or below the horizon, when `kd = ks = 0`, or when the lobe
     /// sample falls at or below the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
-        let wo_n = try_normalize(wo)?;
+        let wo_n = unit_or_normalize(wo)?;
         if wo_n.z <= 0.0 {
             return None;
         }
-        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe)?;
+        let (diffuse, u0) = choose_strategy(u[0], self.p_diffuse, self.p_lobe, self.inv_p)?;
         let wi = if diffuse {
             square_to_cosine_hemisphere([u0, u[1]])
         } else {
-            let local = sample_cos_power([u0, u[1]], self.exponent);
-            let frame = Frame::from_normal(reflect_z(wo_n))?;
-            try_normalize(frame.to_world(local))?
+            let local = sample_cos_power([u0, u[1]], self.inv_n1);
+            unit_or_normalize(frame_around_upper(reflect_z(wo_n)).to_world(local))?
         };
-        finish_sample(self, wi, wo)
+        // `eval(wi, wo)` and `pdf(wi, wo)` with one `upper_pair` and one
+        // lobe evaluation: the same arithmetic on the same values, so the
+        // returned pdf is bit-identical to `pdf(wi, wo)` and the weight to
+        // `eval(wi, wo)/pdf · cos θi`.
+        let (wi_n, wo_n) = Self::upper_pair(wi, wo)?;
+        let lobe = self.lobe(wi_n, wo_n);
+        finish_with(wi, self.pdf_of_lobe(wi_n.z, lobe), self.f_of_lobe(lobe))
     }
 
     /// The mixture density `pd cos θi/π + ps (n+1)/(2π) cos^n α` [sr⁻¹];
@@ -238,21 +272,17 @@ impl<S: Spectrum> Brdf for ModifiedPhong<S> {
         let Some((wi, wo)) = Self::upper_pair(wi, wo) else {
             return 0.0;
         };
-        let diffuse = self.p_diffuse * wi.z * FRAC_1_PI;
-        let lobe = if self.p_lobe > 0.0 {
-            self.p_lobe * ((self.exponent + 1.0) * (0.5 * FRAC_1_PI)) * self.lobe(wi, wo)
-        } else {
-            0.0
-        };
-        diffuse + lobe
+        let lobe = if self.p_lobe > 0.0 { self.lobe(wi, wo) } else { 0.0 };
+        self.pdf_of_lobe(wi.z, lobe)
     }
 }
 
 impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 
 /// The vector `eval` kernel (feature `simd`):
-/// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both (normalised)
-/// directions are strictly above the horizon, with
+/// `f = kd/π + ks (n+2)/(2π) cos^n α`, zero unless both directions are
+/// strictly above the horizon, on the hot path of `upper_pair` (both unit
+/// to within `4ε`; the other lanes are recomputed by the scalar method), with
 /// `cos^n α = exp(n log1p(−δ))`, `δ = |ωi − reflect_z(ωo)|²/2`.
 ///
 /// Bit-identical to `eval`: the same operations in the same order, and
@@ -262,27 +292,28 @@ impl<S: Spectrum> IsotropicBrdf for ModifiedPhong<S> {}
 mod batch {
     use super::ModifiedPhong;
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, pow_one_minus, store};
+    use crate::simd::{Dirs, Kernel, LANES, cold_lanes, pow_one_minus, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::{Brdf, Spectrum};
 
-    /// `(up, ωi/‖ωi‖, cos^n α)`: `upper_pair` (`try_normalize` both, both
-    /// strictly above the horizon) and the lobe `(1 − δ)^n`,
+    /// `(up, cold, cos^n α)`: the hot path of `upper_pair` (both directions
+    /// used as given, both strictly above the horizon; `cold` marks the
+    /// lanes where one is not unit to within `4ε`, which the driver
+    /// recomputes with the scalar method) and the lobe `(1 − δ)^n`,
     /// `δ = |ωi − reflect_z(ωo)|²/2 = 1 − cos α`, as the scalar `lobe`.
     #[inline(always)]
-    fn upper_lobe<S: Spectrum>(b: &ModifiedPhong<S>, wi: Dirs, wo: Dirs) -> (Vf, Dirs, Vf) {
+    fn upper_lobe<S: Spectrum>(b: &ModifiedPhong<S>, a: Dirs, c: Dirs) -> (Vf, u32, Vf) {
         let zero = Vf::ZERO;
-        let (a, ok_a) = wi.try_normalize();
-        let (c, ok_c) = wo.try_normalize();
-        let up = ok_a & ok_c & a.z.simd_gt(zero) & c.z.simd_gt(zero);
+        let cold = cold_lanes(a, c);
+        let up = a.z.simd_gt(zero) & c.z.simd_gt(zero);
         let d = Dirs {
             x: a.x - (-c.x),
             y: a.y - (-c.y),
             z: a.z - c.z,
         };
         let delta = Vf::splat(0.5) * d.length_squared();
-        (up, a, pow_one_minus(delta, b.exponent))
+        (up, cold, pow_one_minus(delta, b.exponent))
     }
 
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a ModifiedPhong<S>);
@@ -294,7 +325,7 @@ mod batch {
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
             let zero = Vf::ZERO;
-            let (up, _, lobe) = upper_lobe(b, wi, wo);
+            let (up, cold, lobe) = upper_lobe(b, wi, wo);
             let norm = (b.exponent + 2.0) * (0.5 * FRAC_1_PI);
             let lobe = Vf::splat(norm) * lobe;
             let diffuse = b.kd * FRAC_1_PI;
@@ -302,7 +333,7 @@ mod batch {
                 let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
                 up.select(f, zero)
             });
-            0
+            cold
         }
 
         #[inline(always)]
@@ -321,15 +352,15 @@ mod batch {
         #[inline(always)]
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
             let b = self.0;
-            let (up, a, lobe) = upper_lobe(b, wi, wo);
-            let diffuse = Vf::splat(b.p_diffuse) * a.z * Vf::splat(FRAC_1_PI);
+            let (up, cold, lobe) = upper_lobe(b, wi, wo);
+            let diffuse = Vf::splat(b.p_diffuse) * wi.z * Vf::splat(FRAC_1_PI);
             let lobe = if b.p_lobe > 0.0 {
                 Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI))) * lobe
             } else {
                 Vf::ZERO
             };
             *out = up.select(diffuse + lobe, Vf::ZERO).to_array();
-            0
+            cold
         }
 
         #[inline(always)]
@@ -371,11 +402,23 @@ pub(crate) fn strategy_probabilities<S: Spectrum>(kd: S, ks: S) -> (f32, f32) {
     }
 }
 
+/// `[1/pd, 1/ps]` for [`choose_strategy`], at most `f32::MAX` (so that the
+/// rescaled `u₀` is never NaN; it is clamped anyway); a component is `0`
+/// where its probability is not positive (it is then never used).
+pub(crate) fn strategy_reciprocals(pd: f32, ps: f32) -> [f32; 2] {
+    let inv = |p: f32| if p > 0.0 { (1.0 / p).min(f32::MAX) } else { 0.0 };
+    [inv(pd), inv(ps)]
+}
+
 /// Picks a strategy from `u₀` and rescales it to `[0, 1 − 2⁻²⁴]`:
 /// `Some((true, u₀/pd))` for the diffuse strategy (`u₀ < pd`),
 /// `Some((false, (u₀ − pd)/ps))` for the lobe, `None` when both
-/// probabilities are zero. NaN maps to 0.
-pub(crate) fn choose_strategy(u0: f32, pd: f32, ps: f32) -> Option<(bool, f32)> {
+/// probabilities are zero. NaN maps to 0. `inv` is
+/// [`strategy_reciprocals`]`(pd, ps)`: the rescaling multiplies by it
+/// (the result may differ from the quotient by an ulp, which only moves
+/// the sample by as much; the clamp keeps it in range).
+#[inline]
+pub(crate) fn choose_strategy(u0: f32, pd: f32, ps: f32, inv: [f32; 2]) -> Option<(bool, f32)> {
     if pd.is_nan() || ps.is_nan() || pd + ps <= 0.0 {
         return None;
     }
@@ -385,9 +428,9 @@ pub(crate) fn choose_strategy(u0: f32, pd: f32, ps: f32) -> Option<(bool, f32)> 
     } else if pd <= 0.0 {
         (false, u0)
     } else if u0 < pd {
-        (true, u0 / pd)
+        (true, u0 * inv[0])
     } else {
-        (false, (u0 - pd) / ps)
+        (false, (u0 - pd) * inv[1])
     };
     Some((diffuse, clamp_unit(v)))
 }
@@ -414,29 +457,90 @@ pub(crate) fn pow_one_minus(delta: f32, n: f32) -> f32 {
 /// Direction around `+Z` with density `(n+1)/(2π) cos^n θ`:
 /// `cos θ = ξ^{1/(n+1)}`, `ξ = 1 − u₀`, `φ = 2π u₁`. `1 − cos θ` is formed
 /// as `−expm1(ln ξ/(n+1))` so that it keeps its relative precision for huge
-/// `n`. `u` is expected in `[0, 1 − 2⁻²⁴]` (clamped otherwise).
+/// `n`. `u` is expected in `[0, 1 − 2⁻²⁴]` (clamped otherwise); `inv_n1`
+/// is `1/(n + 1)` (precomputed: a multiplication instead of a division).
 #[inline]
-pub(crate) fn sample_cos_power(u: [f32; 2], n: f32) -> Vec3 {
+pub(crate) fn sample_cos_power(u: [f32; 2], inv_n1: f32) -> Vec3 {
     let xi = 1.0 - clamp_unit(u[0]); // in [2⁻²⁴, 1]
-    let delta = (-libm::expm1f(libm::logf(xi) / (n + 1.0))).clamp(0.0, 1.0);
+    let delta = (-libm::expm1f(libm::logf(xi) * inv_n1)).clamp(0.0, 1.0);
     let sin_t = safe_sqrt(delta * (2.0 - delta));
     spherical_direction_sc(sin_t, 1.0 - delta, TAU * clamp_unit(u[1]))
 }
 
-/// Completes a sample: rejects `wi` at or below the horizon, reports
-/// `pdf = brdf.pdf(wi, wo)` and `weight = (f/pdf)·cos θi`, and rejects
-/// non-positive pdfs or non-finite weights (possible only when the pdf
-/// underflows).
-pub(crate) fn finish_sample<B: Brdf>(brdf: &B, wi: Vec3, wo: Vec3) -> Option<BrdfSample<B::Spectrum>> {
-    if wi.z.is_nan() || wi.z <= 0.0 {
-        return None;
-    }
-    let pdf = brdf.pdf(wi, wo);
+/// `(ωi, ωo)` as unit vectors with both strictly above the horizon, or
+/// `None` (the input handling of `eval` and `pdf` of the Phong family).
+///
+/// Hot path: when both are already unit to rounding
+/// ([`is_unit`]: `|‖w‖² − 1| ≤ 4ε`, so `|‖w‖ − 1| ≤ 2ε`, the accuracy a
+/// normalised vector has anyway) they are used as given — no square root
+/// or division. Otherwise (`#[cold]`) both are normalised by
+/// [`try_normalize`]; a zero or non-finite vector gives `None`. The
+/// vector kernels (feature `simd`) take the hot path lane-wise and hand the
+/// other lanes to the scalar method.
+#[inline]
+pub(crate) fn upper_pair(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
+    let (wi, wo) = if is_unit(wi) && is_unit(wo) {
+        (wi, wo)
+    } else {
+        normalize_pair_cold(wi, wo)?
+    };
+    (wi.z > 0.0 && wo.z > 0.0).then_some((wi, wo))
+}
+
+#[cold]
+#[inline(never)]
+fn normalize_pair_cold(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
+    Some((try_normalize(wi)?, try_normalize(wo)?))
+}
+
+/// Completes a sample from `wi`, its density `pdf` (computed by the
+/// caller with exactly the arithmetic of `Brdf::pdf(wi, wo)`) and
+/// `f = Brdf::eval(wi, wo)` (likewise): `weight = (f/pdf)·cos θi`, and
+/// `None` for a non-positive or non-finite pdf or a non-finite weight
+/// (possible only when the pdf underflows).
+#[inline]
+pub(crate) fn finish_with<S: Spectrum>(wi: Vec3, pdf: f32, f: S) -> Option<BrdfSample<S>> {
     if !pdf.is_finite() || pdf <= 0.0 {
         return None;
     }
-    let weight = (brdf.eval(wi, wo) / pdf) * wi.z;
+    let weight = (f / pdf) * wi.z;
     weight.is_finite().then_some(BrdfSample { wi, pdf, weight })
+}
+
+/// `w` itself when it is already unit to rounding (`||w|² − 1| ≤ 4ε`, so
+/// `||w| − 1| ≤ 2ε`: the accuracy a sampler's rotated or reflected unit
+/// vector has anyway), else [`try_normalize`] (the `#[cold]` path: zero,
+/// non-finite or clearly non-unit input).
+#[inline]
+pub(crate) fn unit_or_normalize(w: Vec3) -> Option<Vec3> {
+    let l2 = w.length_squared();
+    if (l2 - 1.0).abs() <= 4.0 * f32::EPSILON {
+        Some(w)
+    } else {
+        normalize_cold(w)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn normalize_cold(w: Vec3) -> Option<Vec3> {
+    try_normalize(w)
+}
+
+/// The orthonormal basis around the unit `n` with `n.z > 0`: the
+/// `sign = +1` branch of [`Frame::from_normal`] (Duff et al. 2017,
+/// *Building an Orthonormal Basis, Revisited*, JCGT 6(1)), without its
+/// renormalisation of an already-unit `n` and with `1 + n.z ∈ (1, 2]`, so
+/// the one division is always well-conditioned.
+#[inline]
+fn frame_around_upper(n: Vec3) -> Frame {
+    let a = -1.0 / (1.0 + n.z);
+    let b = n.x * n.y * a;
+    Frame {
+        s: Vec3::new(1.0 + n.x * n.x * a, b, -n.x),
+        t: Vec3::new(b, 1.0 + n.y * n.y * a, -n.y),
+        n,
+    }
 }
 
 /// Test support shared by the Lambertian / Phong-family unit tests:
@@ -557,6 +661,29 @@ pub(crate) mod test_support {
                 .max((cdf - (k + 1) as f64 / m).abs());
         }
         d
+    }
+
+    /// The fused `sample` reports exactly `pdf(wi, wo)` (bit-identical, not
+    /// just close) and `weight = (eval(wi, wo)/pdf)·cos θi` exactly, for
+    /// `wo` and `3.5·wo` (the non-unit, cold input path) on `U_GRID²`.
+    /// Returns the number of `Some`s.
+    pub fn check_sample_bits<B: Brdf>(b: &B, wo: Vec3) -> usize {
+        let mut some = 0;
+        for wo in [wo, wo * 3.5] {
+            for &u0 in &U_GRID {
+                for &u1 in &U_GRID {
+                    let Some(s) = b.sample(wo, [u0, u1]) else { continue };
+                    some += 1;
+                    assert_eq!(
+                        s.pdf.to_bits(),
+                        b.pdf(s.wi, wo).to_bits(),
+                        "{wo:?} {u0} {u1} {s:?}"
+                    );
+                    assert_eq!(s.weight, (b.eval(s.wi, wo) / s.pdf) * s.wi.z, "{wo:?} {u0} {u1}");
+                }
+            }
+        }
+        some
     }
 
     /// Stratified (m × m midpoint grid) estimate of the albedo of channel 0
@@ -712,6 +839,7 @@ mod tests {
                     "phong sampling {kd} {ks} n={n} θo={t}: {some}/121 some, pdf err {ep:.1e}, weight err {ew:.1e}"
                 );
                 assert!(some > 0, "no sample for {kd} {ks} {n} {t}");
+                assert!(check_sample_bits(&b, wo) > 0);
                 // Non-unit wo gives the same samples.
                 let s1 = b.sample(wo * 3.5, [0.3, 0.6]);
                 let s2 = b.sample(wo, [0.3, 0.6]);

@@ -251,6 +251,14 @@ impl Dirs {
     }
 }
 
+/// Bit `k` set when lane `k` is off the Phong family's hot path (a
+/// direction that is not unit to within `4ε`, [`Dirs::is_unit`]): the
+/// driver recomputes it with the scalar method, whose cold path normalises.
+#[inline(always)]
+pub(crate) fn cold_lanes(wi: Dirs, wo: Dirs) -> u32 {
+    (!(wi.is_unit() & wo.is_unit())).to_bitmask()
+}
+
 /// `finite_nonneg`: `x > 0 ? min(x, f32::MAX) : 0` (NaN → 0).
 #[inline(always)]
 pub(crate) fn finite_nonneg(x: Vf) -> Vf {
