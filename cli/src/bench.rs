@@ -1,6 +1,6 @@
 //! `radiometry bench`: single-thread throughput of every BRDF plugin's hot
 //! paths, each figure also given as a fraction of this CPU's limits measured
-//! in the same run (the kernels of [`reference`]).
+//! in the same run (the kernels of [`mod@reference`]).
 //!
 //! Every timed pass is an `#[inline(never)]` function whose arguments (the
 //! BRDF, the input slices, the output slice) go through
