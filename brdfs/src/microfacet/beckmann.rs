@@ -490,20 +490,28 @@ mod tests {
         (v as f64 - r).abs() / ulp
     }
 
+    extern crate std;
+
+    /// Test points for functions of `a`: `n` evenly spaced over `(0, 9.8]`,
+    /// then a geometric sweep (ratio 1.37) from the smallest subnormal to 10.
+    fn a_grid(n: usize) -> std::vec::Vec<f32> {
+        let mut pts: std::vec::Vec<f32> = (1..=n).map(|i| i as f32 * (9.8 / n as f32)).collect();
+        let mut t = 1e-45f32;
+        while t < 10.0 {
+            pts.push(t);
+            t = (t * 1.37).max(t.next_up());
+        }
+        pts
+    }
+
     /// `a_lambda_of_a` (the projected area's `aΛ(a)`) against `a` times the
     /// f64 erf form, over the same grid as below plus `a = 0` (limit
     /// `1/(2√π)`): at most 1 ulp for normal results.
     #[test]
     fn a_lambda_matches_f64() {
         extern crate std;
-        let mut pts: std::vec::Vec<f32> = (1..=200_000).map(|i| i as f32 * (9.8 / 200_000.0)).collect();
-        let mut t = 1e-45f32;
-        while t < 10.0 {
-            pts.push(t);
-            t = (t * 1.37).max(t.next_up());
-        }
         let mut worst = 0.0f64;
-        for a in pts {
+        for a in a_grid(200_000) {
             let v = a_lambda_of_a(a);
             assert!(v >= 0.0 && v.is_finite(), "aΛ({a}) = {v}");
             let a64 = a as f64;
@@ -533,12 +541,7 @@ mod tests {
     #[test]
     fn lambda_of_a_matches_f64() {
         extern crate std;
-        let mut pts: std::vec::Vec<f32> = (1..=400_000).map(|i| i as f32 * (9.8 / 400_000.0)).collect();
-        let mut t = 1e-45f32;
-        while t < 10.0 {
-            pts.push(t);
-            t = (t * 1.37).max(t.next_up());
-        }
+        let mut pts = a_grid(400_000);
         pts.extend([
             TINY_A,
             TINY_A.next_down(),
