@@ -44,7 +44,7 @@
 
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
-use crate::integrator::chunk::brdf_eval_where;
+use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
 use crate::integrator::{
     CHUNK, DirectionalAlbedo, Estimate, Integrand, IntegrandSample, IntegrateError, Integrator,
 };
@@ -1211,28 +1211,14 @@ impl<B: Brdf, L: Light<Spectrum = B::Spectrum> + ?Sized> Integrand for Environme
     /// [`Brdf::sample_batch`] with `wo` broadcast, then the radiance at each
     /// sampled direction, as [`Integrand::sample`].
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
-        let wo = [self.wo; CHUNK];
-        let mut s = [None; CHUNK];
-        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
-            let n = u.len().min(out.len());
-            self.brdf.sample_batch(&wo[..n], &u[..n], &mut s[..n]);
-            for (o, s) in out[..n].iter_mut().zip(&s[..n]) {
-                *o = s.map(|s| IntegrandSample {
-                    w: s.wi,
-                    pdf: s.pdf,
-                    value: s.weight * s.pdf * self.light.radiance(s.wi),
-                });
-            }
-        }
+        brdf_sample_batch(&self.brdf, self.wo, u, out, |s| {
+            s.weight * s.pdf * self.light.radiance(s.wi)
+        });
     }
 
     /// [`Brdf::pdf_batch`] with `wo` broadcast.
     fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
-        let wo = [self.wo; CHUNK];
-        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
-            let n = w.len().min(out.len());
-            self.brdf.pdf_batch(&w[..n], &wo[..n], &mut out[..n]);
-        }
+        brdf_pdf_batch(&self.brdf, self.wo, w, out);
     }
 }
 

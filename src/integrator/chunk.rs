@@ -11,7 +11,7 @@
 
 use super::acc::{direction, to_unit_f32};
 use super::{Integrand, IntegrandSample, IntegrateError, WideOf, check_finite};
-use crate::brdf::Brdf;
+use crate::brdf::{Brdf, BrdfSample};
 use crate::spectrum::{Spectrum, WideSpectrum};
 use core::f64::consts::TAU;
 use glam::Vec3;
@@ -135,6 +135,43 @@ pub(crate) fn brdf_eval_where<B: Brdf>(brdf: &B, wo: Vec3, wi: &[Option<Vec3>], 
         brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
         for (&k, &v) in index[..m].iter().zip(&vals[..m]) {
             out[k] = v;
+        }
+    }
+}
+
+/// `out[k] = pdf(w[k], wo)` for `k < min(w.len(), out.len())` with `wo`
+/// broadcast: one [`Brdf::pdf_batch`] per [`CHUNK`].
+pub(crate) fn brdf_pdf_batch<B: Brdf>(brdf: &B, wo: Vec3, w: &[Vec3], out: &mut [f32]) {
+    let wos = [wo; CHUNK];
+    for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = w.len().min(out.len());
+        brdf.pdf_batch(&w[..n], &wos[..n], &mut out[..n]);
+    }
+}
+
+/// `out[k]` = the integrand sample built by `value` from
+/// `sample(wo, u[k])` (`None` stays `None`), for `k < min(u.len(),
+/// out.len())`: one [`Brdf::sample_batch`] per [`CHUNK`] with `wo`
+/// broadcast. `value` turns a BRDF sample into the integrand's value at
+/// `s.wi` (e.g. `s.weight · s.pdf`).
+pub(crate) fn brdf_sample_batch<B: Brdf>(
+    brdf: &B,
+    wo: Vec3,
+    u: &[[f32; 2]],
+    out: &mut [Option<IntegrandSample<B::Spectrum>>],
+    value: impl Fn(&BrdfSample<B::Spectrum>) -> B::Spectrum,
+) {
+    let wos = [wo; CHUNK];
+    let mut s = [None; CHUNK];
+    for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = u.len().min(out.len());
+        brdf.sample_batch(&wos[..n], &u[..n], &mut s[..n]);
+        for (o, s) in out[..n].iter_mut().zip(&s[..n]) {
+            *o = s.as_ref().map(|s| IntegrandSample {
+                w: s.wi,
+                pdf: s.pdf,
+                value: value(s),
+            });
         }
     }
 }

@@ -37,6 +37,7 @@
 use crate::brdf::Brdf;
 use crate::frame::cos_theta;
 use crate::spectrum::{Spectrum, WideSpectrum};
+use chunk::{brdf_pdf_batch, brdf_sample_batch};
 use core::fmt;
 use glam::Vec3;
 
@@ -260,28 +261,12 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
     /// [`Brdf::sample_batch`] with `wo` broadcast; value `weight · pdf` as
     /// in [`Integrand::sample`].
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
-        let wo = [self.wo; CHUNK];
-        let mut s = [None; CHUNK];
-        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
-            let n = u.len().min(out.len());
-            self.brdf.sample_batch(&wo[..n], &u[..n], &mut s[..n]);
-            for (o, s) in out[..n].iter_mut().zip(&s[..n]) {
-                *o = s.map(|s| IntegrandSample {
-                    w: s.wi,
-                    pdf: s.pdf,
-                    value: s.weight * s.pdf,
-                });
-            }
-        }
+        brdf_sample_batch(&self.brdf, self.wo, u, out, |s| s.weight * s.pdf);
     }
 
     /// [`Brdf::pdf_batch`] with `wo` broadcast.
     fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
-        let wo = [self.wo; CHUNK];
-        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
-            let n = w.len().min(out.len());
-            self.brdf.pdf_batch(&w[..n], &wo[..n], &mut out[..n]);
-        }
+        brdf_pdf_batch(&self.brdf, self.wo, w, out);
     }
 }
 
