@@ -16,7 +16,7 @@
 //! indicator of the fine run.
 
 use std::collections::BinaryHeap;
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A BRDF model in `f64` for the reference computation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -430,6 +430,16 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
     let is_phong = matches!(model, RefModel::Phong { .. });
     let kink: Option<&dyn Fn(f64) -> Option<f64>> = if is_phong { Some(&phong_kink) } else { None };
     let extra: Vec<f64> = if is_phong { vec![st] } else { vec![] };
+    if let Some((_, width)) = peak {
+        // Peaked models: polar coordinates about the mirror direction.
+        let (coarse, _) = pole_albedo(model, theta_o, width, 1e-8, &mut evals);
+        let (fine, e) = pole_albedo(model, theta_o, width, 1e-12, &mut evals);
+        return Reference {
+            value: fine,
+            bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
+            evaluations: evals,
+        };
+    }
     let (coarse, _) = integrate_2d(&g, peak, kink, &extra, 1e-8, &mut evals);
     let (fine, e) = integrate_2d(&g, peak, kink, &extra, 1e-12, &mut evals);
     Reference {
@@ -437,6 +447,78 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
         bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
         evaluations: evals,
     }
+}
+
+/// `ρ(θo)` in polar coordinates `(θ', φ')` about the mirror direction
+/// `r = (−sin θo, 0, cos θo)` of `ωo`, where a narrow lobe is a smooth
+/// function of `φ'` and a peak at `θ' ≈ 0` in `θ'` (resolved by geometric
+/// break points `w/8, w/4, …`, `w` the lobe width):
+/// `ω = cos θ' r + sin θ' (cos φ' t₁ + sin φ' t₂)`, `t₁ = (cos θo, 0, sin θo)`,
+/// `t₂ = (0, 1, 0)`, `dω = sin θ' dθ' dφ'`. The horizon `ω_z = 0` bounds
+/// `φ'`: visible where `cos φ' ≥ −cos θ' cos θo / (sin θ' sin θo)`, an
+/// interval `[0, φ_max(θ')]` after folding the mirror symmetry `φ' ↔ −φ'`
+/// (isotropic BRDF, `ωo` in the xz-plane). `φ_max` reaches `π` at
+/// `θ' = π/2 − θo` and `0` at `θ' = π/2 + θo`: outer break points, as is
+/// `θ' = π/2` (the modified-Phong kink `cos α = 0`).
+fn pole_albedo(model: &RefModel, theta_o: f64, width: f64, tol: f64, evals: &mut u64) -> (f64, f64) {
+    let (st, ct) = theta_o.sin_cos();
+    let wo = [st, 0.0, ct];
+    let r = [-st, 0.0, ct];
+    let t1 = [ct, 0.0, st];
+    let mut breaks = Vec::new();
+    let mut b = (width / 8.0).max(1e-9);
+    while b < PI {
+        breaks.push(b);
+        b *= 2.0;
+    }
+    breaks.extend([FRAC_PI_2 - theta_o, FRAC_PI_2, FRAC_PI_2 + theta_o]);
+    let mut count = 0u64;
+    let (v, e) = adaptive(
+        |tp| {
+            let (sp, cp) = tp.sin_cos();
+            if sp <= 0.0 {
+                return 0.0;
+            }
+            let c_star = if st > 0.0 {
+                -cp * ct / (sp * st)
+            } else if cp * ct > 0.0 {
+                -2.0
+            } else {
+                2.0
+            };
+            if c_star >= 1.0 {
+                return 0.0;
+            }
+            let phi_max = if c_star <= -1.0 { PI } else { c_star.acos() };
+            let (iv, _) = adaptive(
+                |phi| {
+                    count += 1;
+                    let (s, c) = phi.sin_cos();
+                    let w = [cp * r[0] + sp * c * t1[0], sp * s, cp * r[2] + sp * c * t1[2]];
+                    if w[2] <= 0.0 {
+                        0.0
+                    } else {
+                        model.eval(w, wo) * w[2]
+                    }
+                },
+                0.0,
+                phi_max,
+                &[],
+                1e-300,
+                tol * 0.01,
+                4000,
+            );
+            2.0 * sp * iv
+        },
+        0.0,
+        PI,
+        &breaks,
+        1e-300,
+        tol,
+        4000,
+    );
+    *evals += count;
+    (v, e)
 }
 
 /// The reflected radiance `L_r(ωo) = ∫_cap f_r(ωi, ωo) cos θi dωi` of a
