@@ -11,8 +11,11 @@ mod bench;
 mod model;
 mod reference;
 mod sensor_cmd;
-mod spec;
 mod tradeoff;
+
+/// The spec grammar lives in the `radiometry-spec` crate (shared with the Python module); `crate::spec` keeps
+/// its old path for the modules here.
+use radiometry_spec as spec;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use radiometry::Brdf;
