@@ -9,6 +9,7 @@
 
 mod bench;
 mod sensor_cmd;
+mod sensor_edge;
 
 /// `model`, `reference`, `tradeoff` and the spec grammar live in the library half of this package (`src/lib.rs`,
 /// shared with the Python module); `crate::model` etc. keep their paths for the modules here.
