@@ -235,6 +235,7 @@ pub fn all_integrators(seed: u64, abs_tol: f64) -> Vec<AnyIntegrator> {
     let mut v = vec![
         AnyIntegrator::GaussLegendre(GaussLegendre::new()),
         AnyIntegrator::Warped(WarpedGaussLegendre::new()),
+        AnyIntegrator::Warped(WarpedGaussLegendre::horizon_split()),
         AnyIntegrator::Adaptive(adaptive),
         AnyIntegrator::Adaptive(adaptive.warped()),
     ];
@@ -339,6 +340,7 @@ mod tests {
                     ggx: true,
                     alpha: 0.3,
                     height_correlated: true,
+                    conductor: None,
                 },
             ),
             (
@@ -347,6 +349,7 @@ mod tests {
                     ggx: true,
                     alpha: 0.05,
                     height_correlated: false,
+                    conductor: None,
                 },
             ),
             (
@@ -355,6 +358,17 @@ mod tests {
                     ggx: false,
                     alpha: 0.3,
                     height_correlated: true,
+                    conductor: None,
+                },
+            ),
+            (
+                // Gold at 632.8 nm (Sopra library, via the Filmetrics database).
+                "ggx(alpha=0.3, fresnel=conductor(eta=0.18104, k=3.068099))".into(),
+                RefModel::Microfacet {
+                    ggx: true,
+                    alpha: 0.3,
+                    height_correlated: true,
+                    conductor: Some((0.18104, 3.068099)),
                 },
             ),
             (
@@ -363,6 +377,7 @@ mod tests {
                     ggx: false,
                     alpha: 1.0,
                     height_correlated: false,
+                    conductor: None,
                 },
             ),
         ];

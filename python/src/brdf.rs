@@ -151,7 +151,9 @@ impl Brdf {
     /// ``tol``, budgets doubled from 64 until the error estimate is ≤ tol (up to
     /// 2^22). Returns a dict like ``radiometry albedo --format json``:
     /// value, error, evaluations, seconds, integrator, budget,
-    /// final_run_evaluations (and stopped, tol, max_budget with ``tol``).
+    /// final_run_evaluations, status (``"resolved"`` or ``"unresolved"``: the
+    /// estimate cannot be trusted) and status_reason (empty when resolved), and
+    /// stopped, tol, max_budget with ``tol``.
     #[pyo3(signature = (theta_o_deg, integrator = "adaptive-warped", budget = None, tol = None, seed = model::DEFAULT_SEED))]
     fn albedo<'py>(
         &self,
@@ -222,6 +224,8 @@ impl Brdf {
         d.set_item("integrator", integ.name())?;
         d.set_item("budget", used_budget)?;
         d.set_item("final_run_evaluations", est.evaluations)?;
+        d.set_item("status", est.status.as_str())?;
+        d.set_item("status_reason", est.status.reason())?;
         if let Some(s) = stopped {
             d.set_item("stopped", s)?;
             d.set_item("tol", tol.unwrap_or(0.0))?;

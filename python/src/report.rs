@@ -14,10 +14,12 @@ use std::path::PathBuf;
 /// reference, abs_error, rel_error, error_estimate, seconds, ...): integers
 /// and floats as numbers, names as strings. The CSV, plots and summary.md
 /// are written to ``out`` (default: a folder under the system temp dir); the
-/// summary table is printed on stdout as by the CLI. The GIL is released
-/// while it runs.
+/// summary table is printed on stdout as by the CLI. ``cases`` /
+/// ``integrators``: keep only names containing one of these substrings (the
+/// CLI's ``--cases`` / ``--integrators``). The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (quick = true, out = None, threads = None, seed = model::DEFAULT_SEED, progress = false))]
+#[pyo3(signature = (quick = true, out = None, threads = None, seed = model::DEFAULT_SEED, progress = false, cases = None, integrators = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn tradeoff<'py>(
     py: Python<'py>,
     quick: bool,
@@ -25,6 +27,8 @@ pub fn tradeoff<'py>(
     threads: Option<usize>,
     seed: u64,
     progress: bool,
+    cases: Option<Vec<String>>,
+    integrators: Option<Vec<String>>,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let out = out
         .unwrap_or_else(|| std::env::temp_dir().join(format!("radiometry-tradeoff-{}", std::process::id())));
@@ -38,6 +42,8 @@ pub fn tradeoff<'py>(
         threads,
         seed,
         progress,
+        cases: cases.unwrap_or_default(),
+        integrators: integrators.unwrap_or_default(),
     };
     py.detach(|| report::run(&opt)).map_err(PyRuntimeError::new_err)?;
     let path = out.join("tradeoff.csv");

@@ -140,8 +140,9 @@ def test_ggx_alpha_one_albedo_at_normal_incidence_is_one_minus_ln2():
     # no Fresnel.
     want = 1.0 - math.log(2.0)
     r = radiometry.Brdf("ggx(alpha=1)").albedo(0.0)
-    assert set(r) >= {"value", "error", "evaluations", "seconds"}
+    assert set(r) >= {"value", "error", "evaluations", "seconds", "status", "status_reason"}
     assert abs(r["value"] - want) < 1e-6, r
+    assert r["status"] == "resolved" and r["status_reason"] == ""
     assert r["evaluations"] > 0 and r["seconds"] >= 0.0
     r = radiometry.Brdf("ggx(alpha=1)").albedo(0.0, tol=1e-7)
     assert r["stopped"] == "tolerance reached" and abs(r["value"] - want) < 1e-6
@@ -149,9 +150,28 @@ def test_ggx_alpha_one_albedo_at_normal_incidence_is_one_minus_ln2():
     assert abs(r["value"] - want) < 5 * r["error"] + 1e-6, r
 
 
+@pytest.mark.parametrize(
+    "spec,theta,integrator",
+    [("ggx(alpha=1)", "0", "gauss-legendre"), ("phong(exponent=100000)", "30", "gauss-legendre"),
+     ("ggx(alpha=0.001)", "60", "mc-uniform-prng")],
+)
+def test_albedo_equals_the_cli_json(spec, theta, integrator):
+    import json
+
+    out = subprocess.run(
+        [cli(), "albedo", spec, "--theta-o", theta, "--integrator", integrator, "--budget", "1024", "--format", "json"],
+        capture_output=True, text=True, check=True,
+    )
+    want = json.loads(out.stdout)
+    got = radiometry.Brdf(spec).albedo(float(theta), integrator=integrator, budget=1024)
+    for k in ["value", "error", "evaluations", "budget", "final_run_evaluations", "status", "status_reason"]:
+        assert got[k] == want[k], (k, got[k], want[k])
+
+
 def test_integrators_and_irradiance():
     names = radiometry.integrators()
-    assert names[:4] == ["gauss-legendre", "gauss-legendre-warped", "adaptive", "adaptive-warped"]
+    assert names[0] == "gauss-legendre"
+    assert {"gauss-legendre-warped", "adaptive", "adaptive-warped", "mc-cosine-sobol"} <= set(names)
     assert len(set(names)) == len(names)
     assert abs(radiometry.irradiance("sky(radiance=1)") - math.pi) < 1e-6
     e = radiometry.irradiance("directional(theta=60, irradiance=2) + sky(radiance=0.5)")
@@ -216,11 +236,16 @@ def test_bad_arrays_and_arguments_raise_value_error():
 
 def test_tradeoff_quick_returns_the_report_rows(tmp_path):
     rows = radiometry.tradeoff(quick=True, out=str(tmp_path), threads=2)
+    assert {r["integrator"] for r in rows} >= set(radiometry.integrators())
     header = (tmp_path / "tradeoff.csv").read_text().splitlines()[0].split(",")
     assert len(rows) == len((tmp_path / "tradeoff.csv").read_text().splitlines()) - 1 > 0
     for r in rows:
         assert list(r) == header
-        assert isinstance(r["case"], str) and r["integrator"] in radiometry.integrators()
+        assert isinstance(r["case"], str) and isinstance(r["integrator"], str)
+        assert r["status"] in ("resolved", "unresolved")
         assert isinstance(r["budget"], int) and isinstance(r["evaluations"], int)
         assert math.isfinite(r["estimate"]) and math.isfinite(r["reference"])
         assert abs(r["abs_error"] - abs(r["estimate"] - r["reference"])) <= 1e-9 * max(1.0, abs(r["reference"]))
+    # The CLI's filters.
+    few = radiometry.tradeoff(quick=True, out=str(tmp_path / "few"), threads=2, cases=["lambertian"], integrators=["adaptive"])
+    assert few and all("lambertian" in r["case"] and "adaptive" in r["integrator"] for r in few)
