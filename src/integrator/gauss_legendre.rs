@@ -186,7 +186,7 @@ pub(crate) fn effective_nodes<W: WideSpectrum>(abs: W, sq: W) -> f64 {
     m
 }
 
-/// Fewest effective nodes ([`effective_nodes`]) behind a resolved
+/// Fewest effective nodes (`(Σ|w g|)²/Σ(w g)²`, see `effective_nodes`) behind a resolved
 /// quadrature estimate.
 pub const MIN_EFFECTIVE_NODES: f64 = 16.0;
 
