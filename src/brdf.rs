@@ -109,13 +109,12 @@ pub trait Brdf {
     /// assert_eq!(out, [0.1, 0.0]);
     /// ```
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [Self::Spectrum]) {
-        let n = wi.len().min(wo.len()).min(out.len());
-        let (wi, wo, out) = (wi.truncate(n), wo.truncate(n), &mut out[..n]);
-        // Every slice has length n: the indexing below needs no bounds checks.
-        for (k, o) in out.iter_mut().enumerate() {
-            let a = Vec3::new(wi.x[k], wi.y[k], wi.z[k]);
-            let b = Vec3::new(wo.x[k], wo.y[k], wo.z[k]);
-            *o = self.eval(a, b);
+        // Zipped iterators, not indexing: no bounds check (hence no panic path)
+        // survives on any target, and the shortest slice ends the loop.
+        let wi_xyz = wi.x.iter().zip(wi.y).zip(wi.z);
+        let wo_xyz = wo.x.iter().zip(wo.y).zip(wo.z);
+        for ((o, ((&ax, &ay), &az)), ((&bx, &by), &bz)) in out.iter_mut().zip(wi_xyz).zip(wo_xyz) {
+            *o = self.eval(Vec3::new(ax, ay, az), Vec3::new(bx, by, bz));
         }
     }
 

@@ -8,11 +8,12 @@
 #![warn(missing_docs)]
 
 mod bench;
-mod model;
-mod reference;
 mod sensor_cmd;
-mod spec;
-mod tradeoff;
+mod sensor_edge;
+
+/// `model`, `reference`, `tradeoff` and the spec grammar live in the library half of this package (`src/lib.rs`,
+/// shared with the Python module); `crate::model` etc. keep their paths for the modules here.
+use radiometry_cli::{model, spec, tradeoff};
 
 use clap::{Parser, Subcommand, ValueEnum};
 use radiometry::Brdf;
@@ -294,7 +295,7 @@ fn main() -> ExitCode {
             let mut total = 0.0f64;
             let mut parts = Vec::new();
             for l in &lights {
-                let (kind, e) = irradiance_of(l);
+                let (kind, e) = model::irradiance_of(l);
                 total += e as f64;
                 parts.push(serde_json::json!({"kind": kind, "irradiance": json_num(e as f64)}));
             }
@@ -339,34 +340,5 @@ fn main() -> ExitCode {
                 }
             }
         }
-    }
-}
-
-/// Irradiance on a surface with normal +Z from one light, by the closed forms
-/// of `radiometry::radiometric` (sky: πL; directional: E⊥ max(0, cos θ);
-/// cap: L Ω⊥ with the horizon-clipped projected solid angle).
-fn irradiance_of(l: &spec::LightSpec) -> (&'static str, f32) {
-    use radiometry::radiometric::{cap_irradiance, directional_irradiance, sky_irradiance};
-    match *l {
-        spec::LightSpec::Sky { radiance } => ("sky", sky_irradiance(radiance as f32)),
-        spec::LightSpec::Directional {
-            theta, irradiance, ..
-        } => (
-            "directional",
-            directional_irradiance(irradiance as f32, theta.to_radians().cos() as f32),
-        ),
-        spec::LightSpec::Cap {
-            axis_theta,
-            half_angle,
-            radiance,
-            ..
-        } => (
-            "cap",
-            cap_irradiance(
-                radiance as f32,
-                axis_theta.to_radians().cos() as f32,
-                half_angle.to_radians() as f32,
-            ),
-        ),
     }
 }

@@ -1,11 +1,11 @@
-//! Turning parsed specs into plugin BRDFs and integrators.
+//! Turning parsed specs into plugin BRDFs, integrators and light irradiances.
 //!
 //! The plugins are generic (`Microfacet<D, G, F>`), so the CLI erases their
 //! types behind [`AnyBrdf`] (a boxed trait object; one virtual call per
 //! evaluation, or per batch through the batch methods the integrators use) and picks integrators through [`AnyIntegrator`] (an enum,
 //! statically dispatched per variant).
 
-use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, SpecError};
+use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, SpecError};
 use radiometry::Brdf;
 use radiometry::BrdfSample;
 use radiometry::glam::Vec3;
@@ -257,6 +257,35 @@ pub fn integrator_by_name(name: &str, seed: u64, abs_tol: f64) -> Option<AnyInte
     all_integrators(seed, abs_tol)
         .into_iter()
         .find(|i| i.name() == name)
+}
+
+/// Irradiance on a surface with normal +Z from one light, by the closed forms
+/// of `radiometry::radiometric` (sky: πL; directional: E⊥ max(0, cos θ);
+/// cap: L Ω⊥ with the horizon-clipped projected solid angle).
+pub fn irradiance_of(l: &LightSpec) -> (&'static str, f32) {
+    use radiometry::radiometric::{cap_irradiance, directional_irradiance, sky_irradiance};
+    match *l {
+        LightSpec::Sky { radiance } => ("sky", sky_irradiance(radiance as f32)),
+        LightSpec::Directional {
+            theta, irradiance, ..
+        } => (
+            "directional",
+            directional_irradiance(irradiance as f32, theta.to_radians().cos() as f32),
+        ),
+        LightSpec::Cap {
+            axis_theta,
+            half_angle,
+            radiance,
+            ..
+        } => (
+            "cap",
+            cap_irradiance(
+                radiance as f32,
+                axis_theta.to_radians().cos() as f32,
+                half_angle.to_radians() as f32,
+            ),
+        ),
+    }
 }
 
 #[cfg(test)]

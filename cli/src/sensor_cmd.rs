@@ -1,22 +1,20 @@
 //! `radiometry sensor ...`: simulate EMVA 1288 pixel readings under a
-//! standard light, and render a slanted-edge target through Bayer +
-//! bilinear, Bayer + Malvar–He–Cutler and a 3-chip prism camera.
+//! standard light, and render a slanted-edge target through the five colour
+//! architectures (Bayer + bilinear, Bayer + Malvar–He–Cutler, 3-chip prism,
+//! filter wheel, stacked layers; see [`crate::sensor_edge`]).
 
 use clap::{Args, Subcommand, ValueEnum};
-use radiometry::sensor::color::{
-    BayerPattern, DichroicPrism, demosaic_bilinear, demosaic_malvar, false_colour_energy, mosaic,
-    slanted_edge,
-};
+use radiometry::sensor::color::{BayerPattern, false_colour_energy};
 use radiometry::sensor::{
     Emva1288, FillFactor, IrradianceField, Monochromatic, Pcg32, Pixel, Sampling, SensorError,
     UniformSpectral,
 };
 use radiometry::spectral::photometry::{K_M, illuminance_lux};
 use radiometry::spectral::{self, FnCurve, IlluminantA, Scaled, SpectralCurve};
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
+use crate::sensor_edge::{EDGE_SLOPE, WHEEL_MOTION_PX_PER_SLOT, render, write_png, write_svg};
 use crate::{Format, json_num};
 
 /// Largest `--repeats`.
@@ -32,9 +30,11 @@ pub enum SensorCommand {
     /// transfer prediction σ²_y = K²(σ²_d + μ_e) + 1/12 DN².
     #[command(after_help = READ_HELP)]
     Read(ReadArgs),
-    /// Render a black/white slanted-edge target through (a) Bayer + bilinear, (b) Bayer +
-    /// Malvar–He–Cutler and (c) a 3-chip prism camera side by side into one picture, and print the
-    /// false-colour energy Σ Σ_c (c − mean)² of each (zero for a perfect achromatic reproduction).
+    /// Render a black/white slanted-edge target through the colour architectures side by side into one
+    /// picture, each panel labelled: (a) Bayer + bilinear, (b) Bayer + Malvar–He–Cutler, (c) 3-chip prism,
+    /// (d) filter wheel (R, G, B one after another while the edge moves 1 px per filter slot) and (e) stacked
+    /// layers (Foveon-like); print the false-colour energy Σ Σ_c (c − mean)² of each (zero for a perfect
+    /// achromatic reproduction).
     Edge(EdgeArgs),
 }
 
@@ -98,7 +98,7 @@ pub struct ReadArgs {
 pub enum ImageFormat {
     /// Scalable vector graphics (one rectangle per pixel, with text labels).
     Svg,
-    /// 8-bit RGB PNG (labels drawn with a built-in pixel font).
+    /// 8-bit RGB PNG (encoded by the `png` crate; labels in the `font8x8` glyphs).
     Png,
 }
 
@@ -141,8 +141,8 @@ pub struct EdgeArgs {
     /// Picture format.
     #[arg(long, value_enum, default_value_t = ImageFormat::Svg)]
     format: ImageFormat,
-    /// Print the report as one JSON object (keys: file, size, pattern, slope, false_colour_energy
-    /// {bilinear, malvar, three_chip}).
+    /// Print the report as one JSON object (keys: file, size, pattern, slope, wheel_motion_px_per_slot,
+    /// false_colour_energy {bilinear, malvar, three_chip, filter_wheel, stacked}).
     #[arg(long)]
     json: bool,
 }
@@ -402,135 +402,35 @@ fn read(a: &ReadArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The three reconstructions of the edge target.
-struct EdgeImages {
-    bilinear: Vec<[f32; 3]>,
-    malvar: Vec<[f32; 3]>,
-    three_chip: Vec<[f32; 3]>,
-}
-
-/// Slope (pixels of x per pixel of y) of the slanted edge: about 5.7°
-/// from vertical, as ISO 12233 slanted-edge charts use a few degrees.
-const EDGE_SLOPE: f32 = 0.1;
-
-fn render_edge(n: usize, pattern: BayerPattern) -> Result<EdgeImages, SensorError> {
-    let mut truth = vec![[0.0f32; 3]; n * n];
-    let half = n as f32 / 2.0;
-    slanted_edge(n, n, EDGE_SLOPE, half - EDGE_SLOPE * half, &mut truth)?;
-    let mut raw = vec![0.0f32; n * n];
-    mosaic(&truth, n, n, pattern, &mut raw)?;
-    let mut bilinear = vec![[0.0f32; 3]; n * n];
-    demosaic_bilinear(&raw, n, n, pattern, &mut bilinear)?;
-    let mut malvar = vec![[0.0f32; 3]; n * n];
-    demosaic_malvar(&raw, n, n, pattern, &mut malvar)?;
-    // 3-chip: each chip sees the whole image through its prism band; white-balanced on an
-    // equal-energy white (chip c reads v·S_c, divided by S_c).
-    let prism = DichroicPrism::new(490.0, 590.0, 5.0)?;
-    let white = FnCurve::new(380.0, 780.0, |_| 1.0);
-    let qe = FnCurve::new(380.0, 780.0, |_| 1.0);
-    let s = prism.split(&white, &qe);
-    let wb = s.map(|x| 1.0 / x);
-    let three_chip = truth
-        .iter()
-        .map(|p| core::array::from_fn(|c| p[c] * s[c] * wb[c]))
-        .collect();
-    Ok(EdgeImages {
-        bilinear,
-        malvar,
-        three_chip,
-    })
-}
-
-/// sRGB encoding of a linear value clipped to [0, 1] (IEC 61966-2-1), as 8 bits.
-fn srgb8(v: f32) -> u8 {
-    let v = if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 };
-    let e = if v <= 0.003_130_8 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    };
-    (e * 255.0).round().clamp(0.0, 255.0) as u8
-}
-
-/// Layout: three panels of `n·scale` pixels side by side, `GAP` apart, under a label band.
-const GAP: usize = 16;
-const LABEL_H: usize = 28;
-
-fn panel_scale(n: usize) -> usize {
-    (256 / n).max(1)
-}
-
-fn write_svg(path: &Path, n: usize, panels: &[(&str, &[[f32; 3]])]) -> std::io::Result<()> {
-    let s = panel_scale(n);
-    let side = n * s;
-    let w = panels.len() * side + (panels.len() + 1) * GAP;
-    let h = side + LABEL_H + GAP;
-    let mut o = String::new();
-    let _ = writeln!(
-        o,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" shape-rendering="crispEdges">"#
-    );
-    let _ = writeln!(o, r#"<rect width="{w}" height="{h}" fill="rgb(128,128,128)"/>"#);
-    for (k, (label, img)) in panels.iter().enumerate() {
-        let x0 = GAP + k * (side + GAP);
-        let y0 = LABEL_H;
-        let _ = writeln!(
-            o,
-            r#"<text x="{}" y="{}" font-family="sans-serif" font-size="14" text-anchor="middle" fill="black">{label}</text>"#,
-            x0 + side / 2,
-            LABEL_H - 9
-        );
-        for y in 0..n {
-            for x in 0..n {
-                let p = img[y * n + x];
-                let _ = writeln!(
-                    o,
-                    r#"<rect x="{}" y="{}" width="{s}" height="{s}" fill="rgb({},{},{})"/>"#,
-                    x0 + x * s,
-                    y0 + y * s,
-                    srgb8(p[0]),
-                    srgb8(p[1]),
-                    srgb8(p[2])
-                );
-            }
-        }
-    }
-    o.push_str("</svg>\n");
-    std::fs::write(path, o)
-}
-
 fn edge(a: &EdgeArgs) -> Result<(), Failure> {
     if !(8..=512).contains(&a.size) {
         return Err(usage(format!("--size {} is outside 8..=512", a.size)));
     }
     let n = a.size;
     let pattern = BayerPattern::from(a.pattern);
-    let imgs = render_edge(n, pattern).map_err(|e| Failure::Runtime(format!("edge target: {e}")))?;
-    let e_bil = false_colour_energy(&imgs.bilinear);
-    let e_mal = false_colour_energy(&imgs.malvar);
-    let e_3 = false_colour_energy(&imgs.three_chip);
+    let panels = render(n, pattern).map_err(|e| Failure::Runtime(format!("edge target: {e}")))?;
+    let energies: Vec<f32> = panels.iter().map(|p| false_colour_energy(&p.rgb)).collect();
     std::fs::create_dir_all(&a.out)
         .map_err(|e| Failure::Runtime(format!("cannot create {}: {e}", a.out.display())))?;
-    let panels: [(&str, &[[f32; 3]]); 3] = [
-        ("Bayer + bilinear", &imgs.bilinear),
-        ("Bayer + Malvar-He-Cutler", &imgs.malvar),
-        ("3-chip prism", &imgs.three_chip),
-    ];
-    let path = match a.format {
+    let (path, written) = match a.format {
         ImageFormat::Svg => {
             let p = a.out.join("edge.svg");
-            write_svg(&p, n, &panels)
-                .map_err(|e| Failure::Runtime(format!("cannot write {}: {e}", p.display())))?;
-            p
+            let r = write_svg(&p, n, &panels);
+            (p, r)
         }
         ImageFormat::Png => {
             let p = a.out.join("edge.png");
-            png::write_png(&p, n, &panels)
-                .map_err(|e| Failure::Runtime(format!("cannot write {}: {e}", p.display())))?;
-            p
+            let r = write_png(&p, n, &panels);
+            (p, r)
         }
     };
+    written.map_err(|e| Failure::Runtime(format!("cannot write {}: {e}", path.display())))?;
     if a.json {
+        let energy: serde_json::Map<String, serde_json::Value> = panels
+            .iter()
+            .zip(&energies)
+            .map(|(p, &e)| (p.key.to_string(), json_num(e as f64)))
+            .collect();
         println!(
             "{}",
             serde_json::json!({
@@ -538,11 +438,8 @@ fn edge(a: &EdgeArgs) -> Result<(), Failure> {
                 "size": n,
                 "pattern": format!("{:?}", pattern).to_ascii_lowercase(),
                 "slope": json_num(EDGE_SLOPE as f64),
-                "false_colour_energy": {
-                    "bilinear": json_num(e_bil as f64),
-                    "malvar": json_num(e_mal as f64),
-                    "three_chip": json_num(e_3 as f64),
-                },
+                "wheel_motion_px_per_slot": json_num(WHEEL_MOTION_PX_PER_SLOT as f64),
+                "false_colour_energy": energy,
             })
         );
     } else {
@@ -550,162 +447,10 @@ fn edge(a: &EdgeArgs) -> Result<(), Failure> {
             "slanted edge {n}×{n}, slope {EDGE_SLOPE}, Bayer {:?}: false-colour energy Σ Σ_c (c − mean)²",
             pattern
         );
-        println!("  Bayer + bilinear         {e_bil}");
-        println!("  Bayer + Malvar-He-Cutler {e_mal}");
-        println!("  3-chip prism             {e_3}");
+        for (p, e) in panels.iter().zip(&energies) {
+            println!("  {:<27}{e}", p.label);
+        }
         println!("wrote {}", path.display());
     }
     Ok(())
-}
-
-/// A minimal PNG writer (8-bit RGB, zlib "stored" deflate blocks) with a
-/// 5 × 7 pixel font for the panel labels: no image crate needed.
-/// Format: PNG specification (ISO/IEC 15948:2004) §5–§11; zlib RFC 1950;
-/// deflate stored blocks RFC 1951 §3.2.4; CRC-32 of ISO 3309 (§D of the PNG spec).
-mod png {
-    use super::{GAP, LABEL_H, panel_scale, srgb8};
-    use std::path::Path;
-
-    /// 5 × 7 glyphs, one byte per row, bit 4 = leftmost column.
-    fn glyph(c: char) -> [u8; 7] {
-        match c {
-            'A' => [0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11],
-            'B' => [0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E],
-            'C' => [0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E],
-            'E' => [0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F],
-            'H' => [0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11],
-            'I' => [0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E],
-            'L' => [0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F],
-            'M' => [0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11],
-            'N' => [0x11, 0x19, 0x15, 0x13, 0x11, 0x11, 0x11],
-            'P' => [0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10],
-            'R' => [0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11],
-            'S' => [0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E],
-            'T' => [0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04],
-            'U' => [0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E],
-            'V' => [0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04],
-            'Y' => [0x11, 0x11, 0x0A, 0x04, 0x04, 0x04, 0x04],
-            '3' => [0x1E, 0x01, 0x01, 0x0E, 0x01, 0x01, 0x1E],
-            '-' => [0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00],
-            '+' => [0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00],
-            _ => [0; 7],
-        }
-    }
-
-    /// CRC-32 (reflected polynomial 0xEDB88320), bitwise.
-    pub(super) fn crc32(bytes: &[u8]) -> u32 {
-        let mut c = 0xFFFF_FFFFu32;
-        for &b in bytes {
-            c ^= b as u32;
-            for _ in 0..8 {
-                c = if c & 1 != 0 {
-                    0xEDB8_8320 ^ (c >> 1)
-                } else {
-                    c >> 1
-                };
-            }
-        }
-        !c
-    }
-
-    fn adler32(bytes: &[u8]) -> u32 {
-        let (mut a, mut b) = (1u32, 0u32);
-        for &x in bytes {
-            a = (a + x as u32) % 65521;
-            b = (b + a) % 65521;
-        }
-        (b << 16) | a
-    }
-
-    fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
-        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
-        let start = out.len();
-        out.extend_from_slice(kind);
-        out.extend_from_slice(data);
-        let crc = crc32(&out[start..]);
-        out.extend_from_slice(&crc.to_be_bytes());
-    }
-
-    /// PNG bytes of an RGB8 image (`rgb.len() == 3·w·h`).
-    pub(super) fn encode(w: usize, h: usize, rgb: &[u8]) -> Vec<u8> {
-        // Scanlines with filter type 0.
-        let mut raw = Vec::with_capacity(h * (3 * w + 1));
-        for row in rgb.chunks(3 * w) {
-            raw.push(0);
-            raw.extend_from_slice(row);
-        }
-        let mut z = vec![0x78, 0x01];
-        let mut blocks = raw.chunks(65_535).peekable();
-        if blocks.peek().is_none() {
-            z.extend_from_slice(&[1, 0, 0, 0xFF, 0xFF]);
-        }
-        while let Some(b) = blocks.next() {
-            z.push(u8::from(blocks.peek().is_none()));
-            let len = b.len() as u16;
-            z.extend_from_slice(&len.to_le_bytes());
-            z.extend_from_slice(&(!len).to_le_bytes());
-            z.extend_from_slice(b);
-        }
-        z.extend_from_slice(&adler32(&raw).to_be_bytes());
-        let mut out = vec![0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A];
-        let mut ihdr = Vec::with_capacity(13);
-        ihdr.extend_from_slice(&(w as u32).to_be_bytes());
-        ihdr.extend_from_slice(&(h as u32).to_be_bytes());
-        ihdr.extend_from_slice(&[8, 2, 0, 0, 0]);
-        chunk(&mut out, b"IHDR", &ihdr);
-        chunk(&mut out, b"IDAT", &z);
-        chunk(&mut out, b"IEND", &[]);
-        out
-    }
-
-    /// The same layout as the SVG: three panels under upper-case labels.
-    pub(super) fn write_png(path: &Path, n: usize, panels: &[(&str, &[[f32; 3]])]) -> std::io::Result<()> {
-        let s = panel_scale(n);
-        let side = n * s;
-        let w = panels.len() * side + (panels.len() + 1) * GAP;
-        let h = side + LABEL_H + GAP;
-        let mut px = vec![128u8; 3 * w * h];
-        let mut put = |x: usize, y: usize, c: [u8; 3]| {
-            if x < w && y < h {
-                px[3 * (y * w + x)..3 * (y * w + x) + 3].copy_from_slice(&c);
-            }
-        };
-        for (k, (label, img)) in panels.iter().enumerate() {
-            let x0 = GAP + k * (side + GAP);
-            let text = label.to_ascii_uppercase();
-            let fs = if text.chars().count() * 12 <= side + GAP {
-                2
-            } else {
-                1
-            };
-            let tw = text.chars().count() * 6 * fs;
-            let tx = (x0 + side / 2).saturating_sub(tw / 2);
-            let ty = (LABEL_H - 7 * fs) / 2;
-            for (i, ch) in text.chars().enumerate() {
-                for (r, bits) in glyph(ch).iter().enumerate() {
-                    for col in 0..5 {
-                        if bits & (0x10 >> col) != 0 {
-                            for dy in 0..fs {
-                                for dx in 0..fs {
-                                    put(tx + (i * 6 + col) * fs + dx, ty + r * fs + dy, [0, 0, 0]);
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            for y in 0..n {
-                for x in 0..n {
-                    let p = img[y * n + x];
-                    let c = [srgb8(p[0]), srgb8(p[1]), srgb8(p[2])];
-                    for dy in 0..s {
-                        for dx in 0..s {
-                            put(x0 + x * s + dx, LABEL_H + y * s + dy, c);
-                        }
-                    }
-                }
-            }
-        }
-        std::fs::write(path, encode(w, h, &px))
-    }
 }

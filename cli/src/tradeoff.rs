@@ -15,7 +15,6 @@ use crate::spec::parse_brdf;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{DirectionalAlbedo, Integrator};
 use std::fmt::Write as _;
-use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -148,63 +147,6 @@ pub struct Row {
     pub error_estimate: f64,
     /// Median wall time in seconds.
     pub seconds: f64,
-}
-
-struct Progress {
-    enabled: bool,
-    tty: bool,
-    total: usize,
-    done: AtomicUsize,
-    start: Instant,
-    last_pct: AtomicUsize,
-}
-
-impl Progress {
-    fn new(enabled: bool, total: usize) -> Self {
-        Progress {
-            enabled,
-            tty: std::io::stderr().is_terminal(),
-            total,
-            done: AtomicUsize::new(0),
-            start: Instant::now(),
-            last_pct: AtomicUsize::new(usize::MAX),
-        }
-    }
-
-    fn tick(&self, what: &str) {
-        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
-        if !self.enabled {
-            return;
-        }
-        let frac = done as f64 / self.total.max(1) as f64;
-        let pct = (frac * 100.0) as usize;
-        if !self.tty {
-            // Non-interactive: one line per 10 %.
-            let step = pct / 10;
-            if self.last_pct.swap(step, Ordering::Relaxed) == step && done != self.total {
-                return;
-            }
-        }
-        let el = self.start.elapsed().as_secs_f64();
-        let eta = if frac > 0.0 { el / frac - el } else { 0.0 };
-        let width = 30;
-        let filled = ((frac * width as f64) as usize).min(width);
-        let bar: String = "#".repeat(filled) + &"-".repeat(width - filled);
-        let mut err = std::io::stderr().lock();
-        let end = if self.tty { "\r" } else { "\n" };
-        let _ = write!(
-            err,
-            "[{bar}] {done}/{} {pct:3}% {el:6.1}s elapsed, ~{eta:5.0}s left  {what:<40.40}{end}",
-            self.total
-        );
-        let _ = err.flush();
-    }
-
-    fn finish(&self) {
-        if self.enabled && self.tty {
-            eprintln!();
-        }
-    }
 }
 
 fn repeats(quick: bool, budget: u32) -> usize {
@@ -717,6 +659,8 @@ fn write_csv(opt: &Options, rep: &Report<'_>) -> Result<(), String> {
 }
 
 pub mod plot;
+mod progress;
+use progress::Progress;
 
 #[cfg(test)]
 mod tests {

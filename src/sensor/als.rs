@@ -131,6 +131,26 @@ impl AlsCalibration {
         Ok(self)
     }
 
+    /// The dark reading (counts).
+    pub fn dark_counts(&self) -> f32 {
+        self.dark_counts
+    }
+
+    /// Lux per (count / (gain · seconds)) under the calibration source.
+    pub fn lux_per_count_s(&self) -> f32 {
+        self.lux_per_count_s
+    }
+
+    /// The spectral correction factor applied by [`Self::lux`].
+    pub fn spectral_correction(&self) -> f32 {
+        self.spectral_correction
+    }
+
+    /// The ADC full scale.
+    pub fn max_count(&self) -> u32 {
+        self.max_count
+    }
+
     /// Illuminance from a raw reading:
     /// `E_v = max(counts − dark, 0) · lux_per_count_s · F / (g · t)`.
     ///

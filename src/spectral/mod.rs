@@ -198,11 +198,14 @@ impl<'a> Tabulated<'a> {
     fn interp(&self, lambda_nm: f32) -> f32 {
         let n = self.values.len();
         let t = (lambda_nm - self.start) / self.step;
-        let i = (t as usize).min(n - 2);
+        let i = (t as usize).min(n.saturating_sub(2));
         let f = (t - i as f32).clamp(0.0, 1.0);
-        let a = self.values[i];
-        let b = self.values[i + 1];
-        a + (b - a) * f
+        // `new` guarantees n ≥ 2, so both nodes exist; `get` (not indexing)
+        // lets no panic path survive where the optimiser cannot see that.
+        match (self.values.get(i), self.values.get(i + 1)) {
+            (Some(&a), Some(&b)) => a + (b - a) * f,
+            _ => 0.0,
+        }
     }
 }
 

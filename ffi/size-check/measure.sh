@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Cortex-M4F (thumbv7em-none-eabihf) footprint of the C API: size of a
+# bare-metal image that calls a group of functions minus an empty baseline
+# image (same profile: opt-level "s", LTO, panic = "abort"; linked by
+# rust-lld), then a link with the `prove-no-panic` panic handler, which
+# succeeds only if no panic path survives in any C API function.
+set -euo pipefail
+cd "$(dirname "$0")"
+t=thumbv7em-none-eabihf
+img=target/$t/release/size-check
+# Quiet builds; the only expected warning is that cdylib does not exist on this target.
+build() { cargo build --release --target $t -q "$@" 2> >(grep -v -e 'dropping unsupported crate type' -e '^$' >&2); }
+flash() { llvm-size "$img" 2>/dev/null | awk 'NR==2 {print $1 + $2}' || size "$img" | awk 'NR==2 {print $1 + $2}'; }
+build
+base=$(flash)
+printf "%-58s %6s bytes flash (text + data)\n" "baseline image (empty reset handler)" "$base"
+for f in als correction brdf; do
+    case $f in
+        als) what="ALS: from_reference + set_spectral_correction + lux" ;;
+        correction) what="ALS + spectral correction (CIE V, D65, A; 1 nm integrals)" ;;
+        brdf) what="every BRDF plugin: eval/pdf/sample, single + batched" ;;
+    esac
+    build --features "$f"
+    size_f=$(flash)
+    printf "%-58s %6s bytes flash (+%d over baseline)\n" "$what" "$size_f" $(( size_f - base ))
+    if [ "$f" = als ]; then
+        printf "%-58s %6s\n" "  soft-float f64 helpers (__aeabi_d*) in the ALS image:" \
+            "$( (llvm-nm "$img" 2>/dev/null || nm "$img") | grep -c '__aeabi_d' || true)"
+    fi
+done
+build --features correction,brdf,prove-no-panic
+echo "prove-no-panic: the image calling every C API function links, so no panic path survives"

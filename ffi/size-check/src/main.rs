@@ -1,0 +1,143 @@
+//! Bare-metal image for the footprint measurement (see Cargo.toml).
+#![no_std]
+#![no_main]
+
+// Link the library in every image (it provides the panic handler).
+use radiometry_ffi as _;
+
+#[cfg(any(feature = "als", feature = "brdf"))]
+use core::hint::black_box;
+
+/// The reset entry: calls the measured functions with opaque arguments so
+/// that nothing is constant-folded away, then parks.
+#[unsafe(no_mangle)]
+pub extern "C" fn _start() -> ! {
+    #[cfg(feature = "als")]
+    als();
+    #[cfg(feature = "brdf")]
+    brdf();
+    loop {
+        core::hint::spin_loop();
+    }
+}
+
+#[cfg(feature = "als")]
+fn als() {
+    use radiometry_ffi::als::*;
+    use radiometry_ffi::{RadAlsCalibration, RadStatus};
+    let mut cal = RadAlsCalibration::default();
+    let mut lux = 0.0f32;
+    // SAFETY: valid, aligned, exclusive pointers to locals.
+    unsafe {
+        let s = rad_als_from_reference(
+            black_box(16.0),
+            black_box(12016.0),
+            black_box(1.0),
+            black_box(0.1),
+            black_box(500.0),
+            black_box(65535),
+            &mut cal,
+        );
+        black_box(s);
+        black_box(rad_als_set_spectral_correction(&mut cal, black_box(1.08)));
+        let s: RadStatus = rad_als_lux(&cal, black_box(3016), black_box(4.0), black_box(0.025), &mut lux);
+        black_box((s, lux));
+    }
+    #[cfg(feature = "correction")]
+    {
+        use radiometry_ffi::spectrum::*;
+        let curve = |kind| radiometry_ffi::RadSpectrum {
+            kind,
+            temperature_k: 0.0,
+            start_nm: 0.0,
+            step_nm: 0.0,
+            values: core::ptr::null(),
+            len: 0,
+        };
+        let (s, x, a) = (
+            black_box(curve(RAD_SPECTRUM_PHOTOPIC_V)),
+            black_box(curve(RAD_SPECTRUM_D65)),
+            black_box(curve(RAD_SPECTRUM_A)),
+        );
+        let mut f = 0.0f32;
+        // SAFETY: valid pointers to locals.
+        black_box(unsafe { rad_spectral_correction(&s, &x, &a, &mut f) });
+        black_box(f);
+    }
+}
+
+#[cfg(feature = "brdf")]
+fn brdf() {
+    use radiometry_ffi::brdf::*;
+    use radiometry_ffi::{RadBrdf, RadBrdfSample, RadVec3};
+    let mut b = RadBrdf::default();
+    let v = |x: f32, y: f32, z: f32| black_box(RadVec3 { x, y, z });
+    let (wi, wo) = (v(0.1, 0.2, 0.9), v(-0.3, 0.1, 0.8));
+    let mut f = [0.0f32; 4];
+    let mut s = [RadBrdfSample::default(); 4];
+    let (wis, wos, u) = (black_box([wi; 4]), black_box([wo; 4]), black_box([0.5f32; 8]));
+    let n = black_box(4usize);
+    // SAFETY: valid, aligned, exclusive pointers to locals; `n` is their length.
+    unsafe {
+        black_box(rad_brdf_lambertian(black_box(0.5), &mut b));
+        black_box(rad_brdf_phong(
+            black_box(10.0),
+            black_box(0.5),
+            black_box(0.5),
+            &mut b,
+        ));
+        black_box(rad_brdf_blinn_phong(
+            black_box(10.0),
+            black_box(0.5),
+            black_box(0.5),
+            &mut b,
+        ));
+        black_box(rad_brdf_microfacet(
+            black_box(0),
+            black_box(0.3),
+            black_box(0),
+            black_box(3),
+            black_box(0.2),
+            black_box(3.9),
+            &mut b,
+        ));
+        let b = black_box(b);
+        black_box(rad_brdf_eval(&b, wi, wo, &mut f[0]));
+        black_box(rad_brdf_pdf(&b, wi, wo, &mut f[1]));
+        black_box(rad_brdf_sample(&b, wo, black_box(0.3), black_box(0.7), &mut s[0]));
+        black_box(rad_brdf_eval_batch(
+            &b,
+            wis.as_ptr(),
+            wos.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+        black_box(rad_brdf_pdf_batch(
+            &b,
+            wis.as_ptr(),
+            wos.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+        black_box(rad_brdf_sample_batch(
+            &b,
+            wos.as_ptr(),
+            u.as_ptr(),
+            s.as_mut_ptr(),
+            n,
+        ));
+        let c = black_box([0.5f32; 4]);
+        black_box(rad_brdf_eval_batch_soa(
+            &b,
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+    }
+    black_box((f, s));
+}

@@ -1,0 +1,109 @@
+//! C API of the radiometry crates, for sensor-board firmware and C renderers.
+//!
+//! `no_std`, no heap: every object is a plain C struct that the caller owns (on
+//! the stack, in a static, anywhere), filled in by a constructor that validates
+//! its parameters and returns a [`RadStatus`]. Nothing here aborts or panics on
+//! bad input: null or misaligned pointers, overlapping buffers, NaN and
+//! out-of-range parameters, and handles the caller has scribbled over are all
+//! reported as a status code.
+//!
+//! * BRDF plugins ([`RadBrdf`]): Lambertian, modified Phong, Blinn–Phong and the
+//!   microfacet family (GGX / Beckmann × Smith height-correlated / separable ×
+//!   Fresnel none / Schlick / dielectric / conductor); `eval`, `pdf`, `sample`,
+//!   single and batched ([`brdf`]).
+//! * Ambient-light sensors: raw counts → lux with dark offset, calibration and
+//!   spectral mismatch correction ([`als`]).
+//! * Irradiance closed forms: uniform sky, directional light, spherical cap
+//!   ([`irradiance`]).
+//!
+//! The header `include/radiometry.h` is generated from this crate by cbindgen
+//! (`cbindgen --config cbindgen.toml --output include/radiometry.h` in `ffi/`).
+//!
+//! ```c
+//! RadBrdf ggx;
+//! if (rad_brdf_microfacet(RAD_DISTRIBUTION_GGX, 1.0f, RAD_SHADOWING_HEIGHT_CORRELATED,
+//!                         RAD_FRESNEL_NONE, 0.0f, 0.0f, &ggx) != RAD_STATUS_OK) { ... }
+//! float f;
+//! rad_brdf_eval(&ggx, (RadVec3){0, 0, 1}, (RadVec3){0, 0, 1}, &f); // f = 1/π
+//! ```
+#![no_std]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![warn(missing_docs)]
+
+#[cfg(any(test, feature = "std"))]
+extern crate std;
+
+pub mod als;
+pub mod brdf;
+pub mod irradiance;
+mod ptr;
+pub mod spectrum;
+mod status;
+
+pub use als::RadAlsCalibration;
+pub use brdf::{RadBrdf, RadBrdfSample};
+pub use spectrum::RadSpectrum;
+pub use status::{RadStatus, rad_status_message};
+
+/// A 3-vector of `f32` (a direction in the local shading frame: normal on +Z,
+/// pointing away from the surface). Same layout as `float[3]`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RadVec3 {
+    /// x component.
+    pub x: f32,
+    /// y component.
+    pub y: f32,
+    /// z component (along the normal).
+    pub z: f32,
+}
+
+impl From<RadVec3> for radiometry::glam::Vec3 {
+    #[inline]
+    fn from(v: RadVec3) -> Self {
+        radiometry::glam::Vec3::new(v.x, v.y, v.z)
+    }
+}
+
+impl From<radiometry::glam::Vec3> for RadVec3 {
+    #[inline]
+    fn from(v: radiometry::glam::Vec3) -> Self {
+        RadVec3 {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+}
+
+/// Firmware builds have no std: a panic (there is no reachable one in the
+/// public functions, which return status codes) parks the core.
+#[cfg(all(not(test), not(feature = "std"), not(feature = "prove-no-panic")))]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    loop {
+        core::hint::spin_loop();
+    }
+}
+
+// With `prove-no-panic`, the panic handler calls a function that exists
+// nowhere: an executable that uses the library links only if the optimiser
+// removed every panic path from the functions it calls (see size-check/).
+#[cfg(all(not(test), not(feature = "std"), feature = "prove-no-panic"))]
+unsafe extern "C" {
+    fn radiometry_ffi_panic_path_survived_optimisation() -> !;
+}
+
+#[cfg(all(not(test), not(feature = "std"), feature = "prove-no-panic"))]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    // SAFETY: never called in an image that links; see above.
+    unsafe { radiometry_ffi_panic_path_survived_optimisation() }
+}
+
+/// The precompiled `core` refers to the unwinding personality routine even
+/// under `panic = "abort"`; hosted `no_std` shared libraries must define it
+/// to load. Never called (nothing unwinds).
+#[cfg(all(not(test), not(feature = "std"), not(target_os = "none")))]
+#[unsafe(no_mangle)]
+extern "C" fn rust_eh_personality() {}

@@ -1,0 +1,102 @@
+//! Argument checking of one call: names, types, duplicates, ranges.
+
+use crate::SpecError;
+use crate::call::{Arg, Call, Value};
+use crate::error::err_span;
+
+/// Reads the arguments of one call, checking names, types, duplicates and
+/// ranges, and remembering spans for later errors.
+pub(crate) struct Args<'a> {
+    spec: &'a str,
+    call: &'a Call,
+    used: Vec<bool>,
+}
+
+impl<'a> Args<'a> {
+    pub(crate) fn new(spec: &'a str, call: &'a Call, allowed: &[&str]) -> Result<Self, SpecError> {
+        for (i, a) in call.args.iter().enumerate() {
+            if !allowed.contains(&a.key.as_str()) {
+                let list = if allowed.is_empty() {
+                    "it takes no parameters".to_string()
+                } else {
+                    format!("expected one of: {}", allowed.join(", "))
+                };
+                return Err(err_span(
+                    spec,
+                    a.key_span,
+                    format!("unknown parameter `{}` for `{}` ({list})", a.key, call.name),
+                ));
+            }
+            if call.args[..i].iter().any(|b| b.key == a.key) {
+                return Err(err_span(
+                    spec,
+                    a.key_span,
+                    format!("parameter `{}` given twice", a.key),
+                ));
+            }
+        }
+        Ok(Args {
+            spec,
+            call,
+            used: vec![false; call.args.len()],
+        })
+    }
+
+    pub(crate) fn find(&mut self, key: &str) -> Option<&'a Arg> {
+        let i = self.call.args.iter().position(|a| a.key == key)?;
+        self.used[i] = true;
+        Some(&self.call.args[i])
+    }
+
+    /// A number in `[min, max]` (`open_min`: excludes `min`), or `default`
+    /// (`None`: required).
+    pub(crate) fn num(
+        &mut self,
+        key: &str,
+        default: Option<f64>,
+        min: f64,
+        max: f64,
+        open_min: bool,
+    ) -> Result<f64, SpecError> {
+        let Some(a) = self.find(key) else {
+            return default.ok_or_else(|| {
+                err_span(
+                    self.spec,
+                    self.call.name_span,
+                    format!("`{}` needs parameter `{key}`", self.call.name),
+                )
+            });
+        };
+        match &a.value {
+            Value::Num(v, span) => {
+                let bad_low = if open_min { *v <= min } else { *v < min };
+                if bad_low || *v > max {
+                    let lb = if open_min { "(" } else { "[" };
+                    Err(err_span(
+                        self.spec,
+                        *span,
+                        format!("`{key}` = {v} is outside {lb}{min}, {max}]"),
+                    ))
+                } else {
+                    Ok(*v)
+                }
+            }
+            Value::Call(c) => Err(err_span(self.spec, c.span, format!("`{key}` must be a number"))),
+        }
+    }
+
+    /// A nested call (or bare name) value.
+    pub(crate) fn call_value(&mut self, key: &str) -> Result<Option<&'a Call>, SpecError> {
+        let Some(a) = self.find(key) else {
+            return Ok(None);
+        };
+        match &a.value {
+            Value::Call(c) => Ok(Some(c)),
+            Value::Num(_, span) => Err(err_span(
+                self.spec,
+                *span,
+                format!("`{key}` must be a name, not a number"),
+            )),
+        }
+    }
+}

@@ -1,0 +1,340 @@
+//! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`.
+
+use crate::SpecError;
+use crate::args::Args;
+use crate::call::{Call, parse_call};
+use crate::error::err_span;
+
+/// Microfacet normal distribution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Distribution {
+    /// GGX / Trowbridge–Reitz.
+    Ggx,
+    /// Beckmann.
+    Beckmann,
+}
+
+/// Smith shadowing–masking variant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum G2Kind {
+    /// `G2 = 1/(1+Λ(ωi)+Λ(ωo))`.
+    HeightCorrelated,
+    /// `G2 = G1(ωi) G1(ωo)`.
+    Separable,
+}
+
+/// Fresnel term of a microfacet BRDF.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FresnelSpec {
+    /// `F = 1`.
+    None,
+    /// Schlick's approximation with normal-incidence reflectance `f0`.
+    Schlick {
+        /// Reflectance at normal incidence.
+        f0: f64,
+    },
+    /// Exact dielectric Fresnel with relative index `eta`.
+    Dielectric {
+        /// Relative index of refraction.
+        eta: f64,
+    },
+    /// Exact conductor Fresnel with complex index `eta + i k`.
+    Conductor {
+        /// Real part of the index.
+        eta: f64,
+        /// Extinction coefficient.
+        k: f64,
+    },
+}
+
+/// A validated BRDF description (parameters as given; angles none).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BrdfSpec {
+    /// `lambertian(albedo=1)`.
+    Lambertian {
+        /// Albedo ρ ∈ [0, 1].
+        albedo: f64,
+    },
+    /// `phong(exponent=N, ks=1, kd=0)`: modified Phong (Lafortune & Willems 1994).
+    Phong {
+        /// Exponent n.
+        exponent: f64,
+        /// Specular coefficient.
+        ks: f64,
+        /// Diffuse coefficient.
+        kd: f64,
+    },
+    /// `blinn-phong(exponent=N, ks=1, kd=0)`: normalised Blinn–Phong.
+    BlinnPhong {
+        /// Exponent n.
+        exponent: f64,
+        /// Specular coefficient.
+        ks: f64,
+        /// Diffuse coefficient.
+        kd: f64,
+    },
+    /// `ggx(...)` / `beckmann(...)`.
+    Microfacet {
+        /// Distribution.
+        distribution: Distribution,
+        /// Roughness α.
+        alpha: f64,
+        /// Shadowing–masking variant.
+        g: G2Kind,
+        /// Fresnel term.
+        fresnel: FresnelSpec,
+    },
+}
+
+/// Largest accepted Phong / Blinn–Phong exponent (the plugins' `MAX_EXPONENT`).
+pub const MAX_EXPONENT: f64 = 1e7;
+/// Smallest accepted microfacet roughness (the plugins' `MIN_ALPHA`).
+pub const MIN_ALPHA: f64 = 1e-4;
+/// Largest accepted microfacet roughness (the plugins' `MAX_ALPHA`).
+pub const MAX_ALPHA: f64 = 1.0;
+
+/// Help text describing the BRDF spec language (used by `--help`).
+pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
+`blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
+fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9))`, `beckmann(...)` \
+(same parameters as ggx). Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none; \
+exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
+
+/// Parses and validates a BRDF spec.
+pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
+    let call = parse_call(spec)?;
+    let name = call.name.as_str();
+    match name {
+        "lambertian" | "lambert" => {
+            let mut a = Args::new(spec, &call, &["albedo"])?;
+            let albedo = a.num("albedo", Some(1.0), 0.0, 1.0, false)?;
+            Ok(BrdfSpec::Lambertian { albedo })
+        }
+        "phong" | "blinn-phong" => {
+            let mut a = Args::new(spec, &call, &["exponent", "ks", "kd"])?;
+            let exponent = a.num("exponent", None, 0.0, MAX_EXPONENT, false)?;
+            let ks = a.num("ks", Some(1.0), 0.0, 1.0, false)?;
+            let kd = a.num("kd", Some(0.0), 0.0, 1.0, false)?;
+            if kd + ks > 1.0 + 1e-12 {
+                let span = call
+                    .args
+                    .iter()
+                    .find(|x| x.key == "ks")
+                    .or_else(|| call.args.iter().find(|x| x.key == "kd"))
+                    .map_or(call.span, |x| (x.key_span.0, x.value.span().1));
+                return Err(err_span(spec, span, format!("kd + ks = {} must be ≤ 1", kd + ks)));
+            }
+            Ok(if name == "phong" {
+                BrdfSpec::Phong { exponent, ks, kd }
+            } else {
+                BrdfSpec::BlinnPhong { exponent, ks, kd }
+            })
+        }
+        "ggx" | "beckmann" => {
+            let mut a = Args::new(spec, &call, &["alpha", "g", "fresnel"])?;
+            let alpha = a.num("alpha", None, MIN_ALPHA, MAX_ALPHA, false)?;
+            let g = match a.call_value("g")? {
+                None => G2Kind::HeightCorrelated,
+                Some(c) => {
+                    Args::new(spec, c, &[])?;
+                    match c.name.as_str() {
+                        "height-correlated" => G2Kind::HeightCorrelated,
+                        "separable" | "uncorrelated" => G2Kind::Separable,
+                        other => {
+                            return Err(err_span(
+                                spec,
+                                c.name_span,
+                                format!(
+                                    "unknown shadowing-masking `{other}` (expected height-correlated or separable)"
+                                ),
+                            ));
+                        }
+                    }
+                }
+            };
+            let fresnel = match a.call_value("fresnel")? {
+                None => FresnelSpec::None,
+                Some(c) => parse_fresnel(spec, c)?,
+            };
+            let distribution = if name == "ggx" {
+                Distribution::Ggx
+            } else {
+                Distribution::Beckmann
+            };
+            Ok(BrdfSpec::Microfacet {
+                distribution,
+                alpha,
+                g,
+                fresnel,
+            })
+        }
+        other => Err(err_span(
+            spec,
+            call.name_span,
+            format!("unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx or beckmann)"),
+        )),
+    }
+}
+
+fn parse_fresnel(spec: &str, c: &Call) -> Result<FresnelSpec, SpecError> {
+    match c.name.as_str() {
+        "none" => {
+            Args::new(spec, c, &[])?;
+            Ok(FresnelSpec::None)
+        }
+        "schlick" => {
+            let mut a = Args::new(spec, c, &["f0"])?;
+            Ok(FresnelSpec::Schlick {
+                f0: a.num("f0", Some(0.04), 0.0, 1.0, false)?,
+            })
+        }
+        "dielectric" => {
+            let mut a = Args::new(spec, c, &["eta"])?;
+            Ok(FresnelSpec::Dielectric {
+                eta: a.num("eta", Some(1.5), 0.0, 1e3, true)?,
+            })
+        }
+        "conductor" => {
+            let mut a = Args::new(spec, c, &["eta", "k"])?;
+            Ok(FresnelSpec::Conductor {
+                eta: a.num("eta", None, 0.0, 1e3, true)?,
+                k: a.num("k", None, 0.0, 1e3, false)?,
+            })
+        }
+        other => Err(err_span(
+            spec,
+            c.name_span,
+            format!("unknown fresnel `{other}` (expected none, schlick, dielectric or conductor)"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn caret_of(e: &SpecError) -> &str {
+        &e.spec[e.start..e.end]
+    }
+
+    #[test]
+    fn brdf_examples_from_the_issue() {
+        assert_eq!(
+            parse_brdf("lambertian(albedo=0.5)").unwrap(),
+            BrdfSpec::Lambertian { albedo: 0.5 }
+        );
+        assert_eq!(
+            parse_brdf("phong(exponent=100, ks=1, kd=0)").unwrap(),
+            BrdfSpec::Phong {
+                exponent: 100.0,
+                ks: 1.0,
+                kd: 0.0
+            }
+        );
+        assert_eq!(
+            parse_brdf("blinn-phong(exponent=20,ks=0.5,kd=0.5)").unwrap(),
+            BrdfSpec::BlinnPhong {
+                exponent: 20.0,
+                ks: 0.5,
+                kd: 0.5
+            }
+        );
+        assert_eq!(
+            parse_brdf("ggx(alpha=0.1, g=separable, fresnel=conductor(eta=0.2,k=3.9))").unwrap(),
+            BrdfSpec::Microfacet {
+                distribution: Distribution::Ggx,
+                alpha: 0.1,
+                g: G2Kind::Separable,
+                fresnel: FresnelSpec::Conductor { eta: 0.2, k: 3.9 }
+            }
+        );
+        assert_eq!(
+            parse_brdf("beckmann(alpha=1e-2, g=height-correlated, fresnel=schlick(f0=0.04))").unwrap(),
+            BrdfSpec::Microfacet {
+                distribution: Distribution::Beckmann,
+                alpha: 0.01,
+                g: G2Kind::HeightCorrelated,
+                fresnel: FresnelSpec::Schlick { f0: 0.04 }
+            }
+        );
+        assert_eq!(
+            parse_brdf("  ggx ( alpha = .3 , fresnel = dielectric ( eta = 1.5 ) , ) ").unwrap(),
+            BrdfSpec::Microfacet {
+                distribution: Distribution::Ggx,
+                alpha: 0.3,
+                g: G2Kind::HeightCorrelated,
+                fresnel: FresnelSpec::Dielectric { eta: 1.5 }
+            }
+        );
+        assert_eq!(
+            parse_brdf("lambertian").unwrap(),
+            BrdfSpec::Lambertian { albedo: 1.0 }
+        );
+        assert_eq!(
+            parse_brdf("ggx(alpha=1, fresnel=none)").unwrap(),
+            BrdfSpec::Microfacet {
+                distribution: Distribution::Ggx,
+                alpha: 1.0,
+                g: G2Kind::HeightCorrelated,
+                fresnel: FresnelSpec::None
+            }
+        );
+    }
+
+    #[test]
+    fn errors_point_at_the_offending_token() {
+        let cases: &[(&str, &str)] = &[
+            ("lambertain(albedo=0.5)", "lambertain"),
+            ("lambertian(albdo=0.5)", "albdo"),
+            ("lambertian(albedo=1.5)", "1.5"),
+            ("lambertian(albedo=-0.1)", "-0.1"),
+            ("lambertian(albedo=0.5", ""),
+            ("lambertian(albedo=0.5))", ")"),
+            ("lambertian(albedo 0.5)", "0.5"),
+            ("lambertian(albedo=)", ")"),
+            ("lambertian(albedo=0.5, albedo=0.2)", "albedo"),
+            ("phong(ks=1)", "phong"),
+            ("phong(exponent=1e8)", "1e8"),
+            ("ggx(alpha=0.1, g=sep)", "sep"),
+            ("ggx(alpha=0.1, g=1)", "1"),
+            ("ggx(alpha=0.1, fresnel=schlik(f0=0.04))", "schlik"),
+            ("ggx(alpha=0.1, fresnel=schlick(f=0.04))", "f"),
+            ("ggx(alpha=0.1, fresnel=conductor(eta=0.2))", "conductor"),
+            ("ggx(alpha=0)", "0"),
+            ("ggx(alpha=1x)", "1x"),
+            ("ggx(alpha=0.1) junk", "junk"),
+            ("ggx(alpha=0.1; g=separable)", ";"),
+            ("ggx(alpha=nan)", "nan"),
+            ("ggx(alpha=1e999)", "1e999"),
+            ("ggx(alpha=0.1, g=separable(x=1))", "x"),
+            ("", ""),
+            ("(", "("),
+            ("ggx(alpha=0.1é)", "é"),
+        ];
+        for (spec, bad) in cases {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), *bad, "spec {spec:?}: {e}");
+            let shown = e.to_string();
+            assert!(shown.contains('^'), "{shown}");
+            assert!(shown.contains(spec.trim_end()) || spec.is_empty(), "{shown}");
+        }
+    }
+
+    #[test]
+    fn caret_is_aligned_under_the_token() {
+        let e = parse_brdf("ggx(alpha=0.1, g=sep)").unwrap_err();
+        let s = e.to_string();
+        let lines: Vec<&str> = s.lines().collect();
+        assert_eq!(lines.len(), 3);
+        let col = lines[2].find('^').unwrap();
+        assert_eq!(&lines[1][col..col + 3], "sep");
+        assert_eq!(lines[2].trim(), "^^^");
+    }
+
+    #[test]
+    fn kd_plus_ks_constraint() {
+        let e = parse_brdf("phong(exponent=10, ks=0.7, kd=0.5)").unwrap_err();
+        assert!(e.message.contains("kd + ks"), "{e}");
+        assert!(parse_brdf("phong(exponent=10, ks=0.5, kd=0.5)").is_ok());
+    }
+}

@@ -1,0 +1,49 @@
+//! Parser for the BRDF and light specifications of the radiometry tools.
+//!
+//! Grammar (whitespace is ignored between tokens):
+//!
+//! ```text
+//! brdf  := call
+//! light := call ('+' call)*
+//! call  := NAME [ '(' [ arg (',' arg)* [','] ] ')' ]
+//! arg   := KEY '=' value
+//! value := NUMBER | call
+//! ```
+//!
+//! `NAME`/`KEY` are `[A-Za-z_][A-Za-z0-9_-]*`; numbers are decimal with an
+//! optional sign, fraction and exponent. Angles are in **degrees**. Every
+//! error carries the byte span of the offending token so that
+//! [`SpecError`]'s `Display` can underline it with carets.
+//!
+//! Shared by the `radiometry` command-line tool, the Python module and the C-facing tools:
+//! one grammar, one set of error messages.
+//!
+//! ```
+//! use radiometry_spec::{BrdfSpec, parse_brdf};
+//!
+//! assert_eq!(parse_brdf("lambertian(albedo=0.5)")?, BrdfSpec::Lambertian { albedo: 0.5 });
+//! let e = parse_brdf("lambertian(albdo=0.5)").unwrap_err();
+//! assert_eq!(&e.spec[e.start..e.end], "albdo");
+//! // Display shows the message, the spec, and carets under the offending token.
+//! assert!(e.to_string().ends_with("             ^^^^^"));
+//! # Ok::<(), radiometry_spec::SpecError>(())
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod angles;
+mod args;
+mod brdf;
+mod call;
+mod error;
+mod lex;
+mod light;
+
+pub use angles::parse_angles;
+pub use brdf::{
+    BRDF_SPEC_HELP, BrdfSpec, Distribution, FresnelSpec, G2Kind, MAX_ALPHA, MAX_EXPONENT, MIN_ALPHA,
+    parse_brdf,
+};
+pub use call::{Arg, Call, Value, parse_call, parse_sum};
+pub use error::SpecError;
+pub use light::{LIGHT_SPEC_HELP, LightSpec, parse_lights};
