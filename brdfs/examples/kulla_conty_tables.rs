@@ -15,7 +15,7 @@ use radiometry::glam::Vec3;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
 use radiometry_brdfs::microfacet::{
     Beckmann, Ggx, HeightCorrelated, Microfacet, MicrofacetDistribution, N_ALPHA, N_MU, NoFresnel, Separable,
-    ShadowingMasking, alpha_node, mu_node,
+    ShadowingMasking, alpha_node, mu_node, node_scale,
 };
 
 /// Budget of the coarse pass (the written pass uses four times as much).
@@ -41,12 +41,12 @@ fn table<D: MicrofacetDistribution + Copy, G: ShadowingMasking>(
     for k in 0..N_ALPHA {
         let mut row = Vec::new();
         for j in 0..N_MU {
-            if k == 0 {
-                row.push(1.0);
-                continue;
-            }
             let alpha = alpha_node(k);
-            let mu = if j == 0 { 1e-6 } else { mu_node(j) };
+            // The node coordinate μ_ref (10⁻⁶ for column 0), mapped to μ: tan θ = tan θ_ref / ρ(α).
+            let m = if j == 0 { 1e-6 } else { mu_node(j) };
+            let rho = node_scale(alpha) as f64;
+            let (m, rho2) = (m as f64, rho * rho);
+            let mu = (m / (m * m + (1.0 - m * m) / rho2).sqrt()) as f32;
             let d = make(alpha);
             let fine = albedo::<D, G>(d, mu, 4 * BUDGET);
             let coarse = albedo::<D, G>(d, mu, BUDGET);

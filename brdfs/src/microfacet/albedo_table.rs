@@ -4,11 +4,12 @@
 
 use super::{Beckmann, Ggx, HeightCorrelated, Separable, albedo_data};
 
-/// Number of `μ = cos θo` nodes per row: `μ_j = (j/63)²`, `j = 0..64`
-/// (uniform in `√μ`, which resolves the steep fall of `E` towards grazing).
+/// Number of `μ = cos θo` nodes per row: node coordinate `μ_ref,j = (j/63)²`,
+/// `j = 0..64` (uniform in `√μ_ref`, see [`node_scale`]).
 pub const N_MU: usize = 64;
 
-/// Number of roughness nodes: `α_k = (k/31)²`, `k = 0..32` (uniform in `√α`).
+/// Number of roughness nodes: `α_k = α_min + (1 − α_min)(k/31)³`, `k = 0..32`,
+/// `α_min = 10⁻⁴` (uniform in the cube root, dense where `E` changes fastest).
 pub const N_ALPHA: usize = 32;
 
 /// The directional albedo of a microfacet BRDF with `F = 1`,
@@ -19,11 +20,13 @@ pub const N_ALPHA: usize = 32;
 ///
 /// (Kulla & Conty 2017, "Revisiting Physically Based Shading at
 /// Imageworks", SIGGRAPH course, slide "Energy compensation"), tabulated on
-/// the grid `α_k = (k/31)²` (`k = 0..32`) × `μ_j = (j/63)²` (`j = 0..64`).
+/// the grid `α_k = α_min + (1 − α_min)(k/31)³` (`k = 0..32`, `α_min = 10⁻⁴ =`
+/// [`MIN_ALPHA`](super::MIN_ALPHA)) × `μ_ref,j = (j/63)²` (`j = 0..64`).
 ///
-/// Row `k = 0` is the `α → 0` limit, `E ≡ 1` (a mirror loses no energy);
-/// column `j = 0` holds `E` at `μ = 10⁻⁶`, the grazing limit (`f_r` itself is
-/// 0 at `μ = 0` exactly). Every other entry was computed by this project's
+/// Column `j` of row `k` holds `E` at the `μ` whose node coordinate
+/// ([`node_scale`]) is `μ_ref = (j/63)²` — the plain `μ_j` for `α_k ≥ 0.2`,
+/// nodes crowded towards grazing below; column 0 holds `E` at
+/// `μ_ref = 10⁻⁶`, the grazing limit (`f_r` itself is 0 at `μ = 0` exactly). Every other entry was computed by this project's
 /// integrator ([`radiometry::integrator::Adaptive`], warped onto the BRDF's
 /// own sampling map) with the generator `brdfs/examples/kulla_conty_tables.rs`;
 /// its header states the integration error, and the test
@@ -34,8 +37,8 @@ pub const N_ALPHA: usize = 32;
 /// entries (the written value is `I(4B)`, `B = 40 000`); the independent
 /// `f64` quadrature of the test agrees to `3.7·10⁻⁵` on 288 sampled entries.
 ///
-/// Interpolation (what [`row`](Self::row) and [`albedo`](Self::albedo) do):
-/// Catmull–Rom in `√α` between rows, then linear in `√μ` between columns.
+/// Interpolation: see [`albedo`](Self::albedo) (linear in `√μ` within a
+/// row, Catmull–Rom in `∛(α − α_min)` across rows at fixed `α tan θ`).
 /// Its total error against the exact `E` is at most `3.6·10⁻⁴` for
 /// `α ∈ [0.05, 1]`, `μ ∈ [cos 89°, 1]` (the largest white-furnace deviation
 /// of [`KullaConty`](super::KullaConty) measured by
@@ -77,16 +80,20 @@ impl EnergyTable<Separable> for Beckmann {
     const TABLE: &'static AlbedoTable = &albedo_data::BECKMANN_SEPARABLE;
 }
 
-/// `μ_j = (j/63)²` of column `j` (the generator evaluates column 0 at `10⁻⁶`).
+/// The node coordinate `μ_ref,j = (j/63)²` of column `j` (see [`node_scale`];
+/// the generator evaluates column 0 at `μ_ref = 10⁻⁶`).
 pub const fn mu_node(j: usize) -> f32 {
     let x = j as f32 / (N_MU - 1) as f32;
     x * x
 }
 
-/// `α_k = (k/31)²` of row `k`.
+/// Smallest tabulated roughness (row 0), [`MIN_ALPHA`](super::MIN_ALPHA).
+const ALPHA_MIN: f32 = super::MIN_ALPHA;
+
+/// `α_k = α_min + (1 − α_min)(k/31)³` of row `k`.
 pub const fn alpha_node(k: usize) -> f32 {
     let s = k as f32 / (N_ALPHA - 1) as f32;
-    s * s
+    ALPHA_MIN + (1.0 - ALPHA_MIN) * (s * s * s)
 }
 
 /// The Catmull–Rom spline through `p0..p3` at `t ∈ [0, 1]` between `p1` and
@@ -118,73 +125,122 @@ pub(crate) fn cell(x: f32, n: usize) -> (usize, f32) {
 }
 
 impl AlbedoTable {
-    /// The row `E(μ_j, α)` for `j = 0..64` at roughness `α` (clamped to
-    /// `[0, 1]`, NaN → 0): Catmull–Rom in `√α` through the four nearest
-    /// rows (the outermost rows are continued linearly), clamped to `[0, 1]`.
-    pub fn row(&self, alpha: f32) -> [f32; N_MU] {
-        let s = if alpha > 0.0 {
-            libm::sqrtf(alpha.min(1.0))
-        } else {
-            0.0
-        };
-        let (k, t) = cell(s, N_ALPHA);
-        let v = &self.values;
-        let mut out = [0.0f32; N_MU];
-        for (j, o) in out.iter_mut().enumerate() {
-            let p1 = v[k][j];
-            let p2 = v[k + 1][j];
-            let p0 = if k > 0 { v[k - 1][j] } else { 2.0 * p1 - p2 };
-            let p3 = if k + 2 < N_ALPHA {
-                v[k + 2][j]
-            } else {
-                2.0 * p2 - p1
-            };
-            *o = catmull_rom([p0, p1, p2, p3], t).clamp(0.0, 1.0);
-        }
-        out
-    }
-
-    /// `E(μ, α)`: [`row`](Self::row) at `α`, then linear in `√μ` (`μ`
-    /// clamped to `[0, 1]`). Builds the whole row; for many lookups at one
-    /// `α` keep the row (as [`KullaConty`](super::KullaConty) does).
+    /// `E(μ, α)` for `μ = cos θo ∈ [0, 1]` (clamped, NaN → 0) and
+    /// `α ∈ [α_min, 1]`.
+    ///
+    /// Interpolation in `α` at fixed Smith variable `a = cot θ / α` (not at
+    /// fixed `μ`): the albedo of a rough surface depends on `ωo` mostly
+    /// through `α tan θo` (Smith's `Λ` is a function of `a` alone; Heitz 2014,
+    /// eq. 72), so the steep grazing dip of `E`, which sits at `μ ∼ α`, moves
+    /// with `α`, and interpolating at fixed `μ` would smear it. Row `r` is
+    /// therefore read at `μ'` with `tan θ' = (α/α_r) tan θ`, linear in `√μ'`
+    /// between its nodes, and the four nearest rows are combined by a
+    /// Catmull–Rom spline in `∛(α − α_min)` (the outermost rows continued
+    /// linearly). `α` is clamped to `[α_min, 1]` (NaN → `α_min`).
     pub fn albedo(&self, mu: f32, alpha: f32) -> f32 {
-        lerp_row(&self.row(alpha), mu)
+        let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
+        let alpha = if alpha > ALPHA_MIN {
+            alpha.min(1.0)
+        } else {
+            ALPHA_MIN
+        };
+        let s2 = (1.0 - mu) * (1.0 + mu);
+        let (k, t) = cell(libm::cbrtf((alpha - ALPHA_MIN) / (1.0 - ALPHA_MIN)), N_ALPHA);
+        let at = |r: usize| {
+            let r = r.min(N_ALPHA - 1);
+            let ar = alpha_node(r);
+            // a-invariant μ' at α_r (tan θ' = (α/α_r) tan θ), then row r's node
+            // coordinate (tan θ_ref = ρ(α_r) tan θ'): one tangent scaling.
+            let q = node_scale(ar) * (alpha / ar);
+            lerp_row(&self.values[r], rescale_mu(mu, s2, q * q))
+        };
+        let p1 = at(k);
+        let p2 = at(k + 1);
+        let p0 = if k >= 1 { at(k - 1) } else { 2.0 * p1 - p2 };
+        let p3 = if k + 2 < N_ALPHA { at(k + 2) } else { 2.0 * p2 - p1 };
+        catmull_rom([p0, p1, p2, p3], t).clamp(0.0, 1.0)
     }
 }
 
-/// The row value at `μ`, linear in `√μ` between nodes (`μ` clamped to
-/// `[0, 1]`, NaN → 0).
+/// Roughness from which a row's nodes are the plain `μ_j = (j/63)²`; below
+/// it they crowd towards grazing with `α` (see [`node_scale`]).
+pub const ALPHA_REF: f32 = 0.2;
+
+/// `ρ(α) = min(α/ALPHA_REF, 1)`: the nodes of a row (and of a
+/// [`KullaConty`](super::KullaConty) instance) at roughness `α` are
+/// `tan θ_j = tan θ_ref,j / ρ(α)` with `cos θ_ref,j = (j/63)²`, so that for
+/// `α < 0.2` they follow the albedo's grazing dip, which sits at `μ ∼ α`.
+/// A direction's node coordinate is `μ_ref = μ / √(μ² + ρ² sin²θ)`.
+#[inline]
+pub fn node_scale(alpha: f32) -> f32 {
+    if alpha > 0.0 {
+        (alpha / ALPHA_REF).min(1.0)
+    } else {
+        0.0
+    }
+}
+
+/// `μ' = cos θ'` with `tan θ' = √k2 · tan θ`, from `μ = cos θ ≥ 0` and
+/// `s2 = sin²θ`: `μ' = μ / √(μ² + k2 s2)`, in `[0, 1]` (0 when both vanish).
+#[inline(always)]
+pub(crate) fn rescale_mu(mu: f32, s2: f32, k2: f32) -> f32 {
+    let d = mu * mu + k2 * s2;
+    if d > 0.0 {
+        (mu / libm::sqrtf(d)).min(1.0)
+    } else {
+        0.0
+    }
+}
+
+/// The row value at `μ` (clamped to `[0, 1]`, NaN → 0): linear in `√μ`
+/// between nodes, except in the first cell `μ < μ_1 = 63⁻²`, where it is
+/// linear in `μ` (towards grazing `1 − E` vanishes like `μ` for the
+/// height-correlated G2 — measured: `1.4·10⁻⁵` at `μ = 10⁻⁶`, `1.1·10⁻³` at
+/// `10⁻⁴` for GGX `α = 1` — and a chord in `√μ` would overstate it).
 #[inline(always)]
 pub(crate) fn lerp_row(row: &[f32; N_MU], mu: f32) -> f32 {
     let x = if mu > 0.0 { libm::sqrtf(mu.min(1.0)) } else { 0.0 };
     let (j, t) = cell(x, N_MU);
+    let t = if j == 0 { t * t } else { t };
     let (a, b) = (row[j], row[j + 1]);
     a + t * (b - a)
 }
 
-/// `2 ∫₀¹ r(μ) μ dμ = 4 ∫₀¹ r(x) x³ dx` (`x = √μ`) of the function that is
-/// linear in `x` between the nodes of `row` — exact up to rounding: a
-/// 3-point Gauss–Legendre rule per cell is exact for the degree-4
-/// integrand.
-pub(crate) fn cosine_average(row: &[f32; N_MU]) -> f32 {
-    // Gauss–Legendre, 3 points on [0, 1]: nodes ½ ∓ √(3/5)/2, ½; weights 5/18, 8/18, 5/18.
-    const G: [(f32, f32); 3] = [
-        (0.112_701_66, 5.0 / 18.0),
-        (0.5, 8.0 / 18.0),
-        (0.887_298_35, 5.0 / 18.0),
+/// `2 ∫₀¹ r(μ) μ dμ` of a function `r` given on cells `[nodes[j], nodes[j+1]]`
+/// that cover `[0, 1]`, each cell optionally split at `split(j)` (a kink of
+/// `r` inside it): a 4-point Gauss–Legendre rule per piece (exact for
+/// polynomials of degree 7 in `μ`; the functions integrated here are linear
+/// in a smooth monotone map of `μ` on each piece).
+pub(crate) fn cosine_average(
+    nodes: &[f32; N_MU],
+    split: impl Fn(usize) -> Option<f32>,
+    r: impl Fn(f32) -> f32,
+) -> f32 {
+    // Gauss–Legendre, 4 points on [0, 1] (A&S 25.4.29 nodes ±0.8611363, ±0.3399810).
+    const G: [(f32, f32); 4] = [
+        (0.069_431_84, 0.173_927_42),
+        (0.330_009_5, 0.326_072_58),
+        (0.669_990_5, 0.326_072_58),
+        (0.930_568_15, 0.173_927_42),
     ];
-    let h = 1.0 / (N_MU - 1) as f32;
+    let piece = |a: f32, b: f32| {
+        let h = b - a;
+        let mut s = 0.0f32;
+        for &(t, w) in &G {
+            let mu = a + t * h;
+            s += w * r(mu) * mu;
+        }
+        s * h
+    };
     let mut sum = 0.0f32;
     for j in 0..N_MU - 1 {
-        let (a, b) = (row[j], row[j + 1]);
-        let mut cell_sum = 0.0f32;
-        for &(t, w) in &G {
-            let x = (j as f32 + t) * h;
-            cell_sum += w * (a + t * (b - a)) * (x * x * x);
-        }
-        sum += cell_sum;
+        let (a, b) = (nodes[j], nodes[j + 1]);
+        sum += match split(j) {
+            Some(m) if m > a && m < b => piece(a, m) + piece(m, b),
+            _ => piece(a, b),
+        };
     }
-    (4.0 * h * sum).clamp(0.0, 1.0)
+    (2.0 * sum).clamp(0.0, 1.0)
 }
 
 #[cfg(test)]
@@ -193,11 +249,18 @@ mod tests {
 
     #[test]
     fn cosine_average_is_exact_for_polynomials() {
-        // r(μ) = 1 → 1; r(μ) = √μ (linear in x, so exact) → 2∫ μ^{3/2} dμ = 4/5.
-        let ones = [1.0f32; N_MU];
-        assert!((cosine_average(&ones) - 1.0).abs() < 1e-6);
-        let sq: [f32; N_MU] = core::array::from_fn(|j| libm::sqrtf(mu_node(j)));
-        assert!((cosine_average(&sq) - 0.8).abs() < 1e-6);
+        let nodes: [f32; N_MU] = core::array::from_fn(mu_node);
+        assert!((cosine_average(&nodes, |_| None, |_| 1.0) - 1.0).abs() < 1e-6);
+        // 2∫ μ³ μ dμ = 2/5.
+        assert!((cosine_average(&nodes, |_| None, |m| m * m * m) - 0.4).abs() < 1e-6);
+        let half: [f32; N_MU] = core::array::from_fn(mu_node);
+        // A kink at μ = 0.3 inside a cell: 2∫₀^0.3 μ dμ = 0.09 exactly with the split.
+        let j = (0..N_MU - 1)
+            .find(|&j| half[j] < 0.3 && half[j + 1] > 0.3)
+            .unwrap();
+        let split = |k: usize| (k == j).then_some(0.3f32);
+        let v = cosine_average(&half, split, |m| if m < 0.3 { 1.0 } else { 0.0 });
+        assert!((v - 0.09).abs() < 1e-6, "{v}");
     }
 
     #[test]
@@ -209,14 +272,29 @@ mod tests {
     }
 
     #[test]
-    fn rows_hit_nodes() {
+    fn albedo_hits_nodes() {
         let t = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
-        for k in [1usize, 7, 31] {
-            let r = t.row(alpha_node(k));
-            for j in [0usize, 5, 63] {
-                assert!((r[j] - t.values[k][j]).abs() < 2e-6, "{k} {j}");
+        for k in [0usize, 1, 7, 31] {
+            for j in [1usize, 5, 63] {
+                let (m, a) = (mu_node(j), alpha_node(k));
+                let rho = node_scale(a);
+                let mu = rescale_mu(m, (1.0 - m) * (1.0 + m), 1.0 / (rho * rho));
+                let e = t.albedo(mu, a);
+                assert!(
+                    (e - t.values[k][j]).abs() < 2e-6,
+                    "{k} {j}: {e} vs {}",
+                    t.values[k][j]
+                );
             }
         }
-        assert!(t.row(0.0).iter().all(|&e| e == 1.0));
+    }
+
+    #[test]
+    fn rescale_mu_is_the_tangent_scaling() {
+        // tan θ = 0.75 → tan θ' = 1.5 (k2 = 4): μ' = 1/√(1 + 2.25).
+        let m = rescale_mu(0.8, 0.36, 4.0);
+        assert!((m - 1.0 / 3.25f32.sqrt()).abs() < 1e-6);
+        assert_eq!(rescale_mu(0.0, 0.0, 1.0), 0.0);
+        assert_eq!(rescale_mu(1.0, 0.0, 1e6), 1.0);
     }
 }

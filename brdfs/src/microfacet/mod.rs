@@ -51,14 +51,14 @@ mod special;
 #[cfg(test)]
 mod tests;
 
-pub use albedo_table::{AlbedoTable, EnergyTable, N_ALPHA, N_MU, alpha_node, mu_node};
+pub use albedo_table::{ALPHA_REF, AlbedoTable, EnergyTable, N_ALPHA, N_MU, alpha_node, mu_node, node_scale};
 #[cfg(feature = "simd")]
 #[doc(hidden)]
 pub use batch::{DistributionKind, G2Kind};
 pub use beckmann::Beckmann;
 pub use fresnel::{Conductor, Dielectric, Fresnel, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
 pub use ggx::Ggx;
-pub use kulla_conty::KullaConty;
+pub use kulla_conty::{KullaConty, LOSS_MARGIN};
 pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 
 use core::marker::PhantomData;
