@@ -11,7 +11,9 @@
 use crate::model::{self, AnyBrdf};
 use crate::spec::{self, BrdfSpec, MultipleScattering};
 use plotters::prelude::*;
-use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
+use radiometry::Brdf;
+use radiometry::glam::Vec3;
+use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrand, Integrator};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -27,7 +29,8 @@ pub struct FurnaceArgs {
     /// Where to write the SVG plot (its folder is created if missing).
     #[arg(long, default_value = "target/furnace.svg")]
     svg: PathBuf,
-    /// Evaluation budget of each albedo (adaptive cubature on the BRDF's sampling map).
+    /// Evaluation budget of each integral: the single-scattering albedo (adaptive cubature on the BRDF's
+    /// sampling map) and the added lobe (adaptive cubature on the hemisphere).
     #[arg(long, default_value_t = 40_000)]
     budget: u32,
 }
@@ -83,13 +86,69 @@ fn with_ms(s: &BrdfSpec, ms: MultipleScattering) -> Option<BrdfSpec> {
 /// `ρ(θo)` of `b` by `Adaptive::new(0, 0).warped()` (refine until the budget
 /// is spent): `(value, error estimate)`.
 fn albedo(b: &AnyBrdf, theta_deg: f64, budget: u32) -> Result<(f64, f64), String> {
-    let t = theta_deg.to_radians();
-    let wo = radiometry::glam::Vec3::new(t.sin() as f32, 0.0, t.cos() as f32);
     let a = Adaptive::new(0.0, 0.0).map_err(|e| e.to_string())?.warped();
     let e = a
-        .integrate(&DirectionalAlbedo { brdf: b, wo }, budget)
+        .integrate(
+            &DirectionalAlbedo {
+                brdf: b,
+                wo: dir(theta_deg),
+            },
+            budget,
+        )
         .map_err(|e| format!("θo = {theta_deg}°: {e}"))?;
     Ok((e.value, e.error))
+}
+
+/// `ωo` at polar angle `theta_deg` in the xz plane.
+fn dir(theta_deg: f64) -> Vec3 {
+    let t = theta_deg.to_radians();
+    Vec3::new(t.sin() as f32, 0.0, t.cos() as f32)
+}
+
+/// The added lobe `(f − f_ss)(ωi, ωo) cos θi` of a compensated BRDF: broad
+/// and smooth, so it is integrated on the plain hemisphere.
+struct Lobe<'a> {
+    compensated: &'a AnyBrdf,
+    single: &'a AnyBrdf,
+    wo: Vec3,
+}
+
+impl Integrand for Lobe<'_> {
+    type Spectrum = f32;
+    fn eval(&self, w: Vec3) -> f32 {
+        if w.z <= 0.0 {
+            return 0.0;
+        }
+        (self.compensated.eval(w, self.wo) - self.single.eval(w, self.wo)) * w.z
+    }
+}
+
+/// `ρ(θo)` of the compensated BRDF as the single-scattering albedo
+/// (`single`, already computed on the sampling map) plus the added lobe by
+/// plain adaptive cubature, `(value, error)` with the errors added.
+///
+/// Why not warp the compensated BRDF's own sampling map: it is a mixture
+/// chosen by `u₀ < w(μo)`, a step across the square that the warped adaptive
+/// rule integrates poorly (GGX `α = 1`, `θo = 45°`: `1.0006 ± 0.0002` at
+/// 10⁶ evaluations, against `0.99940` from both the plain adaptive and
+/// the Gauss–Legendre product rule).
+fn compensated_albedo(
+    comp: &AnyBrdf,
+    single: &AnyBrdf,
+    theta_deg: f64,
+    ss: (f64, f64),
+    budget: u32,
+) -> Result<(f64, f64), String> {
+    let a = Adaptive::new(0.0, 0.0).map_err(|e| e.to_string())?;
+    let lobe = Lobe {
+        compensated: comp,
+        single,
+        wo: dir(theta_deg),
+    };
+    let e = a
+        .integrate(&lobe, budget)
+        .map_err(|e| format!("θo = {theta_deg}°: {e}"))?;
+    Ok((ss.0 + e.value, ss.1 + e.error))
 }
 
 /// The furnace table of a parsed microfacet spec.
@@ -102,10 +161,11 @@ pub fn table(text: &str, parsed: &BrdfSpec, angles: &[f64], budget: u32) -> Resu
     angles
         .iter()
         .map(|&t| {
+            let ss = albedo(&single, t, budget)?;
             Ok(Row {
                 theta_o: t,
-                single: albedo(&single, t, budget)?,
-                compensated: albedo(&comp, t, budget)?,
+                single: ss,
+                compensated: compensated_albedo(&comp, &single, t, ss, budget)?,
             })
         })
         .collect()
