@@ -245,6 +245,7 @@ pub fn all_integrators(seed: u64, abs_tol: f64) -> Vec<AnyIntegrator> {
     let mut v = vec![
         AnyIntegrator::GaussLegendre(GaussLegendre::new()),
         AnyIntegrator::Warped(WarpedGaussLegendre::new()),
+        AnyIntegrator::Warped(WarpedGaussLegendre::horizon_split()),
         AnyIntegrator::Adaptive(adaptive),
         AnyIntegrator::Adaptive(adaptive.warped()),
     ];
@@ -349,6 +350,7 @@ mod tests {
                     ggx: true,
                     alpha: 0.3,
                     height_correlated: true,
+                    conductor: None,
                 },
             ),
             (
@@ -357,6 +359,7 @@ mod tests {
                     ggx: true,
                     alpha: 0.05,
                     height_correlated: false,
+                    conductor: None,
                 },
             ),
             (
@@ -365,6 +368,17 @@ mod tests {
                     ggx: false,
                     alpha: 0.3,
                     height_correlated: true,
+                    conductor: None,
+                },
+            ),
+            (
+                // Gold at 632.8 nm (Sopra library, via the Filmetrics database).
+                "ggx(alpha=0.3, fresnel=conductor(eta=0.18104, k=3.068099))".into(),
+                RefModel::Microfacet {
+                    ggx: true,
+                    alpha: 0.3,
+                    height_correlated: true,
+                    conductor: Some((0.18104, 3.068099)),
                 },
             ),
             (
@@ -373,6 +387,7 @@ mod tests {
                     ggx: false,
                     alpha: 1.0,
                     height_correlated: false,
+                    conductor: None,
                 },
             ),
         ];
