@@ -38,6 +38,9 @@ pub fn tradeoff<'py>(
         threads,
         seed,
         progress,
+        // All cases and integrators (the CLI's --cases / --integrators filters, added on main).
+        cases: Vec::new(),
+        integrators: Vec::new(),
     };
     py.detach(|| report::run(&opt)).map_err(PyRuntimeError::new_err)?;
     let path = out.join("tradeoff.csv");
