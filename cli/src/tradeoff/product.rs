@@ -173,7 +173,7 @@ pub fn reference(c: &ProductCase) -> Reference {
     reference::cap_radiance(&c.model, c.wo, c.axis, c.sigma)
 }
 
-/// Runs `method` on `case` over `budgets` (as [`super::measure`]).
+/// Runs `method` on `case` over `budgets` (as `super::measure`).
 pub fn measure(
     brdf: &AnyBrdf,
     case: &ProductCase,
