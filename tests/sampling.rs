@@ -280,7 +280,7 @@ static WORST_PDF: Worst = Worst::new();
 static WORST_WEIGHT: Worst = Worst::new();
 static UNDERFLOWED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
-/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 19
+/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 23
 /// configurations, `u` including 0 and `1 − 2⁻²⁴`. Tolerance: `1e-4` relative plus the sensitivity of
 /// `pdf` (resp. `f cos/pdf`) to one-ulp changes of its inputs (the sampled `ωi` is rounded to `f32`
 /// before `pdf` sees it). The weight is compared only where `f` and `pdf` are ≥ 1e-30 (see below).
@@ -353,7 +353,7 @@ fn weight_and_pdf_match_eval_and_pdf_every_plugin() {
 }
 
 /// Number of χ² tests over the plugins below (for the Šidák correction).
-const PLUGIN_CHI2_TESTS: usize = 4 + 17 + 17 + 16 + 16 + 2;
+const PLUGIN_CHI2_TESTS: usize = 4 + 17 + 17 + 16 + 16 + 2 + 10;
 const THETAS_DEG: [f32; 4] = [0.0, 30.0, 70.0, 85.0];
 
 fn plugin_alpha() -> f64 {
@@ -472,6 +472,32 @@ fn chi_square_ggx() {
 #[test]
 fn chi_square_beckmann() {
     chi2_microfacet(Dist::Beckmann, 70);
+}
+
+/// The Kulla–Conty mixture sampler (single-scattering lobe or cosine lobe, chosen with probability
+/// `1 − E(μo)`): GGX with F = 1 at two roughnesses × 4 angles, Beckmann with a conductor at 2 angles.
+#[test]
+fn chi_square_kulla_conty() {
+    let mut fails = Vec::new();
+    for (j, &alpha) in [0.3f32, 1.0].iter().enumerate() {
+        let p = Params {
+            alpha,
+            ..Params::typical()
+        };
+        let k = Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::None);
+        fails.extend(chi2_plugin(k, &p, &THETAS_DEG, 90 + j as u64));
+    }
+    let p = Params {
+        alpha: 0.5,
+        ..Params::typical()
+    };
+    fails.extend(chi2_plugin(
+        Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::Conductor),
+        &p,
+        &[0.0, 70.0],
+        95,
+    ));
+    assert!(fails.is_empty(), "{fails:#?}");
 }
 
 /// Regression for a finding of this suite (energy test, heavy-tailed weights): Blinn–Phong at grazing

@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 mod bench;
+mod furnace;
 mod sensor_cmd;
 mod sensor_edge;
 
@@ -137,6 +138,10 @@ enum Command {
     /// and auto-vectorised, and the memory-stream bound).
     #[command(after_help = bench::AFTER_HELP)]
     Bench(bench::BenchArgs),
+    /// White-furnace test of a microfacet BRDF: albedo over θo with single scattering and with the
+    /// Kulla–Conty multiple-scattering compensation (table on stdout, SVG plot).
+    #[command(after_help = spec::BRDF_SPEC_HELP)]
+    Furnace(furnace::FurnaceArgs),
 }
 
 fn spec_error(e: spec::SpecError) -> ExitCode {
@@ -322,6 +327,7 @@ fn main() -> ExitCode {
         }
         Command::Sensor(cmd) => sensor_cmd::run(cmd),
         Command::Bench(args) => bench::run(args),
+        Command::Furnace(args) => furnace::run(args),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
                 println!("{}", i.name());

@@ -5,7 +5,7 @@
 //! evaluation, or per batch through the batch methods the integrators use) and picks integrators through [`AnyIntegrator`] (an enum,
 //! statically dispatched per variant).
 
-use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, SpecError};
+use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
 use radiometry::Brdf;
 use radiometry::BrdfSample;
 use radiometry::glam::Vec3;
@@ -14,8 +14,9 @@ use radiometry::integrator::{
     PointSet, Strategy, WarpedGaussLegendre, WideOf,
 };
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, Lambertian,
-    Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, Schlick, Separable, ShadowingMasking,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty,
+    Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, Schlick, Separable,
+    ShadowingMasking, microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -91,34 +92,42 @@ fn boxed<B: Brdf<Spectrum = f32> + Send + Sync + 'static>(b: B) -> AnyBrdf {
     AnyBrdf(Box::new(b))
 }
 
-fn with_g<D, G>(d: D, f: FresnelSpec) -> Result<AnyBrdf, BrdfError>
+fn with_g<D, G>(d: D, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf, BrdfError>
 where
-    D: MicrofacetDistribution + Send + Sync + 'static,
+    D: MicrofacetDistribution + EnergyTable<G> + Send + Sync + 'static,
     G: ShadowingMasking + Send + Sync + 'static,
 {
-    fn mk<D, G, F>(d: D, f: F) -> AnyBrdf
+    fn mk<D, G, F>(d: D, f: F, ms: MultipleScattering) -> AnyBrdf
     where
-        D: MicrofacetDistribution + Send + Sync + 'static,
+        D: MicrofacetDistribution + EnergyTable<G> + Send + Sync + 'static,
         G: ShadowingMasking + Send + Sync + 'static,
         F: Fresnel<Spectrum = f32> + Send + Sync + 'static,
     {
-        boxed(Microfacet::<D, G, F>::new(d, f))
+        match ms {
+            MultipleScattering::Single => boxed(Microfacet::<D, G, F>::new(d, f)),
+            MultipleScattering::KullaConty => boxed(KullaConty::<D, G, F>::new(d, f)),
+        }
     }
     Ok(match f {
-        FresnelSpec::None => mk::<D, G, _>(d, NoFresnel),
-        FresnelSpec::Schlick { f0 } => mk::<D, G, _>(d, Schlick::new(f0 as f32)?),
-        FresnelSpec::Dielectric { eta } => mk::<D, G, _>(d, Dielectric::new(eta as f32)?),
-        FresnelSpec::Conductor { eta, k } => mk::<D, G, _>(d, Conductor::new(eta as f32, k as f32)?),
+        FresnelSpec::None => mk::<D, G, _>(d, NoFresnel, ms),
+        FresnelSpec::Schlick { f0 } => mk::<D, G, _>(d, Schlick::new(f0 as f32)?, ms),
+        FresnelSpec::Dielectric { eta } => mk::<D, G, _>(d, Dielectric::new(eta as f32)?, ms),
+        FresnelSpec::Conductor { eta, k } => mk::<D, G, _>(d, Conductor::new(eta as f32, k as f32)?, ms),
     })
 }
 
-fn with_d<D>(d: D, g: G2Kind, f: FresnelSpec) -> Result<AnyBrdf, BrdfError>
+fn with_d<D>(d: D, g: G2Kind, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf, BrdfError>
 where
-    D: MicrofacetDistribution + Send + Sync + 'static,
+    D: MicrofacetDistribution
+        + EnergyTable<HeightCorrelated>
+        + EnergyTable<Separable>
+        + Send
+        + Sync
+        + 'static,
 {
     match g {
-        G2Kind::HeightCorrelated => with_g::<D, HeightCorrelated>(d, f),
-        G2Kind::Separable => with_g::<D, Separable>(d, f),
+        G2Kind::HeightCorrelated => with_g::<D, HeightCorrelated>(d, f, ms),
+        G2Kind::Separable => with_g::<D, Separable>(d, f, ms),
     }
 }
 
@@ -139,9 +148,10 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
             alpha,
             g,
             fresnel,
+            ms,
         } => match distribution {
-            Distribution::Ggx => Ggx::new(alpha as f32).and_then(|d| with_d(d, g, fresnel)),
-            Distribution::Beckmann => Beckmann::new(alpha as f32).and_then(|d| with_d(d, g, fresnel)),
+            Distribution::Ggx => Ggx::new(alpha as f32).and_then(|d| with_d(d, g, fresnel, ms)),
+            Distribution::Beckmann => Beckmann::new(alpha as f32).and_then(|d| with_d(d, g, fresnel, ms)),
         },
     };
     r.map_err(|e| {

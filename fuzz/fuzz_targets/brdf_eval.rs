@@ -36,7 +36,7 @@ fuzz_target!(|data: &[u8]| {
     let mut f = Floats(data);
     let which = f.byte();
     let (a, b, c) = (f.f32(), f.f32(), f.f32());
-    match which % 8 {
+    match which % 12 {
         0 => {
             if let Ok(x) = Lambertian::new(a) {
                 check(&x, &mut f)
@@ -70,6 +70,26 @@ fuzz_target!(|data: &[u8]| {
         6 => {
             if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Schlick::new(b)) {
                 check(&Microfacet::<_, Separable, _>::new(d, fr), &mut f)
+            }
+        }
+        7 => {
+            if let Ok(d) = Ggx::new(a) {
+                check(&KullaConty::<_, HeightCorrelated, _>::new(d, NoFresnel), &mut f)
+            }
+        }
+        8 => {
+            if let (Ok(d), Ok(fr)) = (Ggx::new(a), Conductor::new(b, c)) {
+                check(&KullaConty::<_, Separable, _>::new(d, fr), &mut f)
+            }
+        }
+        9 => {
+            if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Dielectric::new(b)) {
+                check(&KullaConty::<_, HeightCorrelated, _>::new(d, fr), &mut f)
+            }
+        }
+        10 => {
+            if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Schlick::new(b)) {
+                check(&KullaConty::<_, Separable, _>::new(d, fr), &mut f)
             }
         }
         _ => {

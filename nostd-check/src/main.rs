@@ -88,6 +88,19 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             exercise(&Microfacet::<_, Separable, _>::new(d, f), &mut acc);
         }
     }
+    // Kulla–Conty compensation: every (D, G) table, F = 1 and a conductor.
+    if let Ok(d) = Ggx::new(black_box(0.7)) {
+        exercise(&KullaConty::<_, HeightCorrelated, _>::new(d, NoFresnel), &mut acc);
+        if let Ok(f) = Conductor::new(0.2f32, 3.9) {
+            exercise(&KullaConty::<_, Separable, _>::new(d, f), &mut acc);
+        }
+    }
+    if let Ok(d) = Beckmann::new(black_box(0.7)) {
+        exercise(&KullaConty::<_, HeightCorrelated, _>::new(d, NoFresnel), &mut acc);
+        if let Ok(f) = Schlick::new(0.9f32) {
+            exercise(&KullaConty::<_, Separable, _>::new(d, f), &mut acc);
+        }
+    }
     // Integrators on a directional-albedo integrand (stack only, no heap).
     // Linked for the std/alloc check; not yet part of the no-panic proof
     // (bounds checks on their fixed-size node/region tables survive).

@@ -23,6 +23,15 @@ pub enum G2Kind {
     Separable,
 }
 
+/// Multiple scattering of a microfacet BRDF.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MultipleScattering {
+    /// Single scattering only (`ms=none`, the default).
+    Single,
+    /// Kulla & Conty 2017 energy compensation (`ms=kulla-conty`).
+    KullaConty,
+}
+
 /// Fresnel term of a microfacet BRDF.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FresnelSpec {
@@ -83,6 +92,8 @@ pub enum BrdfSpec {
         g: G2Kind,
         /// Fresnel term.
         fresnel: FresnelSpec,
+        /// Multiple-scattering compensation.
+        ms: MultipleScattering,
     },
 }
 
@@ -96,8 +107,9 @@ pub const MAX_ALPHA: f64 = 1.0;
 /// Help text describing the BRDF spec language (used by `--help`).
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
-fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9))`, `beckmann(...)` \
-(same parameters as ggx). Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none; \
+fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty)`, \
+`beckmann(...)` (same parameters as ggx). Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
+ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); \
 exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
 
 /// Parses and validates a BRDF spec.
@@ -131,7 +143,7 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
             })
         }
         "ggx" | "beckmann" => {
-            let mut a = Args::new(spec, &call, &["alpha", "g", "fresnel"])?;
+            let mut a = Args::new(spec, &call, &["alpha", "g", "fresnel", "ms"])?;
             let alpha = a.num("alpha", None, MIN_ALPHA, MAX_ALPHA, false)?;
             let g = match a.call_value("g")? {
                 None => G2Kind::HeightCorrelated,
@@ -156,6 +168,25 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
                 None => FresnelSpec::None,
                 Some(c) => parse_fresnel(spec, c)?,
             };
+            let ms = match a.call_value("ms")? {
+                None => MultipleScattering::Single,
+                Some(c) => {
+                    Args::new(spec, c, &[])?;
+                    match c.name.as_str() {
+                        "none" | "single" => MultipleScattering::Single,
+                        "kulla-conty" => MultipleScattering::KullaConty,
+                        other => {
+                            return Err(err_span(
+                                spec,
+                                c.name_span,
+                                format!(
+                                    "unknown multiple scattering `{other}` (expected none or kulla-conty)"
+                                ),
+                            ));
+                        }
+                    }
+                }
+            };
             let distribution = if name == "ggx" {
                 Distribution::Ggx
             } else {
@@ -166,6 +197,7 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
                 alpha,
                 g,
                 fresnel,
+                ms,
             })
         }
         other => Err(err_span(
@@ -245,7 +277,8 @@ mod tests {
                 distribution: Distribution::Ggx,
                 alpha: 0.1,
                 g: G2Kind::Separable,
-                fresnel: FresnelSpec::Conductor { eta: 0.2, k: 3.9 }
+                fresnel: FresnelSpec::Conductor { eta: 0.2, k: 3.9 },
+                ms: MultipleScattering::Single
             }
         );
         assert_eq!(
@@ -254,7 +287,8 @@ mod tests {
                 distribution: Distribution::Beckmann,
                 alpha: 0.01,
                 g: G2Kind::HeightCorrelated,
-                fresnel: FresnelSpec::Schlick { f0: 0.04 }
+                fresnel: FresnelSpec::Schlick { f0: 0.04 },
+                ms: MultipleScattering::Single
             }
         );
         assert_eq!(
@@ -263,7 +297,18 @@ mod tests {
                 distribution: Distribution::Ggx,
                 alpha: 0.3,
                 g: G2Kind::HeightCorrelated,
-                fresnel: FresnelSpec::Dielectric { eta: 1.5 }
+                fresnel: FresnelSpec::Dielectric { eta: 1.5 },
+                ms: MultipleScattering::Single
+            }
+        );
+        assert_eq!(
+            parse_brdf("ggx(alpha=1, ms=kulla-conty)").unwrap(),
+            BrdfSpec::Microfacet {
+                distribution: Distribution::Ggx,
+                alpha: 1.0,
+                g: G2Kind::HeightCorrelated,
+                fresnel: FresnelSpec::None,
+                ms: MultipleScattering::KullaConty
             }
         );
         assert_eq!(
@@ -276,7 +321,8 @@ mod tests {
                 distribution: Distribution::Ggx,
                 alpha: 1.0,
                 g: G2Kind::HeightCorrelated,
-                fresnel: FresnelSpec::None
+                fresnel: FresnelSpec::None,
+                ms: MultipleScattering::Single
             }
         );
     }
@@ -296,6 +342,8 @@ mod tests {
             ("phong(ks=1)", "phong"),
             ("phong(exponent=1e8)", "1e8"),
             ("ggx(alpha=0.1, g=sep)", "sep"),
+            ("ggx(alpha=0.1, ms=kula-conty)", "kula-conty"),
+            ("ggx(alpha=0.1, ms=kulla-conty(x=1))", "x"),
             ("ggx(alpha=0.1, g=1)", "1"),
             ("ggx(alpha=0.1, fresnel=schlik(f0=0.04))", "schlik"),
             ("ggx(alpha=0.1, fresnel=schlick(f=0.04))", "f"),

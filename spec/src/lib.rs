@@ -42,7 +42,7 @@ mod light;
 pub use angles::parse_angles;
 pub use brdf::{
     BRDF_SPEC_HELP, BrdfSpec, Distribution, FresnelSpec, G2Kind, MAX_ALPHA, MAX_EXPONENT, MIN_ALPHA,
-    parse_brdf,
+    MultipleScattering, parse_brdf,
 };
 pub use call::{Arg, Call, Value, parse_call, parse_sum};
 pub use error::SpecError;

@@ -6,8 +6,8 @@ use super::strategies::{alpha, exponent, kd_ks, log_uniform};
 use proptest::prelude::*;
 use radiometry::IsotropicBrdf;
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet,
-    ModifiedPhong, NoFresnel, Schlick, Separable,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Ggx, HeightCorrelated, KullaConty, Lambertian,
+    Microfacet, ModifiedPhong, NoFresnel, Schlick, Separable,
 };
 
 /// A plugin behind a trait object.
@@ -55,9 +55,20 @@ pub enum Kind {
     BlinnPhong,
     /// `Microfacet<D, G, F>`.
     Micro(Dist, Shadow, Fres),
+    /// `KullaConty<D, G, F>` (multiple-scattering compensation).
+    KullaConty(Dist, Shadow, Fres),
 }
 
-/// All 19 configurations.
+/// The four compensated configurations in [`all_kinds`]: every `(D, G)` once, two with `F = 1` (where
+/// the compensation matters most) and two with a coloured conductor.
+pub const KULLA_CONTY_KINDS: [Kind; 4] = [
+    Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::None),
+    Kind::KullaConty(Dist::Ggx, Shadow::Separable, Fres::Conductor),
+    Kind::KullaConty(Dist::Beckmann, Shadow::HeightCorrelated, Fres::Conductor),
+    Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
+];
+
+/// All 23 configurations (19 single-scattering, 4 compensated).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
@@ -67,6 +78,7 @@ pub fn all_kinds() -> Vec<Kind> {
             }
         }
     }
+    v.extend(KULLA_CONTY_KINDS);
     v
 }
 
@@ -149,6 +161,22 @@ where
     })
 }
 
+fn compensated<D, G>(d: D, f: Fres, p: &Params) -> Result<Dyn, BrdfError>
+where
+    D: radiometry_brdfs::MicrofacetDistribution
+        + radiometry_brdfs::microfacet::EnergyTable<G>
+        + core::fmt::Debug
+        + 'static,
+    G: radiometry_brdfs::ShadowingMasking + 'static,
+{
+    Ok(match f {
+        Fres::None => Box::new(KullaConty::<D, G, NoFresnel>::new(d, NoFresnel)),
+        Fres::Schlick => Box::new(KullaConty::<D, G, _>::new(d, Schlick::new(p.f0)?)),
+        Fres::Dielectric => Box::new(KullaConty::<D, G, _>::new(d, Dielectric::new(p.eta_d)?)),
+        Fres::Conductor => Box::new(KullaConty::<D, G, _>::new(d, Conductor::new(p.eta_c, p.k_c)?)),
+    })
+}
+
 /// Builds the plugin `kind` with parameters `p`.
 pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
     Ok(match kind {
@@ -165,6 +193,18 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
         Kind::Micro(Dist::Beckmann, Shadow::Separable, f) => {
             micro::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
         }
+        Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, f) => {
+            compensated::<_, HeightCorrelated>(Ggx::new(p.alpha)?, f, p)?
+        }
+        Kind::KullaConty(Dist::Ggx, Shadow::Separable, f) => {
+            compensated::<_, Separable>(Ggx::new(p.alpha)?, f, p)?
+        }
+        Kind::KullaConty(Dist::Beckmann, Shadow::HeightCorrelated, f) => {
+            compensated::<_, HeightCorrelated>(Beckmann::new(p.alpha)?, f, p)?
+        }
+        Kind::KullaConty(Dist::Beckmann, Shadow::Separable, f) => {
+            compensated::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
+        }
     })
 }
 
@@ -177,5 +217,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::ModifiedPhong => 1.0 / (p.n as f64 + 1.0).sqrt(),
         Kind::BlinnPhong => 2.0 / (p.n as f64 + 1.0).sqrt(),
         Kind::Micro(..) => 2.0 * p.alpha as f64,
+        // The narrow single-scattering lobe sets the breakpoints; the added lobe is as broad as Lambert's.
+        Kind::KullaConty(..) => 2.0 * p.alpha as f64,
     }
 }

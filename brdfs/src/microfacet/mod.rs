@@ -37,23 +37,28 @@
 //! # }
 //! ```
 
+mod albedo_data;
+mod albedo_table;
 #[cfg(feature = "simd")]
 mod batch;
 mod beckmann;
 mod fresnel;
 mod ggx;
+mod kulla_conty;
 mod smith;
 mod special;
 
 #[cfg(test)]
 mod tests;
 
+pub use albedo_table::{ALPHA_REF, AlbedoTable, EnergyTable, N_ALPHA, N_MU, alpha_node, mu_node, node_scale};
 #[cfg(feature = "simd")]
 #[doc(hidden)]
 pub use batch::{DistributionKind, G2Kind};
 pub use beckmann::Beckmann;
 pub use fresnel::{Conductor, Dielectric, Fresnel, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
 pub use ggx::Ggx;
+pub use kulla_conty::{KullaConty, LOSS_MARGIN};
 pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 
 use core::marker::PhantomData;

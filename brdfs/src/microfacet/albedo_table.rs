@@ -1,0 +1,300 @@
+//! The tabulated directional albedo `E(μ, α)` of a single-scattering
+//! microfacet BRDF with `F = 1`, the input of the Kulla–Conty
+//! multiple-scattering lobe ([`KullaConty`](super::KullaConty)).
+
+use super::{Beckmann, Ggx, HeightCorrelated, Separable, albedo_data};
+
+/// Number of `μ = cos θo` nodes per row: node coordinate `μ_ref,j = (j/63)²`,
+/// `j = 0..64` (uniform in `√μ_ref`, see [`node_scale`]).
+pub const N_MU: usize = 64;
+
+/// Number of roughness nodes: `α_k = α_min + (1 − α_min)(k/31)³`, `k = 0..32`,
+/// `α_min = 10⁻⁴` (uniform in the cube root, dense where `E` changes fastest).
+pub const N_ALPHA: usize = 32;
+
+/// The directional albedo of a microfacet BRDF with `F = 1`,
+///
+/// ```text
+/// E(μo, α) = ∫_H f_r(ωi, ωo) cos θi dωi,   μo = cos θo
+/// ```
+///
+/// (Kulla & Conty 2017, "Revisiting Physically Based Shading at
+/// Imageworks", SIGGRAPH course, slide "Energy compensation"), tabulated on
+/// the grid `α_k = α_min + (1 − α_min)(k/31)³` (`k = 0..32`, `α_min = 10⁻⁴ =`
+/// [`MIN_ALPHA`](super::MIN_ALPHA)) × `μ_ref,j = (j/63)²` (`j = 0..64`).
+///
+/// Column `j` of row `k` holds `E` at the `μ` whose node coordinate
+/// ([`node_scale`]) is `μ_ref = (j/63)²` — the plain `μ_j` for `α_k ≥ 0.2`,
+/// nodes crowded towards grazing below; column 0 holds `E` at
+/// `μ_ref = 10⁻⁶`, the grazing limit (`f_r` itself is 0 at `μ = 0` exactly). Every other entry was computed by this project's
+/// integrator ([`radiometry::integrator::Adaptive`], warped onto the BRDF's
+/// own sampling map) with the generator `brdfs/examples/kulla_conty_tables.rs`;
+/// its header states the integration error, and the test
+/// `brdfs/tests/kulla_conty_tables.rs` recomputes a sample of entries with an
+/// independent `f64` quadrature.
+///
+/// Entry error: the generator states `|I(B) − I(4B)| ≤ 7.6·10⁻⁵` over all
+/// entries (the written value is `I(4B)`, `B = 40 000`); the independent
+/// `f64` quadrature of the test agrees to `3.7·10⁻⁵` on 288 sampled entries.
+///
+/// Interpolation: see [`albedo`](Self::albedo) (linear in `√μ` within a
+/// row, Catmull–Rom in `∛(α − α_min)` across rows at fixed `α tan θ`).
+/// Its total error against the exact `E` is at most `3.6·10⁻⁴` for
+/// `α ∈ [0.05, 1]`, `μ ∈ [cos 89°, 1]` (the largest white-furnace deviation
+/// of [`KullaConty`](super::KullaConty) measured by
+/// `brdfs/tests/kulla_conty.rs` on 19 off-node roughnesses × 22 angles ×
+/// 4 variants, at Beckmann, `α = 0.05`, `θo = 87°`); it grows below
+/// `α = 0.05`, where the table's first rows are far apart.
+///
+/// ```
+/// use radiometry_brdfs::microfacet::{AlbedoTable, EnergyTable, Ggx, HeightCorrelated};
+/// let t: &AlbedoTable = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+/// // GGX, α = 1, normal incidence: E = 1 − ln 2 (closed form).
+/// let e = t.albedo(1.0, 1.0);
+/// assert!((e - (1.0 - core::f32::consts::LN_2)).abs() < 1e-4);
+/// ```
+#[derive(Debug, PartialEq)]
+pub struct AlbedoTable {
+    /// `values[k][j] = E(μ_j, α_k)`.
+    pub values: [[f32; N_MU]; N_ALPHA],
+}
+
+/// Which tabulated albedo belongs to a distribution `D` (the implementor)
+/// with shadowing–masking `G`. Implemented for [`Ggx`] and [`Beckmann`] with
+/// [`HeightCorrelated`] and [`Separable`].
+pub trait EnergyTable<G> {
+    /// The table of `E(μ, α)` for this `(D, G)`.
+    const TABLE: &'static AlbedoTable;
+}
+
+impl EnergyTable<HeightCorrelated> for Ggx {
+    const TABLE: &'static AlbedoTable = &albedo_data::GGX_HEIGHT_CORRELATED;
+}
+impl EnergyTable<Separable> for Ggx {
+    const TABLE: &'static AlbedoTable = &albedo_data::GGX_SEPARABLE;
+}
+impl EnergyTable<HeightCorrelated> for Beckmann {
+    const TABLE: &'static AlbedoTable = &albedo_data::BECKMANN_HEIGHT_CORRELATED;
+}
+impl EnergyTable<Separable> for Beckmann {
+    const TABLE: &'static AlbedoTable = &albedo_data::BECKMANN_SEPARABLE;
+}
+
+/// The node coordinate `μ_ref,j = (j/63)²` of column `j` (see [`node_scale`];
+/// the generator evaluates column 0 at `μ_ref = 10⁻⁶`).
+pub const fn mu_node(j: usize) -> f32 {
+    let x = j as f32 / (N_MU - 1) as f32;
+    x * x
+}
+
+/// Smallest tabulated roughness (row 0), [`MIN_ALPHA`](super::MIN_ALPHA).
+const ALPHA_MIN: f32 = super::MIN_ALPHA;
+
+/// `α_k = α_min + (1 − α_min)(k/31)³` of row `k`.
+pub const fn alpha_node(k: usize) -> f32 {
+    let s = k as f32 / (N_ALPHA - 1) as f32;
+    ALPHA_MIN + (1.0 - ALPHA_MIN) * (s * s * s)
+}
+
+/// The Catmull–Rom spline through `p0..p3` at `t ∈ [0, 1]` between `p1` and
+/// `p2` (Catmull & Rom 1974; uniform parametrisation):
+/// `½ (2p1 + (p2 − p0)t + (2p0 − 5p1 + 4p2 − p3)t² + (3p1 − p0 − 3p2 + p3)t³)`.
+#[inline]
+fn catmull_rom(p: [f32; 4], t: f32) -> f32 {
+    let [p0, p1, p2, p3] = p;
+    let a = 2.0 * p1;
+    let b = p2 - p0;
+    let c = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
+    let d = 3.0 * p1 - p0 - 3.0 * p2 + p3;
+    0.5 * (a + t * (b + t * (c + t * d)))
+}
+
+/// Cell index and fraction of `x ∈ [0, 1]` on `n` uniform nodes (`x` is
+/// clamped; NaN → 0).
+#[inline(always)]
+pub(crate) fn cell(x: f32, n: usize) -> (usize, f32) {
+    let last = (n - 2) as f32;
+    let s = if x > 0.0 {
+        (x * (n - 1) as f32).min(n as f32 - 1.0)
+    } else {
+        0.0
+    };
+    let i = s.min(last) as usize;
+    // `i ≤ n − 2`, so `i + 1` is a valid index.
+    (i.min(n - 2), s - i as f32)
+}
+
+impl AlbedoTable {
+    /// `E(μ, α)` for `μ = cos θo ∈ [0, 1]` (clamped, NaN → 0) and
+    /// `α ∈ [α_min, 1]`.
+    ///
+    /// Interpolation in `α` at fixed Smith variable `a = cot θ / α` (not at
+    /// fixed `μ`): the albedo of a rough surface depends on `ωo` mostly
+    /// through `α tan θo` (Smith's `Λ` is a function of `a` alone; Heitz 2014,
+    /// eq. 72), so the steep grazing dip of `E`, which sits at `μ ∼ α`, moves
+    /// with `α`, and interpolating at fixed `μ` would smear it. Row `r` is
+    /// therefore read at `μ'` with `tan θ' = (α/α_r) tan θ`, linear in `√μ'`
+    /// between its nodes, and the four nearest rows are combined by a
+    /// Catmull–Rom spline in `∛(α − α_min)` (the outermost rows continued
+    /// linearly). `α` is clamped to `[α_min, 1]` (NaN → `α_min`).
+    pub fn albedo(&self, mu: f32, alpha: f32) -> f32 {
+        let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
+        let alpha = if alpha > ALPHA_MIN {
+            alpha.min(1.0)
+        } else {
+            ALPHA_MIN
+        };
+        let s2 = (1.0 - mu) * (1.0 + mu);
+        let (k, t) = cell(libm::cbrtf((alpha - ALPHA_MIN) / (1.0 - ALPHA_MIN)), N_ALPHA);
+        let at = |r: usize| {
+            let r = r.min(N_ALPHA - 1);
+            let ar = alpha_node(r);
+            // a-invariant μ' at α_r (tan θ' = (α/α_r) tan θ), then row r's node
+            // coordinate (tan θ_ref = ρ(α_r) tan θ'): one tangent scaling.
+            let q = node_scale(ar) * (alpha / ar);
+            lerp_row(&self.values[r], rescale_mu(mu, s2, q * q))
+        };
+        let p1 = at(k);
+        let p2 = at(k + 1);
+        let p0 = if k >= 1 { at(k - 1) } else { 2.0 * p1 - p2 };
+        let p3 = if k + 2 < N_ALPHA { at(k + 2) } else { 2.0 * p2 - p1 };
+        catmull_rom([p0, p1, p2, p3], t).clamp(0.0, 1.0)
+    }
+}
+
+/// Roughness from which a row's nodes are the plain `μ_j = (j/63)²`; below
+/// it they crowd towards grazing with `α` (see [`node_scale`]).
+pub const ALPHA_REF: f32 = 0.2;
+
+/// `ρ(α) = min(α/ALPHA_REF, 1)`: the nodes of a row (and of a
+/// [`KullaConty`](super::KullaConty) instance) at roughness `α` are
+/// `tan θ_j = tan θ_ref,j / ρ(α)` with `cos θ_ref,j = (j/63)²`, so that for
+/// `α < 0.2` they follow the albedo's grazing dip, which sits at `μ ∼ α`.
+/// A direction's node coordinate is `μ_ref = μ / √(μ² + ρ² sin²θ)`.
+#[inline]
+pub fn node_scale(alpha: f32) -> f32 {
+    if alpha > 0.0 {
+        (alpha / ALPHA_REF).min(1.0)
+    } else {
+        0.0
+    }
+}
+
+/// `μ' = cos θ'` with `tan θ' = √k2 · tan θ`, from `μ = cos θ ≥ 0` and
+/// `s2 = sin²θ`: `μ' = μ / √(μ² + k2 s2)`, in `[0, 1]` (0 when both vanish).
+#[inline(always)]
+pub(crate) fn rescale_mu(mu: f32, s2: f32, k2: f32) -> f32 {
+    let d = mu * mu + k2 * s2;
+    if d > 0.0 {
+        (mu / libm::sqrtf(d)).min(1.0)
+    } else {
+        0.0
+    }
+}
+
+/// The row value at `μ` (clamped to `[0, 1]`, NaN → 0): linear in `√μ`
+/// between nodes, except in the first cell `μ < μ_1 = 63⁻²`, where it is
+/// linear in `μ` (towards grazing `1 − E` vanishes like `μ` for the
+/// height-correlated G2 — measured: `1.4·10⁻⁵` at `μ = 10⁻⁶`, `1.1·10⁻³` at
+/// `10⁻⁴` for GGX `α = 1` — and a chord in `√μ` would overstate it).
+#[inline(always)]
+pub(crate) fn lerp_row(row: &[f32; N_MU], mu: f32) -> f32 {
+    let x = if mu > 0.0 { libm::sqrtf(mu.min(1.0)) } else { 0.0 };
+    let (j, t) = cell(x, N_MU);
+    let t = if j == 0 { t * t } else { t };
+    let (a, b) = (row[j], row[j + 1]);
+    a + t * (b - a)
+}
+
+/// `2 ∫₀¹ r(μ) μ dμ` of a function `r` given on cells `[nodes[j], nodes[j+1]]`
+/// that cover `[0, 1]`, each cell optionally split at `split(j)` (a kink of
+/// `r` inside it): a 4-point Gauss–Legendre rule per piece (exact for
+/// polynomials of degree 7 in `μ`; the functions integrated here are linear
+/// in a smooth monotone map of `μ` on each piece).
+pub(crate) fn cosine_average(
+    nodes: &[f32; N_MU],
+    split: impl Fn(usize) -> Option<f32>,
+    r: impl Fn(f32) -> f32,
+) -> f32 {
+    // Gauss–Legendre, 4 points on [0, 1] (A&S 25.4.29 nodes ±0.8611363, ±0.3399810).
+    const G: [(f32, f32); 4] = [
+        (0.069_431_84, 0.173_927_42),
+        (0.330_009_5, 0.326_072_58),
+        (0.669_990_5, 0.326_072_58),
+        (0.930_568_15, 0.173_927_42),
+    ];
+    let piece = |a: f32, b: f32| {
+        let h = b - a;
+        let mut s = 0.0f32;
+        for &(t, w) in &G {
+            let mu = a + t * h;
+            s += w * r(mu) * mu;
+        }
+        s * h
+    };
+    let mut sum = 0.0f32;
+    for j in 0..N_MU - 1 {
+        let (a, b) = (nodes[j], nodes[j + 1]);
+        sum += match split(j) {
+            Some(m) if m > a && m < b => piece(a, m) + piece(m, b),
+            _ => piece(a, b),
+        };
+    }
+    (2.0 * sum).clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cosine_average_is_exact_for_polynomials() {
+        let nodes: [f32; N_MU] = core::array::from_fn(mu_node);
+        assert!((cosine_average(&nodes, |_| None, |_| 1.0) - 1.0).abs() < 1e-6);
+        // 2∫ μ³ μ dμ = 2/5.
+        assert!((cosine_average(&nodes, |_| None, |m| m * m * m) - 0.4).abs() < 1e-6);
+        let half: [f32; N_MU] = core::array::from_fn(mu_node);
+        // A kink at μ = 0.3 inside a cell: 2∫₀^0.3 μ dμ = 0.09 exactly with the split.
+        let j = (0..N_MU - 1)
+            .find(|&j| half[j] < 0.3 && half[j + 1] > 0.3)
+            .unwrap();
+        let split = |k: usize| (k == j).then_some(0.3f32);
+        let v = cosine_average(&half, split, |m| if m < 0.3 { 1.0 } else { 0.0 });
+        assert!((v - 0.09).abs() < 1e-6, "{v}");
+    }
+
+    #[test]
+    fn cell_stays_in_range() {
+        for x in [f32::NAN, -1.0, 0.0, 0.5, 1.0, 2.0, f32::INFINITY] {
+            let (i, t) = cell(x, N_MU);
+            assert!(i + 1 < N_MU && (0.0..=1.0).contains(&t), "{x}: {i} {t}");
+        }
+    }
+
+    #[test]
+    fn albedo_hits_nodes() {
+        let t = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        for k in [0usize, 1, 7, 31] {
+            for j in [1usize, 5, 63] {
+                let (m, a) = (mu_node(j), alpha_node(k));
+                let rho = node_scale(a);
+                let mu = rescale_mu(m, (1.0 - m) * (1.0 + m), 1.0 / (rho * rho));
+                let e = t.albedo(mu, a);
+                assert!(
+                    (e - t.values[k][j]).abs() < 2e-6,
+                    "{k} {j}: {e} vs {}",
+                    t.values[k][j]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn rescale_mu_is_the_tangent_scaling() {
+        // tan θ = 0.75 → tan θ' = 1.5 (k2 = 4): μ' = 1/√(1 + 2.25).
+        let m = rescale_mu(0.8, 0.36, 4.0);
+        assert!((m - 1.0 / 3.25f32.sqrt()).abs() < 1e-6);
+        assert_eq!(rescale_mu(0.0, 0.0, 1.0), 0.0);
+        assert_eq!(rescale_mu(1.0, 0.0, 1e6), 1.0);
+    }
+}
