@@ -138,6 +138,12 @@
 //! [`Brdf::eval_batch_soa`]: radiometry::Brdf::eval_batch_soa
 //! [`Brdf::pdf_batch`]: radiometry::Brdf::pdf_batch
 
+mod sample;
+mod sincos;
+
+pub(crate) use sample::{SampleKernel, run_samples};
+pub(crate) use sincos::sincosf;
+
 use core::any::Any;
 use radiometry::Spectrum;
 use radiometry::batch::Vec3Soa;
@@ -239,6 +245,31 @@ impl Dirs {
         (self.length_squared() - Vf::ONE)
             .abs()
             .simd_le(Vf::splat(4.0 * f32::EPSILON))
+    }
+
+    /// The hot part of the microfacet `unitize` lane-wise: `w` unchanged
+    /// where it is unit to within `4ε`, else `w · (1/√‖w‖²)` where
+    /// `‖w‖² ∈ [10⁻³⁰, 10³⁰]` (the scalar's second branch); returns the
+    /// result and the mask of the lanes outside both (the scalar's rescaling
+    /// or degenerate branch: the caller hands them back).
+    #[inline(always)]
+    pub(crate) fn unitize(self) -> (Dirs, Vf) {
+        let l2 = self.length_squared();
+        let unit = (l2 - Vf::ONE).abs().simd_le(Vf::splat(4.0 * f32::EPSILON));
+        let in_range = l2.simd_ge(Vf::splat(1e-30)) & l2.simd_le(Vf::splat(1e30));
+        let r = Vf::ONE / l2.sqrt();
+        let scaled = Dirs {
+            x: self.x * r,
+            y: self.y * r,
+            z: self.z * r,
+        };
+        let pick = |a: Vf, b: Vf| unit.select(a, b);
+        let out = Dirs {
+            x: pick(self.x, scaled.x),
+            y: pick(self.y, scaled.y),
+            z: pick(self.z, scaled.z),
+        };
+        (out, !(unit | in_range))
     }
 
     /// `radiometry::frame::try_normalize` lane-wise: `(w/√‖w‖², mask)` where

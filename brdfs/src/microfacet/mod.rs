@@ -546,6 +546,16 @@ where
         batch::pdf(self, crate::simd::Batch::Aos(wi, wo, out))
     }
 
+    /// With the `simd` feature, GGX with either shadowing–masking variant
+    /// (any Fresnel term) uses a vector kernel that returns exactly what
+    /// [`Brdf::sample`] returns (the same `None` decisions; `wi`, `pdf` and
+    /// `weight` bit for bit); other combinations loop over `sample`.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<F::Spectrum>>]) {
+        batch::sample(self, wo, u, out)
+    }
+
     /// Visible-normal sampling (Heitz & d'Eon 2014) followed by mirror
     /// reflection about the sampled normal.
     #[inline]
