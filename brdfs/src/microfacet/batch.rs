@@ -102,11 +102,7 @@ trait SampleV: DistV {
     fn sample_visible(&self, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf);
 }
 
-/// `clamp01` lane-wise: `u > 0 ? min(u, 1) : 0` (NaN → 0).
-#[inline(always)]
-fn clamp01(u: Vf) -> Vf {
-    u.simd_gt(Vf::ZERO).select(u.min(Vf::ONE), Vf::ZERO)
-}
+use super::beckmann_lanes::clamp01;
 
 impl SampleV for GgxV {
     /// `Ggx::sample_visible` lane for lane: spherical caps (Dupuy & Benyoub
@@ -157,6 +153,16 @@ impl DistV for BeckmannV {
     #[inline(always)]
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
         super::beckmann::lanes::projected_area(self.alpha, cos_theta, sin2)
+    }
+}
+
+impl SampleV for BeckmannV {
+    /// `Beckmann::sample_visible` lane for lane (Heitz & d'Eon 2014, §4:
+    /// the visible-slope inversion with a bounded start and two Halley
+    /// steps, `erfinv` for the second slope), see `beckmann_lanes`.
+    #[inline(always)]
+    fn sample_visible(&self, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf) {
+        super::beckmann_lanes::sample_visible(self.alpha, wo, u0, u1)
     }
 }
 
@@ -411,6 +417,24 @@ pub(crate) fn sample<D, G, F>(
             &Sample::<_, _, _, _, true> {
                 b,
                 dist: GgxV::new(alpha),
+            },
+            wo,
+            u,
+            out,
+        ),
+        (DistributionKind::Beckmann { alpha }, G2Kind::HeightCorrelated) => run_samples(
+            &Sample::<_, _, _, _, false> {
+                b,
+                dist: BeckmannV { alpha },
+            },
+            wo,
+            u,
+            out,
+        ),
+        (DistributionKind::Beckmann { alpha }, G2Kind::Separable) => run_samples(
+            &Sample::<_, _, _, _, true> {
+                b,
+                dist: BeckmannV { alpha },
             },
             wo,
             u,

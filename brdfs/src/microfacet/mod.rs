@@ -40,10 +40,14 @@
 #[cfg(feature = "simd")]
 mod batch;
 mod beckmann;
+#[cfg(feature = "simd")]
+mod beckmann_lanes;
 mod fresnel;
 mod ggx;
 mod smith;
 mod special;
+#[cfg(feature = "simd")]
+mod special_lanes;
 
 #[cfg(test)]
 mod tests;
