@@ -272,6 +272,21 @@ impl Dirs {
         (out, !(unit | in_range))
     }
 
+    /// [`unitize`](Self::unitize) with a shortcut for the usual case that
+    /// every lane is already unit (a re-normalisation of a normalised
+    /// vector): then `w` itself and no cold lane, with no square root or
+    /// division.
+    #[inline(always)]
+    pub(crate) fn unitize_again(self) -> (Dirs, Vf) {
+        let l2 = self.length_squared();
+        let unit = (l2 - Vf::ONE).abs().simd_le(Vf::splat(4.0 * f32::EPSILON));
+        if unit.all() {
+            (self, Vf::ZERO)
+        } else {
+            self.unitize()
+        }
+    }
+
     /// `radiometry::frame::try_normalize` lane-wise: `(w/√‖w‖², mask)` where
     /// the mask holds `‖w‖² ∈ (0, ∞)` (the lanes `try_normalize` accepts).
     #[inline(always)]

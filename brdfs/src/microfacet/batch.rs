@@ -292,7 +292,7 @@ where
             z: two_dot * m.z - wo.z,
         };
         let (wi1, cold_1) = reflected.unitize();
-        let (wi, cold_2) = wi1.unitize();
+        let (wi, cold_2) = wi1.unitize_again();
         let (valid, len2, cos2, sin2) = half(wi, wo);
         let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
         let ai = self.dist.area(wi.z, wi.xy_length_squared());

@@ -11,7 +11,7 @@ use super::special_lanes::{
 };
 #[cfg(doc)]
 use super::{Beckmann, MicrofacetDistribution};
-use crate::simd::{Dirs, Vf, narrow, widen};
+use crate::simd::{Dirs, Vd, Vf, narrow, widen};
 
 /// `clamp01` lane-wise: `u > 0 ? min(u, 1) : 0` (NaN → 0).
 #[inline(always)]
@@ -25,89 +25,89 @@ fn bracketed(next: Vf, lo: Vf, hi: Vf) -> Vf {
     (next.simd_ge(lo) & next.simd_le(hi)).select(next, Vf::splat(0.5) * (lo + hi))
 }
 
-/// The `x̃ ≤ 0` branch (`Beckmann::slope_lower`) lane-wise.
+/// `Beckmann::sample_slope_x` lane-wise (`u` already clamped to `[0, 1]`).
+///
+/// The two branches of the scalar code (`slope_lower` for `x̃ ≤ 0`,
+/// `slope_upper` for `x̃ > 0`) share their expensive calls: per lane one
+/// logarithm for the start (`ln(2uC(b)/2C(0))` or `ln G*`), and per Halley
+/// step one `erfcx` (of `−x` or `x`) and one logarithm (of `H/2C(0)` or
+/// `G`); the cheap `f32` step formulas of both branches run in every lane
+/// and a select keeps the one the scalar code takes.
 #[inline(always)]
-fn slope_lower(c: Vf, s: Vf, u: Vf, total2: Vf, c0: Vf) -> Vf {
-    let (zero, one, two) = (Vf::ZERO, Vf::ONE, Vf::splat(2.0));
+fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
+    let (zero, one, two, four) = (Vf::ZERO, Vf::ONE, Vf::splat(2.0), Vf::splat(4.0));
+    let (max, half) = (Vf::splat(MAX_SLOPE), Vf::splat(0.5));
+    let sqrt_pi = Vf::splat(SQRT_PI);
+    let b = (s * max).simd_le(c).select(max, c / s);
+    let sf = s * Vf::splat(FRAC_1_SQRT_PI);
+    let excess = sf * beckmann_s_v(b);
+    let total2 = two * c + excess;
+    let c0 = c + sf;
+    let lower = (u * total2).simd_le(c0);
+
+    // Start. Lower: L₀ = −ln(u 2C(b)/2C(0)) (the product in f64); upper:
+    // ln G*, G* = (1 − u) 2C(b). One logarithm of the selected argument.
     let inv_c0 = one / c0;
-    let (uh, th, ih) = (widen(u), widen(total2), widen(inv_c0));
-    let l0 = narrow([-ln64_v(uh[0] * th[0] * ih[0]), -ln64_v(uh[1] * th[1] * ih[1])]);
-    let l0 = l0.max(zero);
-    let x = -l0.sqrt();
+    let gs = (one - u) * total2;
+    let (uh, th, ih, gh) = (widen(u), widen(total2), widen(inv_c0), widen(gs));
+    let lw = widen(lower.select(-one, one));
+    let ln = |k: usize| {
+        let arg = lw[k].simd_lt(Vd::ZERO).select(uh[k] * th[k] * ih[k], gh[k]);
+        ln64_v(arg)
+    };
+    let ln = narrow([ln(0), ln(1)]);
+    let l0 = (-ln).max(zero);
+    let ln_gs = ln;
+    // Lower start: max(−√L₀, −L₀/g'(0), −MAX_SLOPE).
+    let xl = -l0.sqrt();
     let tangent = -l0 * (Vf::splat(0.5 * SQRT_PI) * c0 / c);
     // `f32::max` ignores a NaN second operand, as `wide`'s `max` does.
-    let x = c.simd_gt(zero).select(x.max(tangent), x);
-    let mut x = x.max(Vf::splat(-MAX_SLOPE));
-    let (mut lo, mut hi) = (x, zero);
-    let sf = s * Vf::splat(FRAC_1_SQRT_PI);
-    for _ in 0..2 {
-        let h = c * erfcx_v(-x) + sf;
-        let g = (l0 - x * x) + lnf_v(h * inv_c0);
-        let pos = g.simd_gt(zero);
-        hi = pos.select(x, hi);
-        lo = pos.select(lo, x);
-        let den = c - x * s;
-        let gh = g * Vf::splat(SQRT_PI) * h;
-        let step = two * gh * den
-            / (Vf::splat(4.0) * den * den * (one + Vf::splat(0.5) * g) + gh * (s + two * x * den));
-        x = bracketed(x - step, lo, hi);
-    }
-    x.max(Vf::splat(-MAX_SLOPE)).min(zero) + zero
-}
-
-/// The `x̃ > 0` branch (`Beckmann::slope_upper`) lane-wise.
-#[inline(always)]
-fn slope_upper(c: Vf, s: Vf, u: Vf, b: Vf, total2: Vf, excess: Vf) -> Vf {
-    let (zero, one, two) = (Vf::ZERO, Vf::ONE, Vf::splat(2.0));
-    let gs = (one - u) * total2;
-    let ln_gs = lnf_v(gs);
+    let xl = c.simd_gt(zero).select(xl.max(tangent), xl).max(-max);
+    // Upper start: min(b, z − h, endpoint bounds), then ≥ 0.
     let q = (gs - excess) / c;
     let z = erfcinv_v(q);
     let zs = z * s;
     let shift = z - s / (((c * c + zs * zs).sqrt() + c) - zs);
     let use_q = c.simd_gt(zero) & q.simd_gt(zero) & q.simd_lt(two);
-    let mut x = use_q.select(b.min(shift), b);
-    let sqrt_pi = Vf::splat(SQRT_PI);
+    let xu = use_q.select(b.min(shift), b);
     let xe = (b - (sqrt_pi * gs / (s * exp_neg_sq_v(b))).sqrt()).max(zero);
     let end = b - (sqrt_pi * gs / (s * exp_neg_sq_v(xe))).sqrt();
-    x = b.simd_lt(Vf::splat(MAX_SLOPE)).select(x.min(end), x);
-    let mut x = x.max(zero);
-    let (mut lo, mut hi) = (zero, b);
-    let sf = s * Vf::splat(FRAC_1_SQRT_PI);
+    let xu = b.simd_lt(max).select(xu.min(end), xu).max(zero);
+
+    let mut x = lower.select(xl, xu);
+    let mut lo = lower.select(xl, zero);
+    let mut hi = lower.select(zero, b);
     for _ in 0..2 {
+        let ex = erfcx_v(lower.select(-x, x));
         let e = exp_neg_sq_v(x);
         let den = c - x * s;
-        let g = excess + e * (c * erfcx_v(x) - sf);
+        // Lower: H = c erfcx(−x) + s/√π, g = L₀ − x² + ln(H/2C(0)).
+        let h = c * ex + sf;
+        // Upper: G = excess + e^{−x²}(c erfcx(x) − s/√π), φ = ln G − ln G*.
+        let gu = excess + e * (c * ex - sf);
+        let lnv = lnf_v(lower.select(h * inv_c0, gu));
+        let g = (l0 - x * x) + lnv;
         let gpos = g.simd_gt(zero);
-        let phi = lnf_v(g) - ln_gs;
+        let gh_l = g * sqrt_pi * h;
+        let next_l =
+            x - two * gh_l * den / (four * den * den * (one + half * g) + gh_l * (s + two * x * den));
+        let upos = gu.simd_gt(zero);
+        let phi = lnv - ln_gs;
         let ppos = phi.simd_gt(zero);
-        lo = (gpos & ppos).select(x, lo);
-        hi = (gpos & !ppos).select(x, hi);
-        hi = gpos.select(hi, x);
-        let p4 = Vf::splat(4.0) * den * e * Vf::splat(FRAC_1_SQRT_PI);
-        let pg = phi * g;
-        let next = x + two * pg * den / (p4 * den * (one + Vf::splat(0.5) * phi) - pg * (s + two * x * den));
-        let next = gpos.select(next, Vf::splat(f32::NAN));
-        x = bracketed(next, lo, hi);
+        let p4 = four * den * e * Vf::splat(FRAC_1_SQRT_PI);
+        let pg = phi * gu;
+        let next_u = x + two * pg * den / (p4 * den * (one + half * phi) - pg * (s + two * x * den));
+        let next_u = upos.select(next_u, Vf::splat(f32::NAN));
+        // Brackets: lower raises `hi` where g > 0; upper raises `lo` where
+        // φ > 0 and lowers `hi` otherwise (also where G ≤ 0).
+        let raise_lo = lower.select(!gpos, upos & ppos);
+        lo = raise_lo.select(x, lo);
+        hi = raise_lo.select(hi, x);
+        x = bracketed(lower.select(next_l, next_u), lo, hi);
     }
-    x.max(zero).min(b) + zero
-}
-
-/// `Beckmann::sample_slope_x` lane-wise (`u` already clamped to `[0, 1]`).
-#[inline(always)]
-fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
-    let max = Vf::splat(MAX_SLOPE);
-    let b = (s * max).simd_le(c).select(max, c / s);
-    let excess = s * Vf::splat(FRAC_1_SQRT_PI) * beckmann_s_v(b);
-    let total2 = Vf::splat(2.0) * c + excess;
-    let c0 = c + s * Vf::splat(FRAC_1_SQRT_PI);
-    let target = u * total2;
-    let x = target.simd_le(c0).select(
-        slope_lower(c, s, u, total2, c0),
-        slope_upper(c, s, u, b, total2, excess),
-    );
-    let x = u.simd_ge(Vf::ONE).select(b, x);
-    u.simd_le(Vf::ZERO).select(-max, x)
+    let x = lower.select(x.max(-max).min(zero), x.max(zero).min(b)) + zero;
+    let x = u.simd_ge(one).select(b, x);
+    u.simd_le(zero).select(-max, x)
 }
 
 /// [`Beckmann`]'s [`sample_visible`](MicrofacetDistribution::sample_visible)
