@@ -195,8 +195,8 @@ pub trait MicrofacetDistribution {
 
     /// Hidden hook of the `simd` feature: which vectorised kernel (if any)
     /// the batch methods of [`Microfacet`] may use for this distribution.
-    /// The default, `DistributionKind::Scalar`, keeps the scalar loop; only
-    /// [`Ggx`] overrides it. Not part of the stable API.
+    /// The default, `DistributionKind::Scalar`, keeps the scalar loop;
+    /// [`Ggx`] and [`Beckmann`] override it. Not part of the stable API.
     #[cfg(feature = "simd")]
     #[doc(hidden)]
     #[inline]
@@ -550,10 +550,12 @@ where
         batch::pdf(self, crate::simd::Batch::Aos(wi, wo, out))
     }
 
-    /// With the `simd` feature, GGX with either shadowing–masking variant
-    /// (any Fresnel term) uses a vector kernel that returns exactly what
-    /// [`Brdf::sample`] returns (the same `None` decisions; `wi`, `pdf` and
-    /// `weight` bit for bit); other combinations loop over `sample`.
+    /// With the `simd` feature, GGX and Beckmann with either
+    /// shadowing–masking variant (any Fresnel term) use a vector kernel that
+    /// returns exactly what [`Brdf::sample`] returns (the same `None`
+    /// decisions; `wi`, `pdf` and `weight` bit for bit, so the pdf is also
+    /// `pdf_batch` of the returned `wi` bit for bit); other combinations
+    /// loop over `sample`.
     #[cfg(feature = "simd")]
     #[inline]
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<F::Spectrum>>]) {
