@@ -331,7 +331,7 @@ const LOG_POLY: [f64; 10] = [
 ];
 
 /// Bits of `√½` (`f64`).
-const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
+pub(super) const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
 
 /// `ln x` in `f64` for finite `x > 0` (the callers pass positive `f32`
 /// values, normal in `f64`), to 4·10⁻⁹ relative in the mantissa part:
@@ -350,7 +350,7 @@ pub(crate) fn ln64(x: f64) -> f64 {
 /// The bit part of [`ln64`]: `(k, m)` with `x = 2^k m`, `m ∈ [√½, √2)`
 /// (`k` as an exact `f64`).
 #[inline(always)]
-pub(super) fn ln64_split(x: f64) -> (f64, f64) {
+fn ln64_split(x: f64) -> (f64, f64) {
     let bits = x.to_bits();
     let k = (bits.wrapping_sub(SQRT_HALF_BITS) as i64) >> 52;
     (k as f64, f64::from_bits(bits.wrapping_sub((k as u64) << 52)))
