@@ -46,7 +46,7 @@ use crate::brdf::Brdf;
 use crate::frame::try_normalize;
 use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
 use crate::integrator::{
-    CHUNK, DirectionalAlbedo, Estimate, Integrand, IntegrandSample, IntegrateError, Integrator,
+    CHUNK, DirectionalAlbedo, Estimate, Integrand, IntegrandSample, IntegrateError, Integrator, Status,
 };
 use crate::math::safe_sqrt;
 use crate::radiometric;
@@ -124,6 +124,7 @@ fn exact<S: Spectrum>(value: S, evaluations: u64) -> WideEstimate<S> {
         value: value.to_wide(),
         error: <S::Wide as WideSpectrum>::splat(0.0),
         evaluations,
+        status: Status::Resolved,
     }
 }
 
@@ -142,6 +143,7 @@ pub fn add_estimates<W: WideSpectrum>(a: Estimate<W>, b: Estimate<W>) -> Estimat
         value: a.value.zip(b.value, |x, y| x + y),
         error: a.error.zip(b.error, |x, y| x + y),
         evaluations: a.evaluations.saturating_add(b.evaluations),
+        status: a.status.combine(b.status),
     }
 }
 
@@ -358,6 +360,7 @@ impl<S: Spectrum> Light for Directional<S> {
             value: v,
             error: <S::Wide as WideSpectrum>::splat(0.0),
             evaluations: 1,
+            status: Status::Resolved,
         })
     }
 }
@@ -441,6 +444,7 @@ impl<S: Spectrum> Light for UniformSky<S> {
             value: scale_wide(rho.value, self.radiance),
             error: scale_wide(rho.error, self.radiance),
             evaluations: rho.evaluations,
+            status: rho.status,
         })
     }
 }

@@ -67,6 +67,12 @@ enum Command {
         /// Hide the progress bar on stderr.
         #[arg(long)]
         no_progress: bool,
+        /// Only the cases whose name contains one of these comma-separated substrings (e.g. `ggx-a0.01,to89.9`).
+        #[arg(long, value_delimiter = ',')]
+        cases: Vec<String>,
+        /// Only the integrators whose name contains one of these comma-separated substrings (e.g. `gauss,adaptive`).
+        #[arg(long, value_delimiter = ',')]
+        integrators: Vec<String>,
     },
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi of a BRDF.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
@@ -90,7 +96,8 @@ enum Command {
         /// Seed of Monte Carlo integrators.
         #[arg(long, default_value_t = model::DEFAULT_SEED)]
         seed: u64,
-        /// Output format (json keys: value, error, evaluations, seconds, integrator, budget, stopped).
+        /// Output format (json keys: value, error, evaluations, seconds, integrator, budget, stopped, status,
+        /// status_reason).
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
@@ -264,6 +271,9 @@ fn main() -> ExitCode {
                     if let Some(s) = stopped {
                         print!(", stopped: {s}");
                     }
+                    if !est.status.is_resolved() {
+                        print!(", {}", est.status);
+                    }
                     println!();
                 }
                 Format::Json => {
@@ -275,6 +285,8 @@ fn main() -> ExitCode {
                         "integrator": integ.name(),
                         "budget": used_budget,
                         "final_run_evaluations": est.evaluations,
+                        "status": est.status.as_str(),
+                        "status_reason": est.status.reason(),
                     });
                     if let Some(s) = stopped {
                         j["stopped"] = serde_json::Value::String(s.into());
@@ -321,6 +333,8 @@ fn main() -> ExitCode {
             threads,
             seed,
             no_progress,
+            cases,
+            integrators,
         } => {
             let threads = threads
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
@@ -331,6 +345,8 @@ fn main() -> ExitCode {
                 threads,
                 seed,
                 progress: !no_progress,
+                cases,
+                integrators,
             }) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {

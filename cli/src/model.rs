@@ -235,6 +235,7 @@ pub fn all_integrators(seed: u64, abs_tol: f64) -> Vec<AnyIntegrator> {
     let mut v = vec![
         AnyIntegrator::GaussLegendre(GaussLegendre::new()),
         AnyIntegrator::Warped(WarpedGaussLegendre::new()),
+        AnyIntegrator::Warped(WarpedGaussLegendre::horizon_split()),
         AnyIntegrator::Adaptive(adaptive),
         AnyIntegrator::Adaptive(adaptive.warped()),
     ];

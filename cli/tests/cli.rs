@@ -94,9 +94,17 @@ fn albedo_json_keys_and_closed_forms() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let j = json(&o);
-    for k in ["value", "error", "evaluations", "seconds"] {
+    for k in [
+        "value",
+        "error",
+        "evaluations",
+        "seconds",
+        "status",
+        "status_reason",
+    ] {
         assert!(j.get(k).is_some(), "missing {k}: {j}");
     }
+    assert_eq!(j["status"], "resolved", "{j}");
     assert!((j["value"].as_f64().unwrap() - 0.5).abs() < 1e-5);
     assert!(j["evaluations"].as_u64().unwrap() <= 4096);
 
@@ -125,6 +133,25 @@ fn albedo_json_keys_and_closed_forms() {
         (v - exact).abs()
     );
     assert_eq!(j["integrator"], "adaptive");
+
+    // A Phong lobe of exponent 10⁶ between the nodes of a 64-evaluation
+    // product rule: the estimate is reported, but flagged.
+    let o = run(&[
+        "albedo",
+        "phong(exponent=1000000, ks=1, kd=0)",
+        "--theta-o",
+        "60",
+        "--integrator",
+        "gauss-legendre",
+        "--budget",
+        "64",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["status"], "unresolved", "{j}");
+    assert!(!j["status_reason"].as_str().unwrap().is_empty(), "{j}");
 }
 
 #[test]
@@ -298,13 +325,19 @@ fn tradeoff_quick_writes_csv_svg_and_summary() {
     assert_eq!(
         lines.next(),
         Some(
-            "case,integrator,budget,evaluations,estimate,reference,abs_error,rel_error,error_estimate,seconds"
+            "case,integrator,budget,evaluations,estimate,reference,abs_error,rel_error,error_estimate,seconds,status,status_reason"
         )
     );
     let mut n = 0;
     for l in lines {
         let f: Vec<&str> = l.split(',').collect();
-        assert_eq!(f.len(), 10, "{l}");
+        assert_eq!(f.len(), 12, "{l}");
+        // The status columns follow the ten numeric ones.
+        assert!(
+            (f[10] == "resolved" && f[11].is_empty()) || (f[10] == "unresolved" && !f[11].is_empty()),
+            "{l}"
+        );
+        let f = &f[..10];
         let budget: u32 = f[2].parse().unwrap();
         assert!(budget <= 4096, "quick budgets ≤ 4096: {l}");
         let evals: u64 = f[3].parse().unwrap();

@@ -3,6 +3,7 @@
 //! `(μ, φ)` and the rounding of unit-square coordinates to `f32` (the
 //! chunked evaluation of integrand values is in [`super::chunk`]).
 
+use super::{MIN_EFFECTIVE_SAMPLES, MIN_HITS, Status, Unresolved};
 use crate::spectrum::WideSpectrum;
 use glam::Vec3;
 
@@ -57,6 +58,68 @@ pub(crate) struct Moments<W> {
     d: WideSum<W>,
     d2: WideSum<W>,
     n: u64,
+    /// What the status of a Monte Carlo estimate is judged from.
+    pub(crate) diag: SampleDiagnostics<W>,
+}
+
+/// Support and tail diagnostics of a set of Monte Carlo samples `xₖ`: the
+/// number of non-zero samples ("hits") and, per channel, `Σ|x|` and `Σx²`,
+/// from which the effective sample size `(Σ|x|)²/Σx²` follows (Kong 1992;
+/// Owen 2013, §9.3: the number of equally weighted samples carrying the
+/// same information; it collapses when a few samples dominate the sum).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SampleDiagnostics<W> {
+    hits: u64,
+    abs: WideSum<W>,
+    sq: WideSum<W>,
+}
+
+impl<W: WideSpectrum> SampleDiagnostics<W> {
+    #[inline]
+    pub(crate) fn new() -> Self {
+        Self {
+            hits: 0,
+            abs: WideSum::new(),
+            sq: WideSum::new(),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn push(&mut self, x: W) {
+        if x.map(f64::abs).max_channel() > 0.0 {
+            self.hits += 1;
+        }
+        self.abs.add(x.map(f64::abs));
+        self.sq.add(x.map(|v| v * v));
+    }
+
+    /// Adds another set's diagnostics.
+    pub(crate) fn merge(&mut self, o: &Self) {
+        self.hits += o.hits;
+        self.abs.add(o.abs.value());
+        self.sq.add(o.sq.value());
+    }
+
+    /// The status: no hit → `NoSupportSeen`; fewer than [`MIN_HITS`] →
+    /// `FewHits`; an effective sample size below
+    /// [`MIN_EFFECTIVE_SAMPLES`] in any channel with a non-zero sum →
+    /// `HeavyTail`; else resolved.
+    pub(crate) fn status(&self) -> Status {
+        if self.hits == 0 {
+            return Status::Unresolved(Unresolved::NoSupportSeen);
+        }
+        if self.hits < MIN_HITS {
+            return Status::Unresolved(Unresolved::FewHits);
+        }
+        let (a, q) = (self.abs.value(), self.sq.value());
+        for i in 0..W::CHANNELS {
+            let (a, q) = (a.channel(i), q.channel(i));
+            if q > 0.0 && a * a / q < MIN_EFFECTIVE_SAMPLES {
+                return Status::Unresolved(Unresolved::HeavyTail);
+            }
+        }
+        Status::Resolved
+    }
 }
 
 impl<W: WideSpectrum> Moments<W> {
@@ -67,6 +130,7 @@ impl<W: WideSpectrum> Moments<W> {
             d: WideSum::new(),
             d2: WideSum::new(),
             n: 0,
+            diag: SampleDiagnostics::new(),
         }
     }
 
@@ -79,6 +143,7 @@ impl<W: WideSpectrum> Moments<W> {
         self.d.add(d);
         self.d2.add(d.map(|v| v * v));
         self.n += 1;
+        self.diag.push(x);
     }
 
     #[inline]

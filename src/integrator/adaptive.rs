@@ -3,7 +3,7 @@
 
 use super::acc::{self, F32_FLOOR, WideSum};
 use super::chunk::{self, BatchFn};
-use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
+use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf};
 use crate::spectrum::WideSpectrum;
 
 /// Most live regions kept on the stack. When the table is full, the
@@ -516,15 +516,30 @@ impl Adaptive {
             live += 1;
         }
         let (mut val, mut err, mut abs) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
+        let mut sq = WideSum::<W>::new();
         for r in &regions[..live] {
             val.add(r.value);
             err.add(r.error);
             abs.add(r.abs);
+            sq.add(r.abs.map(|a| a * a));
         }
+        let abs = abs.value();
+        // No node of any region saw the support: `0 ± 0` says nothing.
+        // The support seen by a handful of regions only (effective region
+        // count `(Σ|Q_r|)²/Σ|Q_r|²` below 4): a lobe met by the tails of
+        // a few regions' rules, not resolved by refinement.
+        let status = if acc::max_abs(abs) <= 0.0 {
+            Status::Unresolved(Unresolved::NoSupportSeen)
+        } else if live >= 8 && super::gauss_legendre::effective_nodes(abs, sq.value()) < 4.0 {
+            Status::Unresolved(Unresolved::FewNodes)
+        } else {
+            Status::Resolved
+        };
         Ok(Estimate {
             value: val.value(),
-            error: acc::add(err.value(), abs.value().map(|a| a * F32_FLOOR)),
+            error: acc::add(err.value(), abs.map(|a| a * F32_FLOOR)),
             evaluations: evals,
+            status,
         })
     }
 }

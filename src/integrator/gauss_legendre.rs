@@ -3,9 +3,10 @@
 //! the product rule on the unit square pulled through the integrand's
 //! sampling map ([`WarpedGaussLegendre`]).
 
-use super::acc::{F32_FLOOR, WideSum};
+use super::acc::to_unit_f32;
+use super::acc::{self, F32_FLOOR, WideSum};
 use super::chunk::{self, BatchFn, CHUNK};
-use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf};
+use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf};
 use crate::spectrum::WideSpectrum;
 
 /// Largest Gauss–Legendre order per axis (nodes live in fixed-size stack
@@ -127,11 +128,14 @@ fn product_square<W: WideSpectrum>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
-) -> Result<(W, W), IntegrateError> {
+) -> Result<(W, W, W, bool), IntegrateError> {
     let ra = UnitRule::new(na);
     let rb = UnitRule::new(nb);
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
+    let mut sq = WideSum::<W>::new();
+    // Σ|w g| of the first and the last row (largest channel).
+    let (mut first_row, mut last_row) = (0.0f64, 0.0f64);
     let mut pts = [[0.0f64; 2]; CHUNK];
     let mut wts = [0.0f64; CHUNK];
     let mut vals = [W::splat(0.0); CHUNK];
@@ -145,14 +149,76 @@ fn product_square<W: WideSpectrum>(
             wts[k] = ra.w[i] * rb.w[j];
         }
         f(&pts[..n], &mut vals[..n])?;
-        for (v, &wt) in vals[..n].iter().zip(&wts[..n]) {
+        for (k, (v, &wt)) in vals[..n].iter().zip(&wts[..n]).enumerate() {
             let v = v.map(|c| c * wt);
             sum.add(v);
             abs.add(v.map(f64::abs));
+            sq.add(v.map(|c| c * c));
+            let i = (start + k) / rb.n;
+            let m = v.map(f64::abs).max_channel();
+            if i == 0 {
+                first_row += m;
+            }
+            if i + 1 == ra.n {
+                last_row += m;
+            }
         }
         start += n;
     }
-    Ok((sum.value(), abs.value()))
+    let total_abs = abs.value().max_channel();
+    let edge_peak = ra.n > 2 && total_abs > 0.0 && first_row.max(last_row) > 0.5 * total_abs;
+    Ok((sum.value(), abs.value(), sq.value(), edge_peak))
+}
+
+/// The effective number of nodes behind a rule's sum, per channel
+/// `(Σ|wₖgₖ|)² / Σ(wₖgₖ)²` (the quadrature analogue of Kong's effective
+/// sample size): about the node count for a smooth integrand, 1–3 when a
+/// lobe narrower than the node spacing is seen by a handful of nodes. The
+/// smallest over channels with a non-zero sum (`∞` when all are zero).
+pub(crate) fn effective_nodes<W: WideSpectrum>(abs: W, sq: W) -> f64 {
+    let mut m = f64::INFINITY;
+    for i in 0..W::CHANNELS {
+        let (a, q) = (abs.channel(i), sq.channel(i));
+        if q > 0.0 {
+            m = m.min(a * a / q);
+        }
+    }
+    m
+}
+
+/// Fewest effective nodes ([`effective_nodes`]) behind a resolved
+/// quadrature estimate.
+pub const MIN_EFFECTIVE_NODES: f64 = 16.0;
+
+/// Bound on what a warped rule of order `(na, nb)` misses at the edges of
+/// its inner axis: on each line `u₀ = aᵢ`, where the support flag at an
+/// end (`u₁ = 0` or `1`) differs from that at the nearest node `x`, a step
+/// lies in the gap no node of the rule sees, and the line integral may be
+/// off by up to `|h(aᵢ, x)| · gap`. Returns `Σᵢ wᵢ (those terms)` and the
+/// evaluations spent (four per line: both ends and both end nodes).
+fn edge_gap_bound<W: WideSpectrum>(
+    na: usize,
+    nb: usize,
+    f: &mut impl BatchFn<W>,
+) -> Result<(W, usize), IntegrateError> {
+    let ra = UnitRule::new(na);
+    let rb = UnitRule::new(nb);
+    let (lo, hi) = (rb.x[0], rb.x[rb.n - 1]);
+    let mut bound = WideSum::<W>::new();
+    let mut vals = [W::splat(0.0); 4];
+    for i in 0..ra.n {
+        let a = ra.x[i];
+        f(&[[a, 0.0], [a, lo], [a, hi], [a, 1.0]], &mut vals)?;
+        let mut b = W::splat(0.0);
+        if nonzero(&vals[0]) != nonzero(&vals[1]) {
+            b = acc::add(b, vals[1].map(|v| v.abs() * lo));
+        }
+        if nonzero(&vals[3]) != nonzero(&vals[2]) {
+            b = acc::add(b, vals[2].map(|v| v.abs() * (1.0 - hi)));
+        }
+        bound.add(b.map(|v| v * ra.w[i]));
+    }
+    Ok((bound.value(), 4 * ra.n))
 }
 
 /// The orders of the rule and its comparison rules: `(na, nb)`, then
@@ -179,6 +245,25 @@ fn levels_cost(na: usize, nb: usize) -> usize {
     l[..c].iter().map(|&(a, b)| a * b).sum()
 }
 
+/// One run of a product rule: `Σ w g`, the channel-wise `Σ |w g|` (for the
+/// rounding floor), the evaluations spent and what the rule saw.
+struct RuleSum<W> {
+    sum: W,
+    abs: W,
+    /// `Σ (w g)²` channel-wise (for [`effective_nodes`]).
+    sq: W,
+    evaluations: usize,
+    /// Some node saw a non-zero value.
+    support_seen: bool,
+    /// Some line had a step the rule could not locate (split rule only).
+    unlocated: bool,
+    /// More than half of `Σ|w g|` sits on the first or the last row of
+    /// outer nodes: the peak lies between them and the edge of the square
+    /// (plain rule only; e.g. a lobe at the pole `μ = 1` narrower than the
+    /// gap to the last `μ` node).
+    edge_peak: bool,
+}
+
 /// Runs the rule `Q₀` of order `(na, nb)` and the comparison rules
 /// `Q₁, Q₂, Q₃` of [`levels`], with differences `e₁ = |Q₀ − Q₁|`,
 /// `e₂ = |Q₁ − Q₂|`, `e₃ = |Q₂ − Q₃|` (channel-wise). Error estimate:
@@ -194,16 +279,32 @@ fn levels_cost(na: usize, nb: usize) -> usize {
 /// plus the `f32` rounding floor `2⁻²³ Σ|w g|`. (A rate-based safeguard
 /// in the spirit of QUADPACK's error heuristics, Piessens et al. 1983,
 /// §2.2.) The comparison rules cost ≈ 33 % extra.
+///
+/// Status: [`Unresolved::NoSupportSeen`] when no node of any level saw a
+/// non-zero value; [`Unresolved::UnlocatedStep`] when the split rule met a
+/// line with more steps than it locates.
 fn with_comparison_rules<W: WideSpectrum>(
     na: usize,
     nb: usize,
-    mut f: impl BatchFn<W>,
+    extra: (W, usize),
+    mut rule: impl FnMut(usize, usize) -> Result<RuleSum<W>, IntegrateError>,
 ) -> Result<Estimate<W>, IntegrateError> {
     let (lv, count) = levels(na, nb);
-    let (q0, abs) = product_square(na, nb, &mut f)?;
-    let mut q = [q0; 4];
+    let first = rule(na, nb)?;
+    let abs = first.abs;
+    let few_nodes = effective_nodes(first.abs, first.sq) < MIN_EFFECTIVE_NODES;
+    let mut evaluations = first.evaluations + extra.1;
+    // Support as seen by the rule itself (a comparison rule that sees what
+    // `Q₀` misses does not make `Q₀`'s zero trustworthy).
+    let support_seen = first.support_seen;
+    let edge_peak = first.edge_peak;
+    let mut unlocated = first.unlocated;
+    let mut q = [first.sum; 4];
     for k in 1..count {
-        q[k] = product_square(lv[k].0, lv[k].1, &mut f)?.0;
+        let r = rule(lv[k].0, lv[k].1)?;
+        q[k] = r.sum;
+        evaluations += r.evaluations;
+        unlocated |= r.unlocated;
     }
     let error = W::from_fn(|i| {
         let c = |k: usize| q[k].channel(i);
@@ -224,12 +325,242 @@ fn with_comparison_rules<W: WideSpectrum>(
         } else {
             e1.max(e2)
         };
-        e + abs.channel(i) * F32_FLOOR
+        e + extra.0.channel(i) + abs.channel(i) * F32_FLOOR
     });
+    let status = if !support_seen {
+        Status::Unresolved(Unresolved::NoSupportSeen)
+    } else if unlocated {
+        Status::Unresolved(Unresolved::UnlocatedStep)
+    } else if few_nodes || edge_peak {
+        Status::Unresolved(Unresolved::FewNodes)
+    } else {
+        Status::Resolved
+    };
     Ok(Estimate {
-        value: q0,
+        value: q[0],
         error,
-        evaluations: levels_cost(na, nb) as u64,
+        evaluations: evaluations as u64,
+        status,
+    })
+}
+
+/// The plain product rule of order `(na, nb)` as a [`RuleSum`].
+fn plain_rule<W: WideSpectrum>(
+    na: usize,
+    nb: usize,
+    f: &mut impl BatchFn<W>,
+) -> Result<RuleSum<W>, IntegrateError> {
+    let (sum, abs, sq, edge_peak) = product_square(na, nb, f)?;
+    Ok(RuleSum {
+        sum,
+        abs,
+        sq,
+        evaluations: na * nb,
+        support_seen: abs.max_channel() > 0.0,
+        unlocated: false,
+        edge_peak,
+    })
+}
+
+/// Smallest order at which [`WarpedGaussLegendre`] uses the split rule
+/// (budgets of a few thousand); below it the plain rule's larger order pays more.
+const MIN_SPLIT_ORDER: usize = 8;
+
+/// Bisection steps per located step of the split rule: from a node gap of
+/// the inner rule down to below the `f32` resolution of `u` (the sampling
+/// map sees `u` in `f32`).
+const BISECTION_STEPS: usize = 24;
+
+/// Most steps per line the split rule locates (four: up to three support
+/// pieces, as on the lines of GGX's visible-normal map at grazing `ωo`,
+/// where the support is `[0, a) ∪ (b, c)`).
+const MAX_STEPS_PER_LINE: usize = 4;
+
+/// Worst-case evaluations of one line of the split rule with `m` inner
+/// nodes: the `m` nodes and both ends, [`BISECTION_STEPS`] per located
+/// step, and the re-run rule on the support pieces (`m` nodes on one
+/// piece, `⌈m/2⌉` on each of up to three).
+fn split_line_cost(m: usize) -> usize {
+    (m + 2) + MAX_STEPS_PER_LINE * BISECTION_STEPS + 3 * m.div_ceil(2)
+}
+
+/// Worst-case evaluations of the split rule of order `n` with its
+/// comparison rules.
+fn split_levels_cost(n: usize) -> usize {
+    let (l, c) = levels(n, n);
+    l[..c].iter().map(|&(a, b)| a * split_line_cost(b)).sum()
+}
+
+/// Whether a value is non-zero in some channel (the integrand's support).
+#[inline]
+fn nonzero<W: WideSpectrum>(v: &W) -> bool {
+    v.map(f64::abs).max_channel() > 0.0
+}
+
+/// Sidi's sin²-transform `S(t) = t − sin(2πt)/(2π)` of `[0,1]` onto itself
+/// and `S'(t) = 2 sin²(πt)` (Sidi 1993, "A new variable transformation for
+/// numerical integration", Int. Ser. Numer. Math. 112). `S(t) ≈ (2π²/3) t³`
+/// near both ends, so Gauss nodes in `t` crowd cubically towards the piece
+/// ends in `u`: a near-end singularity at distance `δ` moves to distance
+/// `≈ δ^{1/3}` in `t`, which restores fast convergence.
+#[inline]
+fn sidi(t: f64) -> (f64, f64) {
+    use core::f64::consts::{PI, TAU};
+    let s = libm::sin(PI * t);
+    ((t - libm::sin(TAU * t) / TAU).clamp(0.0, 1.0), 2.0 * s * s)
+}
+
+/// The *split* product rule on `[0,1]²` (horizon-aware warped quadrature).
+///
+/// Outer Gauss–Legendre nodes `aᵢ` in `u₀`; on each line `u₀ = aᵢ` the
+/// inner integral `∫₀¹ h(aᵢ, u₁) du₁` of the warped integrand `h = g/p` is
+/// computed on the *support* of `h` only. The line is first evaluated at the
+/// `nb` inner nodes and both ends; where the support flag (`h ≠ 0`) changes
+/// between neighbours, the step is located by bisection to the `f32`
+/// resolution of `u` ([`BISECTION_STEPS`]); the rule is then re-run on each
+/// support piece (`nb` nodes on one piece, `⌈nb/2⌉` on each of several),
+/// through Sidi's transform ([`sidi`]) so that the nodes crowd towards the
+/// piece ends, where sampling maps are steepest (the horizon pre-image of a
+/// narrow microfacet lobe lies next to the map's own singular edge). The
+/// step where the sampling map leaves the hemisphere (the horizon
+/// pre-image) becomes a piece end, so `h` restricted to a piece is smooth
+/// and the inner rule converges spectrally again instead of at first order
+/// (the idea of splitting a 1-D integral at its discontinuities, e.g.
+/// Davis & Rabinowitz 2nd ed. §2.12; applied per line of an iterated
+/// integral). A line with more than [`MAX_STEPS_PER_LINE`] steps keeps the
+/// plain rule and marks the result unlocated. A support pocket between two
+/// neighbouring nodes that both see zero (or both non-zero) is not seen.
+fn split_rule<W: WideSpectrum>(
+    na: usize,
+    nb: usize,
+    f: &mut impl BatchFn<W>,
+) -> Result<RuleSum<W>, IntegrateError> {
+    let ra = UnitRule::new(na);
+    let rb = UnitRule::new(nb);
+    let rh = UnitRule::new(nb.div_ceil(2));
+    let (m, mh) = (rb.n, rh.n);
+    let mut sum = WideSum::<W>::new();
+    let mut abs = WideSum::<W>::new();
+    let mut sq = WideSum::<W>::new();
+    let mut evaluations = 0usize;
+    let mut support_seen = false;
+    let mut unlocated = false;
+    // Scan points of a line: 0, the m nodes, 1.
+    let mut pts = [[0.0f64; 2]; MAX_ORDER + 2];
+    let mut vals = [W::splat(0.0); MAX_ORDER + 2];
+    let mut one = [W::splat(0.0); 1];
+    for i in 0..ra.n {
+        let a = ra.x[i];
+        pts[0] = [a, 0.0];
+        for j in 0..m {
+            pts[j + 1] = [a, rb.x[j]];
+        }
+        pts[m + 1] = [a, 1.0];
+        f(&pts[..m + 2], &mut vals[..m + 2])?;
+        evaluations += m + 2;
+        // Steps between neighbouring scan points.
+        let mut steps = [0usize; MAX_STEPS_PER_LINE];
+        let mut count = 0usize;
+        for k in 0..=m {
+            if nonzero(&vals[k]) != nonzero(&vals[k + 1]) {
+                if count < MAX_STEPS_PER_LINE {
+                    steps[count] = k;
+                }
+                count += 1;
+            }
+        }
+        support_seen |= vals[..m + 2].iter().any(nonzero);
+        let mut line = WideSum::<W>::new();
+        let mut line_abs = WideSum::<W>::new();
+        let mut line_sq = WideSum::<W>::new();
+        if count == 0 || count > MAX_STEPS_PER_LINE {
+            unlocated |= count > MAX_STEPS_PER_LINE;
+            for j in 0..m {
+                let v = vals[j + 1].map(|c| c * rb.w[j]);
+                line.add(v);
+                line_abs.add(v.map(f64::abs));
+                line_sq.add(v.map(|c| c * c));
+            }
+        } else {
+            // Locate each step: `lo` keeps the left flag, `hi` the right one.
+            let pos = |k: usize| -> f64 {
+                if k == 0 {
+                    0.0
+                } else if k == m + 1 {
+                    1.0
+                } else {
+                    rb.x[k - 1]
+                }
+            };
+            let mut cuts = [0.0f64; MAX_STEPS_PER_LINE + 2];
+            cuts[0] = 0.0;
+            for (c, &k) in steps[..count].iter().enumerate() {
+                let left = nonzero(&vals[k]);
+                let (mut lo, mut hi) = (pos(k), pos(k + 1));
+                for _ in 0..BISECTION_STEPS {
+                    let mid = 0.5 * (lo + hi);
+                    let um = to_unit_f32(mid);
+                    if um == to_unit_f32(lo) || um == to_unit_f32(hi) {
+                        break;
+                    }
+                    f(&[[a, mid]], &mut one)?;
+                    evaluations += 1;
+                    if nonzero(&one[0]) == left {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                cuts[c + 1] = 0.5 * (lo + hi);
+            }
+            cuts[count + 1] = 1.0;
+            // Pieces alternate support / no support, starting with the
+            // flag at u₁ = 0.
+            let first_support = nonzero(&vals[0]);
+            let pieces = count + 1;
+            let support_pieces = (0..pieces).filter(|p| (p % 2 == 0) == first_support).count();
+            let r = if support_pieces == 1 { &rb } else { &rh };
+            let n = if support_pieces == 1 { m } else { mh };
+            for p in (0..pieces).filter(|p| (p % 2 == 0) == first_support) {
+                let (lo, hi) = (cuts[p], cuts[p + 1]);
+                let len = hi - lo;
+                if len <= 0.0 {
+                    continue;
+                }
+                let mut start = 0;
+                let mut wt = [0.0f64; CHUNK];
+                while start < n {
+                    let c = (n - start).min(CHUNK);
+                    for k in 0..c {
+                        let (t, dt) = sidi(r.x[start + k]);
+                        pts[k] = [a, lo + len * t];
+                        wt[k] = len * r.w[start + k] * dt;
+                    }
+                    f(&pts[..c], &mut vals[..c])?;
+                    evaluations += c;
+                    for k in 0..c {
+                        let v = vals[k].map(|x| x * wt[k]);
+                        line.add(v);
+                        line_abs.add(v.map(f64::abs));
+                        line_sq.add(v.map(|c| c * c));
+                    }
+                    start += c;
+                }
+            }
+        }
+        let wa = ra.w[i];
+        sum.add(line.value().map(|x| x * wa));
+        abs.add(line_abs.value().map(|x| x * wa));
+        sq.add(line_sq.value().map(|x| x * wa * wa));
+    }
+    Ok(RuleSum {
+        sum: sum.value(),
+        abs: abs.value(),
+        sq: sq.value(),
+        evaluations,
+        support_seen,
+        unlocated,
+        edge_peak: false,
     })
 }
 
@@ -314,9 +645,9 @@ impl Integrator for GaussLegendre {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        with_comparison_rules(nt, np, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
-            chunk::hemisphere_values(g, p, |b| b, out)
-        })
+        let mut f = |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, |b| b, out);
+        let none = (WideOf::<I>::splat(0.0), 0);
+        with_comparison_rules(nt, np, none, |a, b| plain_rule(a, b, &mut f))
     }
 
     fn name(&self) -> &'static str {
@@ -344,8 +675,8 @@ impl Integrator for GaussLegendre {
 /// convergence is only algebraic.
 ///
 /// Needs [`Integrand::has_sampling_map`] (else
-/// [`IntegrateError::NoSamplingMap`]). Minimum budget 5 (`n = 2`); capped
-/// at `n = 1024` ([`MAX_ORDER`]): 1,392,640 evaluations. Sample draws count
+/// [`IntegrateError::NoSamplingMap`]). Minimum budget 13 (`n = 2`); capped
+/// at `n = 1024` ([`MAX_ORDER`]): 1,396,736 evaluations. Sample draws count
 /// as evaluations. A NaN/∞ value or density gives
 /// [`IntegrateError::NonFiniteIntegrand`].
 ///
@@ -363,23 +694,64 @@ impl Integrator for GaussLegendre {
 /// let e = WarpedGaussLegendre::new().integrate(&g, 64).unwrap();
 /// assert!((e.value - 0.8).abs() < 1e-6);
 /// ```
+///
+/// **Horizon split** ([`WarpedGaussLegendre::horizon_split`], report name
+/// `"gauss-legendre-warped-split"`): each line of the square is integrated
+/// over the support of `g/p` only, with the steps located by bisection and
+/// the pieces integrated through Sidi's transform (see the private
+/// `split_rule`). This restores fast convergence where the step is a clean
+/// curve (GGX at normal and moderate incidence: ρ of GGX α = 0.01 at
+/// θo = 0° to 10⁻⁶ with ≈ 2,400 evaluations, where the plain rule levels
+/// off at 10⁻⁴); where lines change their number of steps (grazing `ωo`)
+/// the outer integral still converges only algebraically. It pays a
+/// bisection per located step (up to 4 × 24 evaluations a line), so it
+/// starts at order 8 (budgets of a few thousand) and uses the plain rule
+/// below.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct WarpedGaussLegendre {
-    _private: (),
+    split: bool,
 }
 
 impl WarpedGaussLegendre {
     /// The warped product rule (orders follow from the budget).
     pub const fn new() -> Self {
-        Self { _private: () }
+        Self { split: false }
     }
 
-    /// Smallest accepted budget.
-    pub const MIN_BUDGET: u32 = 5;
+    /// The warped product rule with the horizon split (see the type's docs).
+    pub const fn horizon_split() -> Self {
+        Self { split: true }
+    }
+
+    /// Whether this is the horizon-split variant.
+    pub const fn is_split(&self) -> bool {
+        self.split
+    }
+
+    /// Smallest accepted budget (`n = 2`: the rule, its comparison rule and
+    /// the edge check).
+    pub const MIN_BUDGET: u32 = 13;
 
     /// Order `n` (per axis) used for a budget (`0` below [`Self::MIN_BUDGET`]).
     pub fn order(budget: u32) -> usize {
-        let n = order_for_budget(budget, 1);
+        let mut n = order_for_budget(budget, 1);
+        // The edge check spends 4 evaluations per line.
+        while n >= 2 && levels_cost(n, n) + 4 * n > budget as usize {
+            n -= 1;
+        }
+        if n < 2 { 0 } else { n }
+    }
+
+    /// Order `n` of the split (horizon-aware) rule for a budget: the largest
+    /// `n ≥ 2` whose worst-case cost (every line split twice) fits, or `0`
+    /// when the budget only allows the plain rule (below about 160
+    /// evaluations).
+    pub fn split_order(budget: u32) -> usize {
+        let b = budget as usize;
+        let mut n = (libm::sqrt(b as f64 / 2.6) as usize + 1).min(MAX_ORDER);
+        while n >= 2 && split_levels_cost(n) > b {
+            n -= 1;
+        }
         if n < 2 { 0 } else { n }
     }
 }
@@ -395,13 +767,25 @@ impl Integrator for WarpedGaussLegendre {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        with_comparison_rules(n, n, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
-            chunk::warped_values(g, p, out)
-        })
+        let mut f = |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::warped_values(g, p, out);
+        match Self::split_order(budget) {
+            ns if self.split && ns >= MIN_SPLIT_ORDER => {
+                let none = (WideOf::<I>::splat(0.0), 0);
+                with_comparison_rules(ns, ns, none, |a, b| split_rule(a, b, &mut f))
+            }
+            _ => {
+                let edges = edge_gap_bound(n, n, &mut f)?;
+                with_comparison_rules(n, n, edges, |a, b| plain_rule(a, b, &mut f))
+            }
+        }
     }
 
     fn name(&self) -> &'static str {
-        "gauss-legendre-warped"
+        if self.split {
+            "gauss-legendre-warped-split"
+        } else {
+            "gauss-legendre-warped"
+        }
     }
 }
 
@@ -450,7 +834,9 @@ mod tests {
             assert!(levels_cost(nt, np) as u64 <= b as u64, "{b}");
             assert!(np <= MAX_ORDER);
             let n = WarpedGaussLegendre::order(b);
-            assert!(levels_cost(n, n) as u64 <= b as u64);
+            assert!((levels_cost(n, n) + 4 * n) as u64 <= b as u64);
+            let n = WarpedGaussLegendre::split_order(b);
+            assert!(split_levels_cost(n) as u64 <= b as u64);
         }
         assert_eq!(GaussLegendre::orders(11), (2, 4));
         assert_eq!(GaussLegendre::orders(10), (0, 0));

@@ -13,7 +13,10 @@
 //! Integrators (name strings for reports in parentheses):
 //! * [`GaussLegendre`] (`"gauss-legendre"`): product rule in `(cos θ, φ)`;
 //! * [`WarpedGaussLegendre`] (`"gauss-legendre-warped"`): the same on the
-//!   unit square of the integrand's sampling map;
+//!   unit square of the integrand's sampling map; with
+//!   [`WarpedGaussLegendre::horizon_split`]
+//!   (`"gauss-legendre-warped-split"`), split at the steps of the map's
+//!   support (the horizon pre-image);
 //! * [`Adaptive`] (`"adaptive"`, `"adaptive-warped"`): Genz–Malik adaptive
 //!   cubature, to a tolerance;
 //! * [`MonteCarlo`] (`"mc-{uniform,cosine,integrand}-{prng,stratified,sobol,fibonacci}"`,
@@ -141,6 +144,16 @@ pub struct Estimate<W> {
     pub error: W,
     /// Integrand evaluations spent (sampling-map draws count as one each).
     pub evaluations: u64,
+    /// Whether the integrator stands behind `error` (see [`Status`]).
+    pub status: Status,
+}
+
+impl<W> Estimate<W> {
+    /// Whether the estimate is [`Status::Resolved`].
+    #[inline]
+    pub fn is_resolved(&self) -> bool {
+        self.status.is_resolved()
+    }
 }
 
 /// Why an integration could not produce an estimate.
@@ -294,6 +307,9 @@ pub mod adaptive;
 
 pub use adaptive::Adaptive;
 pub use chunk::CHUNK;
+mod status;
 mod tolerance;
+
+pub use status::{MIN_EFFECTIVE_SAMPLES, MIN_HITS, Status, Unresolved};
 
 pub use tolerance::{DEFAULT_MAX_BUDGET, StopReason, ToleranceOutcome, integrate_to_tolerance};

@@ -3,7 +3,7 @@
 //! importance sampling (MIS) of cosine + integrand sampling with the
 //! balance or power heuristic, over any [`PointSet`].
 
-use super::acc::{self, Moments};
+use super::acc::{self, Moments, SampleDiagnostics};
 use super::chunk::{CHUNK, sample_weight};
 use super::points::{
     Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed, sobol_point,
@@ -395,6 +395,7 @@ impl Integrator for MonteCarlo {
                 value: m.mean(),
                 error: m.standard_error(),
                 evaluations: m.count() * cost as u64,
+                status: m.diag.status(),
             });
         }
 
@@ -404,6 +405,7 @@ impl Integrator for MonteCarlo {
         }
         let n = draws / k;
         let mut reps = Moments::<WideOf<I>>::new();
+        let mut diag = SampleDiagnostics::<WideOf<I>>::new();
         let mut spent = 0u64;
         for r in 0..k {
             let rseed = mix_seed(self.seed, r as u64);
@@ -451,11 +453,13 @@ impl Integrator for MonteCarlo {
             batch.flush(&mut m)?;
             spent += m.count() * cost as u64;
             reps.push(m.mean());
+            diag.merge(&m.diag);
         }
         Ok(Estimate {
             value: reps.mean(),
             error: reps.standard_error(),
             evaluations: spent,
+            status: diag.status(),
         })
     }
 

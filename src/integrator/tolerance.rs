@@ -9,7 +9,9 @@ pub const DEFAULT_MAX_BUDGET: u32 = 1 << 22;
 /// Why [`integrate_to_tolerance`] stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum StopReason {
-    /// The error estimate (every channel) fell to `≤ tol`.
+    /// The error estimate (every channel) fell to `≤ tol` on a
+    /// [`Status::Resolved`](super::Status::Resolved) estimate (an unresolved
+    /// estimate never counts as converged, however small its error).
     ToleranceReached,
     /// The run at `max_budget` did not reach the tolerance.
     MaxBudget,
@@ -104,7 +106,7 @@ pub fn integrate_to_tolerance<T: Integrator, I: Integrand>(
             stop,
             total_evaluations: total,
         };
-        if acc::max_abs(e.error) <= tol {
+        if acc::max_abs(e.error) <= tol && e.is_resolved() {
             return Ok(done(StopReason::ToleranceReached));
         }
         if stalled {
