@@ -1399,3 +1399,6 @@ tuple_light!(A, B, C);
 tuple_light!(A, B, C, D);
 tuple_light!(A, B, C, D, E);
 tuple_light!(A, B, C, D, E, F);
+
+mod cap_sampling;
+pub use cap_sampling::{CapSampled, CapStrategy};

@@ -311,6 +311,7 @@ mod tests {
                     ggx: true,
                     alpha: 0.3,
                     height_correlated: true,
+                    conductor: None,
                 },
             ),
             (
@@ -319,6 +320,7 @@ mod tests {
                     ggx: true,
                     alpha: 0.05,
                     height_correlated: false,
+                    conductor: None,
                 },
             ),
             (
@@ -327,6 +329,17 @@ mod tests {
                     ggx: false,
                     alpha: 0.3,
                     height_correlated: true,
+                    conductor: None,
+                },
+            ),
+            (
+                // Gold at 632.8 nm (Sopra library, via the Filmetrics database).
+                "ggx(alpha=0.3, fresnel=conductor(eta=0.18104, k=3.068099))".into(),
+                RefModel::Microfacet {
+                    ggx: true,
+                    alpha: 0.3,
+                    height_correlated: true,
+                    conductor: Some((0.18104, 3.068099)),
                 },
             ),
             (
@@ -335,6 +348,7 @@ mod tests {
                     ggx: false,
                     alpha: 1.0,
                     height_correlated: false,
+                    conductor: None,
                 },
             ),
         ];

@@ -50,6 +50,9 @@ pub enum RefModel {
         /// "Understanding the masking-shadowing function", JCGT 3(2), eq. 99);
         /// `false`: separable `G1(ωi) G1(ωo)`.
         height_correlated: bool,
+        /// Conductor Fresnel `F(ωi·h)` with complex index `η + i k`
+        /// ([`RefModel::conductor_fresnel`]); `None`: `F = 1`.
+        conductor: Option<(f64, f64)>,
     },
 }
 
@@ -115,6 +118,7 @@ impl RefModel {
                 ggx,
                 alpha,
                 height_correlated,
+                conductor,
             } => {
                 let h = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
                 let len = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
@@ -129,9 +133,35 @@ impl RefModel {
                 } else {
                     1.0 / ((1.0 + li) * (1.0 + lo))
                 };
-                d * g2 / (4.0 * wi[2] * wo[2])
+                let f = match conductor {
+                    Some((eta, k)) => {
+                        let c = (wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2]) / len;
+                        Self::conductor_fresnel(eta, k, c.clamp(0.0, 1.0))
+                    }
+                    None => 1.0,
+                };
+                f * d * g2 / (4.0 * wi[2] * wo[2])
             }
         }
+    }
+
+    /// Unpolarised Fresnel reflectance of a conductor with complex index
+    /// `η + i k` at incidence cosine `c`, in the real form of Born & Wolf
+    /// (*Principles of Optics*, 7th ed., §14.4.1; as written out in Pharr,
+    /// Jakob & Humphreys, *PBR* 3rd ed., §8.2.1):
+    /// `a² + b² = √((η² − k² − s²)² + 4η²k²)`, `a = √((a² + b² + η² − k² − s²)/2)`,
+    /// `Rs = (a² + b² − 2ac + c²)/(a² + b² + 2ac + c²)`,
+    /// `Rp = Rs (c²(a² + b²) − 2acs² + s⁴)/(c²(a² + b²) + 2acs² + s⁴)`,
+    /// `F = (Rs + Rp)/2`, with `s² = 1 − c²`.
+    pub fn conductor_fresnel(eta: f64, k: f64, c: f64) -> f64 {
+        let s2 = 1.0 - c * c;
+        let t = eta * eta - k * k - s2;
+        let a2b2 = (t * t + 4.0 * eta * eta * k * k).sqrt();
+        let a = ((a2b2 + t) / 2.0).max(0.0).sqrt();
+        let rs = (a2b2 - 2.0 * a * c + c * c) / (a2b2 + 2.0 * a * c + c * c);
+        let rp =
+            rs * (c * c * a2b2 - 2.0 * a * c * s2 + s2 * s2) / (c * c * a2b2 + 2.0 * a * c * s2 + s2 * s2);
+        0.5 * (rs + rp)
     }
 
     /// Where the integrand `f cos θi` peaks (in `μ = cos θi`) for `ωo` at
@@ -409,6 +439,115 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
     }
 }
 
+/// The reflected radiance `L_r(ωo) = ∫_cap f_r(ωi, ωo) cos θi dωi` of a
+/// uniform cap light of radiance 1, axis `axis` (unit) and half-angle
+/// `sigma` (radians), clipped by the horizon, with an error bound (two
+/// tolerances, as [`albedo`]).
+///
+/// Cap coordinates (independent of the library's `CapIntegrand`): `v = 1 −
+/// cos α ∈ [0, 1 − cos σ]` (α from the axis) and `β ∈ [−π, π]` about it,
+/// `dω = dv dβ`, `β = 0` toward the mirror direction `r` of `ωo`. Nested
+/// adaptive Gauss–Kronrod: outer in β with break points clustered around
+/// `β = 0`, inner in `v` with break points at the horizon crossing (`a_z cos α
+/// + k sin α = 0`, `k` the z-component of the azimuth direction) and
+/// clustered around the lobe peak `v_r`.
+pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) -> Reference {
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let norm = |a: [f64; 3]| {
+        let l = dot(a, a).sqrt();
+        [a[0] / l, a[1] / l, a[2] / l]
+    };
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let a = norm(axis);
+    let r = [-wo[0], -wo[1], wo[2]];
+    // e1: r's component perpendicular to a (any perpendicular if r ∥ a).
+    let ra = dot(r, a);
+    let mut e1 = [r[0] - ra * a[0], r[1] - ra * a[1], r[2] - ra * a[2]];
+    if dot(e1, e1) < 1e-24 {
+        e1 = if a[0].abs() < 0.9 {
+            cross(a, [1.0, 0.0, 0.0])
+        } else {
+            cross(a, [0.0, 1.0, 0.0])
+        };
+    }
+    let e1 = norm(e1);
+    let e2 = cross(a, e1);
+    let v_sigma = 2.0 * (0.5 * sigma).sin().powi(2);
+    let alpha_r = ra.clamp(-1.0, 1.0).acos();
+    let v_r = 2.0 * (0.5 * alpha_r).sin().powi(2);
+    let lobe = match model.peak(wo[2]) {
+        Some((_, w)) => w.max(1e-6),
+        None => 1.0,
+    };
+    let dir = |v: f64, cb: f64, sb: f64| {
+        let sa = (v * (2.0 - v)).max(0.0).sqrt();
+        let ca = 1.0 - v;
+        [
+            ca * a[0] + sa * (cb * e1[0] + sb * e2[0]),
+            ca * a[1] + sa * (cb * e1[1] + sb * e2[1]),
+            ca * a[2] + sa * (cb * e1[2] + sb * e2[2]),
+        ]
+    };
+    let v_breaks = cluster(v_r, lobe * alpha_r.sin().max(lobe) + lobe * lobe);
+    let beta_breaks = cluster(0.0, (lobe / alpha_r.sin().max(lobe)).min(PI / 4.0));
+    let mut evals = 0u64;
+    let run = |tol: f64, evals: &mut u64| {
+        let mut count = 0u64;
+        let (v, e) = adaptive(
+            |beta| {
+                let (sb, cb) = beta.sin_cos();
+                let k = cb * e1[2] + sb * e2[2];
+                let mut breaks = v_breaks.clone();
+                // Horizon: a_z cos α + k sin α = 0 at α_h ∈ (0, π).
+                let ah = a[2].atan2(-k);
+                let ah = if ah < 0.0 { ah + PI } else { ah };
+                if ah > 0.0 && ah < sigma {
+                    breaks.push(2.0 * (0.5 * ah).sin().powi(2));
+                }
+                adaptive(
+                    |v| {
+                        count += 1;
+                        let w = dir(v, cb, sb);
+                        if w[2] <= 0.0 {
+                            0.0
+                        } else {
+                            model.eval(w, wo) * w[2]
+                        }
+                    },
+                    0.0,
+                    v_sigma,
+                    &breaks,
+                    1e-300,
+                    tol * 0.01,
+                    4000,
+                )
+                .0
+            },
+            -PI,
+            PI,
+            &beta_breaks,
+            1e-300,
+            tol,
+            4000,
+        );
+        *evals += count;
+        (v, e)
+    };
+    let (coarse, _) = run(1e-8, &mut evals);
+    let (fine, e) = run(1e-12, &mut evals);
+    Reference {
+        value: fine,
+        bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
+        evaluations: evals,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -496,6 +635,7 @@ mod tests {
                 ggx: true,
                 alpha: 1.0,
                 height_correlated: hc,
+                conductor: None,
             };
             let r = albedo(&m, 0.0);
             let exact = 1.0 - std::f64::consts::LN_2;
@@ -565,11 +705,62 @@ mod tests {
     }
 
     #[test]
+    fn cap_radiance_of_a_lambertian_surface_is_the_cap_irradiance_over_pi() {
+        // Unclipped cap at elevation e: E = π sin²σ cos θa (Snyder 1996), so
+        // L_r = ρ E / π = sin²σ cos θa for ρ = 1.
+        let m = RefModel::Lambertian { albedo: 1.0 };
+        for (theta_a, sigma) in [(10f64, 0.27f64), (45.0, 5.0), (80.0, 5.0)] {
+            let (ta, s) = (theta_a.to_radians(), sigma.to_radians());
+            let r = cap_radiance(
+                &m,
+                [0.3, 0.1, 0.948_683_298_050_513_8],
+                [ta.sin(), 0.0, ta.cos()],
+                s,
+            );
+            let exact = s.sin().powi(2) * ta.cos();
+            assert!(
+                (r.value - exact).abs() <= 1e-12 * exact + r.bound,
+                "{theta_a} {sigma}: {r:?} vs {exact}"
+            );
+            assert!(r.bound < 1e-9 * exact, "{r:?}");
+        }
+        // A cap with its axis on the horizon is half visible; by symmetry of
+        // cos θ about the horizon plane, E = (σ − sin σ cos σ) (exact for
+        // axis on the horizon: Snyder 1996, eq. for θa = 90°).
+        let s = 0.3f64;
+        let r = cap_radiance(&m, [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], s);
+        let exact = (s - s.sin() * s.cos()) / PI;
+        assert!((r.value - exact).abs() <= 1e-10 * exact, "{r:?} vs {exact}");
+    }
+
+    #[test]
+    fn conductor_fresnel_closed_forms() {
+        // Normal incidence: ((η − 1)² + k²)/((η + 1)² + k²); grazing: 1;
+        // k = 0 reduces to the dielectric Fresnel of Schlick's source
+        // (η = 1.5 at normal incidence: 0.04).
+        for (eta, k) in [(0.18104, 3.068099), (1.5, 0.0), (2.9, 3.0)] {
+            let n = ((eta - 1.0) * (eta - 1.0) + k * k) / ((eta + 1.0) * (eta + 1.0) + k * k);
+            assert!((RefModel::conductor_fresnel(eta, k, 1.0) - n).abs() < 1e-14);
+            assert!((RefModel::conductor_fresnel(eta, k, 0.0) - 1.0).abs() < 1e-14);
+        }
+        assert!((RefModel::conductor_fresnel(1.5, 0.0, 1.0) - 0.04).abs() < 1e-15);
+        // Dielectric at 45° (η = 1.5, Snell: sin θt = sin 45°/1.5):
+        // Rs, Rp from the textbook amplitude formulas.
+        let (ci, si) = (std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_1_SQRT_2);
+        let st = si / 1.5;
+        let ct = (1.0 - st * st).sqrt();
+        let rs = ((ci - 1.5 * ct) / (ci + 1.5 * ct)).powi(2);
+        let rp = ((1.5 * ci - ct) / (1.5 * ci + ct)).powi(2);
+        assert!((RefModel::conductor_fresnel(1.5, 0.0, ci) - 0.5 * (rs + rp)).abs() < 1e-14);
+    }
+
+    #[test]
     fn hardest_case_has_a_small_bound() {
         let m = RefModel::Microfacet {
             ggx: true,
             alpha: 0.01,
             height_correlated: true,
+            conductor: None,
         };
         let r = albedo(&m, 89.5f64.to_radians());
         assert!(r.value > 0.0 && r.value < 1.0, "{r:?}");

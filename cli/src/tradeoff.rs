@@ -1,8 +1,9 @@
 //! `radiometry tradeoff`: what accuracy costs in time.
 //!
 //! For a standard suite of directional albedos (Lambertian; modified Phong
-//! n ∈ {1, 10, 100, 1000}; GGX and Beckmann α ∈ {0.01, 0.05, 0.3, 1}, all
-//! with F = 1 and the height-correlated Smith G2; θo ∈ {0°, 60°, 85°, 89.5°})
+//! n ∈ {1, 10, 100, 1000}; GGX and Beckmann α ∈ {0.001, 0.01, 0.05, 0.3, 1},
+//! all with F = 1 and the height-correlated Smith G2; θo ∈ {0°, 60°, 85°,
+//! 89.5°, 89.9°})
 //! every integrator runs over a ladder of budgets. Each estimate is compared
 //! with an independent f64 reference ([`crate::reference`]) that carries
 //! its own error bound; wall time is the median of a few repeats for small
@@ -59,12 +60,17 @@ pub const FULL_BUDGETS: [u32; 9] = [16, 64, 256, 1024, 4096, 16384, 65536, 262_1
 /// Budget ladder of `--quick`.
 pub const QUICK_BUDGETS: [u32; 5] = [16, 64, 256, 1024, 4096];
 
+/// Real part of the complex refractive index of gold at 632.8 nm.
+pub const GOLD_ETA: f64 = 0.18104;
+/// Imaginary part (extinction coefficient) of gold at 632.8 nm.
+pub const GOLD_K: f64 = 3.068099;
+
 /// One case of the suite.
 #[derive(Clone, Debug)]
 pub struct Case {
     /// Name used in the CSV (no commas).
     pub name: String,
-    /// Family: lambertian, phong, ggx, beckmann.
+    /// Family: lambertian, phong, ggx, beckmann, ggx-gold.
     pub family: &'static str,
     /// BRDF spec given to the plugins.
     pub spec: String,
@@ -81,7 +87,7 @@ fn fmt_num(x: f64) -> String {
 
 /// The standard suite (or the `--quick` subset).
 pub fn suite(quick: bool) -> Vec<Case> {
-    let thetas = [0.0, 60.0, 85.0, 89.5];
+    let thetas = [0.0, 60.0, 85.0, 89.5, 89.9];
     let mut v = Vec::new();
     let mut push = |family: &'static str, param: String, spec: String, model: RefModel, t: f64| {
         v.push(Case {
@@ -113,7 +119,7 @@ pub fn suite(quick: bool) -> Vec<Case> {
         }
     }
     for (family, ggx) in [("ggx", true), ("beckmann", false)] {
-        for a in [0.01, 0.05, 0.3, 1.0] {
+        for a in [0.001, 0.01, 0.05, 0.3, 1.0] {
             for &t in &thetas {
                 push(
                     family,
@@ -123,10 +129,30 @@ pub fn suite(quick: bool) -> Vec<Case> {
                         ggx,
                         alpha: a,
                         height_correlated: true,
+                        conductor: None,
                     },
                     t,
                 );
             }
+        }
+    }
+    // A coloured conductor: GGX with the exact Fresnel of gold at 632.8 nm
+    // (η = 0.18104, k = 3.068099; Sopra material library, via the
+    // Filmetrics refractive-index database).
+    for a in [0.05, 0.3] {
+        for t in [0.0, 85.0] {
+            push(
+                "ggx-gold",
+                format!("-a{}", fmt_num(a)),
+                format!("ggx(alpha={a}, g=height-correlated, fresnel=conductor(eta={GOLD_ETA}, k={GOLD_K}))"),
+                RefModel::Microfacet {
+                    ggx: true,
+                    alpha: a,
+                    height_correlated: true,
+                    conductor: Some((GOLD_ETA, GOLD_K)),
+                },
+                t,
+            );
         }
     }
     if quick {
@@ -220,7 +246,7 @@ impl Progress {
     }
 }
 
-fn repeats(quick: bool, budget: u32) -> usize {
+pub(crate) fn repeats(quick: bool, budget: u32) -> usize {
     if quick {
         1
     } else if budget <= 4096 {
@@ -232,13 +258,13 @@ fn repeats(quick: bool, budget: u32) -> usize {
     }
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
     v[v.len() / 2]
 }
 
 /// `(budget, evaluations, estimate, error estimate, median seconds, status)`.
-type Measured = (u32, u64, f64, f64, f64, Status);
+pub type Measured = (u32, u64, f64, f64, f64, Status);
 
 fn measure(
     brdf: &AnyBrdf,
@@ -280,65 +306,80 @@ fn measure(
     (out, refused)
 }
 
-/// Runs the report.
-pub fn run(opt: &Options) -> Result<(), String> {
-    let wall = Instant::now();
-    std::fs::create_dir_all(&opt.out).map_err(|e| format!("cannot create {}: {e}", opt.out.display()))?;
-    let mut cases = suite(opt.quick);
-    cases.retain(|c| selected(&opt.cases, &c.name));
-    let budgets: &[u32] = if opt.quick { &QUICK_BUDGETS } else { &FULL_BUDGETS };
-    let mut integs = all_integrators(opt.seed, 0.0);
-    integs.retain(|i| selected(&opt.integrators, i.name()));
-    if cases.is_empty() || integs.is_empty() {
-        return Err("the --cases / --integrators filters leave nothing to run".into());
-    }
-    let mut brdfs = Vec::new();
-    for c in &cases {
-        let spec = parse_brdf(&c.spec).map_err(|e| e.to_string())?;
-        brdfs.push(build_brdf(&c.spec, &spec).map_err(|e| e.to_string())?);
-    }
-    let jobs = cases.len() * integs.len();
-    let progress = Progress::new(opt.progress, cases.len() + jobs);
+/// A method's name and kind, for the tables.
+#[derive(Clone, Debug)]
+pub struct MethodInfo {
+    /// Report name.
+    pub name: String,
+    /// Deterministic quadrature (else Monte Carlo).
+    pub deterministic: bool,
+}
 
-    // 1. References (independent of the integrators), in parallel over cases.
-    let ref_start = Instant::now();
-    let refs: Vec<Mutex<Option<Reference>>> = cases.iter().map(|_| Mutex::new(None)).collect();
+impl MethodInfo {
+    /// Report name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Deterministic quadrature (else Monte Carlo).
+    pub fn is_deterministic(&self) -> bool {
+        self.deterministic
+    }
+}
+
+/// Computes `f(i)` for `i < n` on `threads` workers, ticking `progress`.
+fn parallel_references(
+    threads: usize,
+    n: usize,
+    progress: &Progress,
+    label: impl Fn(usize) -> String + Sync,
+    f: impl Fn(usize) -> Reference + Sync,
+) -> Vec<Reference> {
+    let refs: Vec<Mutex<Option<Reference>>> = (0..n).map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
     std::thread::scope(|s| {
-        for _ in 0..opt.threads {
+        for _ in 0..threads {
             s.spawn(|| {
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
-                    if i >= cases.len() {
+                    if i >= n {
                         break;
                     }
-                    let r = reference::albedo(&cases[i].model, cases[i].theta_o.to_radians());
-                    *refs[i].lock().expect("no poison") = Some(r);
-                    progress.tick(&format!("reference {}", cases[i].name));
+                    *refs[i].lock().expect("no poison") = Some(f(i));
+                    progress.tick(&label(i));
                 }
             });
         }
     });
-    let refs: Vec<Reference> = refs
-        .into_iter()
+    refs.into_iter()
         .map(|m| m.into_inner().expect("no poison").expect("computed"))
-        .collect();
-    let ref_seconds = ref_start.elapsed().as_secs_f64();
+        .collect()
+}
 
-    // 2. Every (case, integrator) over the budget ladder.
+/// Runs `job(case, method)` for every pair on `threads` workers; returns the
+/// rows sorted by (case, method, budget) and the refusals of case 0.
+fn parallel_sweep(
+    threads: usize,
+    n_cases: usize,
+    n_methods: usize,
+    progress: &Progress,
+    label: impl Fn(usize, usize) -> String + Sync,
+    job: impl Fn(usize, usize) -> (Vec<Measured>, Vec<String>) + Sync,
+) -> (Vec<Row>, Vec<String>) {
+    let jobs = n_cases * n_methods;
     let rows: Mutex<Vec<Row>> = Mutex::new(Vec::new());
     let refused: Mutex<Vec<String>> = Mutex::new(Vec::new());
     let next = AtomicUsize::new(0);
     std::thread::scope(|s| {
-        for _ in 0..opt.threads {
+        for _ in 0..threads {
             s.spawn(|| {
                 loop {
                     let j = next.fetch_add(1, Ordering::Relaxed);
                     if j >= jobs {
                         break;
                     }
-                    let (ci, ii) = (j / integs.len(), j % integs.len());
-                    let (m, r) = measure(&brdfs[ci], cases[ci].theta_o, &integs[ii], budgets, opt.quick);
+                    let (ci, ii) = (j / n_methods, j % n_methods);
+                    let (m, r) = job(ci, ii);
                     {
                         let mut rows = rows.lock().expect("no poison");
                         for (budget, evaluations, estimate, error_estimate, seconds, status) in m {
@@ -357,28 +398,144 @@ pub fn run(opt: &Options) -> Result<(), String> {
                     if ci == 0 {
                         refused.lock().expect("no poison").extend(r);
                     }
-                    progress.tick(&format!("{} {}", cases[ci].name, integs[ii].name()));
+                    progress.tick(&label(ci, ii));
                 }
             });
         }
     });
-    progress.finish();
     let mut rows = rows.into_inner().expect("no poison");
     rows.sort_by_key(|r| (r.case, r.integ, r.budget));
-    let refused = refused.into_inner().expect("no poison");
+    (rows, refused.into_inner().expect("no poison"))
+}
 
+/// Runs the report: the directional-albedo suite, then the product
+/// integrals (a GGX lobe under the sun and a lamp, [`product`]).
+pub fn run(opt: &Options) -> Result<(), String> {
+    let wall = Instant::now();
+    std::fs::create_dir_all(&opt.out).map_err(|e| format!("cannot create {}: {e}", opt.out.display()))?;
+    let budgets: &[u32] = if opt.quick { &QUICK_BUDGETS } else { &FULL_BUDGETS };
+    // Albedo suite.
+    let mut cases = suite(opt.quick);
+    cases.retain(|c| selected(&opt.cases, &c.name));
+    let mut integs = all_integrators(opt.seed, 0.0);
+    integs.retain(|i| selected(&opt.integrators, i.name()));
+    if integs.is_empty() {
+        cases.clear();
+    }
+    // Product suite.
+    let mut pcases = product::suite(opt.quick);
+    pcases.retain(|c| selected(&opt.cases, &c.name));
+    let mut pmethods = product::methods(opt.seed);
+    pmethods.retain(|m| selected(&opt.integrators, &m.name()));
+    if pmethods.is_empty() {
+        pcases.clear();
+    }
+    if cases.is_empty() && pcases.is_empty() {
+        return Err("the --cases / --integrators filters leave nothing to run".into());
+    }
+    let build = |spec: &str| -> Result<_, String> {
+        let parsed = parse_brdf(spec).map_err(|e| e.to_string())?;
+        build_brdf(spec, &parsed).map_err(|e| e.to_string())
+    };
+    let brdfs = cases
+        .iter()
+        .map(|c| build(&c.spec))
+        .collect::<Result<Vec<_>, _>>()?;
+    let pbrdfs = pcases
+        .iter()
+        .map(|c| build(&c.spec))
+        .collect::<Result<Vec<_>, _>>()?;
+    let total = cases.len() * (1 + integs.len()) + pcases.len() * (1 + pmethods.len());
+    let progress = Progress::new(opt.progress, total);
+
+    // 1. References (independent of the integrators), in parallel over cases.
+    let ref_start = Instant::now();
+    let refs = parallel_references(
+        opt.threads,
+        cases.len(),
+        &progress,
+        |i| format!("reference {}", cases[i].name),
+        |i| reference::albedo(&cases[i].model, cases[i].theta_o.to_radians()),
+    );
+    let prefs = parallel_references(
+        opt.threads,
+        pcases.len(),
+        &progress,
+        |i| format!("reference {}", pcases[i].name),
+        |i| product::reference(&pcases[i]),
+    );
+    let ref_seconds = ref_start.elapsed().as_secs_f64();
+
+    // 2. Every (case, method) over the budget ladder.
+    let (rows, refused) = parallel_sweep(
+        opt.threads,
+        cases.len(),
+        integs.len(),
+        &progress,
+        |ci, ii| format!("{} {}", cases[ci].name, integs[ii].name()),
+        |ci, ii| measure(&brdfs[ci], cases[ci].theta_o, &integs[ii], budgets, opt.quick),
+    );
+    let (prows, prefused) = parallel_sweep(
+        opt.threads,
+        pcases.len(),
+        pmethods.len(),
+        &progress,
+        |ci, ii| format!("{} {}", pcases[ci].name, pmethods[ii].name()),
+        |ci, ii| product::measure(&pbrdfs[ci], &pcases[ci], &pmethods[ii], budgets, opt.quick),
+    );
+    progress.finish();
+
+    let infos: Vec<MethodInfo> = integs
+        .iter()
+        .map(|i| MethodInfo {
+            name: i.name().to_string(),
+            deterministic: i.is_deterministic(),
+        })
+        .collect();
     let report = Report {
         cases: &cases,
         refs: &refs,
-        integs: &integs,
+        integs: &infos,
         rows: &rows,
         budgets,
         ref_seconds,
+        kind: SuiteKind::Albedo,
     };
-    write_csv(opt, &report)?;
+    let pcases_as: Vec<Case> = pcases
+        .iter()
+        .map(|c| Case {
+            name: c.name.clone(),
+            family: c.family,
+            spec: c.spec.clone(),
+            model: c.model,
+            theta_o: c.wo[2].clamp(-1.0, 1.0).acos().to_degrees(),
+        })
+        .collect();
+    let pinfos = product::method_infos(&pmethods);
+    let preport = Report {
+        cases: &pcases_as,
+        refs: &prefs,
+        integs: &pinfos,
+        rows: &prows,
+        budgets,
+        ref_seconds,
+        kind: SuiteKind::Product,
+    };
+    write_csv(opt, &[&report, &preport])?;
     crate::tradeoff::plot::write_plots(&opt.out, &report)?;
+    crate::tradeoff::plot::write_plots(&opt.out, &preport)?;
     let elapsed = wall.elapsed().as_secs_f64();
-    let (text, md) = report.summary(opt, elapsed, &refused);
+    let mut text = String::new();
+    let mut md = String::new();
+    for (rep, refused) in [(&report, &refused), (&preport, &prefused)] {
+        if rep.cases.is_empty() {
+            continue;
+        }
+        let (t, m) = rep.summary(opt, elapsed, refused);
+        text.push_str(&t);
+        md.push_str(&m);
+        md.push('\n');
+    }
     print!("{text}");
     std::fs::write(opt.out.join("summary.md"), md).map_err(|e| format!("cannot write summary.md: {e}"))?;
     println!(
@@ -389,20 +546,31 @@ pub fn run(opt: &Options) -> Result<(), String> {
     Ok(())
 }
 
+/// Which suite a [`Report`] holds (selects the texts of its summary).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SuiteKind {
+    /// Directional albedos.
+    Albedo,
+    /// Reflected radiance under a cap light ([`product`]).
+    Product,
+}
+
 /// Everything measured, for tables and plots.
 pub struct Report<'a> {
     /// The cases.
     pub cases: &'a [Case],
     /// Their references.
     pub refs: &'a [Reference],
-    /// The integrators.
-    pub integs: &'a [AnyIntegrator],
+    /// The integrators (names and kinds).
+    pub integs: &'a [MethodInfo],
     /// The rows, sorted by (case, integrator, budget).
     pub rows: &'a [Row],
     /// The budget ladder.
     pub budgets: &'a [u32],
     /// Wall time spent on the references, in seconds.
     pub ref_seconds: f64,
+    /// Which suite.
+    pub kind: SuiteKind,
 }
 
 impl Report<'_> {
@@ -443,9 +611,27 @@ impl Report<'_> {
         let mut text = String::new();
         let mut md = String::new();
         let run_kind = if opt.quick { "quick" } else { "full" };
+        let (suite_title, suite_text) = match self.kind {
+            SuiteKind::Albedo => (
+                "Accuracy vs. time",
+                "Directional albedo with F = 1 (family `ggx-gold`: the exact conductor Fresnel of gold at 632.8 nm, \
+                 η = 0.18104, k = 3.068099) and the height-correlated Smith G2 for microfacets; θo ∈ {0°, 60°, 85°, \
+                 89.5°, 89.9°}.",
+            ),
+            SuiteKind::Product => (
+                "Product integrals: a GGX lobe under a cap light",
+                "Reflected radiance L_r(ωo) = ∫_cap f_r L cos θi dωi (L = 1) of GGX α ∈ {0.01, 0.1, 0.5} (F = 1, \
+                 height-correlated G2) under the sun (σ = 0.27°) and a lamp (σ = 5°) at elevations 10°, 45°, 80° and \
+                 partly below the horizon (sun 0.1°, lamp 2°), viewed at the mirror direction of the light's centre \
+                 and 10° off it in azimuth. Methods: `cap-*` quadrature over the visible cap; `light-sampling` \
+                 (uniform in the cone), `brdf-sampling` (the BRDF's visible-normal sampling) and `mis-light-brdf` \
+                 (one-sample balance-heuristic MIS of both), each with PRNG and Sobol points.",
+            ),
+        };
+        let _ = writeln!(text, "\n== {suite_title} ==\n");
         let _ = writeln!(
             md,
-            "### Accuracy vs. time ({run_kind} run: {} cases × {} integrators × budgets {}–{}, {:.0} s on {} thread(s))\n",
+            "### {suite_title} ({run_kind} run: {} cases × {} integrators × budgets {}–{}, {:.0} s on {} thread(s) for the whole report)\n",
             self.cases.len(),
             self.integs.len(),
             self.budgets[0],
@@ -457,8 +643,7 @@ impl Report<'_> {
             md,
             "Each cell: the worst case of the family — evaluations / wall time needed for the relative error to \
              stay ≤ the target at that budget and every larger one of the ladder; `not reached (k/N)`: only k of \
-             the family's N cases got there within {} evaluations. Directional albedo with F = 1 and the \
-             height-correlated Smith G2 for microfacets; θo ∈ {{0°, 60°, 85°, 89.5°}}. Wall time: median of \
+             the family's N cases got there within {} evaluations. {suite_text} Wall time: median of \
              5 runs for budgets ≤ 4,096, of 3 up to 65,536, else one run (`--quick`: one run).\n",
             self.budgets[self.budgets.len() - 1]
         );
@@ -750,43 +935,50 @@ fn fmt_time(s: f64) -> String {
     }
 }
 
-fn write_csv(opt: &Options, rep: &Report<'_>) -> Result<(), String> {
-    let mut s = String::with_capacity(rep.rows.len() * 160);
+fn write_csv(opt: &Options, reps: &[&Report<'_>]) -> Result<(), String> {
+    let mut s = String::with_capacity(reps.iter().map(|r| r.rows.len()).sum::<usize>() * 160);
     s.push_str(CSV_HEADER);
     s.push('\n');
-    for r in rep.rows {
-        let reference = rep.refs[r.case].value;
-        let abs = (r.estimate - reference).abs();
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{:e},{:e},{:e},{:e},{},{}",
-            rep.cases[r.case].name,
-            rep.integs[r.integ].name(),
-            r.budget,
-            r.evaluations,
-            r.estimate,
-            reference,
-            abs,
-            rep.rel_error(r),
-            r.error_estimate,
-            r.seconds,
-            r.status.as_str(),
-            r.status.reason()
-        );
+    for rep in reps {
+        for r in rep.rows {
+            let reference = rep.refs[r.case].value;
+            let abs = (r.estimate - reference).abs();
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{:e},{:e},{:e},{:e},{},{}",
+                rep.cases[r.case].name,
+                rep.integs[r.integ].name(),
+                r.budget,
+                r.evaluations,
+                r.estimate,
+                reference,
+                abs,
+                rep.rel_error(r),
+                r.error_estimate,
+                r.seconds,
+                r.status.as_str(),
+                r.status.reason()
+            );
+        }
     }
     std::fs::write(opt.out.join("tradeoff.csv"), s).map_err(|e| format!("cannot write tradeoff.csv: {e}"))?;
+    // `theta_o`: the polar angle of ωo in degrees (product cases: of the
+    // viewing direction; their light is in the case name).
     let mut s = String::from("case,theta_o,spec,reference,bound,reference_evaluations\n");
-    for (c, r) in rep.cases.iter().zip(rep.refs) {
-        let _ = writeln!(
-            s,
-            "{},{},\"{}\",{},{},{}",
-            c.name, c.theta_o, c.spec, r.value, r.bound, r.evaluations
-        );
+    for rep in reps {
+        for (c, r) in rep.cases.iter().zip(rep.refs) {
+            let _ = writeln!(
+                s,
+                "{},{},\"{}\",{},{},{}",
+                c.name, c.theta_o, c.spec, r.value, r.bound, r.evaluations
+            );
+        }
     }
     std::fs::write(opt.out.join("references.csv"), s).map_err(|e| format!("cannot write references.csv: {e}"))
 }
 
 pub mod plot;
+pub mod product;
 
 #[cfg(test)]
 mod tests {
@@ -795,7 +987,10 @@ mod tests {
     #[test]
     fn suite_has_the_issue_cases() {
         let s = suite(false);
-        assert_eq!(s.len(), 4 + 16 + 16 + 16);
+        // θo ∈ {0, 60, 85, 89.5, 89.9}; Phong n ∈ {1, 10, 100, 1000};
+        // microfacet α ∈ {0.001, 0.01, 0.05, 0.3, 1}.
+        assert_eq!(s.len(), 5 + 20 + 25 + 25 + 4);
+        assert!(s.iter().any(|c| c.name == "ggx-a0.001-to89.9"));
         assert!(s.iter().all(|c| !c.name.contains(',')));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();
         names.sort();
@@ -815,7 +1010,13 @@ mod tests {
             bound: 1e-15,
             evaluations: 0,
         }];
-        let integs = all_integrators(1, 0.0)[..1].to_vec();
+        let integs: Vec<MethodInfo> = all_integrators(1, 0.0)[..1]
+            .iter()
+            .map(|i| MethodInfo {
+                name: i.name().to_string(),
+                deterministic: i.is_deterministic(),
+            })
+            .collect();
         let mk = |budget, est| Row {
             case: 0,
             integ: 0,
@@ -839,6 +1040,7 @@ mod tests {
             rows: &rows,
             budgets: &QUICK_BUDGETS,
             ref_seconds: 0.0,
+            kind: SuiteKind::Albedo,
         };
         assert_eq!(rep.reach(0, 0, 1e-2).map(|r| r.budget), Some(256));
         assert_eq!(rep.reach(0, 0, 1e-6).map(|r| r.budget), Some(1024));

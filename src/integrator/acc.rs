@@ -93,6 +93,15 @@ impl<W: WideSpectrum> SampleDiagnostics<W> {
         self.sq.add(x.map(|v| v * v));
     }
 
+    /// The `f32` rounding floor of a mean of `n` samples, per channel:
+    /// `2⁻²³ Σ|x| / n`. Every sample is an `f32` integrand value carrying up
+    /// to about one ulp of systematic rounding, which no variance estimate
+    /// sees; the quadrature rules add the same floor (`2⁻²³ Σ|w g|`).
+    pub(crate) fn rounding_floor(&self, n: u64) -> W {
+        let n = n.max(1) as f64;
+        self.abs.value().map(|a| a / n * F32_FLOOR)
+    }
+
     /// Adds another set's diagnostics.
     pub(crate) fn merge(&mut self, o: &Self) {
         self.hits += o.hits;

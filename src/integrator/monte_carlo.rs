@@ -134,6 +134,13 @@ pub const DEFAULT_REPLICATES: u32 = 16;
 ///   (true error)/(error) follows roughly Student's t with 15 degrees of
 ///   freedom, so `|error| ≤ 3σ` holds ≈ 99.1 % of the time (vs 99.7 % for
 ///   the normal limit of `Prng`).
+/// * Both add the `f32` rounding floor `2⁻²³ · mean|F|` to the error: each
+///   integrand value is an `f32` carrying up to about an ulp of systematic
+///   rounding, which no variance estimate can see (the quadrature rules add
+///   the same floor).
+/// * Status ([`super::Status`]): no non-zero draw → `NoSupportSeen`; fewer
+///   than [`super::MIN_HITS`] → `FewHits`; effective sample size
+///   `(Σ|F|)²/ΣF²` below [`super::MIN_EFFECTIVE_SAMPLES`] → `HeavyTail`.
 ///
 /// Sobol: one scramble holds at most `2¹⁶` points (`sobol_burley`), so when
 /// `⌊N/K⌋ > 2¹⁶` the number of scrambles grows to `⌈N/2¹⁶⌉` (≤ 16 under
@@ -393,7 +400,7 @@ impl Integrator for MonteCarlo {
             batch.flush(&mut m)?;
             return Ok(Estimate {
                 value: m.mean(),
-                error: m.standard_error(),
+                error: acc::add(m.standard_error(), m.diag.rounding_floor(m.count())),
                 evaluations: m.count() * cost as u64,
                 status: m.diag.status(),
             });
@@ -457,7 +464,7 @@ impl Integrator for MonteCarlo {
         }
         Ok(Estimate {
             value: reps.mean(),
-            error: reps.standard_error(),
+            error: acc::add(reps.standard_error(), diag.rounding_floor(spent / cost as u64)),
             evaluations: spent,
             status: diag.status(),
         })

@@ -1,8 +1,7 @@
 //! Log-log SVG plots of the tradeoff report (plotters, SVG backend only).
 
-use super::Report;
+use super::{Report, SuiteKind};
 use plotters::prelude::*;
-use radiometry::integrator::Integrator;
 use std::path::Path;
 
 /// Relative errors below this (including exact zeros) are drawn at it.
@@ -11,9 +10,10 @@ pub const ERROR_FLOOR: f64 = 1e-16;
 /// Integrators drawn (all are in the CSV): every deterministic rule, each
 /// Monte Carlo strategy with Sobol points, and plain PRNG cosine / integrand
 /// sampling.
-const SHOWN: [&str; 11] = [
+const SHOWN: [&str; 18] = [
     "gauss-legendre",
     "gauss-legendre-warped",
+    "gauss-legendre-warped-split",
     "adaptive",
     "adaptive-warped",
     "mc-uniform-sobol",
@@ -23,6 +23,13 @@ const SHOWN: [&str; 11] = [
     "mis-power-sobol",
     "mc-cosine-prng",
     "mc-integrand-prng",
+    // Product integrals (a lobe under a cap light).
+    "cap-gauss-legendre",
+    "cap-adaptive",
+    "light-sampling-sobol",
+    "brdf-sampling-sobol",
+    "mis-light-brdf-sobol",
+    "mis-light-brdf-prng",
 ];
 
 struct Series {
@@ -34,10 +41,9 @@ struct Series {
 fn series(rep: &Report<'_>, cases: &[usize]) -> Vec<Series> {
     let mut out = Vec::new();
     for (ii, integ) in rep.integs.iter().enumerate() {
-        let name = integ.name();
-        if !SHOWN.contains(&name) {
+        let Some(&name) = SHOWN.iter().find(|&&n| n == integ.name()) else {
             continue;
-        }
+        };
         let mut points = Vec::new();
         for &b in rep.budgets {
             let rows: Vec<_> = rep
@@ -141,6 +147,10 @@ pub fn write_plots(out: &Path, rep: &Report<'_>) -> Result<(), String> {
     }
     for (g, idx) in &groups {
         let data = series(rep, idx);
+        let title = match rep.kind {
+            SuiteKind::Albedo => "Directional albedo",
+            SuiteKind::Product => "Reflected radiance under a cap light",
+        };
         let what = if idx.len() == 1 {
             g.clone()
         } else {
@@ -148,14 +158,14 @@ pub fn write_plots(out: &Path, rep: &Report<'_>) -> Result<(), String> {
         };
         draw(
             &out.join(format!("error_vs_evaluations_{g}.svg")),
-            &format!("Directional albedo, {what}: error vs evaluations"),
+            &format!("{title}, {what}: error vs evaluations"),
             "integrand evaluations",
             &data,
             false,
         )?;
         draw(
             &out.join(format!("error_vs_time_{g}.svg")),
-            &format!("Directional albedo, {what}: error vs wall time"),
+            &format!("{title}, {what}: error vs wall time"),
             "wall time [s]",
             &data,
             true,

@@ -1,0 +1,256 @@
+//! Product integrals for the report: a glossy GGX lobe under a cap light
+//! (the sun, σ = 0.27°; a lamp, σ = 5°) — reflected radiance
+//! `L_r(ωo) = ∫_cap f_r(ωi, ωo) L cos θi dωi` with `L = 1` — and the methods
+//! a renderer author compares on it: quadrature over the cap, light (cone)
+//! sampling, BRDF sampling and their MIS combination.
+
+use super::{Measured, MethodInfo};
+use crate::model::AnyBrdf;
+use crate::reference::{self, RefModel, Reference};
+use radiometry::glam::Vec3;
+use radiometry::integrator::{
+    Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet, Strategy,
+};
+use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
+use std::time::Instant;
+
+/// One product-integral case.
+#[derive(Clone, Debug)]
+pub struct ProductCase {
+    /// Name used in the CSV (no commas).
+    pub name: String,
+    /// Family: `ggx-sun` or `ggx-lamp`.
+    pub family: &'static str,
+    /// BRDF spec.
+    pub spec: String,
+    /// The independent f64 model.
+    pub model: RefModel,
+    /// Outgoing direction (local frame, unit).
+    pub wo: [f64; 3],
+    /// Cap axis (unit).
+    pub axis: [f64; 3],
+    /// Cap half-angle (radians).
+    pub sigma: f64,
+}
+
+/// Half-angle of the sun's disc (0.27°) and of the lamp (5°).
+pub const SUN_DEG: f64 = 0.27;
+/// Half-angle of the lamp.
+pub const LAMP_DEG: f64 = 5.0;
+
+/// The suite: GGX α ∈ {0.01, 0.1, 0.5} (F = 1, height-correlated G2) × the
+/// sun and the lamp × light elevation {10°, 45°, 80°, and one partly below
+/// the horizon: the sun's centre at 0.1°, the lamp's at 2°} × viewing at the
+/// mirror direction of the light's centre and 10° off it in azimuth.
+/// `--quick` keeps two cases.
+pub fn suite(quick: bool) -> Vec<ProductCase> {
+    let mut v = Vec::new();
+    for (family, deg, low) in [("ggx-sun", SUN_DEG, 0.1), ("ggx-lamp", LAMP_DEG, 2.0)] {
+        for alpha in [0.01, 0.1, 0.5] {
+            for elev in [10.0, 45.0, 80.0, low] {
+                for (view, dphi) in [("mirror", 0.0f64), ("off", 10.0)] {
+                    let ta = (90.0f64 - elev).to_radians();
+                    let axis = [ta.sin(), 0.0, ta.cos()];
+                    // Mirror of the axis about the normal, turned by dphi.
+                    let p = std::f64::consts::PI + dphi.to_radians();
+                    let wo = [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()];
+                    v.push(ProductCase {
+                        name: format!("{family}-a{alpha}-el{elev}-{view}"),
+                        family,
+                        spec: format!("ggx(alpha={alpha}, g=height-correlated, fresnel=none)"),
+                        model: RefModel::Microfacet {
+                            ggx: true,
+                            alpha,
+                            height_correlated: true,
+                            conductor: None,
+                        },
+                        wo,
+                        axis,
+                        sigma: deg.to_radians(),
+                    });
+                }
+            }
+        }
+    }
+    if quick {
+        let keep = ["ggx-sun-a0.1-el45-mirror", "ggx-lamp-a0.01-el2-off"];
+        v.retain(|c| keep.contains(&c.name.as_str()));
+    }
+    v
+}
+
+/// How a product case is integrated.
+#[derive(Clone, Copy, Debug)]
+pub enum Method {
+    /// Gauss–Legendre over the visible cap ([`CapIntegrand`]).
+    CapGaussLegendre,
+    /// Adaptive cubature over the visible cap ([`CapIntegrand`]).
+    CapAdaptive(Adaptive),
+    /// Monte Carlo over a [`CapSampled`] map.
+    Sampled(CapStrategy, PointSet, u64),
+}
+
+impl Method {
+    /// Report name.
+    pub fn name(&self) -> String {
+        match *self {
+            Method::CapGaussLegendre => "cap-gauss-legendre".into(),
+            Method::CapAdaptive(_) => "cap-adaptive".into(),
+            Method::Sampled(s, p, _) => {
+                let s = match s {
+                    CapStrategy::Light => "light-sampling",
+                    CapStrategy::Brdf => "brdf-sampling",
+                    CapStrategy::Mis => "mis-light-brdf",
+                };
+                let p = match p {
+                    PointSet::Prng => "prng",
+                    PointSet::Stratified => "stratified",
+                    PointSet::Sobol => "sobol",
+                    PointSet::Fibonacci => "fibonacci",
+                };
+                format!("{s}-{p}")
+            }
+        }
+    }
+
+    /// Whether the method is deterministic quadrature.
+    pub fn is_deterministic(&self) -> bool {
+        !matches!(self, Method::Sampled(..))
+    }
+
+    fn integrate(
+        &self,
+        brdf: &AnyBrdf,
+        wo: Vec3,
+        cap: &Cap<f32>,
+        budget: u32,
+    ) -> Result<Estimate<f64>, IntegrateError> {
+        match *self {
+            Method::CapGaussLegendre => {
+                GaussLegendre::new().integrate(&CapIntegrand::new(brdf, wo, cap), budget)
+            }
+            Method::CapAdaptive(a) => a.integrate(&CapIntegrand::new(brdf, wo, cap), budget),
+            Method::Sampled(s, p, seed) => MonteCarlo::new(Strategy::Integrand, p, seed)
+                .integrate(&CapSampled::new(brdf, wo, cap, s), budget),
+        }
+    }
+}
+
+/// The methods of the product suite.
+pub fn methods(seed: u64) -> Vec<Method> {
+    let adaptive = Adaptive::new(0.0, 0.0).expect("valid tolerances");
+    let mut v = vec![Method::CapGaussLegendre, Method::CapAdaptive(adaptive)];
+    for s in [CapStrategy::Light, CapStrategy::Brdf, CapStrategy::Mis] {
+        for p in [PointSet::Prng, PointSet::Sobol] {
+            v.push(Method::Sampled(s, p, seed));
+        }
+    }
+    v
+}
+
+/// Names and kinds for the report tables.
+pub fn method_infos(methods: &[Method]) -> Vec<MethodInfo> {
+    methods
+        .iter()
+        .map(|m| MethodInfo {
+            name: m.name(),
+            deterministic: m.is_deterministic(),
+        })
+        .collect()
+}
+
+fn v3(a: [f64; 3]) -> Vec3 {
+    Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32)
+}
+
+/// The cap light of a case (radiance 1).
+pub fn cap_of(c: &ProductCase) -> Cap<f32> {
+    Cap::new(v3(c.axis), c.sigma as f32, 1.0).expect("valid cap")
+}
+
+/// The independent f64 reference of a case.
+pub fn reference(c: &ProductCase) -> Reference {
+    reference::cap_radiance(&c.model, c.wo, c.axis, c.sigma)
+}
+
+/// Runs `method` on `case` over `budgets` (as [`super::measure`]).
+pub fn measure(
+    brdf: &AnyBrdf,
+    case: &ProductCase,
+    method: &Method,
+    budgets: &[u32],
+    quick: bool,
+) -> (Vec<Measured>, Vec<String>) {
+    let wo = v3(case.wo);
+    let cap = cap_of(case);
+    let mut out = Vec::new();
+    let mut refused = Vec::new();
+    for &b in budgets {
+        let mut times = Vec::new();
+        let mut first = None;
+        for _ in 0..super::repeats(quick, b) {
+            let t0 = Instant::now();
+            let r = method.integrate(brdf, wo, &cap, b);
+            times.push(t0.elapsed().as_secs_f64());
+            match r {
+                Ok(e) => {
+                    if first.is_none() {
+                        first = Some(e);
+                    }
+                }
+                Err(e) => {
+                    refused.push(format!("{} at budget {b}: {e}", method.name()));
+                    break;
+                }
+            }
+        }
+        if let Some(e) = first {
+            out.push((b, e.evaluations, e.value, e.error, super::median(times), e.status));
+        }
+    }
+    (out, refused)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::build_brdf;
+    use crate::spec::parse_brdf;
+
+    #[test]
+    fn suite_covers_the_issue_cases() {
+        let s = suite(false);
+        assert_eq!(s.len(), 2 * 3 * 4 * 2);
+        // Partly below the horizon: the cap reaches below z = 0.
+        assert!(s.iter().any(|c| c.axis[2] < c.sigma.sin()));
+        let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), s.len());
+        assert!(s.iter().all(|c| !c.name.contains(',')));
+        assert_eq!(suite(true).len(), 2);
+    }
+
+    #[test]
+    fn every_method_agrees_with_the_reference_on_a_lamp() {
+        let c = suite(false)
+            .into_iter()
+            .find(|c| c.name == "ggx-lamp-a0.5-el45-mirror")
+            .unwrap();
+        let r = reference(&c);
+        let brdf = build_brdf(&c.spec, &parse_brdf(&c.spec).unwrap()).unwrap();
+        for m in methods(7) {
+            let e = m.integrate(&brdf, v3(c.wo), &cap_of(&c), 65536).unwrap();
+            let err = (e.value - r.value).abs();
+            let k = if m.is_deterministic() { 10.0 } else { 4.0 };
+            assert!(
+                err <= k * e.error + 1e-6 * r.value,
+                "{}: {} ± {} vs {}",
+                m.name(),
+                e.value,
+                e.error,
+                r.value
+            );
+        }
+    }
+}
