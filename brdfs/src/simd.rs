@@ -1,10 +1,13 @@
 //! Vector `f32` kernels (8 or 16 lanes) behind [`Brdf::eval_batch`],
-//! [`Brdf::eval_batch_soa`] and [`Brdf::pdf_batch`] (feature `simd`).
+//! [`Brdf::eval_batch_soa`], [`Brdf::pdf_batch`] and
+//! [`Brdf::sample_batch`] (feature `simd`).
 //!
 //! This module holds the shared vector math ([`LANES`] directions in
 //! structure-of-arrays form, the chunk drivers for array-of-structures and
 //! structure-of-arrays input, bit-exact vector ports of `libm`'s `expf`,
-//! `log1pf` and `powf`, `f32` ↔ `f64` lane conversions, spectrum stores); it imports nothing from the plugins. Each
+//! `log1pf`, `powf` and `sincosf`, `f32` ↔ `f64` lane conversions, spectrum
+//! stores, the chunk driver of the sampling kernels); it imports nothing from
+//! the plugins. Each
 //! plugin's kernel lives next to its scalar code and follows its formula
 //! operation for operation:
 //!
@@ -13,6 +16,8 @@
 //! | [`Microfacet<Ggx, HeightCorrelated, F>`](crate::Microfacet), every Fresnel `F` | GGX `D` (Walter et al. 2007, eq. 33), projected areas `A = cos θ (1 + Λ)`, `V = 1/(4 (cos θo Ai + cos θi Ao − cos θi cos θo))` (Heitz 2014, eq. 99) | `D/(4 A(ωo))` | 0 ulp |
 //! | [`Microfacet<Ggx, Separable, F>`](crate::Microfacet), every Fresnel `F` | as above, `V = 1/(4 Ai Ao)` (Heitz 2014, eq. 98) | `D/(4 A(ωo))` | 0 ulp |
 //! | [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | Beckmann `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007, eq. 25), `A = cos θ + α sin θ · aΛ(a)` with the loop-free `Λ = e^{−a²} T(a)/(2√π a)` (its `f64` rational on `f64` vectors) | `D/(4 A(ωo))` | 0 ulp |
+//! | `sample_batch` of [`Microfacet<Ggx, G, F>`](crate::Microfacet), either `G`, every `F` | visible normals by spherical caps (Dupuy & Benyoub 2023; Heitz 2018 stretch), `ωi = 2(ωo·m)m − ωo`, pdf `D/(4 A(ωo))`, weight `F G2/G1` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
+//! | `sample_batch` of [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | visible slopes (Heitz & d'Eon 2014, §4): the bounded start and two bracketed Halley steps of the scalar inversion, `erfinv` for the second slope, on `f64` vectors where the scalar code uses `f64` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
 //! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
 //! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | `pd cos θi/π + ps (n+1)/(2π) cos^n α` | 0 ulp |
@@ -28,7 +33,8 @@
 //! scalar `f32` / `libm::sqrtf`; no fused multiply–add, no reciprocal
 //! estimates. The transcendentals are bit-exact vector ports of the `libm`
 //! functions the scalar code calls — `expf` (FreeBSD `e_expf.c`), `log1pf`
-//! (`s_log1pf.c`) and `powf` (`e_powf.c`), with integer operations on the
+//! (`s_log1pf.c`), `powf` (`e_powf.c`) and `sincosf` (`s_sincosf.c`, for
+//! `x ∈ [0, 2π]`), with integer operations on the
 //! bits through `wide`'s integer vectors, checked against `libm` by this
 //! module's unit tests on every 7th `f32` of their ranges (`powf`: for
 //! `y = 30`; sparser grids for other exponents) — except the `hypot` inside the
@@ -40,7 +46,12 @@
 //! structure-of-arrays alike, over proptest cases, hard cases in every lane
 //! position and a deterministic sweep of 200 000 pairs (x86_64, SSE2
 //! baseline with 8 lanes and `-C target-cpu=native` with AVX-512 and 16
-//! lanes).
+//! lanes). The sampling kernels have their own test,
+//! `brdfs/tests/sample_batch.rs`: the same `None` decisions and 0 ulp in
+//! `wi`, pdf and weight, and the pdf equal to `pdf_batch` of the returned
+//! `wi`, over 1.2 million random `(ωo, u)` and hard cases (grazing and
+//! non-unit `ωo`, `u` at 0, 1 − ε, 1 and out of range, `α = 10⁻⁴` and 1)
+//! in every lane position.
 //!
 //! # Special inputs
 //!
@@ -51,6 +62,10 @@
 //! the special-case handling is the scalar one by construction. The Beckmann
 //! kernel also hands back lanes with `cos²θh < 10⁻⁸` (the scalar `D`'s
 //! separate grazing form).
+//! The sampling kernels hand back lanes with a non-unit `ωo` and lanes where
+//! one of the sampler's normalisations (of the stretched `ωo`, of `m`, of
+//! `ωi`) leaves the scalar `unitize`'s two hot branches (unit already, or
+//! `‖w‖² ∈ [10⁻³⁰, 10³⁰]`).
 //! Below-horizon, grazing (`cos θ = 0`, or so small that `cos²θ` underflows)
 //! and `ωi = −ωo` lanes stay in the kernel and give `0` exactly where `eval`
 //! does (masked selects replace the scalar early returns). The Lambertian and
@@ -137,6 +152,13 @@
 //! [`Brdf::eval_batch`]: radiometry::Brdf::eval_batch
 //! [`Brdf::eval_batch_soa`]: radiometry::Brdf::eval_batch_soa
 //! [`Brdf::pdf_batch`]: radiometry::Brdf::pdf_batch
+//! [`Brdf::sample_batch`]: radiometry::Brdf::sample_batch
+
+mod sample;
+mod sincos;
+
+pub(crate) use sample::{SampleKernel, run_samples};
+pub(crate) use sincos::sincosf;
 
 use core::any::Any;
 use radiometry::Spectrum;
@@ -239,6 +261,46 @@ impl Dirs {
         (self.length_squared() - Vf::ONE)
             .abs()
             .simd_le(Vf::splat(4.0 * f32::EPSILON))
+    }
+
+    /// The hot part of the microfacet `unitize` lane-wise: `w` unchanged
+    /// where it is unit to within `4ε`, else `w · (1/√‖w‖²)` where
+    /// `‖w‖² ∈ [10⁻³⁰, 10³⁰]` (the scalar's second branch); returns the
+    /// result and the mask of the lanes outside both (the scalar's rescaling
+    /// or degenerate branch: the caller hands them back).
+    #[inline(always)]
+    pub(crate) fn unitize(self) -> (Dirs, Vf) {
+        let l2 = self.length_squared();
+        let unit = (l2 - Vf::ONE).abs().simd_le(Vf::splat(4.0 * f32::EPSILON));
+        let in_range = l2.simd_ge(Vf::splat(1e-30)) & l2.simd_le(Vf::splat(1e30));
+        let r = Vf::ONE / l2.sqrt();
+        let scaled = Dirs {
+            x: self.x * r,
+            y: self.y * r,
+            z: self.z * r,
+        };
+        let pick = |a: Vf, b: Vf| unit.select(a, b);
+        let out = Dirs {
+            x: pick(self.x, scaled.x),
+            y: pick(self.y, scaled.y),
+            z: pick(self.z, scaled.z),
+        };
+        (out, !(unit | in_range))
+    }
+
+    /// [`unitize`](Self::unitize) with a shortcut for the usual case that
+    /// every lane is already unit (a re-normalisation of a normalised
+    /// vector): then `w` itself and no cold lane, with no square root or
+    /// division.
+    #[inline(always)]
+    pub(crate) fn unitize_again(self) -> (Dirs, Vf) {
+        let l2 = self.length_squared();
+        let unit = (l2 - Vf::ONE).abs().simd_le(Vf::splat(4.0 * f32::EPSILON));
+        if unit.all() {
+            (self, Vf::ZERO)
+        } else {
+            self.unitize()
+        }
     }
 
     /// `radiometry::frame::try_normalize` lane-wise: `(w/√‖w‖², mask)` where

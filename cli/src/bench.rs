@@ -43,6 +43,7 @@ Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with
   pdf             for k { out[k] = brdf.pdf(wi[k], wo[k]) }
   pdf_batch       brdf.pdf_batch(&wi, &wo, &mut out)
   sample          for k { out[k] = brdf.sample(wo[k], u[k]) }      stores the Option<BrdfSample>
+  sample_batch    brdf.sample_batch(&wo, &u, &mut out)             the same samples, batched
 Inputs: deterministic direction pairs spread over the upper hemisphere (θ < 88.8°, golden-ratio
 sequences), u in [0,1)².
 
@@ -61,7 +62,7 @@ Columns:
   ns_per_elem  1000 / m_per_s
   vs_ref       m_per_s / m_per_s of the reference at the same n: reference-ggx-scalar for the
                scalar paths (eval, pdf, sample), reference-ggx-soa for the batch paths
-               (eval_batch, eval_batch_soa, pdf_batch); json key `ref` names it
+               (eval_batch, eval_batch_soa, pdf_batch, sample_batch); json key `ref` names it
   vs_stream    m_per_s / m_per_s of stream at the same n
 
 Timing: per measurement a warm-up, then repetitions of whole passes over the n elements (each
@@ -94,7 +95,10 @@ pub struct BenchArgs {
 /// Whether a path is a batch call (compared with the SoA reference) rather
 /// than a scalar loop (compared with the scalar reference).
 fn is_batch(path: &str) -> bool {
-    matches!(path, "eval_batch" | "eval_batch_soa" | "pdf_batch")
+    matches!(
+        path,
+        "eval_batch" | "eval_batch_soa" | "pdf_batch" | "sample_batch"
+    )
 }
 
 const REF_SCALAR: &str = "reference-ggx-scalar";
@@ -280,6 +284,16 @@ fn pass_pdf_batch<B: Brdf>(brdf: &B, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) 
 }
 
 #[inline(never)]
+fn pass_sample_batch<B: Brdf>(
+    brdf: &B,
+    wo: &[Vec3],
+    u: &[[f32; 2]],
+    out: &mut [Option<BrdfSample<B::Spectrum>>],
+) {
+    brdf.sample_batch(wo, u, out);
+}
+
+#[inline(never)]
 #[allow(clippy::needless_range_loop)]
 fn pass_sample<B: Brdf>(brdf: &B, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<B::Spectrum>>]) {
     let n = out.len();
@@ -346,7 +360,7 @@ impl Run<'_> {
         [scalar, soa, stream]
     }
 
-    /// Times the six paths of one plugin.
+    /// Times the seven paths of one plugin.
     fn plugin<B: Brdf>(&mut self, name: &'static str, brdf: &B) {
         self.note(name);
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
@@ -409,6 +423,15 @@ impl Run<'_> {
             )
         });
         self.push(name, "sample", t);
+        let t = measure(n, mt, || {
+            pass_sample_batch(
+                black_box(brdf),
+                black_box(wo),
+                black_box(u),
+                black_box(&mut out_s[..]),
+            )
+        });
+        self.push(name, "sample_batch", t);
         black_box((&out, &out_f, &out_s));
     }
 
@@ -563,7 +586,7 @@ warm-up); single thread",
 }
 
 const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf, sample) or / reference-ggx-soa \
-(eval_batch, eval_batch_soa, pdf_batch) at the same n; vs_stream = m_per_s / stream at the same n";
+(eval_batch, eval_batch_soa, pdf_batch, sample_batch) at the same n; vs_stream = m_per_s / stream at the same n";
 
 /// Runs the command.
 pub fn run(args: BenchArgs) -> ExitCode {

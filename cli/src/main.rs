@@ -134,7 +134,7 @@ enum Command {
     #[command(subcommand)]
     Sensor(sensor_cmd::SensorCommand),
     /// Single-thread throughput of every BRDF plugin's eval / eval_batch / eval_batch_soa / pdf / pdf_batch /
-    /// sample, also as fractions of this CPU's limits timed in the same run (a reference GGX kernel, scalar
+    /// sample / sample_batch, also as fractions of this CPU's limits timed in the same run (a reference GGX kernel, scalar
     /// and auto-vectorised, and the memory-stream bound).
     #[command(after_help = bench::AFTER_HELP)]
     Bench(bench::BenchArgs),

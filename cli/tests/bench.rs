@@ -25,15 +25,16 @@ const PLUGINS: [&str; 8] = [
     "ggx-hc-conductor-rgb-a0.3",
     "beckmann-hc-a0.3",
 ];
-const PATHS: [&str; 6] = [
+const PATHS: [&str; 7] = [
     "eval",
     "eval_batch",
     "eval_batch_soa",
     "pdf",
     "pdf_batch",
     "sample",
+    "sample_batch",
 ];
-const BATCH_PATHS: [&str; 3] = ["eval_batch", "eval_batch_soa", "pdf_batch"];
+const BATCH_PATHS: [&str; 4] = ["eval_batch", "eval_batch_soa", "pdf_batch", "sample_batch"];
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(b.abs())

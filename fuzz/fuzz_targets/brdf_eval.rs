@@ -1,11 +1,13 @@
 //! Every plugin: any finite parameters (invalid ones must be rejected at
 //! construction), any finite directions and samples: eval / pdf / sample are
-//! finite and non-negative, and never panic.
+//! finite and non-negative, and never panic; `sample_batch` equals `sample`
+//! bit for bit.
 #![no_main]
 mod common;
 use common::Floats;
 use libfuzzer_sys::fuzz_target;
-use radiometry::{Brdf, Spectrum};
+use radiometry::glam::Vec3;
+use radiometry::{Brdf, BrdfSample, Spectrum};
 use radiometry_brdfs::*;
 
 fn check<B: Brdf>(b: &B, f: &mut Floats) {
@@ -29,6 +31,40 @@ fn check<B: Brdf>(b: &B, f: &mut Floats) {
             "sample weight {wo:?} {u:?} -> {s:?}"
         );
         assert!(s.wi.is_finite());
+    }
+    // `sample_batch` (the vector kernels of the `simd` feature for GGX and
+    // Beckmann) returns exactly what `sample` returns: one chunk of up to 16
+    // lanes plus a tail, half the directions made unit (the kernels' hot
+    // path), with the same `None` decisions and the same bits.
+    let wos: [Vec3; 19] = core::array::from_fn(|k| {
+        let w = f.vec3();
+        if k % 2 == 0 { w.normalize_or(Vec3::Z) } else { w }
+    });
+    let us: [[f32; 2]; 19] = core::array::from_fn(|_| [f.unit(), f.unit()]);
+    let mut out = [None; 19];
+    b.sample_batch(&wos, &us, &mut out);
+    for k in 0..19 {
+        let s = b.sample(wos[k], us[k]);
+        let bits = |s: Option<BrdfSample<B::Spectrum>>| {
+            s.map(|s| {
+                let mut v = [
+                    s.wi.x.to_bits(),
+                    s.wi.y.to_bits(),
+                    s.wi.z.to_bits(),
+                    s.pdf.to_bits(),
+                ]
+                .to_vec();
+                v.extend((0..B::Spectrum::CHANNELS).map(|c| s.weight.channel(c).to_bits()));
+                v
+            })
+        };
+        assert!(
+            bits(s) == bits(out[k]),
+            "sample_batch {:?} {:?}: {:?} vs {s:?}",
+            wos[k],
+            us[k],
+            out[k]
+        );
     }
 }
 

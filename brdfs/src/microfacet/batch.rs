@@ -12,10 +12,10 @@
 
 use super::{Fresnel, Microfacet, MicrofacetDistribution, ShadowingMasking};
 use crate::simd::Vf;
-use crate::simd::{Batch, Dirs, Kernel, LANES, finite_nonneg};
-use core::f32::consts::PI;
-use radiometry::Brdf;
+use crate::simd::{Batch, Dirs, Kernel, LANES, SampleKernel, finite_nonneg, run_samples, sincosf};
+use core::f32::consts::{PI, TAU};
 use radiometry::glam::Vec3;
+use radiometry::{Brdf, BrdfSample, Spectrum};
 
 /// Which batched kernel a [`MicrofacetDistribution`] supports (hidden hook;
 /// not a stable API).
@@ -65,6 +65,8 @@ trait DistV {
 /// `A = (cos θ + √(cos²θ + α² sin²θ))/2`.
 #[derive(Clone, Copy)]
 struct GgxV {
+    /// `α`.
+    alpha: Vf,
     /// `α²`, rounded as `Ggx` rounds it.
     a2: Vf,
 }
@@ -73,6 +75,7 @@ impl GgxV {
     #[inline(always)]
     fn new(alpha: f32) -> GgxV {
         GgxV {
+            alpha: Vf::splat(alpha),
             a2: Vf::splat(alpha * alpha),
         }
     }
@@ -88,6 +91,47 @@ impl DistV for GgxV {
     #[inline(always)]
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
         Vf::splat(0.5) * (cos_theta + (cos_theta * cos_theta + self.a2 * sin2).sqrt())
+    }
+}
+
+/// The visible-normal sampler of a distribution kernel, lane-wise and
+/// bit-identical to [`MicrofacetDistribution::sample_visible`] for unit `ωo`.
+trait SampleV: DistV {
+    /// `(m, cold)`: the sampled normal, and the mask of the lanes whose
+    /// scalar path leaves this kernel's branches (handed back).
+    fn sample_visible(&self, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf);
+}
+
+use super::beckmann_lanes::clamp01;
+
+impl SampleV for GgxV {
+    /// `Ggx::sample_visible` lane for lane: spherical caps (Dupuy & Benyoub
+    /// 2023, §3) between the stretch and unstretch of Heitz 2018, with
+    /// `libm::sincosf` as its bit-exact vector port.
+    #[inline(always)]
+    fn sample_visible(&self, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf) {
+        let a = self.alpha;
+        let (zero, one) = (Vf::ZERO, Vf::ONE);
+        let stretched = Dirs {
+            x: a * wo.x,
+            y: a * wo.y,
+            z: wo.z.abs(),
+        };
+        let (v, cold_v) = stretched.unitize();
+        let (u0, u1) = (clamp01(u0), clamp01(u1));
+        let one_plus_vz = one + v.z;
+        let one_minus_zc = u1 * one_plus_vz;
+        let hz = (one - u1) * one_plus_vz;
+        let one_plus_zc = hz + (one - v.z);
+        let sin_c = (one_minus_zc * one_plus_zc).max(zero).sqrt();
+        let (sp, cp) = sincosf(Vf::splat(TAU) * u0);
+        let h = Dirs {
+            x: a * (sin_c * cp + v.x),
+            y: a * (sin_c * sp + v.y),
+            z: hz.max(zero),
+        };
+        let (m, cold_m) = h.unitize();
+        (m, cold_v | cold_m)
     }
 }
 
@@ -109,6 +153,16 @@ impl DistV for BeckmannV {
     #[inline(always)]
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf {
         super::beckmann::lanes::projected_area(self.alpha, cos_theta, sin2)
+    }
+}
+
+impl SampleV for BeckmannV {
+    /// `Beckmann::sample_visible` lane for lane (Heitz & d'Eon 2014, §4:
+    /// the visible-slope inversion with a bounded start and two Halley
+    /// steps, `erfinv` for the second slope), see `beckmann_lanes`.
+    #[inline(always)]
+    fn sample_visible(&self, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf) {
+        super::beckmann_lanes::sample_visible(self.alpha, wo, u0, u1)
     }
 }
 
@@ -206,6 +260,83 @@ where
     }
 }
 
+/// `sample` of `Microfacet<D, G, F>` with the distribution kernel `X`: the
+/// scalar [`Microfacet::sample`](radiometry::Brdf::sample) lane for lane —
+/// `m ~ D_ωo`, `ωi = 2(ωo·m)m − ωo` normalised as the scalar normalises it
+/// (twice: once after the reflection, once in the pdf), then the pdf
+/// `D(h)/(4 A(ωo))` and the weight `F(cos θd) · clamp(4 V cos θi A(ωo), 0, 1)`
+/// (= `F G2/G1`), with the same `None` decisions.
+struct Sample<'a, D, G, F, X, const SEPARABLE: bool> {
+    b: &'a Microfacet<D, G, F>,
+    dist: X,
+}
+
+impl<D, G, F, X, const SEPARABLE: bool> SampleKernel for Sample<'_, D, G, F, X, SEPARABLE>
+where
+    D: MicrofacetDistribution,
+    G: ShadowingMasking,
+    F: Fresnel,
+    X: SampleV,
+{
+    type Out = Option<BrdfSample<F::Spectrum>>;
+
+    #[inline(always)]
+    fn lanes(&self, wo: Dirs, u0: Vf, u1: Vf, out: &mut [Self::Out; LANES]) -> u32 {
+        let (zero, one, four) = (Vf::ZERO, Vf::ONE, Vf::splat(4.0));
+        let (m, cold_m) = self.dist.sample_visible(wo, u0, u1);
+        let dot = wo.dot(m);
+        let two_dot = Vf::splat(2.0) * dot;
+        let reflected = Dirs {
+            x: two_dot * m.x - wo.x,
+            y: two_dot * m.y - wo.y,
+            z: two_dot * m.z - wo.z,
+        };
+        let (wi1, cold_1) = reflected.unitize();
+        let (wi, cold_2) = wi1.unitize_again();
+        let (valid, len2, cos2, sin2) = half(wi, wo);
+        let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
+        let ai = self.dist.area(wi.z, wi.xy_length_squared());
+        let ao = self.dist.area(wo.z, wo.xy_length_squared());
+        let pdf = finite_nonneg(d / (four * ao));
+        let v = if SEPARABLE {
+            one / (four * (ai * ao))
+        } else {
+            one / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
+        };
+        // `f32::clamp(0, 1)`, NaN kept.
+        let r = four * v * wi.z * ao;
+        let ratio = r.simd_lt(zero).select(zero, r.simd_gt(one).select(one, r));
+        let ok = wo.z.simd_gt(zero)
+            & dot.simd_gt(zero)
+            & wi1.z.simd_gt(zero)
+            & valid
+            & pdf.simd_gt(zero)
+            & pdf.simd_lt(Vf::splat(f32::INFINITY));
+        let cos_d = (Vf::splat(0.5) * len2.sqrt()).fast_min(one);
+        let mut weight = [F::Spectrum::zero(); LANES];
+        self.b.fresnel.eval_scaled_lanes(cos_d, ratio, &mut weight);
+        let (x, y, z, p) = (wi.x.to_array(), wi.y.to_array(), wi.z.to_array(), pdf.to_array());
+        let ok = ok.to_bitmask();
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = if ok & (1 << k) != 0 {
+                Some(BrdfSample {
+                    wi: Vec3::new(x[k], y[k], z[k]),
+                    pdf: p[k],
+                    weight: weight[k],
+                })
+            } else {
+                None
+            };
+        }
+        (!wo.is_unit() | cold_m | cold_1 | cold_2 | d_cold).to_bitmask()
+    }
+
+    #[inline(always)]
+    fn one(&self, wo: Vec3, u: [f32; 2]) -> Self::Out {
+        self.b.sample(wo, u)
+    }
+}
+
 /// `eval_batch` / `eval_batch_soa` of [`Microfacet`]: a kernel when `D` and
 /// `G` opt in through the hidden hooks, else the scalar loop.
 #[inline]
@@ -256,6 +387,64 @@ where
             dist: BeckmannV { alpha },
         }),
         _ => io.scalar(|wi, wo| b.pdf(wi, wo)),
+    }
+}
+
+/// `sample_batch` of [`Microfacet`]: a kernel when `D` and `G` opt in
+/// through the hidden hooks, else the scalar loop.
+#[inline]
+pub(crate) fn sample<D, G, F>(
+    b: &Microfacet<D, G, F>,
+    wo: &[Vec3],
+    u: &[[f32; 2]],
+    out: &mut [Option<BrdfSample<F::Spectrum>>],
+) where
+    D: MicrofacetDistribution,
+    G: ShadowingMasking,
+    F: Fresnel,
+{
+    match (b.distribution.batch_kind(), G::BATCH_KIND) {
+        (DistributionKind::Ggx { alpha }, G2Kind::HeightCorrelated) => run_samples(
+            &Sample::<_, _, _, _, false> {
+                b,
+                dist: GgxV::new(alpha),
+            },
+            wo,
+            u,
+            out,
+        ),
+        (DistributionKind::Ggx { alpha }, G2Kind::Separable) => run_samples(
+            &Sample::<_, _, _, _, true> {
+                b,
+                dist: GgxV::new(alpha),
+            },
+            wo,
+            u,
+            out,
+        ),
+        (DistributionKind::Beckmann { alpha }, G2Kind::HeightCorrelated) => run_samples(
+            &Sample::<_, _, _, _, false> {
+                b,
+                dist: BeckmannV { alpha },
+            },
+            wo,
+            u,
+            out,
+        ),
+        (DistributionKind::Beckmann { alpha }, G2Kind::Separable) => run_samples(
+            &Sample::<_, _, _, _, true> {
+                b,
+                dist: BeckmannV { alpha },
+            },
+            wo,
+            u,
+            out,
+        ),
+        _ => {
+            for ((o, &w), &v) in out.iter_mut().zip(wo).zip(u) {
+                *o = b.sample(w, v);
+            }
+        }
     }
 }
 

@@ -276,9 +276,12 @@ impl Beckmann {
                 0.5 * (lo + hi)
             };
         }
-        // max/min rather than clamp: panic-free and NaN-absorbing.
+        // max/min rather than clamp: panic-free and NaN-absorbing; `+ 0`
+        // makes a zero `+0` (`min(−0, 0)` may return either zero), so the
+        // vector kernel can match the sign bit.
         #[allow(clippy::manual_clamp)]
-        x.max(-MAX_SLOPE).min(0.0)
+        let x = x.max(-MAX_SLOPE).min(0.0);
+        x + 0.0
     }
 
     /// The `x̃ > 0` branch of [`sample_slope_x`](Self::sample_slope_x); the
@@ -329,7 +332,8 @@ impl Beckmann {
                 0.5 * (lo + hi)
             };
         }
-        x.max(0.0).min(b)
+        // `+ 0`: a zero is `+0` (as in `slope_lower`).
+        x.max(0.0).min(b) + 0.0
     }
 }
 

@@ -42,11 +42,15 @@ mod albedo_table;
 #[cfg(feature = "simd")]
 mod batch;
 mod beckmann;
+#[cfg(feature = "simd")]
+mod beckmann_lanes;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
 mod smith;
 mod special;
+#[cfg(feature = "simd")]
+mod special_lanes;
 
 #[cfg(test)]
 mod tests;
@@ -196,8 +200,8 @@ pub trait MicrofacetDistribution {
 
     /// Hidden hook of the `simd` feature: which vectorised kernel (if any)
     /// the batch methods of [`Microfacet`] may use for this distribution.
-    /// The default, `DistributionKind::Scalar`, keeps the scalar loop; only
-    /// [`Ggx`] overrides it. Not part of the stable API.
+    /// The default, `DistributionKind::Scalar`, keeps the scalar loop;
+    /// [`Ggx`] and [`Beckmann`] override it. Not part of the stable API.
     #[cfg(feature = "simd")]
     #[doc(hidden)]
     #[inline]
@@ -549,6 +553,18 @@ where
     #[inline]
     fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
         batch::pdf(self, crate::simd::Batch::Aos(wi, wo, out))
+    }
+
+    /// With the `simd` feature, GGX and Beckmann with either
+    /// shadowing–masking variant (any Fresnel term) use a vector kernel that
+    /// returns exactly what [`Brdf::sample`] returns (the same `None`
+    /// decisions; `wi`, `pdf` and `weight` bit for bit, so the pdf is also
+    /// `pdf_batch` of the returned `wi` bit for bit); other combinations
+    /// loop over `sample`.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<F::Spectrum>>]) {
+        batch::sample(self, wo, u, out)
     }
 
     /// Visible-normal sampling (Heitz & d'Eon 2014) followed by mirror

@@ -23,7 +23,7 @@ pub(crate) const FRAC_1_SQRT_PI: f32 = 0.564_189_6;
 pub(crate) const SQRT_PI: f32 = 1.772_453_9;
 
 /// `2√π` in `f64`.
-const TWO_SQRT_PI_F64: f64 = 3.544_907_701_811_032;
+pub(super) const TWO_SQRT_PI_F64: f64 = 3.544_907_701_811_032;
 
 /// Largest slope magnitude the samplers produce: `erfc(9) ≈ 4·10⁻³⁷`, so the
 /// Gaussian mass beyond it is below anything an `f32` sample can resolve,
@@ -40,7 +40,7 @@ pub(crate) const LAMBDA_ZERO_A: f32 = 9.765625;
 
 /// `erfc(MAX_SLOPE) = erfc(9)`: tail parameters `q` below it map to
 /// `MAX_SLOPE` in [`erfinv_2p_minus_1`].
-const ERFC_MAX_SLOPE: f32 = 4.137_031e-37;
+pub(super) const ERFC_MAX_SLOPE: f32 = 4.137_031e-37;
 
 #[cfg(feature = "simd")]
 use crate::simd::{Vd, Vf, narrow, widen};
@@ -55,14 +55,14 @@ use crate::simd::{Vd, Vf, narrow, widen};
 /// lose up to ~3 ulp per polynomial at the top of the range (all terms of
 /// comparable size); scalar `f64` multiply–adds cost the same as `f32` ones
 /// on x86-64 and AArch64.
-const LAMBDA_P: [f64; 5] = [
+pub(super) const LAMBDA_P: [f64; 5] = [
     0.999_999_995_809_965_2,
     0.960_381_134_440_453_3,
     0.471_469_681_440_820_63,
     0.127_483_932_225_053_28,
     0.016_510_359_052_367_727,
 ];
-const LAMBDA_Q: [f64; 7] = [
+pub(super) const LAMBDA_Q: [f64; 7] = [
     3.544_907_701_811_032,
     9.687_646_061_340_551,
     11.752_439_246_427_555,
@@ -74,14 +74,14 @@ const LAMBDA_Q: [f64; 7] = [
 
 /// `erfcx(y) = e^{y²} erfc(y) ≈ P(y)/Q(y)` on `[0, ERFC_ZERO]`, degree 4 / 5.
 /// Own fit (`fit_beckmann.py`, as above): max relative error 5.7·10⁻⁹.
-const ERFCX_P: [f64; 5] = [
+pub(super) const ERFCX_P: [f64; 5] = [
     1.000_000_005_693_677_5,
     1.238_106_327_604_978_9,
     0.731_285_068_041_706_1,
     0.229_066_489_234_758_47,
     0.032_764_467_444_571_98,
 ];
-const ERFCX_Q: [f64; 6] = [
+pub(super) const ERFCX_Q: [f64; 6] = [
     1.0,
     2.366_486_069_318_800_6,
     2.401_569_362_503_605_6,
@@ -93,7 +93,7 @@ const ERFCX_Q: [f64; 6] = [
 /// Central piece of `erfinv`: `erfinv(x)/x ≈ P(w − 2.5)` for
 /// `w = −ln(1 − x²) ∈ [0, 5]` (Giles' variable), degree 9. Own fit (Remez,
 /// `fit_beckmann.py`): max relative error 5.6·10⁻⁹.
-const ERFINV_CENTRAL: [f64; 10] = [
+pub(super) const ERFINV_CENTRAL: [f64; 10] = [
     1.5014093592822029,
     0.24664028615491573,
     -0.004177386780957262,
@@ -108,7 +108,7 @@ const ERFINV_CENTRAL: [f64; 10] = [
 
 /// First tail piece: `erfcinv(q) ≈ P(s − 3.118034)` for `s = √w ∈ [√5, 4]`
 /// (`q ∈ [5.6·10⁻⁸, 3.4·10⁻³]`), degree 7. Own fit: max rel. error 1.7·10⁻⁸.
-const ERFINV_TAIL1: [f64; 8] = [
+pub(super) const ERFINV_TAIL1: [f64; 8] = [
     2.9512400663955547,
     1.004141097706762,
     0.005713581490376331,
@@ -118,11 +118,11 @@ const ERFINV_TAIL1: [f64; 8] = [
     -2.781835400332262e-05,
     4.334570546419493e-05,
 ];
-const TAIL1_CENTRE: f64 = 3.118_033_885_955_810_5;
+pub(super) const TAIL1_CENTRE: f64 = 3.118_033_885_955_810_5;
 
 /// Second tail piece: `erfcinv(q) ≈ P(s − 6.5625)` for `s ∈ [4, 9.125]`
 /// (down to `q = erfc(9)`), degree 8. Own fit: max rel. error 1.4·10⁻⁸.
-const ERFINV_TAIL2: [f64; 9] = [
+pub(super) const ERFINV_TAIL2: [f64; 9] = [
     6.42766073142018,
     1.0090456672858454,
     -0.0005127591329926294,
@@ -133,7 +133,7 @@ const ERFINV_TAIL2: [f64; 9] = [
     -1.442807797383541e-07,
     2.8270807818762518e-08,
 ];
-const TAIL2_CENTRE: f64 = 6.5625;
+pub(super) const TAIL2_CENTRE: f64 = 6.5625;
 
 /// The `f64` arithmetic the Estrin polynomials and the exponential need,
 /// implemented by `f64` and (feature `simd`) by the `f64` lane vector, so
@@ -171,7 +171,7 @@ pub(crate) fn poly4<T: F64Arith>(c: &[f64; 5], x: T, x2: T) -> T {
 
 /// Degree-5 polynomial in `f64`, Estrin's scheme.
 #[inline(always)]
-fn poly5<T: F64Arith>(c: &[f64; 6], x: T, x2: T) -> T {
+pub(super) fn poly5<T: F64Arith>(c: &[f64; 6], x: T, x2: T) -> T {
     let k = T::splat;
     (k(c[0]) + k(c[1]) * x) + x2 * ((k(c[2]) + k(c[3]) * x) + x2 * (k(c[4]) + k(c[5]) * x))
 }
@@ -186,28 +186,32 @@ pub(crate) fn poly6<T: F64Arith>(c: &[f64; 7], x: T, x2: T) -> T {
 
 /// Degree-7 polynomial in `f64`, Estrin's scheme.
 #[inline(always)]
-fn poly7(c: &[f64; 8], x: f64) -> f64 {
+pub(super) fn poly7<T: F64Arith>(c: &[f64; 8], x: T) -> T {
+    let k = T::splat;
     let x2 = x * x;
     let x4 = x2 * x2;
-    ((c[0] + c[1] * x) + x2 * (c[2] + c[3] * x)) + x4 * ((c[4] + c[5] * x) + x2 * (c[6] + c[7] * x))
+    ((k(c[0]) + k(c[1]) * x) + x2 * (k(c[2]) + k(c[3]) * x))
+        + x4 * ((k(c[4]) + k(c[5]) * x) + x2 * (k(c[6]) + k(c[7]) * x))
 }
 
 /// Degree-8 polynomial in `f64`, Estrin's scheme.
 #[inline(always)]
-fn poly8(c: &[f64; 9], x: f64) -> f64 {
+pub(super) fn poly8<T: F64Arith>(c: &[f64; 9], x: T) -> T {
+    let k = T::splat;
     let x2 = x * x;
     let x4 = x2 * x2;
-    ((c[0] + c[1] * x) + x2 * (c[2] + c[3] * x))
-        + x4 * (((c[4] + c[5] * x) + x2 * (c[6] + c[7] * x)) + x4 * c[8])
+    ((k(c[0]) + k(c[1]) * x) + x2 * (k(c[2]) + k(c[3]) * x))
+        + x4 * (((k(c[4]) + k(c[5]) * x) + x2 * (k(c[6]) + k(c[7]) * x)) + x4 * k(c[8]))
 }
 
 /// Degree-9 polynomial in `f64`, Estrin's scheme.
 #[inline(always)]
-fn poly9(c: &[f64; 10], x: f64) -> f64 {
+pub(super) fn poly9<T: F64Arith>(c: &[f64; 10], x: T) -> T {
+    let k = T::splat;
     let x2 = x * x;
     let x4 = x2 * x2;
-    ((c[0] + c[1] * x) + x2 * (c[2] + c[3] * x))
-        + x4 * (((c[4] + c[5] * x) + x2 * (c[6] + c[7] * x)) + x4 * (c[8] + c[9] * x))
+    ((k(c[0]) + k(c[1]) * x) + x2 * (k(c[2]) + k(c[3]) * x))
+        + x4 * (((k(c[4]) + k(c[5]) * x) + x2 * (k(c[6]) + k(c[7]) * x)) + x4 * (k(c[8]) + k(c[9]) * x))
 }
 
 // ------------------------------------------------------------ exponentials
@@ -327,7 +331,7 @@ const LOG_POLY: [f64; 10] = [
 ];
 
 /// Bits of `√½` (`f64`).
-const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
+pub(super) const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
 
 /// `ln x` in `f64` for finite `x > 0` (the callers pass positive `f32`
 /// values, normal in `f64`), to 4·10⁻⁹ relative in the mantissa part:
@@ -339,16 +343,25 @@ const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
 /// (the result is then unspecified, never a panic).
 #[inline]
 pub(crate) fn ln64(x: f64) -> f64 {
+    let (k, m) = ln64_split(x);
+    ln64_poly(k, m)
+}
+
+/// The bit part of [`ln64`]: `(k, m)` with `x = 2^k m`, `m ∈ [√½, √2)`
+/// (`k` as an exact `f64`).
+#[inline(always)]
+fn ln64_split(x: f64) -> (f64, f64) {
     let bits = x.to_bits();
     let k = (bits.wrapping_sub(SQRT_HALF_BITS) as i64) >> 52;
-    let m = f64::from_bits(bits.wrapping_sub((k as u64) << 52));
-    let f = m - 1.0;
-    let f2 = f * f;
-    let f4 = f2 * f2;
-    let c = &LOG_POLY;
-    let p = ((c[0] + c[1] * f) + f2 * (c[2] + c[3] * f))
-        + f4 * (((c[4] + c[5] * f) + f2 * (c[6] + c[7] * f)) + f4 * (c[8] + c[9] * f));
-    k as f64 * LN2 + f * p
+    (k as f64, f64::from_bits(bits.wrapping_sub((k as u64) << 52)))
+}
+
+/// The arithmetic part of [`ln64`], `k ln2 + f P(f)` with `f = m − 1`
+/// (generic so the vector form shares it).
+#[inline(always)]
+pub(super) fn ln64_poly<T: F64Arith>(k: T, m: T) -> T {
+    let f = m - T::splat(1.0);
+    k * T::splat(LN2) + f * poly9(&LOG_POLY, f)
 }
 
 /// `ln x` rounded to `f32`, for finite `x > 0` (see [`ln64`]).
@@ -377,7 +390,12 @@ pub(crate) fn exp_neg_sq(x: f32) -> f32 {
 /// error 5.7·10⁻⁹).
 #[inline]
 fn erfcx64(y: f32) -> f64 {
-    let y = y as f64;
+    erfcx64_any(y as f64)
+}
+
+/// [`erfcx64`] of an `f64` (generic so the vector form shares it).
+#[inline(always)]
+pub(super) fn erfcx64_any<T: F64Arith + core::ops::Div<Output = T>>(y: T) -> T {
     let y2 = y * y;
     poly4(&ERFCX_P, y, y2) / poly5(&ERFCX_Q, y, y2)
 }
@@ -443,10 +461,16 @@ pub(crate) fn beckmann_s(a: f32) -> f32 {
         return 0.0;
     }
     let a = a.max(0.0);
-    let a = a as f64;
+    beckmann_s64(a as f64) as f32
+}
+
+/// [`beckmann_s`] in `f64` before the rounding, `e^{−a²} · 2√π P(a)/Q(a)`
+/// (generic so the vector form shares it).
+#[inline(always)]
+pub(super) fn beckmann_s64<T: ExpNeg64 + core::ops::Div<Output = T>>(a: T) -> T {
     let a2 = a * a;
-    let t = poly4(&LAMBDA_P, a, a2) * TWO_SQRT_PI_F64 / poly6(&LAMBDA_Q, a, a2);
-    (exp_neg64(a2) * t) as f32
+    let t = poly4(&LAMBDA_P, a, a2) * T::splat(TWO_SQRT_PI_F64) / poly6(&LAMBDA_Q, a, a2);
+    exp_neg64_any(a2) * t
 }
 
 /// `aΛ(a) = e^{−a²} T(a)/(2√π) = e^{−a²} P(a)/Q(a)` of the Beckmann `Λ`
