@@ -120,6 +120,12 @@ pub fn suite(quick: bool) -> Vec<Case> {
     for (family, ggx) in [("ggx", true), ("beckmann", false)] {
         for a in [0.001, 0.01, 0.05, 0.3, 1.0] {
             for &t in &thetas {
+                // Beckmann α = 10⁻³ at θo ≥ 89.5°: the f64 reference (nested
+                // adaptive Gauss–Kronrod to 10⁻¹²) does not finish within a
+                // minute there, so those two cases are left out.
+                if !ggx && a < 0.005 && t >= 89.5 {
+                    continue;
+                }
                 push(
                     family,
                     format!("-a{}", fmt_num(a)),
@@ -933,7 +939,7 @@ mod tests {
         let s = suite(false);
         // θo ∈ {0, 60, 85, 89.5, 89.9}; Phong n ∈ {1, 10, 100, 1000};
         // microfacet α ∈ {0.001, 0.01, 0.05, 0.3, 1}.
-        assert_eq!(s.len(), 5 + 20 + 25 + 25 + 4);
+        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4);
         assert!(s.iter().any(|c| c.name == "ggx-a0.001-to89.9"));
         assert!(s.iter().all(|c| !c.name.contains(',')));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();
