@@ -14,7 +14,7 @@ use crate::model::{AnyBrdf, AnyIntegrator, all_integrators, build_brdf};
 use crate::reference::{self, RefModel, Reference};
 use crate::spec::parse_brdf;
 use radiometry::glam::Vec3;
-use radiometry::integrator::{DirectionalAlbedo, Integrator, Status};
+use radiometry::integrator::{DirectionalAlbedo, IntegrateError, Integrator, Status};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -194,7 +194,7 @@ pub struct Row {
     pub status: Status,
 }
 
-pub(crate) fn repeats(quick: bool, budget: u32) -> usize {
+fn repeats(quick: bool, budget: u32) -> usize {
     if quick {
         1
     } else if budget <= 4096 {
@@ -206,7 +206,7 @@ pub(crate) fn repeats(quick: bool, budget: u32) -> usize {
     }
 }
 
-pub(crate) fn median(mut v: Vec<f64>) -> f64 {
+fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
     v[v.len() / 2]
 }
@@ -226,6 +226,18 @@ fn measure(
         brdf,
         wo: Vec3::new(t.sin() as f32, 0.0, t.cos() as f32),
     };
+    ladder(budgets, quick, integ.name(), |b| integ.integrate(&g, b))
+}
+
+/// Runs `run(budget)` over the ladder: per budget the first estimate and
+/// the median wall time of [`repeats`] runs; a refused budget (an error)
+/// is recorded as `"{name} at budget {b}: {error}"` and written no row.
+pub(crate) fn ladder(
+    budgets: &[u32],
+    quick: bool,
+    name: &str,
+    mut run: impl FnMut(u32) -> Result<radiometry::integrator::Estimate<f64>, IntegrateError>,
+) -> (Vec<Measured>, Vec<String>) {
     let mut out = Vec::new();
     let mut refused = Vec::new();
     for &b in budgets {
@@ -233,7 +245,7 @@ fn measure(
         let mut first = None;
         for _ in 0..repeats(quick, b) {
             let t0 = Instant::now();
-            let r = integ.integrate(&g, b);
+            let r = run(b);
             times.push(t0.elapsed().as_secs_f64());
             match r {
                 Ok(e) => {
@@ -242,7 +254,7 @@ fn measure(
                     }
                 }
                 Err(e) => {
-                    refused.push(format!("{} at budget {b}: {e}", integ.name()));
+                    refused.push(format!("{name} at budget {b}: {e}"));
                     break;
                 }
             }

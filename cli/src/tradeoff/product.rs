@@ -12,7 +12,6 @@ use radiometry::integrator::{
     Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet, Strategy,
 };
 use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
-use std::time::Instant;
 
 /// One product-integral case.
 #[derive(Clone, Debug)]
@@ -183,32 +182,9 @@ pub fn measure(
 ) -> (Vec<Measured>, Vec<String>) {
     let wo = v3(case.wo);
     let cap = cap_of(case);
-    let mut out = Vec::new();
-    let mut refused = Vec::new();
-    for &b in budgets {
-        let mut times = Vec::new();
-        let mut first = None;
-        for _ in 0..super::repeats(quick, b) {
-            let t0 = Instant::now();
-            let r = method.integrate(brdf, wo, &cap, b);
-            times.push(t0.elapsed().as_secs_f64());
-            match r {
-                Ok(e) => {
-                    if first.is_none() {
-                        first = Some(e);
-                    }
-                }
-                Err(e) => {
-                    refused.push(format!("{} at budget {b}: {e}", method.name()));
-                    break;
-                }
-            }
-        }
-        if let Some(e) = first {
-            out.push((b, e.evaluations, e.value, e.error, super::median(times), e.status));
-        }
-    }
-    (out, refused)
+    super::ladder(budgets, quick, &method.name(), |b| {
+        method.integrate(brdf, wo, &cap, b)
+    })
 }
 
 #[cfg(test)]
