@@ -1,7 +1,7 @@
 //! The Beckmann normal distribution.
 
 use super::special::{
-    FRAC_1_SQRT_PI, LAMBDA_ZERO_A, MAX_SLOPE, SQRT_PI, a_lambda_of_a, beckmann_s, erfcinv, erfcx,
+    FRAC_1_SQRT_PI, LAMBDA_ZERO_A, MAX_SLOPE, SQRT_PI, beckmann_s, erfcinv, erfcx,
     erfinv_2p_minus_1, exp_neg_sq, exp_neg64, lambda_from_exp, ln64, lnf,
 };
 use super::{
@@ -79,8 +79,9 @@ const TINY_A: f32 = 9.536_743e-7;
 /// `lambda_of_a_matches_f64`, dense grid, against libm's `f64` `erfc`);
 /// subnormal results (`a > 9.0`) to within one subnormal ulp.
 ///
-/// The hot path uses [`a_lambda_of_a`] (inside the projected area) and
-/// [`beckmann_lambda_tan2`]; this form is the tests' check of the fit.
+/// The BRDF's hot path uses the `f32` projected area of
+/// [`beckmann_area`](super::beckmann_area) instead; [`beckmann_lambda_tan2`]
+/// serves `lambda`/`g1`, and this form is the tests' check of the fit.
 #[cfg(test)]
 pub(crate) fn lambda_of_a(a: f32) -> f32 {
     if a.is_nan() || a <= 0.0 {
@@ -131,7 +132,7 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
 /// `f64` vectors.
 #[cfg(feature = "simd")]
 pub(super) mod lanes {
-    use super::super::special::{LAMBDA_ZERO_A, a_lambda_of_a_v, exp_neg64_v};
+    use super::super::special::exp_neg64_v;
     use crate::simd::{Vd, Vf, finite_nonneg, narrow, widen};
 
     /// `Beckmann::d_cos2` lane-wise, bit for bit: in `f64`,
@@ -150,17 +151,10 @@ pub(super) mod lanes {
         (finite_nonneg(narrow([d(0), d(1)])), Vf::ZERO)
     }
 
-    /// `Beckmann::projected_area` lane-wise:
-    /// `A = cos θ + α sin θ · aΛ(a)`, `a = cos θ/(α sin θ)`.
+    /// `Beckmann::projected_area` lane-wise (bit for bit).
     #[inline(always)]
     pub(in super::super) fn projected_area(alpha: f32, cos_theta: Vf, sin2: Vf) -> Vf {
-        let alpha_s = Vf::splat(alpha) * sin2.sqrt();
-        let a = cos_theta / alpha_s;
-        let a_lambda = a
-            .simd_ge(Vf::splat(LAMBDA_ZERO_A))
-            .select(Vf::ZERO, a_lambda_of_a_v(a));
-        let area = cos_theta + alpha_s * a_lambda;
-        alpha_s.simd_le(Vf::ZERO).select(cos_theta, area)
+        super::super::beckmann_area::area_v(alpha, cos_theta, sin2)
     }
 }
 
@@ -377,18 +371,12 @@ impl MicrofacetDistribution for Beckmann {
     }
 
     /// `A(ω) = cos θ (1 + Λ) = cos θ + α sin θ · aΛ(a)` with
-    /// `a = cos θ/(α sin θ)`: `cos θ · Λ` written through `aΛ(a) =
-    /// e^{−a²} T(a)/(2√π)`, which is finite at grazing (`a → 0`:
-    /// `A → α sin θ/(2√π)`) and needs no division by `a`.
+    /// `a = cos θ/(α sin θ)`, `aΛ(a)` (exponential included) one fitted
+    /// `f32` rational — see [`beckmann_area`](super::beckmann_area): finite at
+    /// grazing (`A → α sin θ/(2√π)`), no division by `a`, ≤ 3 ulp.
     #[inline(always)]
     fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
-        let alpha_s = self.alpha * libm::sqrtf(sin2);
-        if alpha_s <= 0.0 {
-            // Normal incidence: Λ = 0.
-            return cos_theta;
-        }
-        let a = cos_theta / alpha_s;
-        cos_theta + alpha_s * a_lambda_of_a(a)
+        super::beckmann_area::area(self.alpha, cos_theta, sin2)
     }
 
     #[cfg(feature = "simd")]
@@ -506,37 +494,6 @@ mod tests {
             t = (t * 1.37).max(t.next_up());
         }
         pts
-    }
-
-    /// `a_lambda_of_a` (the projected area's `aΛ(a)`) against `a` times the
-    /// f64 erf form, over the same grid as below plus `a = 0` (limit
-    /// `1/(2√π)`): at most 1 ulp for normal results.
-    #[test]
-    fn a_lambda_matches_f64() {
-        extern crate std;
-        let mut worst = 0.0f64;
-        for a in a_grid(200_000) {
-            let v = a_lambda_of_a(a);
-            assert!(v >= 0.0 && v.is_finite(), "aΛ({a}) = {v}");
-            let a64 = a as f64;
-            // For a < 1e-8 the f64 erf form cancels; use its limit there.
-            let r = if a64 < 1e-8 {
-                0.5 / core::f64::consts::PI.sqrt() - 0.5 * a64
-            } else {
-                a64 * lambda64(a64)
-            };
-            if r < f32::MIN_POSITIVE as f64 {
-                assert!(v as f64 <= 2.0 * f32::MIN_POSITIVE as f64, "aΛ({a}) = {v} vs {r}");
-                continue;
-            }
-            let u = ulps(v, r);
-            worst = worst.max(u);
-            assert!(u <= 1.0, "aΛ({a}) = {v}, f64 {r}: {u} ulp");
-        }
-        assert!(ulps(a_lambda_of_a(0.0), 0.5 / core::f64::consts::PI.sqrt()) <= 1.0);
-        assert_eq!(a_lambda_of_a(f32::INFINITY), 0.0);
-        assert_eq!(a_lambda_of_a(f32::NAN), a_lambda_of_a(0.0));
-        std::println!("aΛ(a): worst {worst:.2} ulp");
     }
 
     /// `lambda_of_a` against the f64 erf form at the same (f32) `a`: a dense

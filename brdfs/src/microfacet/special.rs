@@ -43,7 +43,7 @@ pub(crate) const LAMBDA_ZERO_A: f32 = 9.765625;
 pub(super) const ERFC_MAX_SLOPE: f32 = 4.137_031e-37;
 
 #[cfg(feature = "simd")]
-use crate::simd::{Vd, Vf, narrow, widen};
+use crate::simd::Vd;
 
 // ------------------------------------------------------------ coefficients
 
@@ -471,39 +471,6 @@ pub(super) fn beckmann_s64<T: ExpNeg64 + core::ops::Div<Output = T>>(a: T) -> T 
     let a2 = a * a;
     let t = poly4(&LAMBDA_P, a, a2) * T::splat(TWO_SQRT_PI_F64) / poly6(&LAMBDA_Q, a, a2);
     exp_neg64_any(a2) * t
-}
-
-/// `aΛ(a) = e^{−a²} T(a)/(2√π) = e^{−a²} P(a)/Q(a)` of the Beckmann `Λ`
-/// (the fit `LAMBDA_P/LAMBDA_Q` is `T/(2√π)`), for `a ≥ 0`: the quantity the
-/// projected area `A = cos θ + α sin θ · aΛ(a)` needs. Unlike `Λ` it is
-/// finite at `a = 0` (grazing: `1/(2√π)`) and needs no division by `a`.
-/// `0` for `a ≥ LAMBDA_ZERO_A` (including `+∞`); negative `a` and NaN count
-/// as 0 (the grazing value). In `f64`, rounded once: max error that of the
-/// fit (4.2·10⁻⁹ relative) plus 0.5 ulp (unit test `a_lambda_matches_f64`).
-#[inline(always)]
-pub(crate) fn a_lambda_of_a(a: f32) -> f32 {
-    if a >= LAMBDA_ZERO_A {
-        return 0.0;
-    }
-    let a = if a > 0.0 { a as f64 } else { 0.0 };
-    a_lambda64(a) as f32
-}
-
-/// [`a_lambda_of_a`] in `f64` (generic so the vector form shares it).
-#[inline(always)]
-fn a_lambda64<T: ExpNeg64 + core::ops::Div<Output = T>>(a: T) -> T {
-    let a2 = a * a;
-    exp_neg64_any(a2) * poly4(&LAMBDA_P, a, a2) / poly6(&LAMBDA_Q, a, a2)
-}
-
-/// [`a_lambda_of_a`] lane-wise, bit for bit, for lanes with
-/// `0 ≤ a < LAMBDA_ZERO_A` (the caller selects the others).
-#[cfg(feature = "simd")]
-#[inline(always)]
-pub(crate) fn a_lambda_of_a_v(a: Vf) -> Vf {
-    let a = a.max(Vf::ZERO);
-    let a64 = widen(a);
-    narrow([a_lambda64(a64[0]), a_lambda64(a64[1])])
 }
 
 /// `Λ(a) = e^{−a²} T(a)/(2√π a)` for `0 < a < LAMBDA_ZERO_A`, given
