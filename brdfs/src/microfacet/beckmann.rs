@@ -1,12 +1,10 @@
 //! The Beckmann normal distribution.
 
 use super::special::{
-    FRAC_1_SQRT_PI, LAMBDA_ZERO_A, MAX_SLOPE, SQRT_PI, beckmann_s, erfcinv, erfcx,
-    erfinv_2p_minus_1, exp_neg_sq, exp_neg64, lambda_from_exp, ln64, lnf,
+    FRAC_1_SQRT_PI, LAMBDA_ZERO_A, MAX_SLOPE, SQRT_PI, beckmann_s, erfcinv, erfcx, erfinv_2p_minus_1,
+    exp_neg_sq, exp_neg64, lambda_from_exp, ln64, lnf,
 };
-use super::{
-    MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, tan2_theta_robust, unitize,
-};
+use super::{MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, tan2_theta_robust, unitize};
 use crate::error::{BrdfError, check_range};
 use radiometry::glam::Vec3;
 
@@ -80,7 +78,7 @@ const TINY_A: f32 = 9.536_743e-7;
 /// subnormal results (`a > 9.0`) to within one subnormal ulp.
 ///
 /// The BRDF's hot path uses the `f32` projected area of
-/// [`beckmann_area`](super::beckmann_area) instead; [`beckmann_lambda_tan2`]
+/// [`beckmann_f32`](super::beckmann_f32) instead; [`beckmann_lambda_tan2`]
 /// serves `lambda`/`g1`, and this form is the tests' check of the fit.
 #[cfg(test)]
 pub(crate) fn lambda_of_a(a: f32) -> f32 {
@@ -132,29 +130,19 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
 /// `f64` vectors.
 #[cfg(feature = "simd")]
 pub(super) mod lanes {
-    use super::super::special::exp_neg64_v;
-    use crate::simd::{Vd, Vf, finite_nonneg, narrow, widen};
+    use crate::simd::Vf;
 
-    /// `Beckmann::d_cos2` lane-wise, bit for bit: in `f64`,
-    /// `q = α² cos²θ`, `w = 1/(q cos²θ)`, `D = e^{−sin²θ cos²θ w} w/π`
-    /// (the shared exponential [`exp_neg64_v`]). Returns `(D, cold)`; no
-    /// lane is cold (the `f64` form covers grazing half vectors too).
+    /// `Beckmann::d_cos2` lane-wise, bit for bit: `(D, cold)`; no lane is
+    /// cold.
     #[inline(always)]
     pub(in super::super) fn d_cos2(alpha: f32, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        let a = Vd::splat(alpha as f64);
-        let (c2, s2) = (widen(cos2), widen(sin2));
-        let d = |h: usize| {
-            let q = a * a * c2[h];
-            let w = Vd::ONE / (q * c2[h]);
-            exp_neg64_v(s2[h] * c2[h] * w) * w * Vd::splat(core::f64::consts::FRAC_1_PI)
-        };
-        (finite_nonneg(narrow([d(0), d(1)])), Vf::ZERO)
+        (super::super::beckmann_f32::d_v(alpha, cos2, sin2), Vf::ZERO)
     }
 
     /// `Beckmann::projected_area` lane-wise (bit for bit).
     #[inline(always)]
     pub(in super::super) fn projected_area(alpha: f32, cos_theta: Vf, sin2: Vf) -> Vf {
-        super::super::beckmann_area::area_v(alpha, cos_theta, sin2)
+        super::super::beckmann_f32::area_v(alpha, cos_theta, sin2)
     }
 }
 
@@ -348,19 +336,13 @@ impl MicrofacetDistribution for Beckmann {
         }
     }
 
-    /// `D = exp(−tan²θm/α²) / (π α² cos⁴θm)` in `f64` with one division:
-    /// `q = α² cos²θm`, `w = 1/(q cos²θm)`, `D = e^{−sin²θm cos²θm w} w/π`.
-    /// In `f64` neither factor can overflow or underflow prematurely (for
-    /// `e^{−x}` to be non-zero, `sin²θm/q ≤ 708` bounds `cos²θm` away from
-    /// 0), so no special grazing form is needed; `cos²θm = 0` gives 0.
+    /// `D = exp(−tan²θm/α²) / (π α² cos⁴θm)` in `f32` with one division
+    /// and one `f32` exponential ([`beckmann_f32::d`](super::beckmann_f32::d)):
+    /// `u = 1/cos²θm`, `x = sin²θm u/α²`, `D = e^{−x} u²/(πα²)`; `0` where
+    /// `x > 87` (`e^{−x} < 1.7·10⁻³⁸`) and at `cos²θm = 0`.
     #[inline(always)]
     fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
-        let a = self.alpha as f64;
-        let (c2, s2) = (cos2 as f64, sin2 as f64);
-        let q = a * a * c2;
-        let w = 1.0 / (q * c2); // ≤ 10¹⁹⁰ for c2 ≥ f32 subnormals: finite
-        let v = exp_neg64(s2 * c2 * w) * w * core::f64::consts::FRAC_1_PI;
-        finite_nonneg(v as f32)
+        super::beckmann_f32::d(self.alpha, cos2, sin2)
     }
 
     /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form) of `ω`
@@ -372,11 +354,11 @@ impl MicrofacetDistribution for Beckmann {
 
     /// `A(ω) = cos θ (1 + Λ) = cos θ + α sin θ · aΛ(a)` with
     /// `a = cos θ/(α sin θ)`, `aΛ(a)` (exponential included) one fitted
-    /// `f32` rational — see [`beckmann_area`](super::beckmann_area): finite at
+    /// `f32` rational — see [`beckmann_f32`](super::beckmann_f32): finite at
     /// grazing (`A → α sin θ/(2√π)`), no division by `a`, ≤ 3 ulp.
     #[inline(always)]
     fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
-        super::beckmann_area::area(self.alpha, cos_theta, sin2)
+        super::beckmann_f32::area(self.alpha, cos_theta, sin2)
     }
 
     #[cfg(feature = "simd")]

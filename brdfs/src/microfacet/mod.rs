@@ -42,7 +42,7 @@ mod albedo_table;
 #[cfg(feature = "simd")]
 mod batch;
 mod beckmann;
-mod beckmann_area;
+mod beckmann_f32;
 #[cfg(feature = "simd")]
 mod beckmann_lanes;
 mod fresnel;

@@ -218,7 +218,7 @@ pub(super) fn poly9<T: F64Arith>(c: &[f64; 10], x: T) -> T {
 
 /// `e^r ≈ Σ c_k r^k` on `|r| ≤ ln2/2`, degree 6. Own fit (Remez,
 /// `fit_beckmann.py`): max relative error 1.9·10⁻⁹ (0.016 `f32` ulp).
-const EXP_POLY: [f64; 7] = [
+pub(super) const EXP_POLY: [f64; 7] = [
     1.0000000005541527,
     1.0000000363233326,
     0.4999999208027524,

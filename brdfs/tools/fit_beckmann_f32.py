@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Coefficients of the f32 Beckmann projected-area rational in
-`brdfs/src/microfacet/beckmann_area.rs` (run: `python3 fit_beckmann_area.py`,
+`brdfs/src/microfacet/beckmann_f32.rs` (run: `python3 fit_beckmann_f32.py`,
 needs `mpmath` and `numpy`, imports the helpers of `fit_beckmann.py`;
 deterministic, ~1 min).
 
