@@ -142,12 +142,24 @@ impl SampleV for GgxV {
 /// other form) are handed back.
 struct BeckmannV {
     alpha: f32,
+    /// `(1/α², 1/(πα²))` of `D`.
+    d_consts: (f32, f32),
+}
+
+impl BeckmannV {
+    #[inline(always)]
+    fn new(alpha: f32) -> BeckmannV {
+        BeckmannV {
+            alpha,
+            d_consts: super::beckmann_f32::d_consts(alpha),
+        }
+    }
 }
 
 impl DistV for BeckmannV {
     #[inline(always)]
     fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        super::beckmann::lanes::d_cos2(self.alpha, cos2, sin2)
+        super::beckmann::lanes::d_cos2(self.d_consts, cos2, sin2)
     }
 
     #[inline(always)]
@@ -358,12 +370,12 @@ where
         (DistributionKind::Beckmann { alpha }, G2Kind::HeightCorrelated) => {
             io.run(&Eval::<_, _, _, _, false> {
                 b,
-                dist: BeckmannV { alpha },
+                dist: BeckmannV::new(alpha),
             })
         }
         (DistributionKind::Beckmann { alpha }, G2Kind::Separable) => io.run(&Eval::<_, _, _, _, true> {
             b,
-            dist: BeckmannV { alpha },
+            dist: BeckmannV::new(alpha),
         }),
         _ => io.scalar(|wi, wo| b.eval(wi, wo)),
     }
@@ -384,7 +396,7 @@ where
         }),
         DistributionKind::Beckmann { alpha } => io.run(&Pdf {
             b,
-            dist: BeckmannV { alpha },
+            dist: BeckmannV::new(alpha),
         }),
         _ => io.scalar(|wi, wo| b.pdf(wi, wo)),
     }
@@ -425,7 +437,7 @@ pub(crate) fn sample<D, G, F>(
         (DistributionKind::Beckmann { alpha }, G2Kind::HeightCorrelated) => run_samples(
             &Sample::<_, _, _, _, false> {
                 b,
-                dist: BeckmannV { alpha },
+                dist: BeckmannV::new(alpha),
             },
             wo,
             u,
@@ -434,7 +446,7 @@ pub(crate) fn sample<D, G, F>(
         (DistributionKind::Beckmann { alpha }, G2Kind::Separable) => run_samples(
             &Sample::<_, _, _, _, true> {
                 b,
-                dist: BeckmannV { alpha },
+                dist: BeckmannV::new(alpha),
             },
             wo,
             u,

@@ -35,14 +35,18 @@ use radiometry::glam::Vec3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beckmann {
     alpha: f32,
+    /// `(1/α², 1/(πα²))` for `D` (`beckmann_f32::d_consts`).
+    d_consts: (f32, f32),
 }
 
 impl Beckmann {
     /// A Beckmann distribution with roughness `α ∈ [1e-4, 1]`; NaN,
     /// infinities and values outside the range are rejected with [`BrdfError`].
     pub fn new(alpha: f32) -> Result<Self, BrdfError> {
+        let alpha = check_range("alpha", alpha, MIN_ALPHA, MAX_ALPHA)?;
         Ok(Beckmann {
-            alpha: check_range("alpha", alpha, MIN_ALPHA, MAX_ALPHA)?,
+            alpha,
+            d_consts: super::beckmann_f32::d_consts(alpha),
         })
     }
 }
@@ -135,8 +139,8 @@ pub(super) mod lanes {
     /// `Beckmann::d_cos2` lane-wise, bit for bit: `(D, cold)`; no lane is
     /// cold.
     #[inline(always)]
-    pub(in super::super) fn d_cos2(alpha: f32, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        (super::super::beckmann_f32::d_v(alpha, cos2, sin2), Vf::ZERO)
+    pub(in super::super) fn d_cos2(consts: (f32, f32), cos2: Vf, sin2: Vf) -> (Vf, Vf) {
+        (super::super::beckmann_f32::d_v(consts, cos2, sin2), Vf::ZERO)
     }
 
     /// `Beckmann::projected_area` lane-wise (bit for bit).
@@ -342,7 +346,7 @@ impl MicrofacetDistribution for Beckmann {
     /// `x > 87` (`e^{−x} < 1.7·10⁻³⁸`) and at `cos²θm = 0`.
     #[inline(always)]
     fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
-        super::beckmann_f32::d(self.alpha, cos2, sin2)
+        super::beckmann_f32::d(self.d_consts, cos2, sin2)
     }
 
     /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form) of `ω`

@@ -176,12 +176,11 @@ pub(crate) fn d_consts(alpha: f32) -> (f32, f32) {
 }
 
 /// Beckmann `D` from `cos²θm`, `sin²θm` of a unit normal in `f32` (see
-/// [`d_parts`]); finite and `≥ 0` (0 at `cos²θm = 0`). Relative error
+/// [`d_parts`]), given [`d_consts`] of `α`; finite and `≥ 0` (0 at `cos²θm = 0`). Relative error
 /// ≤ `4 + 3x` ulp at `x = tan²θm/α²` (the rounding of `x` is amplified
 /// by `e^{−x}`; unit test `d_matches_f64`).
 #[inline(always)]
-pub(crate) fn d(alpha: f32, cos2: f32, sin2: f32) -> f32 {
-    let (inv_a2, k) = d_consts(alpha);
+pub(crate) fn d((inv_a2, k): (f32, f32), cos2: f32, sin2: f32) -> f32 {
     let (v, x) = d_parts(inv_a2, k, cos2, sin2);
     if !(x <= EXP_NEG_MAX) {
         return 0.0;
@@ -192,9 +191,8 @@ pub(crate) fn d(alpha: f32, cos2: f32, sin2: f32) -> f32 {
 /// [`d`] lane-wise, bit for bit.
 #[cfg(feature = "simd")]
 #[inline(always)]
-pub(crate) fn d_v(alpha: f32, cos2: crate::simd::Vf, sin2: crate::simd::Vf) -> crate::simd::Vf {
+pub(crate) fn d_v((inv_a2, k): (f32, f32), cos2: crate::simd::Vf, sin2: crate::simd::Vf) -> crate::simd::Vf {
     use crate::simd::Vf;
-    let (inv_a2, k) = d_consts(alpha);
     let (v, x) = d_parts(Vf::splat(inv_a2), Vf::splat(k), cos2, sin2);
     x.simd_le(Vf::splat(EXP_NEG_MAX))
         .select(crate::simd::finite_nonneg(v), Vf::ZERO)
@@ -351,7 +349,7 @@ mod tests {
                 let theta = i as f64 / 20_000.0 * core::f64::consts::FRAC_PI_2;
                 let (c, s) = (libm::cos(theta) as f32, libm::sin(theta) as f32);
                 let (c2, s2) = (c * c, s * s);
-                let v = d(alpha, c2, s2);
+                let v = d(d_consts(alpha), c2, s2);
                 assert!(v.is_finite() && v >= 0.0, "α={alpha} θ={theta}: {v}");
                 let a2 = alpha as f64 * alpha as f64;
                 let x = s2 as f64 / (c2 as f64 * a2);
@@ -375,10 +373,10 @@ mod tests {
                 );
             }
         }
-        assert_eq!(d(0.3, 0.0, 1.0), 0.0);
-        assert_eq!(d(0.3, 0.0, 0.0), 0.0);
-        assert_eq!(d(1e-4, 1e-30, 1.0), 0.0);
-        let peak = d(1e-4, 1.0, 0.0) as f64;
+        assert_eq!(d(d_consts(0.3), 0.0, 1.0), 0.0);
+        assert_eq!(d(d_consts(0.3), 0.0, 0.0), 0.0);
+        assert_eq!(d(d_consts(1e-4), 1e-30, 1.0), 0.0);
+        let peak = d(d_consts(1e-4), 1.0, 0.0) as f64;
         assert!((peak * core::f64::consts::PI * 1e-8 - 1.0).abs() < 1e-6, "{peak}");
         std::println!("D (f32): worst {worst:.2} of the bound 4 + 3x ulp; {worst_small_x:.2} ulp for x ≤ 1");
     }
@@ -405,7 +403,7 @@ mod tests {
                 let v = area_v(alpha, Vf::new(c), Vf::new(s)).to_array();
                 // The same pairs as (cos²θm, sin²θm) of D.
                 let c2 = c.map(|c| c * c);
-                let dv = d_v(alpha, Vf::new(c2), Vf::new(s)).to_array();
+                let dv = d_v(d_consts(alpha), Vf::new(c2), Vf::new(s)).to_array();
                 for k in 0..LANES {
                     assert_eq!(
                         v[k].to_bits(),
@@ -416,7 +414,7 @@ mod tests {
                     );
                     assert_eq!(
                         dv[k].to_bits(),
-                        d(alpha, c2[k], s[k]).to_bits(),
+                        d(d_consts(alpha), c2[k], s[k]).to_bits(),
                         "D {} {}",
                         c2[k],
                         s[k]

@@ -145,7 +145,7 @@ pub(super) fn sample_visible(alpha: f32, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf)
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::super::special::{erfcinv, erfinv_2p_minus_1, ln64};
+    use super::super::special::{erfcinv, erfinv_2p_minus_1, exp_neg_sq, ln64};
     use super::*;
     use crate::simd::LANES;
 
@@ -175,6 +175,7 @@ mod tests {
             let v = Vf::new(a);
             let ln = [ln64_v(widen(v)[0]).to_array(), ln64_v(widen(v)[1]).to_array()].concat();
             let inv = erfcinv_v(v).to_array();
+            let e = exp_neg_sq_v(v).to_array();
             let p = clamp01(v);
             let ei = erfinv_2p_minus_1_v(p).to_array();
             let pa = p.to_array();
@@ -183,6 +184,7 @@ mod tests {
                     assert_eq!(ln[k].to_bits(), ln64(a[k] as f64).to_bits(), "ln64({})", a[k]);
                 }
                 assert_eq!(inv[k].to_bits(), erfcinv(a[k]).to_bits(), "erfcinv({})", a[k]);
+                assert_eq!(e[k].to_bits(), exp_neg_sq(a[k]).to_bits(), "exp_neg_sq({})", a[k]);
                 assert_eq!(
                     ei[k].to_bits(),
                     erfinv_2p_minus_1(pa[k]).to_bits(),

@@ -306,14 +306,20 @@ fn exp_neg64_any<T: ExpNeg64>(x: T) -> T {
 #[inline(always)]
 pub(crate) fn exp_neg64_v(x: Vd) -> Vd {
     let (t, p) = exp_neg64_parts(x);
-    let tb = t.to_array();
-    // Lanes with x > 708 are replaced below; wrapping keeps their (unused)
-    // scale computation panic-free.
-    let scale = Vd::new(core::array::from_fn(|i| {
-        f64::from_bits(1023u64.wrapping_sub(tb[i].to_bits() & 0x7ff) << 52)
-    }));
+    // 2^{−k} from the low bits of `t`, in integer vector operations (the
+    // scalar's `(1023 − k) << 52`, wrapping; lanes with x > 708 are
+    // replaced below).
+    let tb: VdBits = wide::bytemuck::cast(t);
+    let k = tb & VdBits::splat(0x7ff);
+    let scale: Vd = wide::bytemuck::cast((VdBits::splat(1023) - k) << 52_u32);
     x.simd_gt(Vd::splat(708.0)).select(Vd::ZERO, p * scale)
 }
+
+/// The `u64` vector of the width of [`Vd`].
+#[cfg(all(feature = "simd", target_feature = "avx512f"))]
+type VdBits = wide::u64x8;
+#[cfg(all(feature = "simd", not(target_feature = "avx512f")))]
+type VdBits = wide::u64x4;
 
 /// `ln(1 + f)/f ≈ P(f)` on `f ∈ [√½ − 1, √2 − 1]`, degree 9. Own fit (Remez,
 /// `fit_beckmann.py`): max relative error 4.1·10⁻⁹.
