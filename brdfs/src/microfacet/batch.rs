@@ -136,10 +136,10 @@ impl SampleV for GgxV {
 }
 
 /// Beckmann: `D = exp(−tan²θh/α²)/(π α² cos⁴θh)` (Walter et al. 2007,
-/// eq. 25) and `A = cos θ (1 + Λ)` with the loop-free `Λ` (Heitz 2014,
-/// eq. 80 through a fitted `T(a)`), both the scalar code lane for lane
-/// (`super::beckmann::lanes`); lanes with `cos²θh < 10⁻⁸` (the scalar `D`'s
-/// other form) are handed back.
+/// eq. 25) with one `f32` exponential and `A = cos θ (1 + Λ)` (Heitz 2014,
+/// eq. 80) through one fitted `f32` rational, both the scalar code lane for
+/// lane (`super::beckmann_f32`, generic over `f32` and the lane type); no
+/// lane is handed back.
 struct BeckmannV {
     alpha: f32,
     /// `(1/α², 1/(πα²))` of `D`.
