@@ -348,7 +348,7 @@ impl MicrofacetDistribution for Beckmann {
     }
 
     /// `D = exp(−tan²θm/α²) / (π α² cos⁴θm)` in `f32` with one division
-    /// and one `f32` exponential ([`beckmann_f32::d`](super::beckmann_f32::d)):
+    /// and one `f32` exponential (`beckmann_f32::d`):
     /// `u = 1/cos²θm`, `x = sin²θm u/α²`, `D = e^{−x} u²/(πα²)`; `0` where
     /// `x > 87` (`e^{−x} < 1.7·10⁻³⁸`) and at `cos²θm = 0`.
     #[inline(always)]
@@ -365,7 +365,7 @@ impl MicrofacetDistribution for Beckmann {
 
     /// `A(ω) = cos θ (1 + Λ) = cos θ + α sin θ · aΛ(a)` with
     /// `a = cos θ/(α sin θ)`, `aΛ(a)` (exponential included) one fitted
-    /// `f32` rational — see [`beckmann_f32`](super::beckmann_f32): finite at
+    /// `f32` rational (module `beckmann_f32`): finite at
     /// grazing (`A → α sin θ/(2√π)`), no division by `a`, ≤ 3 ulp.
     #[inline(always)]
     fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
