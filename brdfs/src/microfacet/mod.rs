@@ -594,7 +594,7 @@ where
     }
 
     /// `G1(ωo) D(h) / (4 cos θo)` for a valid reflection pair, else 0.
-    #[inline]
+    #[inline(always)]
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         if is_unit(wi) && is_unit(wo) {
             self.pdf_unit(wi, wo)
