@@ -20,11 +20,12 @@ pub(super) struct Eval<'t, 'a, S: Spectrum>(pub(super) &'t Tabulated<'a, S>);
 /// form) operation for operation.
 #[inline(always)]
 fn atan_unit(x: Vf) -> Vf {
+    let [a1, a3, a5, a7, a9] = super::grid::ATAN.map(Vf::splat);
     let z = x * x;
     let z2 = z * z;
-    let lo = Vf::splat(0.999_866_0) + Vf::splat(-0.330_299_5) * z;
-    let mid = Vf::splat(0.180_141_0) + Vf::splat(-0.085_133_0) * z;
-    x * (lo + z2 * (mid + z2 * Vf::splat(0.020_835_1)))
+    let lo = a1 + a3 * z;
+    let mid = a5 + a7 * z;
+    x * (lo + z2 * (mid + z2 * a9))
 }
 
 /// The scalar `atan2(|y|, x)` lane-wise.

@@ -356,22 +356,21 @@ fn half_diff_about(a: Vec3, h: Vec3) -> (f32, f32, f32) {
     (theta_h, theta_d, phi_d)
 }
 
+/// The coefficients `a₁, a₃, a₅, a₇, a₉` of [`atan_unit`] (A&S 4.4.47).
+pub(crate) const ATAN: [f32; 5] = [0.999_866, -0.330_299_5, 0.180_141, -0.085_133, 0.020_835_1];
+
 /// `atan(x)` for `x ∈ [0, 1]`: Abramowitz & Stegun 4.4.47,
 /// `atan x = a₁x + a₃x³ + a₅x⁵ + a₇x⁷ + a₉x⁹ + ε`, `|ε| ≤ 10⁻⁵` (we measure
 /// 1.15·10⁻⁵ rad absolute and 1.34·10⁻⁴ relative in f64; 7·10⁻⁴ of a MERL
 /// θd cell). Evaluated in Estrin form (shorter dependency chain than Horner).
 #[inline(always)]
 fn atan_unit(x: f32) -> f32 {
-    const A1: f32 = 0.999_866_0;
-    const A3: f32 = -0.330_299_5;
-    const A5: f32 = 0.180_141_0;
-    const A7: f32 = -0.085_133_0;
-    const A9: f32 = 0.020_835_1;
+    let [a1, a3, a5, a7, a9] = ATAN;
     let z = x * x;
     let z2 = z * z;
-    let lo = A1 + A3 * z;
-    let mid = A5 + A7 * z;
-    x * (lo + z2 * (mid + z2 * A9))
+    let lo = a1 + a3 * z;
+    let mid = a5 + a7 * z;
+    x * (lo + z2 * (mid + z2 * a9))
 }
 
 /// `atan2(|y|, x) ∈ [0, π]` (any sign of `x`; `(0, 0)` → 0), by octant
