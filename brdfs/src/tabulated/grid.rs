@@ -178,20 +178,20 @@ impl RusinkiewiczGrid {
         ip + self.n_phi_d() * (id + self.n_theta_d() * ih)
     }
 
-    /// θh of node `i` [rad]: `(i/Nh)² · π/2` (clamped to the last node).
+    /// θh of node `i` (rad): `(i/Nh)² · π/2` (clamped to the last node).
     #[inline]
     pub fn theta_h(&self, i: usize) -> f32 {
         let x = i.min(self.n_theta_h() - 1) as f32 / self.n_theta_h as f32;
         x * x * FRAC_PI_2
     }
 
-    /// θd of node `j` [rad]: `j/Nd · π/2` (clamped to the last node).
+    /// θd of node `j` (rad): `j/Nd · π/2` (clamped to the last node).
     #[inline]
     pub fn theta_d(&self, j: usize) -> f32 {
         j.min(self.n_theta_d() - 1) as f32 / self.n_theta_d as f32 * FRAC_PI_2
     }
 
-    /// φd of node `k` [rad]: `k/Nφ · π` (clamped to the last node).
+    /// φd of node `k` (rad): `k/Nφ · π` (clamped to the last node).
     #[inline]
     pub fn phi_d(&self, k: usize) -> f32 {
         k.min(self.n_phi_d() - 1) as f32 / self.n_phi_d as f32 * PI
