@@ -49,6 +49,16 @@ struct Corners {
 /// scaling before construction; missing values must be replaced (e.g. by
 /// 0) since the constructor rejects negative entries.
 ///
+/// # Speed
+///
+/// `radiometry bench` (AMD EPYC, 2 shared cores, `-C target-cpu=native`,
+/// n = 4096 random pairs over the hemisphere, table of 5.8 MB): scalar
+/// `eval` 24.7 M/s (0.20 × the in-run straight-line GGX reference,
+/// 122.7 M/s); `eval_batch_soa` / `eval_batch` with feature `simd` 60.9 /
+/// 58.0 M/s (coordinates in vector form, table reads per lane). The scalar
+/// path is latency-bound: three `atan2` chains and a square root per
+/// coordinate precede the 8 dependent table reads of random cells.
+///
 /// # Sampling
 ///
 /// [`Tabulated::new`] keeps the default cosine sampling of
