@@ -8,7 +8,7 @@
 //! | light | method | cost |
 //! |---|---|---|
 //! | [`Directional`] (delta) | `f_r(ωl, ωo) E⊥ cos θl` | one BRDF evaluation |
-//! | [`UniformSky`] | `L · ρ(ωo)`, `ρ` from the integrator on [`DirectionalAlbedo`] | one integration |
+//! | [`UniformSky`] | `L · ρ(ωo)`, `ρ` from the integrator on [`DirectionalAlbedo`](crate::integrator::DirectionalAlbedo) | one integration |
 //! | [`Cap`] | integration over the (horizon-clipped) cap only, [`CapIntegrand`] | one integration |
 //! | [`Environment`] | full-hemisphere integration, [`EnvironmentIntegrand`] | one integration |
 //!
@@ -44,15 +44,8 @@
 
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
-use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
-use crate::integrator::{
-    CHUNK, DirectionalAlbedo, Estimate, Integrand, IntegrandSample, IntegrateError, Integrator, Status,
-};
-use crate::math::safe_sqrt;
-use crate::radiometric;
+use crate::integrator::{Estimate, IntegrateError, Integrator, Status};
 use crate::spectrum::{Spectrum, WideSpectrum};
-use crate::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere, square_to_uniform_hemisphere};
-use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, TAU};
 use core::fmt;
 use glam::Vec3;
 

@@ -47,27 +47,44 @@ pub fn albedo_quad(b: &dyn IsotropicBrdf<Spectrum = f32>, wo: Vec3, w: f64, tol:
 }
 
 /// Directional albedo by importance sampling: (mean, i.i.d. standard error) over a jittered
-/// `m × m` grid of sample points.
+/// `m × m` grid of sample points (`m ≤ 64`). Each row of the grid goes through the batch methods
+/// (`sample_batch`, then `pdf_batch` and `eval_batch` at the sampled directions), which return
+/// what `sample`, `pdf` and `eval` return point by point (the plugins' batch contract, tested in
+/// radiometry-brdfs) — only faster where a plugin has vector kernels.
 pub fn albedo_is(b: &dyn IsotropicBrdf<Spectrum = f32>, wo: Vec3, m: u32, seed: u64) -> (f64, f64) {
+    const ROW: usize = 64;
+    assert!(m as usize <= ROW);
     let mut rng = common::rng::Rng::new(seed);
     let (mut s1, mut s2) = (0.0f64, 0.0f64);
     let n = (m * m) as f64;
+    let wos = [wo; ROW];
+    let mut us = [[0.0f32; 2]; ROW];
+    let mut samples = [None; ROW];
+    let mut wis = [Vec3::ZERO; ROW];
+    let (mut pdfs, mut fs) = ([0.0f32; ROW], [0.0f32; ROW]);
+    let m_us = m as usize;
     for i in 0..m {
-        for j in 0..m {
-            let u = [
+        for (j, u) in us[..m_us].iter_mut().enumerate() {
+            *u = [
                 ((i as f32 + rng.f32()) / m as f32).min(0.99999994),
                 ((j as f32 + rng.f32()) / m as f32).min(0.99999994),
             ];
-            let v = match b.sample(wo, u) {
-                None => 0.0,
-                Some(s) => {
-                    let pdf = b.pdf(s.wi, wo) as f64;
-                    if pdf > 0.0 {
-                        b.eval(s.wi, wo) as f64 * s.wi.z.max(0.0) as f64 / pdf
-                    } else {
-                        0.0
-                    }
-                }
+        }
+        b.sample_batch(&wos[..m_us], &us[..m_us], &mut samples[..m_us]);
+        let mut k = 0;
+        for s in samples[..m_us].iter().flatten() {
+            wis[k] = s.wi;
+            k += 1;
+        }
+        b.pdf_batch(&wis[..k], &wos[..k], &mut pdfs[..k]);
+        b.eval_batch(&wis[..k], &wos[..k], &mut fs[..k]);
+        // `None` samples contribute 0 (they still count in n).
+        for ((wi, &pdf), &f) in wis[..k].iter().zip(&pdfs[..k]).zip(&fs[..k]) {
+            let pdf = pdf as f64;
+            let v = if pdf > 0.0 {
+                f as f64 * wi.z.max(0.0) as f64 / pdf
+            } else {
+                0.0
             };
             s1 += v;
             s2 += v * v;

@@ -1,6 +1,18 @@
 //! Uniform spherical caps (sun, spherical lamp) and the integrand of the reflection equation over a cap.
 
-use super::*;
+use super::{
+    Light, LightError, MAX_RADIANCE, WideEstimate, check_radiance, exact, visible_wo, zero_estimate,
+};
+use crate::brdf::Brdf;
+use crate::frame::try_normalize;
+use crate::integrator::chunk::brdf_eval_where;
+use crate::integrator::{CHUNK, Integrand, IntegrandSample, IntegrateError, Integrator};
+use crate::math::safe_sqrt;
+use crate::radiometric;
+use crate::spectrum::Spectrum;
+use crate::warp::square_to_uniform_hemisphere;
+use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, TAU};
+use glam::Vec3;
 
 /// A uniform spherical cap light: radiance `L` from every direction within
 /// half-angle `σ` of a unit axis `ωa` (a distant sphere such as the sun,
@@ -55,7 +67,7 @@ impl<S: Spectrum> Cap<S> {
     /// A cap given by its irradiance at normal incidence `E⊥ = π L sin²σ`
     /// ([`radiometric::cap_normal_irradiance`]), i.e. radiance
     /// `L = E⊥ / (π sin²σ)`: the extended counterpart of
-    /// [`Directional::new`]`(axis, E⊥)`. Fails with
+    /// [`Directional::new`](super::Directional::new)`(axis, E⊥)`. Fails with
     /// [`LightError::RadianceTooLarge`] if `L` would exceed
     /// [`MAX_RADIANCE`].
     pub fn from_normal_irradiance(axis: Vec3, half_angle: f32, e_perp: S) -> Result<Self, LightError> {

@@ -1,6 +1,12 @@
 //! Directional (delta) lights.
 
-use super::*;
+use super::{Light, LightError, WideEstimate, check_radiance, exact, visible_wo, zero_estimate};
+use crate::brdf::Brdf;
+use crate::frame::try_normalize;
+use crate::integrator::{Estimate, IntegrateError, Integrator, Status};
+use crate::radiometric;
+use crate::spectrum::{Spectrum, WideSpectrum};
+use glam::Vec3;
 
 /// A directional (delta) light: parallel rays from unit direction `ωl`
 /// (toward the light) with irradiance `E⊥` on a plane perpendicular to

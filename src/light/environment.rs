@@ -1,6 +1,13 @@
 //! General environment lights and their integrands.
 
-use super::*;
+use super::{Light, WideEstimate, visible_wo, zero_estimate};
+use crate::brdf::Brdf;
+use crate::frame::try_normalize;
+use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
+use crate::integrator::{CHUNK, Integrand, IntegrandSample, IntegrateError, Integrator};
+use crate::spectrum::Spectrum;
+use crate::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use glam::Vec3;
 
 /// A general environment: radiance `L(ω)` given by a caller's function of
 /// the direction (local frame, unit, toward the light). No closed form:
@@ -127,7 +134,7 @@ impl<S: Spectrum, F: Fn(Vec3) -> S> Integrand for EnvironmentIrradiance<'_, F> {
 /// The full reflection integrand `g(ωi) = f_r(ωi, ωo) L(ωi) cos θi` of any
 /// [`Light`] (through [`Light::radiance`], so delta components are
 /// absent), over the whole hemisphere. Its sampling map is the BRDF's
-/// ([`Brdf::sample`]), as for [`DirectionalAlbedo`].
+/// ([`Brdf::sample`]), as for [`DirectionalAlbedo`](crate::integrator::DirectionalAlbedo).
 ///
 /// This is what [`Environment`] integrates; for other lights it is the
 /// *brute-force* path that the shortcuts of [`Light::reflected_radiance`]

@@ -1,6 +1,10 @@
 //! Sums of lights: references, slices, arrays and tuples, all without allocation.
 
-use super::*;
+use super::{Light, WideEstimate, add_estimates, zero_estimate};
+use crate::brdf::Brdf;
+use crate::integrator::{IntegrateError, Integrator};
+use crate::spectrum::Spectrum;
+use glam::Vec3;
 
 impl<L: Light + ?Sized> Light for &L {
     type Spectrum = L::Spectrum;

@@ -1,6 +1,11 @@
 //! The uniform sky.
 
-use super::*;
+use super::{Light, LightError, WideEstimate, check_radiance, exact, scale_wide, visible_wo, zero_estimate};
+use crate::brdf::Brdf;
+use crate::integrator::{DirectionalAlbedo, Estimate, IntegrateError, Integrator};
+use crate::radiometric;
+use crate::spectrum::Spectrum;
+use glam::Vec3;
 
 /// A uniform sky: radiance `L` from every direction of the upper hemisphere.
 /// Irradiance `π L` (PBR 4th ed. §4.1.3, eq. 4.8); reflected radiance
