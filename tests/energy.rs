@@ -3,7 +3,7 @@
 //! every Fresnel term used is ≤ 1, so the bound applies to all configurations.
 //!
 //! Two estimators:
-//! * `directional_albedo_at_most_one_every_plugin` (1,000 proptest cases × 23 configurations): importance
+//! * `directional_albedo_at_most_one_every_plugin` (1,000 proptest cases × 25 configurations): importance
 //!   sampling with the plugin's sampler, 4,096 jittered-stratified sample points, each contributing
 //!   `f(ωi, ωo) cos θi / pdf(ωi, ωo)` recomputed with `eval` and `pdf` (a `None` sample contributes 0).
 //!   This is unbiased as long as the sampler draws from `pdf` — which `tests/sampling.rs` establishes
@@ -166,6 +166,10 @@ fn albedo_by_quadrature_hard_cases() {
                 }
                 let wo = to_f32(common::strategies::dir(ct, 0.3));
                 for &k in &kinds {
+                    // A fixed table ignores the parameters: one parameter set (the grazing one) is enough.
+                    if matches!(k, common::plugins::Kind::Tabulated(_)) && !(alpha == 1.0 && kd == 0.0) {
+                        continue;
+                    }
                     let b = build(k, &p).unwrap();
                     let t0 = std::time::Instant::now();
                     let a = albedo_quad(b.as_ref(), wo, lobe_width(k, &p), tol);

@@ -11,6 +11,7 @@ mod bench;
 mod furnace;
 mod sensor_cmd;
 mod sensor_edge;
+mod tabulate_cmd;
 
 /// `model`, `reference`, `tradeoff` and the spec grammar live in the library half of this package (`src/lib.rs`,
 /// shared with the Python module); `crate::model` etc. keep their paths for the modules here.
@@ -142,6 +143,10 @@ enum Command {
     /// Kulla–Conty multiple-scattering compensation (table on stdout, SVG plot).
     #[command(after_help = spec::BRDF_SPEC_HELP)]
     Furnace(furnace::FurnaceArgs),
+    /// Write a MERL .binary file of a BRDF spec (plus an optional Lambertian base), e.g. to test
+    /// `tabulated(file=…)`.
+    #[command(after_help = spec::BRDF_SPEC_HELP)]
+    Tabulate(tabulate_cmd::TabulateArgs),
 }
 
 fn spec_error(e: spec::SpecError) -> ExitCode {
@@ -328,6 +333,7 @@ fn main() -> ExitCode {
         Command::Sensor(cmd) => sensor_cmd::run(cmd),
         Command::Bench(args) => bench::run(args),
         Command::Furnace(args) => furnace::run(args),
+        Command::Tabulate(args) => tabulate_cmd::run(args),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
                 println!("{}", i.name());
