@@ -15,6 +15,7 @@ pub mod microfacet;
 pub mod phong;
 #[cfg(feature = "simd")]
 pub mod simd;
+pub mod tabulated;
 
 pub use error::BrdfError;
 // -- re-exports: Lambertian / Phong family (keep this block for those modules)

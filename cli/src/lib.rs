@@ -6,6 +6,7 @@
 #![warn(missing_docs)]
 
 pub mod fit;
+pub mod merl;
 pub mod model;
 pub mod reference;
 pub mod tradeoff;

@@ -1,0 +1,317 @@
+//! Importance sampling of a [`Tabulated`](super::Tabulated) BRDF: a
+//! tabulated distribution of the half vector mixed with a cosine lobe.
+//!
+//! # The density
+//!
+//! With probability `1 − c` the half vector `h` is drawn from a
+//! piecewise-constant density over `θh` (one bin per θh cell of the grid,
+//! uniform in solid angle inside a bin, `φh` uniform) and reflected,
+//! `ωi = 2(ωo·h)h − ωo`; with probability `c` (the *cosine weight*) `ωi`
+//! is drawn from `cos θi/π`. The density of `ωi` is exact:
+//!
+//! ```text
+//! p(ωi | ωo) = (1 − c) · p_h(h) / (4 ωo·h) + c · cos θi / π,
+//! p_h(h)     = P_k / (2π (v_{k+1} − v_k)),   v = 1 − cos θh = 2 sin²(θh/2),
+//! ```
+//!
+//! for `θh` in bin `k` (edges `θ_k = (k/Nh)² π/2`, the nodes of the
+//! square-root mapping), where `1/(4 ωo·h)` is the Jacobian of the
+//! reflection map (Walter et al. 2007, "Microfacet Models for Refraction
+//! through Rough Surfaces", EGSR, eq. 14), and `P_k` the bin probability.
+//! Draws whose reflection lands below the horizon return `None` (the
+//! density deficit allowed by the [`Brdf`](radiometry::Brdf) contract).
+//!
+//! # The bin probabilities
+//!
+//! `P_k ∝ ½ (g_k + g_{k+1}) (v_{k+1} − v_k)`, with the θh-node profile
+//!
+//! ```text
+//! g_i = Σ_j Σ_l  f̄(θh_i, θd_j', φd_l) · sin θd_j' cos θd_j',   θd_j' = (j + ½)/Nd · π/2,
+//! ```
+//!
+//! where `f̄` is the channel average: the table value averaged over the
+//! difference hemisphere with the `cos θd` of the Jacobian `4 cos θd`
+//! (so `p_h` tracks `f cos θi · 4 cos θd` averaged over `ωo`, the ideal
+//! half-vector density for a BRDF of `θh` alone). The cosine lobe keeps
+//! every direction covered where the table has zeros or where the
+//! profile misses structure in `θd` and `φd` (the retro-reflection of a
+//! measured material, a diffuse base under a sharp peak).
+//!
+//! # Choice and figures
+//!
+//! A per-`ωo` 2D distribution (pbrt-v4's `MeasuredBxDF` approach) needs a
+//! buffer per outgoing direction; this one needs `2 (Nh + 1)` floats
+//! (182 for MERL) and no `alloc`. Measured on a table of GGX α = 0.3
+//! (`F = 1`, height-correlated) on the MERL grid, default cosine weight
+//! `c = 0.25`, at θo = 45° (test `variance_figures` in
+//! `brdfs/tests/tabulated.rs`): relative standard deviation of the albedo
+//! estimator per sample 0.36 for this sampler against 1.66 for cosine
+//! sampling (a variance ratio ≈ 21); the χ² test of `tests/sampling.rs`
+//! passes for it.
+
+use super::{RusinkiewiczGrid, TabulatedError};
+use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, PI, TAU};
+use radiometry::Spectrum;
+use radiometry::glam::Vec3;
+use radiometry::warp::square_to_cosine_hemisphere;
+
+/// The default cosine weight `c` of the mixture (see the
+/// [module documentation](self)).
+pub const DEFAULT_COSINE_WEIGHT: f32 = 0.25;
+
+/// The half-vector distribution of the [module documentation](self), over
+/// a buffer borrowed from the caller: the first `Nh + 1` entries hold the
+/// CDF over θh bins, the next `Nh + 1` the bin edges `v_k = 1 − cos θ_k`.
+///
+/// ```
+/// use radiometry_brdfs::tabulated::{HalfVectorDistribution, RusinkiewiczGrid};
+/// let grid = RusinkiewiczGrid::new(8, 4, 4)?;
+/// let values = vec![0.3f32; grid.len()];
+/// let mut buf = vec![0.0f32; HalfVectorDistribution::buffer_len(&grid)];
+/// let d = HalfVectorDistribution::build(&grid, &values, &mut buf, 0.25)?;
+/// let wo = radiometry::glam::Vec3::Z;
+/// let wi = d.sample(wo, [0.1, 0.2]).unwrap(); // the cosine lobe (u₀ < 0.25)
+/// assert!(d.pdf(wi, wo) > 0.0);
+/// # Ok::<(), radiometry_brdfs::tabulated::TabulatedError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HalfVectorDistribution<'a> {
+    cdf: &'a [f32],
+    edges: &'a [f32],
+    n: u32,
+    /// Probability of the cosine lobe (1 when the table is all zero).
+    cosine_weight: f32,
+}
+
+impl<'a> HalfVectorDistribution<'a> {
+    /// Buffer entries needed for `grid`: `2 (n_theta_h + 1)`.
+    pub fn buffer_len(grid: &RusinkiewiczGrid) -> usize {
+        2 * (grid.n_theta_h() + 1)
+    }
+
+    /// Builds the distribution of `values` (one per node of `grid`, already
+    /// validated by [`Tabulated::new`](super::Tabulated::new) or by the
+    /// caller) into `buffer`, with cosine weight `c ∈ (0, 1]`. An all-zero
+    /// table gives the cosine lobe alone.
+    ///
+    /// # Errors
+    /// [`TabulatedError::Buffer`] when `buffer` is shorter than
+    /// [`buffer_len`](Self::buffer_len), [`TabulatedError::Length`] when
+    /// `values` does not match the grid, [`TabulatedError::CosineWeight`]
+    /// for `c ∉ (0, 1]`.
+    pub fn build<S: Spectrum>(
+        grid: &RusinkiewiczGrid,
+        values: &[S],
+        buffer: &'a mut [f32],
+        cosine_weight: f32,
+    ) -> Result<Self, TabulatedError> {
+        let nh = grid.n_theta_h();
+        let needed = Self::buffer_len(grid);
+        if buffer.len() < needed {
+            return Err(TabulatedError::Buffer {
+                needed,
+                found: buffer.len(),
+            });
+        }
+        if values.len() != grid.len() {
+            return Err(TabulatedError::Length {
+                expected: grid.len(),
+                found: values.len(),
+            });
+        }
+        if !(cosine_weight > 0.0 && cosine_weight <= 1.0) {
+            return Err(TabulatedError::CosineWeight { value: cosine_weight });
+        }
+        let (cdf, rest) = buffer.split_at_mut(nh + 1);
+        let edges = rest.get_mut(..nh + 1).unwrap_or_default();
+        // Bin edges v_k = 2 sin²(θ_k/2), θ_k = (k/Nh)² π/2.
+        for (k, e) in edges.iter_mut().enumerate() {
+            let x = k as f32 / nh as f32;
+            let s = libm::sinf(0.5 * x * x * FRAC_PI_2);
+            *e = 2.0 * s * s;
+        }
+        // Node profile g_i into cdf[i] (cdf[nh] is scratch until the sum).
+        let (nd, np) = (grid.n_theta_d(), grid.n_phi_d());
+        let mut rows = values.chunks_exact(nd * np);
+        for g in cdf.iter_mut().take(nh) {
+            let row = rows.next().unwrap_or_default();
+            let mut acc = 0.0f32;
+            for (j, line) in row.chunks_exact(np).enumerate() {
+                let (s, c) = libm::sincosf((j as f32 + 0.5) / nd as f32 * FRAC_PI_2);
+                let sum: f32 = line.iter().map(|v| v.average()).sum();
+                acc += sum * s * c;
+            }
+            *g = acc;
+        }
+        // Bin weights W_k = ½(g_k + g_{k+1})(v_{k+1} − v_k), in place from the
+        // low end (g_k is read before cdf[k] is overwritten), then the
+        // running sum shifted by one so that cdf[0] = 0.
+        let mut prev_g = cdf.first().copied().unwrap_or(0.0);
+        let mut total = 0.0f32;
+        for k in 0..nh {
+            let g0 = prev_g;
+            let g1 = if k + 1 < nh {
+                cdf.get(k + 1).copied().unwrap_or(0.0)
+            } else {
+                g0
+            };
+            prev_g = g1;
+            let dv = edges.get(k + 1).copied().unwrap_or(0.0) - edges.get(k).copied().unwrap_or(0.0);
+            let w = 0.5 * (g0 + g1) * dv;
+            if let Some(c) = cdf.get_mut(k) {
+                *c = total;
+            }
+            total += w;
+        }
+        let ok = total > 0.0 && total.is_finite();
+        for (k, c) in cdf.iter_mut().enumerate() {
+            *c = if k == nh {
+                1.0
+            } else if ok {
+                (*c / total).min(1.0)
+            } else {
+                k as f32 / nh as f32
+            };
+        }
+        Ok(Self {
+            cdf,
+            edges,
+            n: nh as u32,
+            cosine_weight: if ok { cosine_weight } else { 1.0 },
+        })
+    }
+
+    /// The probability `c` of the cosine lobe (1 for an all-zero table).
+    pub fn cosine_weight(&self) -> f32 {
+        self.cosine_weight
+    }
+
+    /// Bin `k` of `θh` and its density `p_h = P_k / (2π (v_{k+1} − v_k))`
+    /// [sr⁻¹] for a unit half vector above the horizon.
+    #[inline]
+    pub fn pdf_h(&self, h: Vec3) -> f32 {
+        let theta_h = super::grid::atan2(libm::sqrtf(h.x * h.x + h.y * h.y), h.z);
+        let n = self.n as usize;
+        let u = libm::sqrtf((theta_h * (2.0 / PI)).max(0.0)) * n as f32;
+        let k = (u as usize).min(n.saturating_sub(1));
+        let at = |s: &[f32], i: usize| s.get(i).copied().unwrap_or(0.0);
+        let p = at(self.cdf, k + 1) - at(self.cdf, k);
+        let dv = at(self.edges, k + 1) - at(self.edges, k);
+        if p > 0.0 && dv > 0.0 { p / (TAU * dv) } else { 0.0 }
+    }
+
+    /// The mixture density `p(ωi | ωo)` of the [module documentation](self)
+    /// for unit directions; 0 when either is at or below the horizon.
+    #[inline]
+    pub fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return 0.0;
+        }
+        let cos_part = self.cosine_weight * wi.z * FRAC_1_PI;
+        let h = wi + wo;
+        let len2 = h.length_squared();
+        if len2.is_nan() || len2 <= 1e-30 {
+            return cos_part;
+        }
+        let h = h * (1.0 / libm::sqrtf(len2));
+        let dot = wo.dot(h);
+        if dot.is_nan() || dot <= 0.0 {
+            return cos_part;
+        }
+        let spec = (1.0 - self.cosine_weight) * self.pdf_h(h) / (4.0 * dot);
+        let p = cos_part + spec;
+        if p.is_finite() { p } else { cos_part }
+    }
+
+    /// A half vector from the tabulated density `p_h`, for `u ∈ [0,1)²`.
+    #[inline]
+    pub fn sample_h(&self, u: [f32; 2]) -> Vec3 {
+        let n = self.n as usize;
+        let u0 = u[0].clamp(0.0, 1.0);
+        // First k with cdf[k + 1] > u0 (bins of zero probability are skipped).
+        let upper = self.cdf.get(1..).unwrap_or_default();
+        let k = upper.partition_point(|&c| c <= u0).min(n.saturating_sub(1));
+        let at = |s: &[f32], i: usize| s.get(i).copied().unwrap_or(0.0);
+        let (c0, c1) = (at(self.cdf, k), at(self.cdf, k + 1));
+        let t = if c1 > c0 {
+            ((u0 - c0) / (c1 - c0)).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
+        let (v0, v1) = (at(self.edges, k), at(self.edges, k + 1));
+        let v = v0 + t * (v1 - v0);
+        let sin_t = libm::sqrtf((v * (2.0 - v)).max(0.0));
+        let (sp, cp) = libm::sincosf(TAU * u[1]);
+        Vec3::new(sin_t * cp, sin_t * sp, 1.0 - v)
+    }
+
+    /// Draws `ωi` for a unit `ωo` above the horizon: the cosine lobe when
+    /// `u₀ < c` (with `u₀/c` reused), else the reflection of a half vector
+    /// from [`sample_h`](Self::sample_h) (with `(u₀ − c)/(1 − c)`). `None`
+    /// when the reflection lands at or below the horizon.
+    #[inline]
+    pub fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<Vec3> {
+        let c = self.cosine_weight;
+        let wi = if u[0] < c {
+            square_to_cosine_hemisphere([(u[0] / c).min(1.0), u[1]])
+        } else {
+            let h = self.sample_h([((u[0] - c) / (1.0 - c)).clamp(0.0, 1.0), u[1]]);
+            let dot = wo.dot(h);
+            2.0 * dot * h - wo
+        };
+        (wi.z > 0.0 && wi.is_finite()).then_some(wi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec;
+
+    /// `∫ p_h dω = 1` over the upper hemisphere (f64 midpoint rule in
+    /// `v = 1 − cos θ` on each bin, where `p_h` is constant) and sampled
+    /// half vectors fall in bins with the stored probabilities.
+    #[test]
+    fn half_vector_density_is_normalised() {
+        let grid = RusinkiewiczGrid::new(12, 6, 4).unwrap();
+        let values: std::vec::Vec<f32> = (0..grid.len()).map(|i| ((i * 7919) % 13) as f32 * 0.1).collect();
+        let mut buf = vec![0.0f32; HalfVectorDistribution::buffer_len(&grid)];
+        let d = HalfVectorDistribution::build(&grid, &values, &mut buf, 0.25).unwrap();
+        let mut mass = 0.0f64;
+        for k in 0..12 {
+            let t0 = (k as f64 / 12.0).powi(2) * core::f64::consts::FRAC_PI_2;
+            let t1 = ((k + 1) as f64 / 12.0).powi(2) * core::f64::consts::FRAC_PI_2;
+            let tm = 0.5 * (t0 + t1);
+            let h = Vec3::new(tm.sin() as f32, 0.0, tm.cos() as f32);
+            mass += d.pdf_h(h) as f64 * core::f64::consts::TAU * (t0.cos() - t1.cos());
+        }
+        assert!((mass - 1.0).abs() < 1e-5, "{mass}");
+        for i in 0..1000 {
+            let h = d.sample_h([(i as f32 + 0.5) / 1000.0, 0.3]);
+            assert!((h.length() - 1.0).abs() < 1e-5 && h.z >= 0.0);
+            assert!(d.pdf_h(h) > 0.0);
+        }
+    }
+
+    #[test]
+    fn errors_and_all_zero_table() {
+        let grid = RusinkiewiczGrid::new(4, 4, 4).unwrap();
+        let zeros = vec![0.0f32; grid.len()];
+        let mut short = [0.0f32; 3];
+        assert_eq!(
+            HalfVectorDistribution::build(&grid, &zeros, &mut short, 0.25),
+            Err(TabulatedError::Buffer { needed: 10, found: 3 })
+        );
+        let mut buf = vec![0.0f32; 10];
+        assert!(HalfVectorDistribution::build(&grid, &zeros[1..], &mut buf, 0.25).is_err());
+        for c in [0.0, -1.0, 1.5, f32::NAN] {
+            assert!(HalfVectorDistribution::build(&grid, &zeros, &mut buf, c).is_err());
+        }
+        let d = HalfVectorDistribution::build(&grid, &zeros, &mut buf, 0.25).unwrap();
+        assert_eq!(d.cosine_weight(), 1.0);
+        let wo = Vec3::new(0.6, 0.0, 0.8);
+        let wi = d.sample(wo, [0.9, 0.1]).unwrap();
+        assert!((d.pdf(wi, wo) - wi.z * FRAC_1_PI).abs() < 1e-7);
+    }
+}
