@@ -31,7 +31,7 @@
 //! what a renderer integrates (the reflection equation weighs by `cos θi`, a
 //! camera sees a patch with projected area `∝ cos θo`) and fades out the
 //! grazing directions where measured data are least reliable. With `w_j` the
-//! 4-D measure `dωi dωo` of sample `j`'s cell (what the MERL glue assigns), `E` is
+//! 4-D measure `dωi dωo` of sample `j`'s cell (what [`grid::samples`] assigns), `E` is
 //! a Riemann sum of `∫∫ μi μo Δ² dωi dωo / ∫∫ μi μo dωi dωo`, independent
 //! of the table's resolution and of subsampling.
 //!
@@ -76,6 +76,7 @@
 //! ```
 
 mod channel;
+pub mod grid;
 
 use crate::model::build_brdf;
 use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, MultipleScattering, SpecError};
@@ -294,6 +295,13 @@ pub enum FitError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// A table's value array does not have one entry per grid node.
+    TableSize {
+        /// Grid nodes.
+        expected: usize,
+        /// Entries found.
+        found: usize,
+    },
     /// Building the model BRDF failed (an internal error).
     Model(SpecError),
 }
@@ -314,6 +322,9 @@ impl fmt::Display for FitError {
                 )
             }
             FitError::InvalidSample { index, reason } => write!(f, "sample {index}: {reason}"),
+            FitError::TableSize { expected, found } => {
+                write!(f, "the table has {found} entries for a grid of {expected} nodes")
+            }
             FitError::Model(e) => write!(f, "model: {e}"),
         }
     }

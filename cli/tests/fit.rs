@@ -7,6 +7,8 @@
 
 use radiometry::Brdf;
 use radiometry::glam::Vec3;
+use radiometry_brdfs::tabulated::RusinkiewiczGrid;
+use radiometry_cli::fit::grid::{Subsample, samples};
 use radiometry_cli::fit::{ChannelFresnel, Fit, FitError, FitOptions, FresnelModel, Sample, fit, metric};
 use radiometry_cli::model::{AnyBrdf, build_brdf};
 use radiometry_cli::spec::{Distribution, parse_brdf};
@@ -15,31 +17,30 @@ fn brdf(text: &str) -> AnyBrdf {
     build_brdf(text, &parse_brdf(text).unwrap()).unwrap()
 }
 
-/// A table of three monochrome BRDFs (R, G, B): every node of a
-/// (θi, θo, Δφ) product grid, weighted by its solid-angle measure.
+/// Subsampling of the test tables (short tests): every 3rd θh, 4th θd and
+/// 8th φd node of the MERL grid (30 × 23 × 23 nodes, ≈ 11 000 above the
+/// horizon). `radiometry fit` uses `Subsample::DEFAULT` (≈ 127 000).
+fn test_subsample() -> Subsample {
+    Subsample::new(3, 4, 8).unwrap()
+}
+
+/// A table of three monochrome BRDFs (R, G, B) on the MERL grid (evaluated
+/// at the nodes the fit reads), turned into fit samples by the CLI's glue.
 fn table(specs: [&str; 3]) -> Vec<Sample> {
     let b = specs.map(brdf);
-    let mut v = Vec::new();
-    let n = 24;
-    for i in 0..n {
-        for j in 0..n {
-            for k in 0..n {
-                let ti = (i as f32 + 0.5) / n as f32 * 1.5;
-                let to = (j as f32 + 0.5) / n as f32 * 1.5;
-                let phi = (k as f32 + 0.5) / n as f32 * std::f32::consts::PI;
-                let wi = Vec3::new(ti.sin(), 0.0, ti.cos());
-                let wo = Vec3::new(to.sin() * phi.cos(), to.sin() * phi.sin(), to.cos());
-                let value = [0, 1, 2].map(|c| b[c].eval(wi, wo) as f64);
-                v.push(Sample {
-                    wi,
-                    wo,
-                    value,
-                    weight: (ti.sin() * to.sin()) as f64,
-                });
+    let g = RusinkiewiczGrid::MERL;
+    let sub = test_subsample();
+    let [sh, sd, sp] = sub.steps();
+    let mut values = vec![Vec3::ZERO; g.len()];
+    for i in (0..90).step_by(sh) {
+        for j in (0..90).step_by(sd) {
+            for k in (0..180).step_by(sp) {
+                let (wi, wo) = g.node_directions(i, j, k);
+                values[g.index(i, j, k)] = Vec3::from_array([0, 1, 2].map(|c| b[c].eval(wi, wo)));
             }
         }
     }
-    v
+    samples(&g, &values, None, sub).unwrap()
 }
 
 fn rel(got: f64, want: f64) -> f64 {
