@@ -37,7 +37,8 @@
 //!
 //! # Optimiser
 //! Variable projection on the roughness: for a fixed `α`, `E` separates into
-//! one small problem per channel in `(F0_c[, kd_c])` or `(ln η_c, k_c[, kd_c])`,
+//! one small problem per channel in `(F0_c[, kd_c])` or `(r_c, t_c[, kd_c])` (a conductor
+//! parametrisation by its normal-incidence reflectance `r` and a shape `t`),
 //! solved by projected Levenberg–Marquardt (`fit/channel.rs`). The profile
 //! `E*(ln α)` is scanned on [`ALPHA_GRID`] points from `α = 10⁻³` to `1`
 //! (warm-starting each channel from the previous point), then minimised by
@@ -192,6 +193,8 @@ pub struct Fit {
     pub samples: usize,
     /// Roughness values visited by the search.
     pub alpha_evaluations: usize,
+    /// Levenberg–Marquardt iterations, summed over roughness values and channels.
+    pub solver_iterations: usize,
 }
 
 impl Fit {
@@ -437,6 +440,7 @@ fn specular_factor(p: &Prepared, o: &FitOptions, alpha: f64) -> Result<Vec<f64>,
 struct Profile {
     cost: [f64; 3],
     params: [Vec<f64>; 3],
+    iterations: usize,
 }
 
 impl Profile {
@@ -449,6 +453,7 @@ fn profile(p: &Prepared, o: &FitOptions, alpha: f64, start: &[Vec<f64>; 3]) -> R
     let s = specular_factor(p, o, alpha)?;
     let mut cost = [0.0; 3];
     let mut params: [Vec<f64>; 3] = Default::default();
+    let mut iterations = 0;
     for c in 0..3 {
         let prob = ChannelProblem {
             data: p,
@@ -457,11 +462,16 @@ fn profile(p: &Prepared, o: &FitOptions, alpha: f64, start: &[Vec<f64>; 3]) -> R
             fresnel: o.fresnel,
             diffuse: o.diffuse,
         };
-        let (x, e) = channel::minimize(&prob, &start[c]);
+        let (x, e, it) = channel::minimize(&prob, &start[c]);
         cost[c] = e;
         params[c] = x;
+        iterations += it;
     }
-    Ok(Profile { cost, params })
+    Ok(Profile {
+        cost,
+        params,
+        iterations,
+    })
 }
 
 /// Fits the model of `options` to `samples` (see the module doc for the
@@ -489,6 +499,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
     let (t_lo, t_hi) = (ALPHA_MIN.ln(), 0.0f64);
     let t_at = |i: usize| t_lo + (t_hi - t_lo) * i as f64 / (ALPHA_GRID - 1) as f64;
     let mut evaluations = 0;
+    let mut iterations = 0;
     let mut best: Option<(f64, Profile)> = None;
     let mut warm = start;
     let mut best_i = 0;
@@ -496,6 +507,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
         let t = t_at(i);
         let pr = profile(&p, o, t.exp(), &warm)?;
         evaluations += 1;
+        iterations += pr.iterations;
         warm = pr.params.clone();
         if best.as_ref().is_none_or(|(_, b)| pr.total() < b.total()) {
             best = Some((t, pr));
@@ -513,6 +525,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
     let t_min = brent(a, b, t_best, pr_best.total(), T_TOL, |t| {
         evaluations += 1;
         let pr = profile(&p, o, t.exp(), &warm)?;
+        iterations += pr.iterations;
         let e = pr.total();
         cache.push((t, pr));
         Ok(e)
@@ -531,10 +544,10 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
         let x = &pr_best.params[c];
         fresnel[c] = match o.fresnel {
             FresnelModel::Schlick => ChannelFresnel::Schlick { f0: x[0] },
-            FresnelModel::Conductor => ChannelFresnel::Conductor {
-                eta: x[0].exp(),
-                k: x[1],
-            },
+            FresnelModel::Conductor => {
+                let (eta, k) = channel::conductor_eta_k(x[0], x[1]);
+                ChannelFresnel::Conductor { eta, k }
+            }
         };
         if o.diffuse {
             kd[c] = *x.last().expect("diffuse adds a parameter");
@@ -552,6 +565,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
         channel_metric,
         samples: p.len(),
         alpha_evaluations: evaluations,
+        solver_iterations: iterations,
     })
 }
 

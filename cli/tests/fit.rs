@@ -300,3 +300,39 @@ fn noisy_table_still_meets_the_targets() {
         assert!(rel(f.kd[c], kd[c]) < 0.02, "kd[{c}] = {} vs {}", f.kd[c], kd[c]);
     }
 }
+/// The printed spec strings, parsed and built as `albedo`/`eval` do,
+/// reproduce the fitted model: their metric equals the fit's (to the 6-digit
+/// rounding of the printed numbers) for fits with a clearly non-zero error —
+/// a conductor fitted to a Schlick table and GGX + diffuse fitted to a
+/// Beckmann + diffuse table.
+#[test]
+fn printed_specs_reproduce_the_fit() {
+    let schlick = table([
+        "ggx(alpha=0.3, fresnel=schlick(f0=0.9))",
+        "ggx(alpha=0.3, fresnel=schlick(f0=0.6))",
+        "ggx(alpha=0.3, fresnel=schlick(f0=0.3))",
+    ]);
+    let rough_plastic = table([
+        "beckmann(alpha=0.4, fresnel=schlick(f0=0.04), kd=0.6)",
+        "beckmann(alpha=0.4, fresnel=schlick(f0=0.04), kd=0.4)",
+        "beckmann(alpha=0.4, fresnel=schlick(f0=0.04), kd=0.2)",
+    ]);
+    for (s, o) in [
+        (&schlick, opts(Distribution::Ggx, FresnelModel::Conductor, false)),
+        (
+            &rough_plastic,
+            opts(Distribution::Ggx, FresnelModel::Schlick, true),
+        ),
+    ] {
+        let f = fit(s, &o).unwrap();
+        let specs = f.specs();
+        let b = specs.clone().map(|t| brdf(&t));
+        let m = metric(s, [&b[0], &b[1], &b[2]]).unwrap();
+        eprintln!(
+            "{:?}: E = {:.4e}, E of the specs = {m:.4e}, specs {specs:?}",
+            o.fresnel, f.metric
+        );
+        assert!(f.metric > 1e-8, "{}", f.metric);
+        assert!(rel(m, f.metric) < 1e-3, "{m} vs {}", f.metric);
+    }
+}

@@ -11,16 +11,36 @@ pub(super) const MAX_PARAMS: usize = 3;
 /// Intervals of the conductor Fresnel table in `cos θd ∈ [0, 1]`.
 pub(super) const TABLE_INTERVALS: usize = 1024;
 
-/// Bounds of the conductor parameters: `η ∈ [ETA_MIN, ETA_MAX]`,
-/// `k ∈ [0, K_MAX]` (inside the plugin's `[1e-3, 1e3]` domain).
-const ETA_MIN: f64 = 1e-2;
-const ETA_MAX: f64 = 50.0;
-const K_MAX: f64 = 50.0;
+/// Largest normal-incidence reflectance of the conductor parametrisation:
+/// keeps `η ∈ [2.5·10⁻³, 399]` and `k ≤ 20`, inside the plugin's
+/// `[10⁻³, 10³]` domain.
+const R_MAX: f64 = 0.99;
 
-/// Finite-difference step of the conductor parameters `(ln η, k)`: large
+/// Finite-difference step of the conductor parameters `(r, t)`: large
 /// enough that the `f32` rounding of the plugin's Fresnel (≈ 6·10⁻⁸) stays a
 /// `10⁻⁴` relative perturbation of the derivative.
 const FD_STEP: f64 = 1e-3;
+
+/// The conductor index `(η, k)` of the parameters `(r, t) ∈ [0, R_MAX] × [0, 1]`:
+/// `r` is the normal-incidence reflectance `F0 = ((η−1)² + k²)/((η+1)² + k²)`
+/// (Born & Wolf § 14.2) and `t` places `η` between the two indices with
+/// `k = 0` and that `F0`, `η_lo = (1 − √r)/(1 + √r)` and `η_hi = 1/η_lo`, on a
+/// log scale: `η = η_lo^(1−t) η_hi^t`; then `k² = (r(η+1)² − (η−1)²)/(1 − r)`
+/// (solving the `F0` equation for `k`). Every `(η, k ≥ 0)` with reflectance
+/// `r` has exactly one `t`, so `(r, t)` covers all conductors with
+/// `F0 ≤ R_MAX`, and it separates the well-determined `F0` from the
+/// weakly-determined shape of the curve — far better conditioned for the
+/// solver than `(η, k)` (the idea of Gulbrandsen 2014, "Artist friendly
+/// metallic Fresnel", JCGT 3(4), with a mapping that spans every `η`).
+pub(super) fn conductor_eta_k(r: f64, t: f64) -> (f64, f64) {
+    let r = r.clamp(0.0, R_MAX);
+    let t = t.clamp(0.0, 1.0);
+    let sr = r.sqrt();
+    let ln_lo = ((1.0 - sr) / (1.0 + sr)).ln();
+    let eta = (ln_lo * (1.0 - 2.0 * t)).exp();
+    let k2 = (r * (eta + 1.0).powi(2) - (eta - 1.0).powi(2)) / (1.0 - r);
+    (eta, k2.max(0.0).sqrt())
+}
 
 /// One channel's model at a fixed roughness: with `S_j = D G2/(4 μi μo)` of
 /// sample `j` (the plugin with `F = 1`),
@@ -28,7 +48,7 @@ const FD_STEP: f64 = 1e-3;
 /// `r_j = √w_j (y_j − ln(1 + μi_j f_j))`, `y_j = ln(1 + μi_j f_table)`.
 ///
 /// Parameters `p = (q, kd)`: Schlick `q = (F0)`, `F = F0 + (1 − F0)(1 − cos θd)⁵`
-/// (Schlick 1994, eq. 15); conductor `q = (ln η, k)`, `F` the plugin's exact
+/// (Schlick 1994, eq. 15); conductor `q = (r, t)` of [`conductor_eta_k`], `F` the plugin's exact
 /// conductor Fresnel, read from a [`TABLE_INTERVALS`]-interval table in
 /// `cos θd` by linear interpolation (F is smooth in `cos θd`; the table error
 /// is below 10⁻⁵, far under any fit residual of measured data).
@@ -49,17 +69,17 @@ pub(super) struct Normal {
 }
 
 /// The conductor Fresnel `F(c_i)` of the plugin at `c_i = i/TABLE_INTERVALS`.
-/// `η` and `k` are clamped into the parameter box first (a non-finite value,
-/// which the solver never produces, becomes the box's lower end).
+/// `η` and `k` are clamped into the plugin's domain first (a non-finite
+/// value, which [`conductor_eta_k`] never produces, becomes `η = 1`, `k = 0`).
 pub(super) fn conductor_table(eta: f64, k: f64) -> Vec<f64> {
     let eta = if eta.is_finite() {
-        eta.clamp(ETA_MIN, ETA_MAX)
+        eta.clamp(1e-3, 1e3)
     } else {
-        ETA_MIN
+        1.0
     };
-    let k = if k.is_finite() { k.clamp(0.0, K_MAX) } else { 0.0 };
+    let k = if k.is_finite() { k.clamp(0.0, 1e3) } else { 0.0 };
     let Ok(f) = Conductor::new(eta as f32, k as f32) else {
-        unreachable!("η ∈ [1e-2, 50] and k ∈ [0, 50] are inside the plugin's domain")
+        unreachable!("η ∈ [1e-3, 1e3] and k ∈ [0, 1e3] are the plugin's domain")
     };
     (0..=TABLE_INTERVALS)
         .map(|i| f.eval(i as f32 / TABLE_INTERVALS as f32) as f64)
@@ -79,12 +99,12 @@ impl ChannelProblem<'_> {
         }
     }
 
-    /// The starting point: Schlick `F0 = 0.5`; conductor `η = 1, k = 1`
-    /// (`F0 = 0.2`); `kd = 0.05`.
+    /// The starting point: Schlick `F0 = 0.5`; conductor `r = 0.5, t = 0.3`
+    /// (`η = 0.41, k = 1.8`); `kd = 0.05`.
     pub(super) fn start(&self) -> Vec<f64> {
         let mut p = match self.fresnel {
             FresnelModel::Schlick => vec![0.5],
-            FresnelModel::Conductor => vec![0.0, 1.0],
+            FresnelModel::Conductor => vec![0.5, 0.3],
         };
         if self.diffuse {
             p.push(0.05);
@@ -92,34 +112,48 @@ impl ChannelProblem<'_> {
         p
     }
 
-    /// Clamps `p` into the box: `F0, kd ∈ [0, 1]`, `η ∈ [10⁻², 50]`, `k ∈ [0, 50]`.
-    pub(super) fn project(&self, p: &mut [f64]) {
-        match self.fresnel {
-            FresnelModel::Schlick => p[0] = p[0].clamp(0.0, 1.0),
-            FresnelModel::Conductor => {
-                p[0] = p[0].clamp(ETA_MIN.ln(), ETA_MAX.ln());
-                p[1] = p[1].clamp(0.0, K_MAX);
-            }
+    /// The parameter box: `F0, t, kd ∈ [0, 1]`, `r ∈ [0, R_MAX]`.
+    pub(super) fn bounds(&self) -> [(f64, f64); MAX_PARAMS] {
+        let mut b = [(0.0, 1.0); MAX_PARAMS];
+        if self.fresnel == FresnelModel::Conductor {
+            b[0] = (0.0, R_MAX);
         }
-        if self.diffuse {
-            let i = self.fresnel_dim();
-            p[i] = p[i].clamp(0.0, 1.0);
+        b
+    }
+
+    /// Clamps `p` into the box ([`bounds`](Self::bounds)).
+    pub(super) fn project(&self, p: &mut [f64]) {
+        for (x, (lo, hi)) in p.iter_mut().zip(self.bounds()) {
+            *x = x.clamp(lo, hi);
         }
     }
 
     /// `Σ r_j²`, `JᵀJ`, `Jᵀr` at `p` (analytic derivatives in `F0` and `kd`,
-    /// forward differences of the table in `ln η` and `k`).
+    /// one-sided differences of the table in `r` and `t`, towards the inside
+    /// of the box).
     pub(super) fn normal(&self, p: &[f64]) -> Normal {
         let nq = self.fresnel_dim();
         let kd = if self.diffuse { p[nq] } else { 0.0 };
+        let mut steps = [FD_STEP; 2];
         let tables: Vec<Vec<f64>> = match self.fresnel {
             FresnelModel::Schlick => Vec::new(),
             FresnelModel::Conductor => {
-                let (eta, k) = (p[0].exp(), p[1]);
+                let b = self.bounds();
+                steps = [0, 1].map(|i| {
+                    if p[i] + FD_STEP <= b[i].1 {
+                        FD_STEP
+                    } else {
+                        -FD_STEP
+                    }
+                });
+                let table = |r: f64, t: f64| {
+                    let (eta, k) = conductor_eta_k(r, t);
+                    conductor_table(eta, k)
+                };
                 vec![
-                    conductor_table(eta, k),
-                    conductor_table((p[0] + FD_STEP).exp(), k),
-                    conductor_table(eta, k + FD_STEP),
+                    table(p[0], p[1]),
+                    table(p[0] + steps[0], p[1]),
+                    table(p[0], p[1] + steps[1]),
                 ]
             }
         };
@@ -146,8 +180,8 @@ impl ChannelProblem<'_> {
                     let (i, t) = d.cell[j];
                     let lerp = |tab: &[f64]| tab[i] + (tab[i + 1] - tab[i]) * t;
                     let f = lerp(&tables[0]);
-                    dfq[0] = (lerp(&tables[1]) - f) / FD_STEP;
-                    dfq[1] = (lerp(&tables[2]) - f) / FD_STEP;
+                    dfq[0] = (lerp(&tables[1]) - f) / steps[0];
+                    dfq[1] = (lerp(&tables[2]) - f) / steps[1];
                     f
                 }
             };
@@ -216,30 +250,47 @@ fn solve(
 }
 
 /// Relative parameter change below which the solver stops: the parameters
-/// are `O(1)`, and `10⁻¹⁰` is far below the `f32` resolution of the model.
-const STEP_TOL: f64 = 1e-10;
+/// are `O(1)`, and `10⁻⁹` is below the `f32` resolution of the model.
+const STEP_TOL: f64 = 1e-9;
 
 /// Projected Levenberg–Marquardt (Levenberg 1944; Marquardt 1963, with
 /// Marquardt's scaling `λ diag(JᵀJ)`): the step solves
-/// `(JᵀJ + λ diag(JᵀJ)) δ = −Jᵀr`, the trial point is clamped into the
-/// parameter box, accepted when the cost drops (then `λ ← λ/3`), rejected
-/// otherwise (`λ ← 4λ`). Stops when an accepted step lowers the cost by less
-/// than `10⁻¹²` of itself, when the (projected) step moves no parameter by
-/// more than `STEP_TOL (1 + |p|)`, when `λ > 10¹⁰`, or after 200 iterations.
-/// Returns the parameters and their cost `Σ r²`.
-pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f64) {
+/// `(JᵀJ + λ diag(JᵀJ)) δ = −Jᵀr` over the free parameters — a parameter on
+/// a bound of the box whose descent direction `−(Jᵀr)_i` points out of the
+/// box is held fixed (the active set of projected Newton methods, Bertsekas
+/// 1982) — and the trial point is clamped into the box. A trial is accepted
+/// when the cost drops (then `λ ← λ/3`), rejected otherwise (`λ ← 4λ`).
+/// Stops when an accepted step lowers the cost by less than `GAIN_TOL` of
+/// itself, when the step moves no parameter by more than
+/// `STEP_TOL (1 + |p|)`, when `λ > 10¹⁰`, or after [`MAX_ITERATIONS`].
+/// Returns the parameters, their cost `Σ r²` and the iterations used.
+pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f64, usize) {
     let m = prob.dim();
+    let bounds = prob.bounds();
     let mut p = start.to_vec();
     prob.project(&mut p);
     let mut cur = prob.normal(&p);
     let mut lambda = 1e-3;
-    for _ in 0..200 {
+    let mut iterations = 0;
+    while iterations < MAX_ITERATIONS {
+        iterations += 1;
         let mut a = cur.jtj;
+        let mut rhs = cur.jtr.map(|v| -v);
         let scale = (0..m).map(|i| a[i][i]).fold(0.0f64, f64::max).max(1e-300);
-        for (i, row) in a.iter_mut().enumerate().take(m) {
-            row[i] += lambda * row[i] + 1e-12 * scale;
+        for i in 0..m {
+            let (lo, hi) = bounds[i];
+            let fixed = (p[i] <= lo && rhs[i] < 0.0) || (p[i] >= hi && rhs[i] > 0.0);
+            if fixed {
+                a[i] = [0.0; MAX_PARAMS];
+                for row in a.iter_mut() {
+                    row[i] = 0.0;
+                }
+                a[i][i] = 1.0;
+                rhs[i] = 0.0;
+            } else {
+                a[i][i] += lambda * a[i][i] + 1e-12 * scale;
+            }
         }
-        let rhs = cur.jtr.map(|v| -v);
         let Some(delta) = solve(a, rhs, m) else {
             lambda *= 4.0;
             if lambda > 1e10 {
@@ -260,7 +311,7 @@ pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f
         if next.cost < cur.cost {
             let gain = cur.cost - next.cost;
             p = trial;
-            let done = gain <= 1e-12 * cur.cost;
+            let done = gain <= GAIN_TOL * cur.cost;
             cur = next;
             lambda = (lambda / 3.0).max(1e-12);
             if done {
@@ -273,8 +324,15 @@ pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f
             }
         }
     }
-    (p, cur.cost)
+    (p, cur.cost, iterations)
 }
+
+/// Relative cost decrease of an accepted step below which [`minimize`]
+/// stops (the outer roughness search compares costs that differ by far more).
+const GAIN_TOL: f64 = 1e-8;
+
+/// Iteration cap of [`minimize`] (warm-started problems take a handful).
+pub(super) const MAX_ITERATIONS: usize = 100;
 
 #[cfg(test)]
 mod tests {
@@ -291,6 +349,33 @@ mod tests {
             assert!((got[i] - x[i]).abs() < 1e-12, "{got:?}");
         }
         assert!(solve([[0.0; 3]; 3], [1.0; 3], 2).is_none());
+    }
+
+    /// `(r, t)` maps to an index with reflectance `r` at normal incidence,
+    /// `t = 0` and `1` to the two `k = 0` indices, and a known conductor
+    /// (gold at 632.8 nm, `η = 0.18104`, `k = 3.068099`) is reached.
+    #[test]
+    fn conductor_parametrisation() {
+        let f0 = |e: f64, k: f64| ((e - 1.0).powi(2) + k * k) / ((e + 1.0).powi(2) + k * k);
+        for r in [0.0, 0.04, 0.5, 0.9, R_MAX] {
+            for t in [0.0, 0.2, 0.5, 0.8, 1.0] {
+                let (e, k) = conductor_eta_k(r, t);
+                assert!((f0(e, k) - r).abs() < 1e-12, "r={r} t={t}: η={e} k={k}");
+                assert!((1e-3..=1e3).contains(&e) && (0.0..=1e3).contains(&k), "{e} {k}");
+            }
+            let (lo, hi) = (conductor_eta_k(r, 0.0), conductor_eta_k(r, 1.0));
+            // k = √(difference of two O(max(1, η)²) terms): rounding leaves
+            // k ≲ 10⁻⁷ max(1, η) instead of 0.
+            assert!(lo.1 < 1e-6 && hi.1 < 1e-6 * hi.0, "{lo:?} {hi:?}");
+            assert!((lo.0 * hi.0 - 1.0).abs() < 1e-12, "{lo:?} {hi:?}");
+        }
+        let (eta, k) = (0.18104f64, 3.068099f64);
+        let r = f0(eta, k);
+        let sr = r.sqrt();
+        let ln_lo = ((1.0 - sr) / (1.0 + sr)).ln();
+        let t = 0.5 * (1.0 - eta.ln() / ln_lo);
+        let (e2, k2) = conductor_eta_k(r, t);
+        assert!((e2 - eta).abs() < 1e-9 && (k2 - k).abs() < 1e-9, "{e2} {k2}");
     }
 
     /// The table reproduces the plugin's conductor Fresnel between nodes to
