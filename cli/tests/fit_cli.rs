@@ -54,7 +54,7 @@ fn ggx_bytes() -> (Vec<u8>, usize) {
                     for c in 0..3 {
                         put(c, index, &mut bytes);
                     }
-                } else if index % 50 == 0 {
+                } else if index.is_multiple_of(50) {
                     put(1, index, &mut bytes);
                 }
             }
