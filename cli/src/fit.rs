@@ -436,10 +436,18 @@ fn specular_factor(p: &Prepared, o: &FitOptions, alpha: f64) -> Result<Vec<f64>,
     Ok(out.into_iter().map(f64::from).collect())
 }
 
+/// Where the per-channel solvers start: parameters and Marquardt's `λ`
+/// (warm starts carry both over from a neighbouring roughness).
+#[derive(Clone)]
+struct Warm {
+    params: [Vec<f64>; 3],
+    lambda: [f64; 3],
+}
+
 /// Per-channel optimum at one roughness.
 struct Profile {
     cost: [f64; 3],
-    params: [Vec<f64>; 3],
+    warm: Warm,
     iterations: usize,
 }
 
@@ -449,10 +457,11 @@ impl Profile {
     }
 }
 
-fn profile(p: &Prepared, o: &FitOptions, alpha: f64, start: &[Vec<f64>; 3]) -> Result<Profile, FitError> {
+fn profile(p: &Prepared, o: &FitOptions, alpha: f64, start: &Warm) -> Result<Profile, FitError> {
     let s = specular_factor(p, o, alpha)?;
     let mut cost = [0.0; 3];
     let mut params: [Vec<f64>; 3] = Default::default();
+    let mut lambda = [0.0; 3];
     let mut iterations = 0;
     for c in 0..3 {
         let prob = ChannelProblem {
@@ -462,14 +471,15 @@ fn profile(p: &Prepared, o: &FitOptions, alpha: f64, start: &[Vec<f64>; 3]) -> R
             fresnel: o.fresnel,
             diffuse: o.diffuse,
         };
-        let (x, e, it) = channel::minimize(&prob, &start[c]);
+        let (x, e, it, l) = channel::minimize(&prob, &start.params[c], start.lambda[c]);
         cost[c] = e;
         params[c] = x;
+        lambda[c] = l;
         iterations += it;
     }
     Ok(Profile {
         cost,
-        params,
+        warm: Warm { params, lambda },
         iterations,
     })
 }
@@ -494,7 +504,10 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
             diffuse: o.diffuse,
         };
         let x = prob.start();
-        [x.clone(), x.clone(), x]
+        Warm {
+            params: [x.clone(), x.clone(), x],
+            lambda: [channel::LAMBDA_START; 3],
+        }
     };
     let (t_lo, t_hi) = (ALPHA_MIN.ln(), 0.0f64);
     let t_at = |i: usize| t_lo + (t_hi - t_lo) * i as f64 / (ALPHA_GRID - 1) as f64;
@@ -508,7 +521,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
         let pr = profile(&p, o, t.exp(), &warm)?;
         evaluations += 1;
         iterations += pr.iterations;
-        warm = pr.params.clone();
+        warm = pr.warm.clone();
         if best.as_ref().is_none_or(|(_, b)| pr.total() < b.total()) {
             best = Some((t, pr));
             best_i = i;
@@ -520,7 +533,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
         t_at(best_i.saturating_sub(1)),
         t_at((best_i + 1).min(ALPHA_GRID - 1)),
     );
-    let warm = pr_best.params.clone();
+    let warm = pr_best.warm.clone();
     let mut cache: Vec<(f64, Profile)> = Vec::new();
     let t_min = brent(a, b, t_best, pr_best.total(), T_TOL, |t| {
         evaluations += 1;
@@ -541,7 +554,7 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
     let mut fresnel = [ChannelFresnel::Schlick { f0: 0.0 }; 3];
     let mut kd = [0.0; 3];
     for c in 0..3 {
-        let x = &pr_best.params[c];
+        let x = &pr_best.warm.params[c];
         fresnel[c] = match o.fresnel {
             FresnelModel::Schlick => ChannelFresnel::Schlick { f0: x[0] },
             FresnelModel::Conductor => {

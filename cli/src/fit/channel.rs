@@ -263,14 +263,21 @@ const STEP_TOL: f64 = 1e-9;
 /// Stops when an accepted step lowers the cost by less than `GAIN_TOL` of
 /// itself, when the step moves no parameter by more than
 /// `STEP_TOL (1 + |p|)`, when `λ > 10¹⁰`, or after [`MAX_ITERATIONS`].
-/// Returns the parameters, their cost `Σ r²` and the iterations used.
-pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f64, usize) {
+/// `λ` starts at `lambda` (clamped to `[10⁻⁶, 10³]`; a warm start passes the
+/// final `λ` of a neighbouring problem, which saves the rejected trials that
+/// would raise it again). Returns the parameters, their cost `Σ r²`, the
+/// iterations used and the final `λ`.
+pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64], lambda: f64) -> (Vec<f64>, f64, usize, f64) {
     let m = prob.dim();
     let bounds = prob.bounds();
     let mut p = start.to_vec();
     prob.project(&mut p);
     let mut cur = prob.normal(&p);
-    let mut lambda = 1e-3;
+    let mut lambda = if lambda.is_finite() {
+        lambda.clamp(1e-6, 1e3)
+    } else {
+        LAMBDA_START
+    };
     let mut iterations = 0;
     while iterations < MAX_ITERATIONS {
         iterations += 1;
@@ -317,6 +324,9 @@ pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f
             if done {
                 break;
             }
+        } else if next.cost - cur.cost <= GAIN_TOL * cur.cost {
+            // At the noise floor of the f32 model: no trial can do better.
+            break;
         } else {
             lambda *= 4.0;
             if lambda > 1e10 {
@@ -324,8 +334,11 @@ pub(super) fn minimize(prob: &ChannelProblem<'_>, start: &[f64]) -> (Vec<f64>, f
             }
         }
     }
-    (p, cur.cost, iterations)
+    (p, cur.cost, iterations, lambda)
 }
+
+/// Marquardt's `λ` of a cold start.
+pub(super) const LAMBDA_START: f64 = 1e-3;
 
 /// Relative cost decrease of an accepted step below which [`minimize`]
 /// stops (the outer roughness search compares costs that differ by far more).
