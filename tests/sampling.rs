@@ -280,7 +280,7 @@ static WORST_PDF: Worst = Worst::new();
 static WORST_WEIGHT: Worst = Worst::new();
 static UNDERFLOWED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
-/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 23
+/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 25
 /// configurations, `u` including 0 and `1 − 2⁻²⁴`. Tolerance: `1e-4` relative plus the sensitivity of
 /// `pdf` (resp. `f cos/pdf`) to one-ulp changes of its inputs (the sampled `ωi` is rounded to `f32`
 /// before `pdf` sees it). The weight is compared only where `f` and `pdf` are ≥ 1e-30 (see below).
@@ -353,7 +353,7 @@ fn weight_and_pdf_match_eval_and_pdf_every_plugin() {
 }
 
 /// Number of χ² tests over the plugins below (for the Šidák correction).
-const PLUGIN_CHI2_TESTS: usize = 4 + 17 + 17 + 16 + 16 + 2 + 10;
+const PLUGIN_CHI2_TESTS: usize = 4 + 17 + 17 + 16 + 16 + 2 + 10 + 8;
 const THETAS_DEG: [f32; 4] = [0.0, 30.0, 70.0, 85.0];
 
 fn plugin_alpha() -> f64 {
@@ -497,6 +497,19 @@ fn chi_square_kulla_conty() {
         &[0.0, 70.0],
         95,
     ));
+    assert!(fails.is_empty(), "{fails:#?}");
+}
+
+/// The `Tabulated` half-vector sampler mixed with a cosine lobe (exact pdf): both fixed tables (GGX α = 0.3
+/// on the MERL grid; diffuse + GGX α = 0.1 on a coarse grid) at 4 angles.
+#[test]
+fn chi_square_tabulated() {
+    use common::plugins::TABULATED_KINDS;
+    let p = Params::typical();
+    let mut fails = Vec::new();
+    for (j, &k) in TABULATED_KINDS.iter().enumerate() {
+        fails.extend(chi2_plugin(k, &p, &THETAS_DEG, 110 + j as u64));
+    }
     assert!(fails.is_empty(), "{fails:#?}");
 }
 

@@ -35,6 +35,9 @@ Plugins (F = 1 unless a Fresnel term is named):
   ggx-hc-schlick-rgb-a0.3      Microfacet<Ggx, HeightCorrelated, Schlick<Vec3>>, f0 (1.0, 0.71, 0.29) (Vec3)
   ggx-hc-conductor-rgb-a0.3    Microfacet<Ggx, HeightCorrelated, Conductor<Vec3>>, gold η, k (Vec3)
   beckmann-hc-a0.3             Microfacet<Beckmann, HeightCorrelated, NoFresnel>, α 0.3 (f32)
+  tabulated-merl-ggx-a0.3      Tabulated<f32>: ggx-hc-a0.3 tabulated on the MERL grid (90 x 90 x 180,
+                               5.8 MB), trilinear, half-vector sampling (f32)
+  tabulated-merl-rgb-ggx-a0.3  Tabulated<Vec3>: the same table in three channels (17.5 MB) (Vec3)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -474,6 +477,28 @@ impl Run<'_> {
             "beckmann-hc-a0.3",
             &Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(0.3).expect(BAD), NoFresnel),
         );
+        self.tabulated(ggx);
+    }
+
+    /// The `Tabulated` rows: GGX α 0.3 (the reference's formula) on the MERL grid.
+    fn tabulated(&mut self, ggx: Ggx) {
+        use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
+        const BAD: &str = "the MERL-grid table of a valid plugin is valid";
+        let grid = RusinkiewiczGrid::MERL;
+        let table =
+            radiometry_cli::merl::tabulate(&Microfacet::<_, HeightCorrelated, _>::new(ggx, NoFresnel), grid)
+                .expect(BAD);
+        let mono: Vec<f32> = table.values.iter().map(|v| v.x).collect();
+        let mut buf = vec![0.0f32; Tabulated::<f32>::sampling_buffer_len(&grid)];
+        let mut buf_rgb = buf.clone();
+        let t = Tabulated::new(grid, &mono)
+            .and_then(|t| t.with_sampling(&mut buf))
+            .expect(BAD);
+        self.plugin("tabulated-merl-ggx-a0.3", &t);
+        let t = Tabulated::new(grid, &table.values[..])
+            .and_then(|t| t.with_sampling(&mut buf_rgb))
+            .expect(BAD);
+        self.plugin("tabulated-merl-rgb-ggx-a0.3", &t);
     }
 
     /// References, plugins, references again (best of both kept); then the

@@ -12,6 +12,7 @@ mod fit_cmd;
 mod furnace;
 mod sensor_cmd;
 mod sensor_edge;
+mod tabulate_cmd;
 
 /// `model`, `reference`, `tradeoff` and the spec grammar live in the library half of this package (`src/lib.rs`,
 /// shared with the Python module); `crate::model` etc. keep their paths for the modules here.
@@ -148,6 +149,10 @@ enum Command {
     /// `eval` accept, and the fit error.
     #[command(after_help = fit_cmd::AFTER_HELP)]
     Fit(fit_cmd::FitArgs),
+    /// Write a MERL .binary file of a BRDF spec (plus an optional Lambertian base), e.g. to test
+    /// `tabulated(file=…)`.
+    #[command(after_help = spec::BRDF_SPEC_HELP)]
+    Tabulate(tabulate_cmd::TabulateArgs),
 }
 
 fn spec_error(e: spec::SpecError) -> ExitCode {
@@ -335,6 +340,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(args),
         Command::Furnace(args) => furnace::run(args),
         Command::Fit(args) => fit_cmd::run(args),
+        Command::Tabulate(args) => tabulate_cmd::run(args),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
                 println!("{}", i.name());

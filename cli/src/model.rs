@@ -138,6 +138,16 @@ where
 /// the whole spec).
 pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
     let r = match *spec {
+        BrdfSpec::Tabulated { file: (start, end) } => {
+            return crate::merl::load_tabulated(text.get(start..end).unwrap_or(""))
+                .map(boxed)
+                .map_err(|message| SpecError {
+                    spec: text.to_string(),
+                    start,
+                    end,
+                    message,
+                });
+        }
         BrdfSpec::Lambertian { albedo } => Lambertian::new(albedo as f32).map(boxed),
         BrdfSpec::Phong { exponent, ks, kd } => {
             ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)

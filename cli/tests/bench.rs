@@ -15,7 +15,7 @@ fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-const PLUGINS: [&str; 8] = [
+const PLUGINS: [&str; 10] = [
     "lambertian",
     "modified-phong-n100",
     "blinn-phong-n100",
@@ -24,6 +24,8 @@ const PLUGINS: [&str; 8] = [
     "ggx-hc-schlick-rgb-a0.3",
     "ggx-hc-conductor-rgb-a0.3",
     "beckmann-hc-a0.3",
+    "tabulated-merl-ggx-a0.3",
+    "tabulated-merl-rgb-ggx-a0.3",
 ];
 const PATHS: [&str; 7] = [
     "eval",

@@ -80,7 +80,9 @@ fn round_trip_on_the_merl_grid() {
     let (wi, wo) = grid.node_directions(5, 30, 0);
     let want = Vec3::new(0.5, 0.3, 0.1) / std::f32::consts::PI + Vec3::splat(0.4 * d.spec.eval(wi, wo));
     assert!((back.values[grid.index(5, 30, 0)] - want).abs().max_element() <= 1e-6 * want.max_element());
-    let _ = std::fs::remove_dir_all(path.parent().unwrap());
+    for f in ["ggx.binary", "diffuse_ggx.binary"] {
+        let _ = std::fs::remove_file(tmp(f));
+    }
 }
 
 /// Truncated, bad dims, NaN, missing file: typed errors with clear messages (never a panic).
@@ -227,4 +229,80 @@ fn ggx_table_albedo_within_one_percent() {
         100.0 * max_rel_peak
     );
     assert!(num / den < 0.01);
+}
+
+fn run(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_radiometry"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+/// `radiometry tabulate` writes a file that `tabulated(file=…)` reads back: `eval` at a node direction
+/// equals the analytic spec's value; `albedo` (adaptive) matches the f64 reference of GGX α = 0.3 within
+/// 1 %; a missing or truncated file is a spec error (exit 2) that names the file and underlines the path.
+#[test]
+fn cli_tabulate_then_albedo_and_eval() {
+    let path = tmp("cli_ggx.binary");
+    let p = path.to_str().unwrap();
+    let o = run(&["tabulate", "ggx(alpha=0.3)", "--out", p]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::metadata(&path).unwrap().len(), 12 + 24 * 1_458_000);
+    let spec = format!("tabulated(file={p})");
+    // wi = (30°, 0°), wo = (30°, 180°): the mirror pair, θh = 0 (a node), θd = 30° (node 30).
+    let eval = |s: &str| -> f64 {
+        let o = run(&["eval", s, "--wi", "30,0", "--wo", "30,180"]);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).trim().parse().unwrap()
+    };
+    let (ft, fg) = (eval(&spec), eval("ggx(alpha=0.3)"));
+    assert!((ft - fg).abs() <= 1e-5 * fg, "{ft} vs {fg}");
+    let o = run(&[
+        "albedo",
+        &spec,
+        "--theta-o",
+        "40",
+        "--integrator",
+        "adaptive",
+        "--budget",
+        "65536",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let a = j["value"]
+        .as_f64()
+        .or_else(|| j["albedo"].as_f64())
+        .expect("albedo value");
+    let model = RefModel::Microfacet {
+        ggx: true,
+        alpha: 0.3,
+        height_correlated: true,
+        conductor: None,
+    };
+    let r = reference::albedo(&model, 40f64.to_radians()).value;
+    assert!((a - r).abs() < 0.01 * r, "{a} vs {r}");
+
+    let missing = tmp("missing.binary");
+    let spec = format!("tabulated(file={})", missing.display());
+    let o = run(&["albedo", &spec, "--theta-o", "10"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("cannot read MERL file") && err.contains("missing.binary") && err.contains('^'),
+        "{err}"
+    );
+    let trunc = tmp("trunc.binary");
+    std::fs::write(&trunc, &std::fs::read(&path).unwrap()[..1000]).unwrap();
+    let spec = format!("tabulated(file={})", trunc.display());
+    let o = run(&["eval", &spec, "--wi", "0,0", "--wo", "0,0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("1000 bytes"));
+    let o = run(&["albedo", "tabulated(file=)", "--theta-o", "10"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("empty path"));
+    for f in [&path, &trunc] {
+        let _ = std::fs::remove_file(f);
+    }
 }

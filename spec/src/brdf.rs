@@ -100,6 +100,24 @@ pub enum BrdfSpec {
         /// reflect more than 1 when `kd` and the specular albedo are both large).
         kd: f64,
     },
+    /// `tabulated(file=PATH)`: a MERL `.binary` file, read by the caller.
+    Tabulated {
+        /// Byte span `(start, end)` of the path in the spec text given to
+        /// [`parse_brdf`]; [`BrdfSpec::file`] slices it.
+        file: (usize, usize),
+    },
+}
+
+impl BrdfSpec {
+    /// The path of a `tabulated(file=PATH)` spec, sliced from `text` (the
+    /// string that was parsed); `None` for other BRDFs or a span that does
+    /// not fit `text`.
+    pub fn file<'a>(&self, text: &'a str) -> Option<&'a str> {
+        match *self {
+            BrdfSpec::Tabulated { file: (a, b) } => text.get(a..b),
+            _ => None,
+        }
+    }
 }
 
 /// Largest accepted Phong / Blinn–Phong exponent (the plugins' `MAX_EXPONENT`).
@@ -113,12 +131,15 @@ pub const MAX_ALPHA: f64 = 1.0;
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
 fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
-`beckmann(...)` (same parameters as ggx). Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
+`beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`). Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
 exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
 
 /// Parses and validates a BRDF spec.
 pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
+    if let Some(r) = crate::tabulated::parse(spec) {
+        return r;
+    }
     let call = parse_call(spec)?;
     let name = call.name.as_str();
     match name {
@@ -210,7 +231,9 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
         other => Err(err_span(
             spec,
             call.name_span,
-            format!("unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx or beckmann)"),
+            format!(
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann or tabulated)"
+            ),
         )),
     }
 }

@@ -10,6 +10,9 @@
 //! value := NUMBER | call
 //! ```
 //!
+//! The one exception is `tabulated(file=PATH)`, whose path is not a token
+//! (it runs to the last `)`; see [`BrdfSpec::Tabulated`]).
+//!
 //! `NAME`/`KEY` are `[A-Za-z_][A-Za-z0-9_-]*`; numbers are decimal with an
 //! optional sign, fraction and exponent. Angles are in **degrees**. Every
 //! error carries the byte span of the offending token so that
@@ -38,6 +41,7 @@ mod call;
 mod error;
 mod lex;
 mod light;
+mod tabulated;
 
 pub use angles::parse_angles;
 pub use brdf::{

@@ -57,6 +57,61 @@ pub enum Kind {
     Micro(Dist, Shadow, Fres),
     /// `KullaConty<D, G, F>` (multiple-scattering compensation).
     KullaConty(Dist, Shadow, Fres),
+    /// `Tabulated` over a fixed table (parameters unused).
+    Tabulated(Table),
+}
+
+/// The fixed tables of the `Tabulated` configurations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Table {
+    /// GGX α = 0.3, F = 1, height-correlated, on the MERL grid (the test case).
+    GgxMerl,
+    /// `0.5/π + 0.5 · GGX(α = 0.1)` on a coarse 32 × 32 × 16 grid (a diffuse base under a sharp peak, and a
+    /// non-MERL resolution).
+    DiffuseGgxCoarse,
+}
+
+/// The `Tabulated` configurations in [`all_kinds`].
+pub const TABULATED_KINDS: [Kind; 2] = [
+    Kind::Tabulated(Table::GgxMerl),
+    Kind::Tabulated(Table::DiffuseGgxCoarse),
+];
+
+/// The plugin over a fixed table, with half-vector sampling; tables and sampling buffers are built
+/// once per test binary and leaked (`'static` borrows).
+fn tabulated(t: Table) -> radiometry_brdfs::tabulated::Tabulated<'static, f32> {
+    use radiometry::Brdf;
+    use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
+    use std::sync::OnceLock;
+    static TABLES: [OnceLock<Tabulated<'static, f32>>; 2] = [OnceLock::new(), OnceLock::new()];
+    let make = |grid: RusinkiewiczGrid, f: &dyn Fn(radiometry::glam::Vec3, radiometry::glam::Vec3) -> f32| {
+        let mut v = vec![0.0f32; grid.len()];
+        let [nh, nd, np] = grid.dims();
+        for i in 0..nh {
+            for j in 0..nd {
+                for k in 0..np {
+                    let (wi, wo) = grid.node_directions(i, j, k);
+                    v[grid.index(i, j, k)] = f(wi, wo);
+                }
+            }
+        }
+        let values: &'static [f32] = Vec::leak(v);
+        let buf = Vec::leak(vec![0.0f32; Tabulated::<f32>::sampling_buffer_len(&grid)]);
+        Tabulated::new(grid, values).unwrap().with_sampling(buf).unwrap()
+    };
+    match t {
+        Table::GgxMerl => *TABLES[0].get_or_init(|| {
+            let g = Microfacet::<Ggx, HeightCorrelated, NoFresnel>::new(Ggx::new(0.3).unwrap(), NoFresnel);
+            make(RusinkiewiczGrid::MERL, &|wi, wo| g.eval(wi, wo))
+        }),
+        Table::DiffuseGgxCoarse => *TABLES[1].get_or_init(|| {
+            let g = Microfacet::<Ggx, HeightCorrelated, NoFresnel>::new(Ggx::new(0.1).unwrap(), NoFresnel);
+            let l = Lambertian::new(0.5f32).unwrap();
+            make(RusinkiewiczGrid::new(32, 32, 16).unwrap(), &|wi, wo| {
+                l.eval(wi, wo) + 0.5 * g.eval(wi, wo)
+            })
+        }),
+    }
 }
 
 /// The four compensated configurations in [`all_kinds`]: every `(D, G)` once, two with `F = 1` (where
@@ -68,7 +123,7 @@ pub const KULLA_CONTY_KINDS: [Kind; 4] = [
     Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
 ];
 
-/// All 23 configurations (19 single-scattering, 4 compensated).
+/// All 25 configurations (19 single-scattering, 4 compensated, 2 tabulated).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
@@ -79,6 +134,7 @@ pub fn all_kinds() -> Vec<Kind> {
         }
     }
     v.extend(KULLA_CONTY_KINDS);
+    v.extend(TABULATED_KINDS);
     v
 }
 
@@ -205,6 +261,7 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
         Kind::KullaConty(Dist::Beckmann, Shadow::Separable, f) => {
             compensated::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
         }
+        Kind::Tabulated(t) => Box::new(tabulated(t)),
     })
 }
 
@@ -219,5 +276,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::Micro(..) => 2.0 * p.alpha as f64,
         // The narrow single-scattering lobe sets the breakpoints; the added lobe is as broad as Lambert's.
         Kind::KullaConty(..) => 2.0 * p.alpha as f64,
+        Kind::Tabulated(Table::GgxMerl) => 0.6,
+        Kind::Tabulated(Table::DiffuseGgxCoarse) => 0.2,
     }
 }
