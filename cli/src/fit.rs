@@ -76,15 +76,22 @@
 //! # Ok::<(), radiometry_cli::spec::SpecError>(())
 //! ```
 
+mod brent;
 mod channel;
 pub mod grid;
+mod prepared;
 
 use crate::model::build_brdf;
 use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, MultipleScattering, SpecError};
-use channel::{ChannelProblem, TABLE_INTERVALS};
+use brent::brent;
+use channel::ChannelProblem;
+use prepared::Prepared;
 use radiometry::Brdf;
 use radiometry::glam::Vec3;
 use std::fmt;
+
+/// Absolute tolerance of the roughness search in `ln α`.
+const T_TOL: f64 = 1e-7;
 
 /// Points of the coarse roughness scan, log-spaced over `α ∈ [10⁻³, 1]`.
 pub const ALPHA_GRID: usize = 31;
@@ -335,91 +342,6 @@ impl fmt::Display for FitError {
 
 impl std::error::Error for FitError {}
 
-/// The usable samples in the form the per-channel problems read.
-pub(crate) struct Prepared {
-    wi: Vec<Vec3>,
-    wo: Vec<Vec3>,
-    /// `cos θi`.
-    mu_i: Vec<f64>,
-    /// `(1 − cos θd)⁵` (Schlick's basis).
-    s5: Vec<f64>,
-    /// Cell of `cos θd` in the conductor table: `(interval, fraction)`.
-    cell: Vec<(usize, f64)>,
-    /// `ln(1 + μi f_table)` per channel.
-    y: [Vec<f64>; 3],
-    /// `w μi μo` per channel, 0 where the value is missing.
-    w: [Vec<f64>; 3],
-}
-
-impl Prepared {
-    fn len(&self) -> usize {
-        self.wi.len()
-    }
-
-    /// Validates and converts the samples (see [`FitError`]).
-    fn new(samples: &[Sample]) -> Result<Prepared, FitError> {
-        if samples.is_empty() {
-            return Err(FitError::Empty);
-        }
-        let mut p = Prepared {
-            wi: Vec::new(),
-            wo: Vec::new(),
-            mu_i: Vec::new(),
-            s5: Vec::new(),
-            cell: Vec::new(),
-            y: Default::default(),
-            w: Default::default(),
-        };
-        for (index, s) in samples.iter().enumerate() {
-            if !(s.weight.is_finite() && s.weight >= 0.0) {
-                return Err(FitError::InvalidSample {
-                    index,
-                    reason: "weight is negative or not finite",
-                });
-            }
-            let (Some(wi), Some(wo)) = (s.wi.as_dvec3().try_normalize(), s.wo.as_dvec3().try_normalize())
-            else {
-                return Err(FitError::InvalidSample {
-                    index,
-                    reason: "a direction is zero or not finite",
-                });
-            };
-            let present = s.value.map(|v| v.is_finite() && v >= 0.0);
-            if wi.z <= 0.0 || wo.z <= 0.0 || s.weight == 0.0 || !present.iter().any(|&x| x) {
-                continue;
-            }
-            let Some(h) = (wi + wo).try_normalize() else {
-                continue;
-            };
-            let cd = wi.dot(h).clamp(0.0, 1.0);
-            let pos = cd * TABLE_INTERVALS as f64;
-            let n = (pos as usize).min(TABLE_INTERVALS - 1);
-            p.wi.push(wi.as_vec3());
-            p.wo.push(wo.as_vec3());
-            p.mu_i.push(wi.z);
-            p.s5.push((1.0 - cd).powi(5));
-            p.cell.push((n, pos - n as f64));
-            let cw = s.weight * wi.z * wo.z;
-            for (c, &here) in present.iter().enumerate() {
-                let (y, w) = if here {
-                    ((wi.z * s.value[c]).ln_1p(), cw)
-                } else {
-                    (0.0, 0.0)
-                };
-                p.y[c].push(y);
-                p.w[c].push(w);
-            }
-        }
-        if p.len() == 0 {
-            return Err(FitError::NoValidSamples { total: samples.len() });
-        }
-        if let Some(channel) = (0..3).find(|&c| p.w[c].iter().all(|&w| w == 0.0)) {
-            return Err(FitError::EmptyChannel { channel });
-        }
-        Ok(p)
-    }
-}
-
 /// `S_j = D G2/(4 μi μo)` of every prepared sample: the plugin with `F = 1`.
 fn specular_factor(p: &Prepared, o: &FitOptions, alpha: f64) -> Result<Vec<f64>, FitError> {
     let spec = BrdfSpec::Microfacet {
@@ -580,86 +502,6 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
         alpha_evaluations: evaluations,
         solver_iterations: iterations,
     })
-}
-
-/// Absolute tolerance of the roughness search in `ln α`.
-const T_TOL: f64 = 1e-7;
-
-/// Brent's minimisation without derivatives (Brent 1973, "Algorithms for
-/// minimization without derivatives", ch. 5): on `[a, b]` from the point `x`
-/// with value `fx`, parabolic interpolation through the three best points
-/// when its step is inside the bracket and shorter than half the step before
-/// last, a golden-section step otherwise; stops when the bracket around the
-/// best point is within `2 tol`. Returns the best abscissa.
-fn brent(
-    mut a: f64,
-    mut b: f64,
-    x0: f64,
-    fx0: f64,
-    tol: f64,
-    mut f: impl FnMut(f64) -> Result<f64, FitError>,
-) -> Result<f64, FitError> {
-    const C: f64 = 0.381_966_011_250_105_1; // (3 − √5)/2
-    let (mut x, mut w, mut v) = (x0, x0, x0);
-    let (mut fx, mut fw, mut fv) = (fx0, fx0, fx0);
-    let (mut d, mut e) = (0.0f64, 0.0f64);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if (x - m).abs() <= 2.0 * tol - 0.5 * (b - a) {
-            break;
-        }
-        let mut golden = true;
-        if e.abs() > tol {
-            // Parabola through (v, fv), (w, fw), (x, fx).
-            let r = (x - w) * (fx - fv);
-            let mut q = (x - v) * (fx - fw);
-            let mut pnum = (x - v) * q - (x - w) * r;
-            q = 2.0 * (q - r);
-            if q > 0.0 {
-                pnum = -pnum;
-            }
-            q = q.abs();
-            if pnum.abs() < (0.5 * q * e).abs() && pnum > q * (a - x) && pnum < q * (b - x) {
-                e = d;
-                d = pnum / q;
-                let u = x + d;
-                if u - a < 2.0 * tol || b - u < 2.0 * tol {
-                    d = if x < m { tol } else { -tol };
-                }
-                golden = false;
-            }
-        }
-        if golden {
-            e = if x < m { b - x } else { a - x };
-            d = C * e;
-        }
-        let u = if d.abs() >= tol {
-            x + d
-        } else {
-            x + tol.copysign(d)
-        };
-        let fu = f(u)?;
-        if fu <= fx {
-            if u < x {
-                b = x;
-            } else {
-                a = x;
-            }
-            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
-        } else {
-            if u < x {
-                a = u;
-            } else {
-                b = u;
-            }
-            if fu <= fw || w == x {
-                (v, fv, w, fw) = (w, fw, u, fu);
-            } else if fu <= fv || v == x || v == w {
-                (v, fv) = (u, fu);
-            }
-        }
-    }
-    Ok(x)
 }
 
 /// The metric `E` (module doc) of three monochrome BRDFs (R, G, B) on
