@@ -305,6 +305,17 @@ pub enum FitError {
         /// What is wrong.
         reason: &'static str,
     },
+    /// A channel has fewer usable samples than the parameters that describe
+    /// it (its Fresnel parameters and `kd`, plus the shared α): the fit would
+    /// be underdetermined.
+    TooFewSamples {
+        /// The channel (0, 1, 2 = R, G, B).
+        channel: usize,
+        /// Its usable samples.
+        samples: usize,
+        /// Parameters to determine.
+        parameters: usize,
+    },
     /// A table's value array does not have one entry per grid node.
     TableSize {
         /// Grid nodes.
@@ -332,6 +343,15 @@ impl fmt::Display for FitError {
                 )
             }
             FitError::InvalidSample { index, reason } => write!(f, "sample {index}: {reason}"),
+            FitError::TooFewSamples {
+                channel,
+                samples,
+                parameters,
+            } => write!(
+                f,
+                "channel {} has {samples} usable samples for {parameters} parameters",
+                ["R", "G", "B"][*channel]
+            ),
             FitError::TableSize { expected, found } => {
                 write!(f, "the table has {found} entries for a grid of {expected} nodes")
             }
@@ -411,8 +431,9 @@ fn profile(p: &Prepared, o: &FitOptions, alpha: f64, start: &Warm) -> Result<Pro
 ///
 /// # Errors
 /// [`FitError::Empty`], [`FitError::NoValidSamples`],
-/// [`FitError::EmptyChannel`], [`FitError::InvalidSample`] for unusable
-/// input; never panics, and the result's numbers are finite.
+/// [`FitError::EmptyChannel`], [`FitError::InvalidSample`],
+/// [`FitError::TooFewSamples`] for unusable input; never panics, and the
+/// result's numbers are finite.
 pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
     let p = Prepared::new(samples)?;
     let o = options;
@@ -426,6 +447,18 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
             diffuse: o.diffuse,
         };
         let x = prob.start();
+        // Each channel's problem has its own parameters plus the shared α.
+        let needed = x.len() + 1;
+        for c in 0..3 {
+            let have = p.w[c].iter().filter(|&&w| w > 0.0).count();
+            if have < needed {
+                return Err(FitError::TooFewSamples {
+                    channel: c,
+                    samples: have,
+                    parameters: needed,
+                });
+            }
+        }
         Warm {
             params: [x.clone(), x.clone(), x],
             lambda: [channel::LAMBDA_START; 3],

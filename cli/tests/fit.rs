@@ -266,6 +266,19 @@ fn bad_input_gives_typed_errors() {
         assert!(e.to_string().starts_with("sample 7: "), "{e}");
         assert!(metric(&s, [&brdf("lambertian"); 3].map(|b| b)).is_err());
     }
+    // Two usable samples cannot determine α, F0 and kd of a channel.
+    let few: Vec<Sample> = good.iter().filter(|x| x.weight > 0.0).take(2).copied().collect();
+    let diffuse = opts(Distribution::Ggx, FresnelModel::Schlick, true);
+    let e = fit(&few, &diffuse).unwrap_err();
+    assert_eq!(
+        e,
+        FitError::TooFewSamples {
+            channel: 0,
+            samples: 2,
+            parameters: 3
+        }
+    );
+    assert_eq!(e.to_string(), "channel R has 2 usable samples for 3 parameters");
     // Zero weights and below-horizon samples are skipped, not errors.
     let mut some = good.clone();
     some[0].weight = 0.0;
