@@ -41,7 +41,9 @@
 //! parametrisation by its normal-incidence reflectance `r` and a shape `t`),
 //! solved by projected Levenberg–Marquardt (`fit/channel.rs`). The profile
 //! `E*(ln α)` is scanned on [`ALPHA_GRID`] points from `α = 10⁻³` to `1`
-//! (warm-starting each channel from the previous point), then minimised by
+//! (warm-starting each channel from the previous point; on every k-th sample
+//! when there are more than [`SCAN_SAMPLES`], since the scan only brackets the
+//! minimum), then minimised on all samples by
 //! Brent's method (parabolic interpolation with golden-section fallback) in
 //! the bracket around the best grid point to `|Δ ln α| ≲ 10⁻⁷`. About 45
 //! roughness values are visited;
@@ -92,6 +94,10 @@ use std::fmt;
 
 /// Absolute tolerance of the roughness search in `ln α`.
 const T_TOL: f64 = 1e-7;
+
+/// Most samples the coarse roughness scan uses (every k-th sample of a
+/// larger set); Brent's search then runs on all samples.
+pub const SCAN_SAMPLES: usize = 20_000;
 
 /// Points of the coarse roughness scan, log-spaced over `α ∈ [10⁻³, 1]`.
 pub const ALPHA_GRID: usize = 31;
@@ -471,9 +477,18 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
     let mut best: Option<(f64, Profile)> = None;
     let mut warm = start;
     let mut best_i = 0;
+    // The scan only brackets the minimum: a subset of at most SCAN_SAMPLES
+    // (every k-th sample) does that at a fraction of the cost.
+    let coarse_owned;
+    let coarse = if p.len() > SCAN_SAMPLES {
+        coarse_owned = p.every(p.len().div_ceil(SCAN_SAMPLES));
+        &coarse_owned
+    } else {
+        &p
+    };
     for i in 0..ALPHA_GRID {
         let t = t_at(i);
-        let pr = profile(&p, o, t.exp(), &warm)?;
+        let pr = profile(coarse, o, t.exp(), &warm)?;
         evaluations += 1;
         iterations += pr.iterations;
         warm = pr.warm.clone();
@@ -482,7 +497,15 @@ pub fn fit(samples: &[Sample], options: &FitOptions) -> Result<Fit, FitError> {
             best_i = i;
         }
     }
-    let (mut t_best, mut pr_best) = best.expect("ALPHA_GRID > 0");
+    let (mut t_best, scan_best) = best.expect("ALPHA_GRID > 0");
+    let mut pr_best = if std::ptr::eq(coarse, &p) {
+        scan_best
+    } else {
+        evaluations += 1;
+        let pr = profile(&p, o, t_best.exp(), &scan_best.warm)?;
+        iterations += pr.iterations;
+        pr
+    };
     // Brent's minimisation on [t_{i−1}, t_{i+1}] (clamped to the grid).
     let (a, b) = (
         t_at(best_i.saturating_sub(1)),

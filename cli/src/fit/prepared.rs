@@ -25,6 +25,22 @@ impl Prepared {
         self.wi.len()
     }
 
+    /// Every `k`-th sample (`k ≥ 1`), for the coarse roughness scan.
+    pub(super) fn every(&self, k: usize) -> Prepared {
+        fn pick<T: Copy>(v: &[T], k: usize) -> Vec<T> {
+            v.iter().step_by(k.max(1)).copied().collect()
+        }
+        Prepared {
+            wi: pick(&self.wi, k),
+            wo: pick(&self.wo, k),
+            mu_i: pick(&self.mu_i, k),
+            s5: pick(&self.s5, k),
+            cell: pick(&self.cell, k),
+            y: [0, 1, 2].map(|c| pick(&self.y[c], k)),
+            w: [0, 1, 2].map(|c| pick(&self.w[c], k)),
+        }
+    }
+
     /// Validates and converts the samples (see [`FitError`]).
     pub(super) fn new(samples: &[Sample]) -> Result<Prepared, FitError> {
         if samples.is_empty() {
