@@ -11,8 +11,8 @@ use core::f64::consts::{FRAC_PI_2, PI, TAU};
 use radiometry::integrator::GaussLegendre;
 use radiometry::integrator::Integrand;
 use radiometry::integrator::{
-    Adaptive, Estimate, Heuristic, IntegrateError, Integrator, MonteCarlo, PointSet, Strategy,
-    WarpedGaussLegendre,
+    Adaptive, Estimate, Heuristic, IntegrateError, Integrator, MonteCarlo, PointSet, Status, Strategy,
+    Unresolved, WarpedGaussLegendre,
 };
 use radiometry::light::{
     Cap, CapIntegrand, CapSampled, CapStrategy, Directional, Environment, EnvironmentIntegrand, Light,
@@ -667,6 +667,26 @@ fn cap_sampling_strategies_are_calibrated() {
             assert!(frac >= 0.93, "{ta_deg} {strategy:?}: {frac}");
         }
     }
+}
+
+/// A cap too small for an `f32` cone density (σ = 10⁻²⁰ rad, solid angle
+/// ~3·10⁻⁴⁰ sr) has no light technique: light sampling is finite and
+/// flagged `no-support-seen` instead of failing on an infinite weight, and
+/// MIS keeps its (unbiased) BRDF half.
+#[test]
+fn cap_sampling_of_a_cap_below_f32_resolution_is_finite_and_flagged() {
+    let cap = Cap::new(v3(dir(deg(30.0), 0.0)), 1e-20, 1.0e30f32).unwrap();
+    let wo = v3(dir(deg(30.0), PI));
+    let mc = MonteCarlo::new(Strategy::Integrand, PointSet::Prng, 3);
+    let light = CapSampled::new(PHONG, wo, &cap, CapStrategy::Light);
+    assert!(light.sample([0.3, 0.7]).is_none());
+    assert_eq!(light.pdf(v3(dir(deg(30.0), 0.0))), 0.0);
+    let e = mc.integrate(&light, 4096).unwrap();
+    assert_eq!(e.value, 0.0);
+    assert_eq!(e.status, Status::Unresolved(Unresolved::NoSupportSeen), "{e:?}");
+    let mis = CapSampled::new(PHONG, wo, &cap, CapStrategy::Mis);
+    let e = mc.integrate(&mis, 4096).unwrap();
+    assert!(e.value.is_finite() && e.error.is_finite(), "{e:?}");
 }
 
 /// Uniform sky shortcut L·ρ(ωo) vs brute force ∫ f L cos over the hemisphere.

@@ -3,7 +3,7 @@
 
 use super::acc::{self, F32_FLOOR, WideSum};
 use super::chunk::{self, BatchFn};
-use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf};
+use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf, probe};
 use crate::spectrum::WideSpectrum;
 
 /// Most live regions kept on the stack. When the table is full, the
@@ -91,6 +91,8 @@ struct Region<W> {
     abs: W,
     /// Scalar priority: largest channel of `error + 2⁻²³ abs`.
     key: f64,
+    /// Largest `max_channel |f|` at the region's nodes (for the peak probe).
+    peak: f64,
     /// Axis with the larger fourth difference (split here).
     axis: u8,
     /// The region's rule is the composite rule on an `n × n` grid of
@@ -146,6 +148,7 @@ fn composite<W: WideSpectrum>(
 ) -> Result<Region<W>, IntegrateError> {
     let hc = [h[0] / n as f64, h[1] / n as f64];
     let (mut v, mut e, mut a) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
+    let mut peak = 0.0f64;
     let cells = n as u64 * n as u64;
     let mut centres = [[0.0f64; 2]; BATCH_REGIONS];
     let mut start = 0u64;
@@ -162,6 +165,7 @@ fn composite<W: WideSpectrum>(
             v.add(r.value);
             e.add(r.error);
             a.add(r.abs);
+            peak = peak.max(r.peak);
         })?;
         start += m as u64;
     }
@@ -173,6 +177,7 @@ fn composite<W: WideSpectrum>(
         error,
         abs,
         key: acc::max_abs(acc::add(error, abs.map(|x| x * F32_FLOOR))),
+        peak,
         axis,
         n,
     })
@@ -193,8 +198,10 @@ fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
     let mut i7 = WideSum::<W>::new();
     let mut i5 = WideSum::<W>::new();
     let mut ab = WideSum::<W>::new();
+    let mut peak = 0.0f64;
     for (k, &(_, _, cls)) in pts.iter().enumerate() {
         let v = vals[k];
+        peak = peak.max(v.map(f64::abs).max_channel());
         i7.add(v.map(|x| x * W7[cls] * vol));
         ab.add(v.map(|x| (x * W7[cls] * vol).abs()));
         if cls < 4 {
@@ -230,6 +237,7 @@ fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
         error,
         abs,
         key,
+        peak,
         // Ties (e.g. both 0 where the integrand is constant) split the
         // longer side, so blank regions do not become thin slabs.
         axis: if dy > dx || (dy == dx && h[1] > h[0]) {
@@ -239,6 +247,97 @@ fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
         },
         n: 1,
     }
+}
+
+/// Bisection steps locating a step found in an edge gap (see [`edge_gaps`]).
+const EDGE_BISECTIONS: u64 = 6;
+
+/// Most evaluations of one region's [`edge_gaps`] check: a region touches
+/// at most two sides of the square (the first cut is not at an edge), two
+/// points per side plus the bisection.
+const EDGE_POINTS: u64 = 2 * (2 + EDGE_BISECTIONS);
+
+/// Tolerance of "on the boundary" (region sides are sums of halvings).
+const EDGE_EPS: f64 = 1e-12;
+
+/// Edge-gap check of the region `r` (warped square only). The rule's nodes
+/// stay `(1 − λ₃) h/n` (`λ₃ = √0.9`, `n × n` cells) away from the region's
+/// sides, so a step of the warped integrand in that margin — typically
+/// where the sampling map stops producing directions in a sliver at the
+/// square's edge, e.g. GGX's visible-normal map at `u₁ → 1` — is never
+/// seen, at any refinement, by a region on the square's boundary. For each
+/// side of `r` on the boundary, the integrand is evaluated at the side's
+/// midpoint `e` and at the nearest node position `x` (the outer node of the
+/// adjacent cell on the same line). Where exactly one of `g(e)`, `g(x)` is
+/// zero, the step `s` lies between them; [`EDGE_BISECTIONS`] bisections
+/// locate it to `[s₋, s₊]` (`s₋` nearer `x`), and the region's error grows
+/// by `max(|g(e)|, |g(x)|) · |e − s₋| · side length` (channel-wise): the
+/// strip beyond the step, which the rule's smooth continuation of its
+/// nodes may count as support (or miss). Refinement then shrinks the strip.
+/// (The adaptive analogue of the edge-gap bound of the plain warped
+/// Gauss–Legendre rule.) Returns the evaluations spent
+/// (≤ [`EDGE_POINTS`]).
+fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Result<u64, IntegrateError> {
+    let l3 = libm::sqrt(0.9);
+    let n = r.n as f64;
+    // Sides on the boundary: the normal axis of each.
+    let mut pts = [[0.0f64; 2]; 4];
+    let mut axes = [0usize; 2];
+    let mut m = 0;
+    for ax in 0..2 {
+        for sign in [-1.0, 1.0] {
+            let edge = r.c[ax] + sign * r.h[ax];
+            if m < 2 && (edge <= EDGE_EPS || edge >= 1.0 - EDGE_EPS) {
+                let mut e = r.c;
+                e[ax] = if sign < 0.0 { 0.0 } else { 1.0 };
+                let mut x = r.c;
+                x[ax] = r.c[ax] + sign * (r.h[ax] - (1.0 - l3) * r.h[ax] / n);
+                pts[2 * m] = e;
+                pts[2 * m + 1] = x;
+                axes[m] = ax;
+                m += 1;
+            }
+        }
+    }
+    if m == 0 {
+        return Ok(0);
+    }
+    let mut vals = [W::splat(0.0); 4];
+    f(&pts[..2 * m], &mut vals[..2 * m])?;
+    let mut evals = 2 * m as u64;
+    let nonzero = |v: &W| v.map(f64::abs).max_channel() > 0.0;
+    let mut grew = false;
+    for (k, &ax) in axes[..m].iter().enumerate() {
+        let (ve, vx) = (vals[2 * k], vals[2 * k + 1]);
+        let flag_e = nonzero(&ve);
+        if flag_e == nonzero(&vx) {
+            continue;
+        }
+        // Bisection on the line from x to e: `lo` keeps x's flag.
+        let (e, x) = (pts[2 * k][ax], pts[2 * k + 1][ax]);
+        let (mut lo, mut hi) = (x, e);
+        let mut p = pts[2 * k];
+        let mut v = [W::splat(0.0)];
+        for _ in 0..EDGE_BISECTIONS {
+            let mid = 0.5 * (lo + hi);
+            p[ax] = mid;
+            f(&[p], &mut v)?;
+            evals += 1;
+            if nonzero(&v[0]) == flag_e {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let strip = (e - lo).abs();
+        let side = 2.0 * r.h[1 - ax];
+        r.error = acc::add(r.error, ve.zip(vx, |a, b| a.abs().max(b.abs()) * strip * side));
+        grew = true;
+    }
+    if grew {
+        r.key = acc::max_abs(acc::add(r.error, r.abs.map(|x| x * F32_FLOOR)));
+    }
+    Ok(evals)
 }
 
 /// Two-level check after splitting `p` into `a` and `b`: the difference
@@ -303,6 +402,17 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 ///    (half each) to the children's errors (after the two-level error
 ///    estimate of Sakiotis et al. 2021, "PAGANI: a parallel adaptive GPU
 ///    algorithm for numerical integration", SC'21).
+///
+/// 4. on the warped square, every new region with a side on the square's
+///    boundary gets an edge-gap check (`edge_gaps`: the integrand at the
+///    side and at the nearest node position; a support step between them is
+///    located by 6 bisections and the strip beyond it added to the region's
+///    error), because the sampling map often stops producing directions in
+///    a sliver at the edge that no node ever enters;
+/// 5. on the plain hemisphere, with a sampling map and a budget ≥ 84, a
+///    peak probe ([`probe`], 16 draws from the budget): a
+///    probe value above twice the largest node value of the leaf region
+///    holding it marks the estimate [`Unresolved::UnseenPeak`].
 ///
 /// These make blind regions rare and short-lived but cannot exclude them:
 /// the estimate is a heuristic, not a bound. An integrand that is nonzero
@@ -385,11 +495,22 @@ impl Adaptive {
         (self.rel_tol, self.abs_tol)
     }
 
+    /// The adaptive loop on `[0,1]²` with values `f`. `probe`: points of the
+    /// square with the integrand value there (on the scale of `f`), drawn
+    /// through the integrand's sampling map; the estimate is
+    /// [`Unresolved::UnseenPeak`] when the leaf region holding one of them
+    /// saw no value within [`probe::PEAK_RATIO`] of it at its nodes.
     fn run<W: WideSpectrum>(
         &self,
         budget: u32,
+        probe: &[([f64; 2], f64)],
         mut f: impl BatchFn<W>,
     ) -> Result<Estimate<W>, IntegrateError> {
+        // Edge-gap checks on the warped square (see `edge_gaps`), on every
+        // new region on the boundary (when the budget pays for those of the
+        // initial regions too).
+        let edge = self.warped && budget >= Self::MIN_BUDGET + 4 * EDGE_POINTS as u32;
+        let edge_cost = if edge { EDGE_POINTS } else { 0 };
         if budget < Self::MIN_BUDGET {
             return Err(IntegrateError::BudgetTooSmall {
                 minimum: Self::MIN_BUDGET,
@@ -404,6 +525,7 @@ impl Adaptive {
             error: zero,
             abs: zero,
             key: 0.0,
+            peak: 0.0,
             axis: 0,
             n: 1,
         };
@@ -430,6 +552,11 @@ impl Adaptive {
             live += 1;
         })?;
         let mut evals = 4 * GM_POINTS as u64;
+        if edge {
+            for r in &mut regions[..live] {
+                evals += edge_gaps(r, &mut f)?;
+            }
+        }
         let mut splits = 0u64;
         loop {
             // Totals and the worst region.
@@ -456,7 +583,7 @@ impl Adaptive {
             }
             let target = self.abs_tol.max(self.rel_tol * acc::max_abs(val.value()));
             let converged = target > 0.0 && err_sum <= target;
-            if converged || evals + 2 * GM_POINTS as u64 > budget {
+            if converged || evals + 2 * (GM_POINTS as u64 + edge_cost) > budget {
                 break;
             }
             // Every `FORCED_EVERY`-th split refines the largest region
@@ -468,7 +595,7 @@ impl Adaptive {
                 || acc::max_abs(w.error) <= F32_FLOOR * acc::max_abs(w.abs);
             if live == MAX_REGIONS && !forced {
                 let n = w.n.saturating_mul(2) as u64;
-                forced = evals + n * n * GM_POINTS as u64 > budget;
+                forced = evals + n * n * GM_POINTS as u64 + edge_cost > budget;
             }
             if forced {
                 worst = largest;
@@ -480,11 +607,14 @@ impl Adaptive {
                 // discards a region, so none is left blind for good).
                 let n = r.n.saturating_mul(2);
                 let cost = (n as u64) * (n as u64) * GM_POINTS as u64;
-                if evals + cost > budget {
+                if evals + cost + edge_cost > budget {
                     break;
                 }
                 let mut q = composite(r.c, r.h, n, r.axis, &mut f)?;
                 evals += cost;
+                if edge {
+                    evals += edge_gaps(&mut q, &mut f)?;
+                }
                 splits += 1;
                 // Two-level check against the coarser rule.
                 let d = acc::abs_diff(r.value, q.value);
@@ -509,6 +639,9 @@ impl Adaptive {
             })?;
             let [mut a, mut b] = ab;
             evals += 2 * GM_POINTS as u64;
+            if edge {
+                evals += edge_gaps(&mut a, &mut f)? + edge_gaps(&mut b, &mut f)?;
+            }
             splits += 1;
             two_level(&r, &mut a, &mut b);
             regions[worst] = a;
@@ -528,10 +661,21 @@ impl Adaptive {
         // The support seen by a handful of regions only (effective region
         // count `(Σ|Q_r|)²/Σ|Q_r|²` below 4): a lobe met by the tails of
         // a few regions' rules, not resolved by refinement.
+        // A probe value in a leaf region whose nodes saw nothing near it:
+        // a peak (or part of a lobe) between the nodes that refinement never
+        // reached (see `probe`).
+        let unseen = probe.iter().any(|&(p, v)| {
+            regions[..live]
+                .iter()
+                .find(|r| (p[0] - r.c[0]).abs() <= r.h[0] && (p[1] - r.c[1]).abs() <= r.h[1])
+                .is_some_and(|r| v > probe::PEAK_RATIO * r.peak)
+        });
         let status = if acc::max_abs(abs) <= 0.0 {
             Status::Unresolved(Unresolved::NoSupportSeen)
         } else if live >= 8 && super::gauss_legendre::effective_nodes(abs, sq.value()) < 4.0 {
             Status::Unresolved(Unresolved::FewNodes)
+        } else if unseen {
+            Status::Unresolved(Unresolved::UnseenPeak)
         } else {
             Status::Resolved
         };
@@ -550,7 +694,7 @@ impl Integrator for Adaptive {
             if !g.has_sampling_map() {
                 return Err(IntegrateError::NoSamplingMap);
             }
-            self.run(budget, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+            self.run(budget, &[], |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
                 chunk::warped_values(g, p, out)
             })
         } else {
@@ -558,9 +702,27 @@ impl Integrator for Adaptive {
                 let s = b + PHI_OFFSET;
                 if s >= 1.0 { s - 1.0 } else { s }
             };
-            self.run(budget, |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+            let (rule_budget, probing) = probe::split_budget(g, budget, Self::MIN_BUDGET);
+            // The probe's points in the square's coordinates `(μ, b)` with
+            // `φ = 2π turn(b)`, values on the scale of `2π g`.
+            let mut pts = [([0.0f64; 2], 0.0f64); probe::PROBE_POINTS];
+            let mut n = 0;
+            if probing {
+                for &(w, v) in probe::Probe::take(g)?.points() {
+                    let phi = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
+                    let b = phi - PHI_OFFSET;
+                    let b = b - libm::floor(b);
+                    pts[n] = ([w.z as f64, b], v * core::f64::consts::TAU);
+                    n += 1;
+                }
+            }
+            let mut e = self.run(rule_budget, &pts[..n], |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
                 chunk::hemisphere_values(g, p, turn, out)
-            })
+            })?;
+            if probing {
+                e.evaluations += probe::PROBE_POINTS as u64;
+            }
+            Ok(e)
         }
     }
 

@@ -6,8 +6,10 @@
 use super::acc::to_unit_f32;
 use super::acc::{self, F32_FLOOR, WideSum};
 use super::chunk::{self, BatchFn, CHUNK};
-use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf};
+use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf, probe};
 use crate::spectrum::WideSpectrum;
+use core::cell::Cell;
+use core::f64::consts::TAU;
 
 /// Largest Gauss–Legendre order per axis (nodes live in fixed-size stack
 /// arrays of this length).
@@ -194,7 +196,8 @@ pub const MIN_EFFECTIVE_NODES: f64 = 16.0;
 /// its inner axis: on each line `u₀ = aᵢ`, where the support flag at an
 /// end (`u₁ = 0` or `1`) differs from that at the nearest node `x`, a step
 /// lies in the gap no node of the rule sees, and the line integral may be
-/// off by up to `|h(aᵢ, x)| · gap`. Returns `Σᵢ wᵢ (those terms)` and the
+/// off by up to `max(|h(aᵢ, x)|, |h(aᵢ, end)|) · gap` (whichever of the
+/// two is non-zero). Returns `Σᵢ wᵢ (those terms)` and the
 /// evaluations spent (four per line: both ends and both end nodes).
 fn edge_gap_bound<W: WideSpectrum>(
     na: usize,
@@ -210,11 +213,12 @@ fn edge_gap_bound<W: WideSpectrum>(
         let a = ra.x[i];
         f(&[[a, 0.0], [a, lo], [a, hi], [a, 1.0]], &mut vals)?;
         let mut b = W::splat(0.0);
+        let larger = |p: W, q: W, gap: f64| p.zip(q, |p, q| p.abs().max(q.abs()) * gap);
         if nonzero(&vals[0]) != nonzero(&vals[1]) {
-            b = acc::add(b, vals[1].map(|v| v.abs() * lo));
+            b = acc::add(b, larger(vals[0], vals[1], lo));
         }
         if nonzero(&vals[3]) != nonzero(&vals[2]) {
-            b = acc::add(b, vals[2].map(|v| v.abs() * (1.0 - hi)));
+            b = acc::add(b, larger(vals[3], vals[2], 1.0 - hi));
         }
         bound.add(b.map(|v| v * ra.w[i]));
     }
@@ -594,7 +598,11 @@ fn order_for_budget(budget: u32, k: usize) -> usize {
 /// convergence rate when it is algebraic, plus the `f32` rounding floor
 /// `2⁻²³ Σ|wₖ gₖ|` of the integrand. Like any quadrature estimate it cannot
 /// see a feature that falls between all nodes of all rules (a lobe
-/// narrower than the node spacing).
+/// narrower than the node spacing). Where the integrand has a sampling map,
+/// budgets ≥ 64 spend 16 evaluations on a peak probe
+/// ([`probe`]): draws of the map whose integrand value
+/// exceeds twice the largest value at a node of the rule mark the estimate
+/// [`Unresolved::UnseenPeak`].
 ///
 /// **Budget**: the largest `n_θ` whose rule plus comparison rules
 /// (`n_θ·2n_θ + ⌈n_θ/2⌉·n_θ + …`, ≈ 33 % extra) fit the budget. Minimum
@@ -639,15 +647,38 @@ impl GaussLegendre {
 
 impl Integrator for GaussLegendre {
     fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
-        let (nt, np) = Self::orders(budget);
+        let (rule_budget, probing) = probe::split_budget(g, budget, Self::MIN_BUDGET);
+        let (nt, np) = Self::orders(rule_budget);
         if nt == 0 {
             return Err(IntegrateError::BudgetTooSmall {
                 minimum: Self::MIN_BUDGET,
             });
         }
-        let mut f = |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, |b| b, out);
+        // Largest `max_channel |2π g|` at a node of `Q₀`, the rule whose
+        // sum is the estimate (for the peak probe; a comparison rule that
+        // lands on a peak does not make `Q₀` see it).
+        let node_peak = Cell::new(0.0f64);
+        let first = Cell::new(true);
+        let mut f = |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+            chunk::hemisphere_values(g, p, |b| b, out)?;
+            if first.get() {
+                for v in out.iter() {
+                    node_peak.set(node_peak.get().max(v.map(f64::abs).max_channel()));
+                }
+            }
+            Ok(())
+        };
         let none = (WideOf::<I>::splat(0.0), 0);
-        with_comparison_rules(nt, np, none, |a, b| plain_rule(a, b, &mut f))
+        let mut e = with_comparison_rules(nt, np, none, |a, b| {
+            let r = plain_rule(a, b, &mut f);
+            first.set(false);
+            r
+        })?;
+        if probing {
+            e.status = probe::judge(e.status, node_peak.get() / TAU, probe::Probe::take(g)?.peak());
+            e.evaluations += probe::PROBE_POINTS as u64;
+        }
+        Ok(e)
     }
 
     fn name(&self) -> &'static str {

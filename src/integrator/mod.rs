@@ -307,6 +307,7 @@ pub mod adaptive;
 
 pub use adaptive::Adaptive;
 pub use chunk::CHUNK;
+pub mod probe;
 mod status;
 mod tolerance;
 

@@ -41,6 +41,13 @@ pub enum CapStrategy {
 /// samples are inside the cap by construction (no test), so the light
 /// estimator does not see the `f32` resolution of the cap boundary.
 ///
+/// Caps too small for an `f32` cone density — `1 − cos σ` below
+/// `1/(2π · f32::MAX)`, i.e. `σ ≲ 1.9·10⁻¹⁹` rad (a solid angle below
+/// `10⁻³⁷` sr) — have no light technique: cone draws return `None` and the
+/// light density is 0, so light sampling reports `no-support-seen`
+/// (unresolved) instead of an infinite weight, and MIS keeps only its BRDF
+/// half. (Such a cap reflects at most `L f_r Ω ≤ 10³⁰ · f_r · 10⁻³⁷`.)
+///
 /// ```
 /// use radiometry::light::{Cap, CapSampled, CapStrategy};
 /// use radiometry::integrator::{Integrator, MonteCarlo, PointSet, Strategy};
@@ -86,12 +93,15 @@ impl<B: Brdf> CapSampled<B> {
         let e2 = Vec3::new(q, sign + a.y * a.y * p, -a.y);
         let h = libm::sinf(0.5 * cap.half_angle());
         let v_sigma = 2.0 * h * h;
+        // No cone technique where its density is not an f32 (see the type's docs).
+        let cone_pdf = 1.0 / (TAU * v_sigma);
+        let cone_pdf = if cone_pdf.is_finite() { cone_pdf } else { 0.0 };
         Self {
             brdf,
             wo,
             cap: *cap,
             v_sigma,
-            cone_pdf: 1.0 / (TAU * v_sigma),
+            cone_pdf,
             e1,
             e2,
             strategy,
@@ -146,7 +156,7 @@ impl<B: Brdf> Integrand for CapSampled<B> {
         match self.strategy {
             CapStrategy::Light => {
                 let w = self.cone_sample(u);
-                if w.z <= 0.0 {
+                if w.z <= 0.0 || self.cone_pdf == 0.0 {
                     return None;
                 }
                 Some(IntegrandSample {
@@ -167,7 +177,7 @@ impl<B: Brdf> Integrand for CapSampled<B> {
                 let u0 = u[0].clamp(0.0, 1.0);
                 let w = if u0 < 0.5 {
                     let w = self.cone_sample([2.0 * u0, u[1]]);
-                    if w.z <= 0.0 {
+                    if w.z <= 0.0 || self.cone_pdf == 0.0 {
                         return None;
                     }
                     w
