@@ -149,6 +149,10 @@ fn albedo_by_quadrature_hard_cases() {
                 }
                 let wo = to_f32(common::strategies::dir(ct, 0.3));
                 for &k in &kinds {
+                    // A fixed table ignores the parameters: one parameter set (the grazing one) is enough.
+                    if matches!(k, common::plugins::Kind::Tabulated(_)) && !(alpha == 1.0 && kd == 0.0) {
+                        continue;
+                    }
                     let b = build(k, &p).unwrap();
                     let t0 = std::time::Instant::now();
                     let a = albedo_quad(b.as_ref(), wo, lobe_width(k, &p), tol);

@@ -11,7 +11,7 @@
 //! each block in the flat order of [`RusinkiewiczGrid::index`] (φd fastest).
 //! Stored values are `f_r / scale` with the per-channel scales
 //! [`SCALES`] = (1/1500, 1.15/1500, 1.66/1500): [`read`] multiplies by them,
-//! [`write`] divides. Any positive dimensions that form a valid
+//! [`write()`] divides. Any positive dimensions that form a valid
 //! [`RusinkiewiczGrid`] are accepted (the MERL layout is the standard case).
 //!
 //! # Missing values

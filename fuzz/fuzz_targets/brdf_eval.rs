@@ -72,7 +72,7 @@ fuzz_target!(|data: &[u8]| {
     let mut f = Floats(data);
     let which = f.byte();
     let (a, b, c) = (f.f32(), f.f32(), f.f32());
-    match which % 12 {
+    match which % 13 {
         0 => {
             if let Ok(x) = Lambertian::new(a) {
                 check(&x, &mut f)
@@ -126,6 +126,30 @@ fuzz_target!(|data: &[u8]| {
         10 => {
             if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Schlick::new(b)) {
                 check(&KullaConty::<_, Separable, _>::new(d, fr), &mut f)
+            }
+        }
+        12 => {
+            // Tabulated on a small grid of fuzzed size and (non-negative) values,
+            // with half-vector sampling; the constructor rejects what it must.
+            use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
+            let dims = [
+                1 + f.byte() as usize % 6,
+                1 + f.byte() as usize % 6,
+                1 + f.byte() as usize % 6,
+            ];
+            let mut values = [0.0f32; 216];
+            for v in values.iter_mut() {
+                *v = f.unit() * 10.0;
+            }
+            let mut buf = [0.0f32; 21];
+            if let Ok(g) = RusinkiewiczGrid::new(dims[0], dims[1], dims[2]) {
+                if let Ok(t) = Tabulated::new(g, &values[..g.len()]) {
+                    check(&t, &mut f);
+                    let cw = f.unit();
+                    if let Ok(t) = t.with_sampling_weight(&mut buf, cw) {
+                        check(&t, &mut f);
+                    }
+                }
             }
         }
         _ => {

@@ -101,6 +101,20 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             exercise(&KullaConty::<_, Separable, _>::new(d, f), &mut acc);
         }
     }
+    // Tabulated: a small table and sampling buffer on the stack.
+    {
+        use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
+        let values = black_box([0.3f32; 4 * 4 * 4]);
+        let mut buf = [0.0f32; 15];
+        if let Ok(g) = RusinkiewiczGrid::new(black_box(4), 4, 4) {
+            if let Ok(t) = Tabulated::new(g, &values[..]) {
+                exercise(&t, &mut acc);
+                if let Ok(t) = t.with_sampling(&mut buf[..]) {
+                    exercise(&t, &mut acc);
+                }
+            }
+        }
+    }
     // Integrators on a directional-albedo integrand (stack only, no heap).
     // Linked for the std/alloc check; not yet part of the no-panic proof
     // (bounds checks on their fixed-size node/region tables survive).

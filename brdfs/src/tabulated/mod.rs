@@ -11,6 +11,8 @@
 //! Reading and writing MERL `.binary` files is std-side work (the
 //! `radiometry-cli` library, module `merl`).
 
+#[cfg(feature = "simd")]
+mod batch;
 pub mod error;
 pub mod grid;
 pub mod sampling;

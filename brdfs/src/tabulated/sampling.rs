@@ -144,8 +144,9 @@ impl<'a> HalfVectorDistribution<'a> {
         if !(cosine_weight > 0.0 && cosine_weight <= 1.0) {
             return Err(TabulatedError::CosineWeight { value: cosine_weight });
         }
-        let (cdf, rest) = buffer.split_at_mut(nh + 1);
-        let (edges, rest) = rest.split_at_mut(nh + 1);
+        // Checked splits (no panic path; the lengths were checked above).
+        let (cdf, rest) = buffer.split_at_mut_checked(nh + 1).unwrap_or_default();
+        let (edges, rest) = rest.split_at_mut_checked(nh + 1).unwrap_or_default();
         let density = rest.get_mut(..nh + 1).unwrap_or_default();
         // Bin edges v_k = 2 sin²(θ_k/2), θ_k = (k/Nh)² π/2.
         for (k, e) in edges.iter_mut().enumerate() {
@@ -155,11 +156,13 @@ impl<'a> HalfVectorDistribution<'a> {
         }
         // Node profile g_i (module documentation); g_Nh = g_{Nh−1}.
         let (nd, np) = (grid.n_theta_d(), grid.n_phi_d());
-        let mut rows = values.chunks_exact(nd * np);
+        // `max(1)`: the grid guarantees ≥ 1 node per axis; the bound lets the
+        // optimiser drop the zero-chunk-size panic path.
+        let mut rows = values.chunks_exact((nd * np).max(1));
         for g in density.iter_mut().take(nh) {
             let row = rows.next().unwrap_or_default();
             let mut acc = 0.0f32;
-            for (j, line) in row.chunks_exact(np).enumerate() {
+            for (j, line) in row.chunks_exact(np.max(1)).enumerate() {
                 let (s, c) = libm::sincosf((j as f32 + 0.5) / nd as f32 * FRAC_PI_2);
                 let sum: f32 = line.iter().map(|v| v.average()).sum();
                 acc += sum * s * c;
