@@ -71,6 +71,7 @@ fn with_ms(s: &BrdfSpec, ms: MultipleScattering) -> Option<BrdfSpec> {
             alpha,
             g,
             fresnel,
+            kd,
             ..
         } => Some(BrdfSpec::Microfacet {
             distribution,
@@ -78,6 +79,7 @@ fn with_ms(s: &BrdfSpec, ms: MultipleScattering) -> Option<BrdfSpec> {
             g,
             fresnel,
             ms,
+            kd,
         }),
         _ => None,
     }

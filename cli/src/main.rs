@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 mod bench;
+mod fit_cmd;
 mod furnace;
 mod sensor_cmd;
 mod sensor_edge;
@@ -143,6 +144,11 @@ enum Command {
     /// Kulla–Conty multiple-scattering compensation (table on stdout, SVG plot).
     #[command(after_help = spec::BRDF_SPEC_HELP)]
     Furnace(furnace::FurnaceArgs),
+    /// Fit a microfacet model (GGX or Beckmann, Schlick or conductor Fresnel, optional diffuse term) to a
+    /// tabulated BRDF in a MERL `.binary` file: prints the parameters as spec strings (R, G, B) that `albedo` and
+    /// `eval` accept, and the fit error.
+    #[command(after_help = fit_cmd::AFTER_HELP)]
+    Fit(fit_cmd::FitArgs),
     /// Write a MERL .binary file of a BRDF spec (plus an optional Lambertian base), e.g. to test
     /// `tabulated(file=…)`.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
@@ -333,6 +339,7 @@ fn main() -> ExitCode {
         Command::Sensor(cmd) => sensor_cmd::run(cmd),
         Command::Bench(args) => bench::run(args),
         Command::Furnace(args) => furnace::run(args),
+        Command::Fit(args) => fit_cmd::run(args),
         Command::Tabulate(args) => tabulate_cmd::run(args),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {

@@ -5,6 +5,8 @@
 //! evaluation, or per batch through the batch methods the integrators use) and picks integrators through [`AnyIntegrator`] (an enum,
 //! statically dispatched per variant).
 
+mod with_diffuse;
+
 use crate::spec::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
 use radiometry::Brdf;
 use radiometry::BrdfSample;
@@ -159,10 +161,19 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
             g,
             fresnel,
             ms,
+            kd,
         } => match distribution {
             Distribution::Ggx => Ggx::new(alpha as f32).and_then(|d| with_d(d, g, fresnel, ms)),
             Distribution::Beckmann => Beckmann::new(alpha as f32).and_then(|d| with_d(d, g, fresnel, ms)),
-        },
+        }
+        .and_then(|specular| {
+            if kd > 0.0 {
+                let diffuse = Lambertian::new(kd as f32)?;
+                Ok(boxed(with_diffuse::WithDiffuse::new(diffuse, specular)))
+            } else {
+                Ok(specular)
+            }
+        }),
     };
     r.map_err(|e| {
         let name = match e {

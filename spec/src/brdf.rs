@@ -94,6 +94,11 @@ pub enum BrdfSpec {
         fresnel: FresnelSpec,
         /// Multiple-scattering compensation.
         ms: MultipleScattering,
+        /// Diffuse coefficient `kd ∈ [0, 1]` (`kd=`, default 0): the BRDF is
+        /// `kd/π + f_microfacet`, the additive diffuse + specular form that
+        /// `phong`'s `kd` already has (not a layered model: the sum may
+        /// reflect more than 1 when `kd` and the specular albedo are both large).
+        kd: f64,
     },
     /// `tabulated(file=PATH)`: a MERL `.binary` file, read by the caller.
     Tabulated {
@@ -125,9 +130,9 @@ pub const MAX_ALPHA: f64 = 1.0;
 /// Help text describing the BRDF spec language (used by `--help`).
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
-fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty)`, \
+fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`). Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
-ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); \
+ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
 exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
 
 /// Parses and validates a BRDF spec.
@@ -164,8 +169,9 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
             })
         }
         "ggx" | "beckmann" => {
-            let mut a = Args::new(spec, &call, &["alpha", "g", "fresnel", "ms"])?;
+            let mut a = Args::new(spec, &call, &["alpha", "g", "fresnel", "ms", "kd"])?;
             let alpha = a.num("alpha", None, MIN_ALPHA, MAX_ALPHA, false)?;
+            let kd = a.num("kd", Some(0.0), 0.0, 1.0, false)?;
             let g = match a.call_value("g")? {
                 None => G2Kind::HeightCorrelated,
                 Some(c) => {
@@ -219,6 +225,7 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
                 g,
                 fresnel,
                 ms,
+                kd,
             })
         }
         other => Err(err_span(
@@ -301,7 +308,8 @@ mod tests {
                 alpha: 0.1,
                 g: G2Kind::Separable,
                 fresnel: FresnelSpec::Conductor { eta: 0.2, k: 3.9 },
-                ms: MultipleScattering::Single
+                ms: MultipleScattering::Single,
+                kd: 0.0
             }
         );
         assert_eq!(
@@ -311,7 +319,8 @@ mod tests {
                 alpha: 0.01,
                 g: G2Kind::HeightCorrelated,
                 fresnel: FresnelSpec::Schlick { f0: 0.04 },
-                ms: MultipleScattering::Single
+                ms: MultipleScattering::Single,
+                kd: 0.0
             }
         );
         assert_eq!(
@@ -321,7 +330,8 @@ mod tests {
                 alpha: 0.3,
                 g: G2Kind::HeightCorrelated,
                 fresnel: FresnelSpec::Dielectric { eta: 1.5 },
-                ms: MultipleScattering::Single
+                ms: MultipleScattering::Single,
+                kd: 0.0
             }
         );
         assert_eq!(
@@ -331,7 +341,8 @@ mod tests {
                 alpha: 1.0,
                 g: G2Kind::HeightCorrelated,
                 fresnel: FresnelSpec::None,
-                ms: MultipleScattering::KullaConty
+                ms: MultipleScattering::KullaConty,
+                kd: 0.0
             }
         );
         assert_eq!(
@@ -345,7 +356,8 @@ mod tests {
                 alpha: 1.0,
                 g: G2Kind::HeightCorrelated,
                 fresnel: FresnelSpec::None,
-                ms: MultipleScattering::Single
+                ms: MultipleScattering::Single,
+                kd: 0.0
             }
         );
     }
@@ -400,6 +412,32 @@ mod tests {
         let col = lines[2].find('^').unwrap();
         assert_eq!(&lines[1][col..col + 3], "sep");
         assert_eq!(lines[2].trim(), "^^^");
+    }
+
+    /// `kd=` on a microfacet spec adds the diffuse lobe `kd/π` (the form
+    /// `radiometry fit --diffuse` prints); specs without it keep `kd = 0`.
+    #[test]
+    fn microfacet_kd() {
+        assert_eq!(
+            parse_brdf("ggx(alpha=0.3, fresnel=schlick(f0=0.9), kd=0.25)").unwrap(),
+            BrdfSpec::Microfacet {
+                distribution: Distribution::Ggx,
+                alpha: 0.3,
+                g: G2Kind::HeightCorrelated,
+                fresnel: FresnelSpec::Schlick { f0: 0.9 },
+                ms: MultipleScattering::Single,
+                kd: 0.25
+            }
+        );
+        for (spec, bad) in [
+            ("ggx(alpha=0.1, kd=1.5)", "1.5"),
+            ("beckmann(alpha=0.1, kd=-0.1)", "-0.1"),
+            ("ggx(alpha=0.1, kd=0.1, kd=0.2)", "kd"),
+            ("ggx(alpha=0.1, kd=nan)", "nan"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
+        }
     }
 
     #[test]
