@@ -220,6 +220,12 @@ pub(crate) fn max_abs<W: WideSpectrum>(w: W) -> f64 {
     (0..W::CHANNELS).fold(0.0f64, |m, i| m.max(w.channel(i).abs()))
 }
 
+/// Whether a value is non-zero in some channel (the integrand's support).
+#[inline]
+pub(crate) fn nonzero<W: WideSpectrum>(v: &W) -> bool {
+    max_abs(*v) > 0.0
+}
+
 /// Relative accuracy of the `f32` integrand values and directions: the
 /// integrand is evaluated in single precision, so a quadrature sum
 /// `Σ wₖ g(ωₖ)` cannot be trusted below about `2⁻²³ Σ |wₖ g(ωₖ)|`

@@ -1,7 +1,7 @@
 //! Globally adaptive cubature on the unit square with the embedded
 //! Genz–Malik degree-7/degree-5 rule ([`Adaptive`]).
 
-use super::acc::{self, F32_FLOOR, WideSum};
+use super::acc::{self, F32_FLOOR, WideSum, nonzero};
 use super::chunk::{self, BatchFn};
 use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf, probe};
 use crate::spectrum::WideSpectrum;
@@ -201,7 +201,7 @@ fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
     let mut peak = 0.0f64;
     for (k, &(_, _, cls)) in pts.iter().enumerate() {
         let v = vals[k];
-        peak = peak.max(v.map(f64::abs).max_channel());
+        peak = peak.max(acc::max_abs(v));
         i7.add(v.map(|x| x * W7[cls] * vol));
         ab.add(v.map(|x| (x * W7[cls] * vol).abs()));
         if cls < 4 {
@@ -305,7 +305,6 @@ fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Res
     let mut vals = [W::splat(0.0); 4];
     f(&pts[..2 * m], &mut vals[..2 * m])?;
     let mut evals = 2 * m as u64;
-    let nonzero = |v: &W| v.map(f64::abs).max_channel() > 0.0;
     let mut grew = false;
     for (k, &ax) in axes[..m].iter().enumerate() {
         let (ve, vx) = (vals[2 * k], vals[2 * k + 1]);

@@ -4,7 +4,7 @@
 //! sampling map ([`WarpedGaussLegendre`]).
 
 use super::acc::to_unit_f32;
-use super::acc::{self, F32_FLOOR, WideSum};
+use super::acc::{self, F32_FLOOR, WideSum, nonzero};
 use super::chunk::{self, BatchFn, CHUNK};
 use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf, probe};
 use crate::spectrum::WideSpectrum;
@@ -395,12 +395,6 @@ fn split_levels_cost(n: usize) -> usize {
     l[..c].iter().map(|&(a, b)| a * split_line_cost(b)).sum()
 }
 
-/// Whether a value is non-zero in some channel (the integrand's support).
-#[inline]
-fn nonzero<W: WideSpectrum>(v: &W) -> bool {
-    v.map(f64::abs).max_channel() > 0.0
-}
-
 /// Sidi's sin²-transform `S(t) = t − sin(2πt)/(2π)` of `[0,1]` onto itself
 /// and `S'(t) = 2 sin²(πt)` (Sidi 1993, "A new variable transformation for
 /// numerical integration", Int. Ser. Numer. Math. 112). `S(t) ≈ (2π²/3) t³`
@@ -661,9 +655,9 @@ impl Integrator for GaussLegendre {
         let first = Cell::new(true);
         let mut f = |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
             chunk::hemisphere_values(g, p, |b| b, out)?;
-            if first.get() {
+            if probing && first.get() {
                 for v in out.iter() {
-                    node_peak.set(node_peak.get().max(v.map(f64::abs).max_channel()));
+                    node_peak.set(node_peak.get().max(acc::max_abs(*v)));
                 }
             }
             Ok(())

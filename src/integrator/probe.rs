@@ -27,9 +27,9 @@
 //! least [`PROBE_MIN_BUDGET`]; below it, and for integrands without a
 //! sampling map, no probe is made.
 
-use super::acc::to_unit_f32;
+use super::acc::{self, to_unit_f32};
 use super::{Integrand, IntegrandSample, IntegrateError, Status, Unresolved, check_finite};
-use crate::spectrum::{Spectrum, WideSpectrum};
+use crate::spectrum::Spectrum;
 use glam::Vec3;
 
 /// Draws of the integrand's sampling map per probe: the points
@@ -87,7 +87,7 @@ impl Probe {
         };
         for s in ss.iter().flatten() {
             let v = check_finite(s.value.to_wide())?;
-            probe.points[probe.len] = (s.w, v.map(f64::abs).max_channel());
+            probe.points[probe.len] = (s.w, acc::max_abs(v));
             probe.len += 1;
         }
         Ok(probe)
