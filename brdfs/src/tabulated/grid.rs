@@ -61,8 +61,8 @@
 //! ```
 
 use super::TabulatedError;
-use core::f32::consts::{FRAC_2_PI, FRAC_PI_2, PI};
-use radiometry::glam::Vec3;
+use core::f32::consts::{FRAC_1_PI, FRAC_2_PI, FRAC_PI_2, PI};
+use radiometry::glam::{Vec3, Vec4};
 
 /// Largest number of nodes on one axis accepted by [`RusinkiewiczGrid::new`].
 pub const MAX_AXIS: usize = 1 << 12;
@@ -86,14 +86,6 @@ pub struct RusinkiewiczGrid {
     n_theta_h: u32,
     n_theta_d: u32,
     n_phi_d: u32,
-}
-
-/// One axis lookup: the two neighbouring nodes and the weight of the upper one.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct AxisCell {
-    pub(crate) i0: usize,
-    pub(crate) i1: usize,
-    pub(crate) t: f32,
 }
 
 impl RusinkiewiczGrid {
@@ -214,10 +206,10 @@ impl RusinkiewiczGrid {
     /// Rusinkiewicz coordinates `(θh, θd, φd)` of a pair of directions, with
     /// `θh, θd ∈ [0, π]` and `φd` folded into `[0, π)` (module
     /// documentation). The inputs are normalised first; the result is
-    /// symmetric in `ωi ↔ ωo` bit for bit unless `cos θi = cos θo` (the
-    /// difference vector is taken from the direction with the smaller
-    /// `cos θ`, which only changes rounding since the folded φd is
-    /// symmetric).
+    /// symmetric in `ωi ↔ ωo` bit for bit (computed from `ωi + ωo` and
+    /// `±(ωi − ωo)` only, see `coords_above` in the source), and for two
+    /// directions above the horizon it is exactly the coordinates
+    /// [`Tabulated::eval`](super::Tabulated) interpolates at.
     ///
     /// Degenerate input has a documented finite fallback: a zero or
     /// non-finite direction gives `(0, 0, 0)`; `ωi = −ωo` (no half vector)
@@ -225,7 +217,7 @@ impl RusinkiewiczGrid {
     /// cases as `None` instead.
     pub fn half_diff(wi: Vec3, wo: Vec3) -> (f32, f32, f32) {
         match (unit(wi), unit(wo)) {
-            (Some(a), Some(b)) => half_diff_unit(a, b).unwrap_or_else(|| half_diff_about(a, Vec3::Z)),
+            (Some(a), Some(b)) => half_diff_pair(a, b).unwrap_or_else(|| coords_opposite(a)),
             _ => (0.0, 0.0, 0.0),
         }
     }
@@ -233,61 +225,75 @@ impl RusinkiewiczGrid {
     /// [`half_diff`](Self::half_diff), or `None` when a direction is zero or
     /// not finite, or `ωi + ωo` vanishes (no half vector).
     pub fn try_half_diff(wi: Vec3, wo: Vec3) -> Option<(f32, f32, f32)> {
-        half_diff_unit(unit(wi)?, unit(wo)?)
+        half_diff_pair(unit(wi)?, unit(wo)?)
     }
 
-    /// The θh axis cell of `θh` (continuous index `√(θh/(π/2))·Nh`,
-    /// constant beyond the last node).
+    /// The cells of `(θh, θd, φd)` on the three axes at once (four-lane
+    /// `glam::Vec4` arithmetic): continuous indices
+    ///
+    /// ```text
+    /// u_h = √θh · Nh √(2/π),   u_d = θd · Nd (2/π),   u_φ = φd · Nφ/π,
+    /// ```
+    ///
+    /// clamped to `[0, Nh − 1]`, `[0, Nd − 1]` (θ axes constant beyond
+    /// their last node) and `[0, Nφ⁻]` (`Nφ⁻` the float below `Nφ`; φd is
+    /// periodic: node `Nφ` is node 0); NaN and negative input give 0. The
+    /// floor is `i = round(u − ½)` by the `1.5·2²³` rounding trick (`(u − ½) +
+    /// 1.5·2²³` rounds to an integer, read from the bits): exact for
+    /// `0 ≤ u < 2²²`; at an integer `u = k` it may give `i = k − 1, t = 1`
+    /// instead of `i = k, t = 0`, which interpolates to the same value bit
+    /// for bit (`a·0 + b·1 = b = b·1 + c·0` for finite values).
     #[inline(always)]
-    pub(crate) fn cell_theta_h(&self, theta_h: f32) -> AxisCell {
-        let u = libm::sqrtf((theta_h * FRAC_2_PI).max(0.0)) * self.n_theta_h as f32;
-        clamped_cell(u, self.n_theta_h)
-    }
-
-    /// The θd axis cell of `θd` (continuous index `θd/(π/2)·Nd`).
-    #[inline(always)]
-    pub(crate) fn cell_theta_d(&self, theta_d: f32) -> AxisCell {
-        clamped_cell(theta_d * FRAC_2_PI * self.n_theta_d as f32, self.n_theta_d)
-    }
-
-    /// The φd axis cell of a folded `φd ∈ [0, π]` (continuous index
-    /// `φd/π·Nφ`, periodic).
-    #[inline(always)]
-    pub(crate) fn cell_phi_d(&self, phi_d: f32) -> AxisCell {
-        let n = self.n_phi_d;
-        let mut u = (phi_d * (1.0 / PI) * n as f32).max(0.0);
-        let nf = n as f32;
-        if u >= nf {
-            u -= nf;
-        }
-        // u ≥ 0: truncation is the floor (NaN converts to 0).
-        let i0 = (u as usize).min(n as usize - 1);
-        let i1 = if i0 + 1 >= n as usize { 0 } else { i0 + 1 };
-        AxisCell {
-            i0,
-            i1,
-            t: (u - i0 as f32).clamp(0.0, 1.0),
+    pub(crate) fn cells(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> Cells {
+        let (nh, nd, np) = (self.n_theta_h, self.n_theta_d, self.n_phi_d);
+        let scale = Vec4::new(
+            nh as f32 * SQRT_2_OVER_PI,
+            nd as f32 * FRAC_2_PI,
+            np as f32 * FRAC_1_PI,
+            0.0,
+        );
+        let np_f = np as f32;
+        let lim = Vec4::new(
+            nh.saturating_sub(1) as f32,
+            nd.saturating_sub(1) as f32,
+            f32::from_bits(np_f.to_bits() - 1),
+            0.0,
+        );
+        let u = Vec4::new(libm::sqrtf(theta_h), theta_d, phi_d, 0.0) * scale;
+        // NaN → 0, then ≤ lim (comparison selects, defined for every input).
+        let u = Vec4::select(u.cmpgt(Vec4::ZERO), u, Vec4::ZERO);
+        let u = Vec4::select(u.cmplt(lim), u, lim);
+        let v = (u - Vec4::splat(0.5)) + Vec4::splat(MAGIC);
+        let t = u - (v - Vec4::splat(MAGIC));
+        let [vh, vd, vp, _] = v.to_array();
+        let index = |v: f32| v.to_bits().wrapping_sub(MAGIC.to_bits());
+        let (ih, id, ip) = (index(vh), index(vd), index(vp));
+        let [th, td, tp, _] = t.to_array();
+        Cells {
+            h: [ih as usize, (ih + 1).min(nh.saturating_sub(1)) as usize],
+            d: [id as usize, (id + 1).min(nd.saturating_sub(1)) as usize],
+            p: [ip as usize, if ip + 1 < np { ip + 1 } else { 0 } as usize],
+            t: [th, td, tp],
         }
     }
 }
 
-/// Cell of a clamped (non-periodic) axis with `n` nodes at continuous index `u`.
-#[inline(always)]
-fn clamped_cell(u: f32, n: u32) -> AxisCell {
-    let last = n as usize - 1;
-    let u = u.max(0.0);
-    // u ≥ 0: truncation is the floor (NaN converts to 0).
-    let i0 = (u as usize).min(last);
-    let i1 = (i0 + 1).min(last);
-    AxisCell {
-        i0,
-        i1,
-        t: if i1 == i0 {
-            0.0
-        } else {
-            (u - i0 as f32).clamp(0.0, 1.0)
-        },
-    }
+/// `1.5 · 2²³`: for `x ∈ [−2²², 2²²]`, `x + MAGIC ∈ [2²³, 2²⁴)`, where the
+/// spacing of `f32` is 1, so the sum rounds `x` to the nearest integer (ties
+/// to even), held in the low mantissa bits.
+const MAGIC: f32 = 12_582_912.0;
+
+/// `√(2/π)`.
+const SQRT_2_OVER_PI: f32 = 0.797_884_6;
+
+/// The lookup cells of [`RusinkiewiczGrid::cells`]: the two nodes of each
+/// axis (`[i0, i1]`) and the weights `t` of the upper nodes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cells {
+    pub(crate) h: [usize; 2],
+    pub(crate) d: [usize; 2],
+    pub(crate) p: [usize; 2],
+    pub(crate) t: [f32; 3],
 }
 
 /// `(ωi, ωo)` of the coordinates `(θh, θd, φd)` with `φh = 0`.
@@ -307,54 +313,187 @@ fn unit(w: Vec3) -> Option<Vec3> {
     crate::microfacet::unitize(w)
 }
 
-/// `(θh, θd, φd)` of unit directions; `None` when `ωi + ωo` vanishes.
-/// The hot path of [`Tabulated::eval`](super::Tabulated).
+/// Smallest `‖ωi + ωo‖²` of the fast path [`coords_above`] (`‖h‖ ≥ 10⁻⁴`,
+/// `θd ≤ 89.997°`): above it the squares the path forms (`~‖h‖⁴‖e‖²`)
+/// stay far from `f32` underflow. Smaller values (unit directions nearly
+/// opposite, both grazing) go through [`coords_unit`], which rescales `h`
+/// first.
+pub(crate) const H_MIN: f32 = 1e-8;
+
+/// `(θh, θd, φd)` of unit directions `ωi`, `ωo` above the horizon from
+/// `h = ωi + ωo` (never normalised), `hh = ‖h‖² ≥` [`H_MIN`] and
+/// `e = ωi − ωo`; the hot path of [`Tabulated::eval`](super::Tabulated).
+///
+/// Each angle is an `atan2(y, x)` with `x, y ≥ 0` given by its squares:
+///
+/// ```text
+/// θh:  y² = hx² + hy²,      x² = hz²                    (tan θh = sin θh / cos θh)
+/// θd:  y² = ‖e‖²,            x² = ‖h‖²                   (‖e‖ = 2 sin θd, ‖h‖ = 2 cos θd)
+/// φd:  y² = P² ‖h‖²,         x² = Q²                     P = hx ey − hy ex,
+///                                                        Q = hz (hx ex + hy ey) − (hx² + hy²) ez
+/// ```
+///
+/// computed as `r² = min(y², x²)/max(y², x²)`, `a = √r² · A(r²)` with the
+/// arctangent polynomial `atan r = r·A(r²)` of [`ATAN_R`], and `π/2 − a`
+/// when `y > x`: one division and one square root per angle, both
+/// independent of the polynomial, and no square root before the division
+/// (the ratio of squares needs none). The three angles share four-lane
+/// `glam::Vec4` operations.
+///
+/// **φd.** `e = 2 sin θd (cos φd u + sin φd v)` in the frame `(u, v, ĥ)` of
+/// the [module documentation](self) (`u = R_z(φh) R_y(θh) x̂`,
+/// `v = R_z(φh) ŷ`), where `e·u = Q/(‖h‖ √(hx²+hy²))` and
+/// `e·v = P/√(hx²+hy²)`, so `φd = atan2(e·v, e·u) = atan2(P‖h‖, Q)`;
+/// folded into `[0, π)` (period π, reciprocity) it is `atan2(|P|‖h‖, |Q|)`,
+/// or `π −` that when `P·Q < 0`. With `h` on the normal
+/// (`hx² + hy² ≤ 10⁻²⁴ hz²`, `θh < 10⁻¹²`) φh is taken as 0 and
+/// `(e·u, e·v) = (ex, ey)`.
+///
+/// **Exact reciprocity.** `h` is the same for `(ωi, ωo)` and `(ωo, ωi)`
+/// (IEEE addition commutes) and `e` changes sign exactly, so `P`, `Q` change
+/// sign exactly and every square, `P·Q`, hence every angle is bit-identical.
+///
+/// Needs `hz > 0`, `hh ≥` [`H_MIN`] and unit directions to within `4ε`.
 #[inline(always)]
-pub(crate) fn half_diff_unit(wi: Vec3, wo: Vec3) -> Option<(f32, f32, f32)> {
-    let h = wi + wo;
-    let len2 = h.length_squared();
-    if len2.is_nan() || len2 <= 1e-30 {
-        return None;
-    }
-    // Difference vector from the direction with the smaller z (a select, not
-    // a branch): the same operations for (ωi, ωo) and (ωo, ωi) unless the two
-    // z are equal, where the two orders differ by rounding only (the folded
-    // φd is symmetric).
-    let a = if wi.z <= wo.z { wi } else { wo };
-    Some(half_diff_about(a, h))
+pub(crate) fn coords_above(h: Vec3, hh: f32, e: Vec3) -> (f32, f32, f32) {
+    let s = h.x * h.x + h.y * h.y;
+    let ee = e.x * e.x + e.y * e.y + e.z * e.z;
+    let (y2, x2, neg) = phi_d_squares(h, s, hh, e);
+    let a = atan2_squares(Vec4::new(s, ee, y2, 0.0), Vec4::new(h.z * h.z, hh, x2, 1.0));
+    let phi_d = if neg { PI - a.z } else { a.z };
+    (a.x, a.y, phi_d)
 }
 
-/// `(θh, θd, φd)` of the unit direction `a` about the half vector `h`
-/// (any positive length: every angle below is an `atan2` of components that
-/// scale together, so `h` is never normalised).
+/// `(P²‖h‖², Q², P·Q < 0)` of [`coords_above`] (`s = hx² + hy²`,
+/// `hh = ‖h‖²`; at the pole `(ey², ex², ey·ex < 0)`).
 #[inline(always)]
-fn half_diff_about(a: Vec3, h: Vec3) -> (f32, f32, f32) {
-    let sh2 = h.x * h.x + h.y * h.y;
-    let sh = libm::sqrtf(sh2);
-    let theta_h = atan2(sh, h.z);
-    // d = R_y(−θh) R_z(−φh) a, with cos φh = hx/sh, sin φh = hy/sh,
-    // cos θh = hz/|h|, sin θh = sh/|h|, computed as d·sh·|h| (no division):
-    //   x1 = cos φh ax + sin φh ay,  y1 = −sin φh ax + cos φh ay,
-    //   d = (cos θh x1 − sin θh az, y1, sin θh x1 + cos θh az).
-    let x1s = h.x * a.x + h.y * a.y; // sh · x1
-    let y1s = h.x * a.y - h.y * a.x; // sh · y1
-    let len = libm::sqrtf(h.length_squared());
-    let (dx, dy, dz) = if sh2 > 1e-24 * h.z * h.z {
-        (h.z * x1s - sh2 * a.z, len * y1s, sh * x1s + h.z * sh * a.z)
+fn phi_d_squares(h: Vec3, s: f32, hh: f32, e: Vec3) -> (f32, f32, bool) {
+    let pole = s <= 1e-24 * (h.z * h.z);
+    let p = if pole { e.y } else { h.x * e.y - h.y * e.x };
+    let q = if pole {
+        e.x
     } else {
-        // h on the normal (θh < 10⁻¹² rad): φh is arbitrary (0) and d = a.
-        (a.x, a.y, a.z)
+        h.z * (h.x * e.x + h.y * e.y) - s * e.z
     };
-    let sd = libm::sqrtf(dx * dx + dy * dy);
-    let theta_d = atan2(sd, dz);
-    // Fold by reciprocity: (dx, dy) ~ (−dx, −dy); pick dy ≥ 0 (and dx > 0 on
-    // dy = 0), so that φd ∈ [0, π). A sign select, not a branch (the sign
-    // is unpredictable in a renderer's loop).
-    let flip = dy < 0.0 || (dy == 0.0 && dx < 0.0);
-    let sign = if flip { -1.0 } else { 1.0 };
-    let phi_d = atan2(dy * sign, dx * sign);
-    (theta_h, theta_d, phi_d)
+    let w = if pole { 1.0 } else { hh };
+    (p * p * w, q * q, p * q < 0.0)
 }
+
+/// `atan2(√y², √x²) ∈ [0, π/2]` lane-wise for `x², y² ≥ 0` (`(0, 0)` → 0):
+/// `r² = min/max`, `a = √r² · A(r²)` ([`ATAN_R`]), `π/2 − a` when
+/// `y² > x²` (comparison selects; NaN lanes give NaN).
+#[inline(always)]
+fn atan2_squares(y2: Vec4, x2: Vec4) -> Vec4 {
+    let swap = y2.cmpgt(x2);
+    let num = Vec4::select(swap, x2, y2);
+    let den = Vec4::select(swap, y2, x2);
+    let min = Vec4::splat(f32::MIN_POSITIVE);
+    let den = Vec4::select(den.cmpgt(min), den, min);
+    let r2 = num / den;
+    let a = r2.sqrt() * atan_poly4(r2);
+    Vec4::select(swap, Vec4::splat(FRAC_PI_2) - a, a)
+}
+
+/// `A(z) = Σₖ cₖ zᵏ` of [`ATAN_R`] on four lanes (Estrin form).
+#[inline(always)]
+fn atan_poly4(z: Vec4) -> Vec4 {
+    let [c0, c1, c2, c3, c4, c5, c6, c7] = ATAN_R.map(Vec4::splat);
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let p01 = c0 + c1 * z;
+    let p23 = c2 + c3 * z;
+    let p45 = c4 + c5 * z;
+    let p67 = c6 + c7 * z;
+    let q0 = p01 + z2 * p23;
+    let q1 = p45 + z2 * p67;
+    q0 + z4 * q1
+}
+
+/// `atan2(y, x) ∈ [0, π]` for `y ≥ 0` (`(0, 0)` → 0) from the squares,
+/// `π −` the first quadrant's angle when `x < 0` (scalar form of
+/// [`atan2_squares`], for the cold paths).
+fn atan2_r(y: f32, x: f32) -> f32 {
+    let a = atan2_squares(Vec4::splat(y * y), Vec4::splat(x * x)).x;
+    if x < 0.0 { PI - a } else { a }
+}
+
+/// `(θh, θd, φd)` of unit directions whose sum `h` has `hz > 0`: exactly
+/// [`coords_above`] when `‖h‖² ≥` [`H_MIN`]; below, θh and φd (scale-free
+/// ratios of `h`'s components) from `g = h / max|hᵢ|` (a function of the
+/// symmetric `h`, so still exactly reciprocal) and θd from the unscaled
+/// `‖h‖²`.
+#[inline]
+pub(crate) fn coords_unit(a: Vec3, b: Vec3) -> (f32, f32, f32) {
+    let h = a + b;
+    let hh = h.length_squared();
+    let e = a - b;
+    if hh >= H_MIN {
+        return coords_above(h, hh, e);
+    }
+    // hz > 0, so m > 0; g has components in [−1, 1], the largest ±1.
+    let m = h.abs().max_element();
+    let g = h / m;
+    let (th, _, pd) = coords_above(g, g.length_squared(), e);
+    let ee = e.x * e.x + e.y * e.y + e.z * e.z;
+    let td = atan2_squares(Vec4::splat(ee), Vec4::splat(hh)).x;
+    (th, td, pd)
+}
+
+/// `(θh, θd, φd)` of unit directions whose sum `h` has `hz ≤ 0` (the
+/// public [`RusinkiewiczGrid::half_diff`] at or below the horizon), or
+/// `None` when `h = 0`: `θh = atan2(√(hx² + hy²), hz) ∈ [π/2, π]`, θd and φd
+/// as in [`coords_above`], with `g = h / max|hᵢ|`.
+fn coords_below(a: Vec3, b: Vec3) -> Option<(f32, f32, f32)> {
+    let h = a + b;
+    let m = h.abs().max_element();
+    if !(m > 0.0) {
+        return None;
+    }
+    let g = h / m;
+    let e = a - b;
+    let s = g.x * g.x + g.y * g.y;
+    let theta_h = atan2_r(libm::sqrtf(s), g.z);
+    let (_, _, phi_d) = coords_above(g, g.length_squared(), e);
+    let ee = e.x * e.x + e.y * e.y + e.z * e.z;
+    let theta_d = atan2_squares(Vec4::splat(ee), Vec4::splat(h.length_squared())).x;
+    Some((theta_h, theta_d, phi_d))
+}
+
+/// `(θh, θd, φd)` of unit `a` and `b = −a` (no half vector) with `h = +Z`:
+/// `θd` the polar angle of `a`, `φd` its folded azimuth, `θh = 0`.
+fn coords_opposite(a: Vec3) -> (f32, f32, f32) {
+    let theta_d = atan2_r(libm::sqrtf(a.x * a.x + a.y * a.y), a.z);
+    let (_, _, phi_d) = coords_above(Vec3::Z, 1.0, a);
+    (0.0, theta_d, phi_d)
+}
+
+/// `(θh, θd, φd)` of unit directions, `None` when `ωi + ωo = 0`.
+fn half_diff_pair(a: Vec3, b: Vec3) -> Option<(f32, f32, f32)> {
+    if a.z + b.z > 0.0 {
+        Some(coords_unit(a, b))
+    } else {
+        coords_below(a, b)
+    }
+}
+
+/// Coefficients `c₀ … c₇` of the arctangent polynomial
+/// `atan r ≈ r · A(r²)`, `A(z) = Σₖ cₖ zᵏ` (degree 15 in `r`), for
+/// `r ∈ [0, 1]`: a fit of this project minimising the largest *relative*
+/// error of `atan` on `[0, 1]` (Lawson's iteratively reweighted least
+/// squares on 4 000 Chebyshev nodes in `f64`, then rounded to `f32`).
+/// Relative accuracy matters at small θh, whose grid index is `√θh`.
+/// Measured error of the whole `f32` evaluation ([`atan2_squares`], unit
+/// test `atan2_squares_error_is_small`): see the module documentation.
+pub(crate) const ATAN_R: [f32; 8] = [
+    0.999_999_88,
+    -0.333_319_9,
+    0.199_697_27,
+    -0.140_194_95,
+    0.099_143_27,
+    -0.059_486_844,
+    0.024_252_7,
+    -0.004_693_354,
+];
 
 /// The coefficients `a₁, a₃, a₅, a₇, a₉` of [`atan_unit`] (A&S 4.4.47).
 pub(crate) const ATAN: [f32; 5] = [0.999_866, -0.330_299_5, 0.180_141, -0.085_133, 0.020_835_1];
@@ -487,15 +626,48 @@ mod tests {
         );
         // MERL index formulas at a few angles.
         let m = RusinkiewiczGrid::MERL;
-        let c = m.cell_theta_h(FRAC_PI_2 * 0.25);
-        assert_eq!((c.i0, c.t), (45, 0.0));
-        let c = m.cell_theta_d(FRAC_PI_2 * 0.5 + 1e-3);
-        assert_eq!(c.i0, 45);
-        let c = m.cell_phi_d(PI * 0.999_999);
-        assert_eq!((c.i0, c.i1), (179, 0));
-        let c = m.cell_phi_d(PI);
-        assert_eq!(c.i0, 0);
-        let c = m.cell_theta_h(2.0);
-        assert_eq!((c.i0, c.i1, c.t), (89, 89, 0.0));
+        let c = m.cells(FRAC_PI_2 * 0.25, FRAC_PI_2 * 0.5 + 1e-3, PI * 0.999_999);
+        // θh node 45 exactly: (45, t = 0) or, by the rounding floor, (44, t = 1).
+        // (√θh · 90 √(2/π) rounds to 45 + 4·10⁻⁶.)
+        assert!(
+            c.h == [45, 46] && c.t[0] < 1e-5 || c.h == [44, 45] && c.t[0] > 1.0 - 1e-5,
+            "{c:?}"
+        );
+        assert_eq!(c.d[0], 45);
+        assert_eq!(c.p, [179, 0]);
+        let c = m.cells(2.0, 0.0, PI);
+        // Beyond the last node (89, odd): (89, t = 0) or (88, t = 1).
+        assert!(
+            c.h == [89, 89] && c.t[0] == 0.0 || c.h == [88, 89] && c.t[0] == 1.0,
+            "{c:?}"
+        );
+        assert_eq!(c.d, [0, 1]);
+        // φd = π: the periodic end, weight 1 on node 0.
+        assert_eq!(c.p, [179, 0]);
+        assert!(c.t[2] > 0.9999, "{c:?}");
+        let c = m.cells(f32::NAN, -1.0, f32::NAN);
+        assert_eq!((c.h, c.d, c.p, c.t), ([0, 1], [0, 1], [0, 1], [0.0; 3]));
+        // One-node axes.
+        let g = RusinkiewiczGrid::new(1, 1, 1).unwrap();
+        let c = g.cells(1.0, 1.0, 1.0);
+        assert_eq!((c.h, c.d, c.p), ([0, 0], [0, 0], [0, 0]));
+    }
+
+    /// The rounding floor of `cells` against the exact floor over a dense
+    /// sweep of every axis of a large grid (incl. every integer).
+    #[test]
+    fn cells_floor_is_exact() {
+        let g = RusinkiewiczGrid::new(4096, 4096, 16).unwrap();
+        for k in 0..=(4096 * 64) {
+            let u = k as f32 / 64.0;
+            let theta_d = u / (4096.0 * FRAC_2_PI);
+            let c = g.cells(0.0, theta_d, 0.0);
+            // The continuous index the cell sees (same rounding as `cells`).
+            let uu = (theta_d * (4096.0 * FRAC_2_PI)).min(4095.0);
+            let (i, t) = (c.d[0] as f32, c.t[1]);
+            assert!((0.0..=1.0).contains(&t), "{u}: {c:?}");
+            assert_eq!(i + t, uu, "{u}: {c:?}");
+            assert!(uu.floor() == i || uu == i + 1.0 && t == 1.0, "{u}: {c:?}");
+        }
     }
 }

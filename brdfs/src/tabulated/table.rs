@@ -1,6 +1,6 @@
 //! The [`Tabulated`] BRDF plugin.
 
-use super::grid::half_diff_unit;
+use super::grid::{H_MIN, coords_above, coords_unit};
 use super::sampling::DEFAULT_COSINE_WEIGHT;
 use super::{HalfVectorDistribution, MAX_VALUE, RusinkiewiczGrid, TabulatedError};
 use crate::microfacet::{is_unit, unitize};
@@ -9,15 +9,6 @@ use core::fmt;
 use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
-
-/// The 8 corners of one lookup: flat row offsets of the 4 `(θh, θd)` node
-/// pairs, the 2 φd indices, and the weights `(t_h, t_d, t_φ)`.
-#[derive(Clone, Copy, Debug)]
-struct Corners {
-    rows: [usize; 4],
-    phi: [usize; 2],
-    t: [f32; 3],
-}
 
 /// An isotropic BRDF tabulated on a [`RusinkiewiczGrid`], interpolated
 /// trilinearly; see the [module documentation](super).
@@ -190,56 +181,38 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
 
     /// The trilinear interpolation of the [formula](Self) at
     /// `(θh, θd, φd)` with `φd` folded into `[0, π]` (no horizon test).
-    #[inline]
+    #[inline(always)]
     pub fn lookup(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> S {
-        self.gather(&self.corners(theta_h, theta_d, phi_d))
-    }
-
-    /// The 8 corner indices and 3 weights of `(θh, θd, φd)` (pure
-    /// arithmetic, no table access).
-    #[inline(always)]
-    fn corners(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> Corners {
-        let h = self.grid.cell_theta_h(theta_h);
-        let d = self.grid.cell_theta_d(theta_d);
-        let p = self.grid.cell_phi_d(phi_d);
+        let c = self.grid.cells(theta_h, theta_d, phi_d);
         let np = self.grid.n_phi_d();
-        let nd = self.grid.n_theta_d();
-        let row = |ih: usize, id: usize| np * (id + nd * ih);
-        Corners {
-            rows: [row(h.i0, d.i0), row(h.i0, d.i1), row(h.i1, d.i0), row(h.i1, d.i1)],
-            phi: [p.i0, p.i1],
-            t: [h.t, d.t, p.t],
-        }
-    }
-
-    /// The weighted sum of the 8 corner values (the table access).
-    #[inline(always)]
-    fn gather(&self, c: &Corners) -> S {
+        let plane = np * self.grid.n_theta_d();
+        // Two independent products (not `np·(id + nd·ih)`): shorter latency.
+        let row = |ih: usize, id: usize| plane * ih + np * id;
         let [th, td, tp] = c.t;
         let at = |row: usize| -> S {
-            let a = self.values.get(row + c.phi[0]).copied().unwrap_or_default();
-            let b = self.values.get(row + c.phi[1]).copied().unwrap_or_default();
+            let a = self.values.get(row + c.p[0]).copied().unwrap_or_default();
+            let b = self.values.get(row + c.p[1]).copied().unwrap_or_default();
             a * (1.0 - tp) + b * tp
         };
-        let [r00, r01, r10, r11] = c.rows;
-        let lo = at(r00) * (1.0 - td) + at(r01) * td;
-        let hi = at(r10) * (1.0 - td) + at(r11) * td;
+        let lo = at(row(c.h[0], c.d[0])) * (1.0 - td) + at(row(c.h[0], c.d[1])) * td;
+        let hi = at(row(c.h[1], c.d[0])) * (1.0 - td) + at(row(c.h[1], c.d[1])) * td;
         lo * (1.0 - th) + hi * th
     }
 
     /// `eval` for unit directions.
     #[inline(always)]
     fn eval_unit(&self, wi: Vec3, wo: Vec3) -> S {
-        if !(wi.z > 0.0 && wo.z > 0.0) {
-            return S::zero();
-        }
-        match half_diff_unit(wi, wo) {
-            Some((th, td, pd)) => self.lookup(th, td, pd),
-            None => S::zero(),
+        if wi.z > 0.0 && wo.z > 0.0 {
+            let (th, td, pd) = coords_unit(wi, wo);
+            self.lookup(th, td, pd)
+        } else {
+            S::zero()
         }
     }
 
-    /// The cold path of `eval`: non-unit, degenerate or non-finite input.
+    /// The cold path of `eval`: non-unit, degenerate or non-finite input,
+    /// and unit pairs with `‖ωi + ωo‖² <` `H_MIN` (nearly opposite, both
+    /// grazing).
     #[cold]
     #[inline(never)]
     fn eval_cold(&self, wi: Vec3, wo: Vec3) -> S {
@@ -248,7 +221,6 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
             _ => S::zero(),
         }
     }
-
     /// `pdf` for unit directions.
     #[inline]
     fn pdf_unit(&self, wi: Vec3, wo: Vec3) -> f32 {
@@ -263,13 +235,23 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
 impl<S: Spectrum> Brdf for Tabulated<'_, S> {
     type Spectrum = S;
 
-    /// The trilinear interpolation of the [formula](Tabulated); one
-    /// squared-length test per direction, then straight-line arithmetic
-    /// (non-unit input takes a cold normalising path).
+    /// The trilinear interpolation of the [formula](Tabulated). Hot path:
+    /// one horizon test, then one test that both directions are unit (to
+    /// `4ε`) and `‖ωi + ωo‖² ≥ 10⁻²⁰`, then straight-line arithmetic (the
+    /// coordinates of `coords_above` in the grid module's source: three
+    /// polynomial arctangents, four square roots, three divisions) and the
+    /// 8 table reads; anything else takes a cold normalising path.
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
-        if is_unit(wi) && is_unit(wo) {
-            self.eval_unit(wi, wo)
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            // Normalising keeps the sign of z, and NaN fails the test.
+            return S::zero();
+        }
+        let h = wi + wo;
+        let hh = h.length_squared();
+        if is_unit(wi) & is_unit(wo) & (hh >= H_MIN) {
+            let (th, td, pd) = coords_above(h, hh, wi - wo);
+            self.lookup(th, td, pd)
         } else {
             self.eval_cold(wi, wo)
         }
