@@ -42,13 +42,17 @@ use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 ///
 /// # Speed
 ///
-/// `radiometry bench` (AMD EPYC, 2 shared cores, `-C target-cpu=native`,
-/// n = 4096 random pairs over the hemisphere, table of 5.8 MB): scalar
-/// `eval` 24.7 M/s (0.20 × the in-run straight-line GGX reference,
-/// 122.7 M/s); `eval_batch_soa` / `eval_batch` with feature `simd` 60.9 /
-/// 58.0 M/s (coordinates in vector form, table reads per lane). The scalar
-/// path is latency-bound: three `atan2` chains and a square root per
-/// coordinate precede the 8 dependent table reads of random cells.
+/// `radiometry bench` (AMD EPYC, Zen 4, 2 shared cores, n = 4096 random
+/// pairs over the hemisphere, table of 5.8 MB), scalar `eval`: SPEED_DEFAULT
+/// M/s with default release flags, SPEED_NATIVE M/s with
+/// `-C target-cpu=native` (was 22.1 / 24.8 M/s before the coordinates were
+/// rewritten); `eval_batch` / `eval_batch_soa` with feature `simd`: see the
+/// README's table. The scalar path is latency-bound: a chain of about 120
+/// dependent cycles (the sums, one division and square root, the
+/// arctangent polynomial, the θh square-root mapping, the index arithmetic,
+/// a table read that usually misses L1, the trilinear sum) of which the
+/// out-of-order core overlaps little more than one evaluation with the
+/// next.
 ///
 /// # Sampling
 ///
