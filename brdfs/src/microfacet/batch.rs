@@ -178,17 +178,21 @@ impl SampleV for BeckmannV {
     }
 }
 
-/// `Half::of` lane-wise: `(valid, |h|², cos²θh, sin²θh)` of `h = ωi + ωo`,
+/// `Half::of` lane-wise: `(valid, |ωi + ωo|², cos²θh, sin²θh)`,
 /// valid where both directions are strictly above the horizon and
 /// `|h|² > 10⁻¹⁴` (NaN → invalid).
+///
+/// `h` is the length-corrected sum of `Half::of`
+/// ([`Dirs::half_vector_sum`]).
 #[inline(always)]
 fn half(wi: Dirs, wo: Dirs) -> (Vf, Vf, Vf, Vf) {
     let zero = Vf::ZERO;
-    let h = wi.add(wo);
+    let (h, sum2) = wi.half_vector_sum(wo);
     let len2 = h.length_squared();
-    let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & len2.simd_gt(Vf::splat(1e-14));
+    let tiny = Vf::splat(1e-14);
+    let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & sum2.simd_gt(tiny) & len2.simd_gt(tiny);
     let inv = Vf::ONE / len2;
-    (valid, len2, (h.z * h.z) * inv, h.xy_length_squared() * inv)
+    (valid, sum2, (h.z * h.z) * inv, h.xy_length_squared() * inv)
 }
 
 /// Bit `k` set when lane `k` is not on the hot path (a direction that is

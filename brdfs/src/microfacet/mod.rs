@@ -69,6 +69,7 @@ pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 use core::marker::PhantomData;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
+use radiometry::frame::half_vector_sum;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
@@ -366,8 +367,8 @@ impl<D, G, F> Microfacet<D, G, F> {
 }
 
 /// The half-vector quantities of a valid reflection pair of unit directions
-/// above the horizon: `|h|²` of the unnormalised `h = ωi + ωo`, and
-/// `cos²θh`, `sin²θh` of its direction.
+/// above the horizon: `|ωi + ωo|²`, and `cos²θh`, `sin²θh` of the direction
+/// of the half vector `h` (length-corrected, see [`Half::of`]).
 #[derive(Clone, Copy)]
 struct Half {
     len2: f32,
@@ -381,19 +382,28 @@ impl Half {
     /// threshold of [`radiometry::frame::half_vector`]). For unit inputs
     /// `|h|² ≤ 4`, so one division gives both squares and `h` itself is
     /// never normalised.
+    ///
+    /// `h` is [`radiometry::frame::half_vector_sum`]: it points along the
+    /// sum of the *normalised* inputs, corrected where `ωi + ωo` cancels
+    /// (GGX α = 0.01, both directions at 89.9°: 1.4·10⁻⁴ relative error in
+    /// the reflected radiance of a sun-sized cap without the correction,
+    /// 10⁻⁸ with it). `cos θd` keeps the plain `|ωi + ωo|/2`: `F` is
+    /// insensitive to the correction (≤ 10⁻⁶ absolute), and near `θd = 0` an
+    /// `f32` `cos θd` carries a rounding of half an ulp either way.
     #[inline(always)]
     fn of(wi: Vec3, wo: Vec3) -> Option<Half> {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return None;
         }
-        let h = wi + wo;
+        let (h, sum2) = half_vector_sum(wi, wo);
         let len2 = h.length_squared();
-        if len2 <= 1e-14 || len2.is_nan() {
+        // (Both comparisons are false for NaN.)
+        if !(sum2 > 1e-14 && len2 > 1e-14) {
             return None;
         }
         let inv = 1.0 / len2;
         Some(Half {
-            len2,
+            len2: sum2,
             cos2: (h.z * h.z) * inv,
             sin2: (h.x * h.x + h.y * h.y) * inv,
         })
