@@ -12,7 +12,7 @@
 //! `‖ωi + ωo‖² < H_MIN` above the horizon) go back to the scalar method.
 
 use super::Tabulated;
-use super::grid::{ATAN_R, H_MIN};
+use super::coords::{ATAN_R, H_MIN};
 use crate::simd::{Dirs, Kernel, LANES, Vf, cold_lanes};
 use core::f32::consts::{FRAC_PI_2, PI};
 use radiometry::glam::Vec3;

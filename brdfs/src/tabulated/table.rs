@@ -1,6 +1,6 @@
 //! The [`Tabulated`] BRDF plugin.
 
-use super::grid::{H_MIN, coords_above, coords_unit};
+use super::coords::{H_MIN, coords_above, coords_unit};
 use super::sampling::DEFAULT_COSINE_WEIGHT;
 use super::{HalfVectorDistribution, MAX_VALUE, RusinkiewiczGrid, TabulatedError};
 use crate::microfacet::{is_unit, unitize};
