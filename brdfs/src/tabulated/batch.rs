@@ -1,13 +1,18 @@
 //! The vector kernel of [`Tabulated`](super::Tabulated)'s `eval_batch` and
 //! `eval_batch_soa` (feature `simd`): the Rusinkiewicz coordinates of
-//! [`LANES`] pairs in vector form — the same operations as the scalar
-//! `half_diff_unit` (sums, products, `√`, one division per `atan2`, the
-//! A&S 4.4.47 polynomial, selects), so each lane is bit-identical to
-//! [`Brdf::eval`] — then the trilinear table reads per lane. Lanes with a
-//! non-unit direction go back to the scalar method (its cold path
-//! normalises).
+//! [`LANES`] pairs in vector form — the same operations per pair as the
+//! scalar hot path `coords_above` of the grid module (sums, products, the
+//! squares, one division and one `√` per angle, the arctangent polynomial
+//! `ATAN_R`, comparison selects; the scalar code holds the three angles of
+//! one pair in the lanes of a `glam::Vec4`, the kernel holds one angle of
+//! [`LANES`] pairs in a vector), so each lane is bit-identical to
+//! [`Brdf::eval`] — then the trilinear table reads per lane
+//! ([`Tabulated::lookup`](super::Tabulated::lookup), as the scalar path).
+//! Lanes the scalar path sends to its cold path (a non-unit direction, or
+//! `‖ωi + ωo‖² < H_MIN` above the horizon) go back to the scalar method.
 
 use super::Tabulated;
+use super::coords::{ATAN_R, H_MIN};
 use crate::simd::{Dirs, Kernel, LANES, Vf, cold_lanes};
 use core::f32::consts::{FRAC_PI_2, PI};
 use radiometry::glam::Vec3;
@@ -16,28 +21,27 @@ use radiometry::{Brdf, Spectrum};
 /// `eval` over [`LANES`] pairs.
 pub(super) struct Eval<'t, 'a, S: Spectrum>(pub(super) &'t Tabulated<'a, S>);
 
-/// `atan(x)`, `x ∈ [0, 1]`: the scalar `atan_unit` (A&S 4.4.47, Estrin
-/// form) operation for operation.
+/// The scalar `atan2_squares` lane-wise: `atan2(√y², √x²)` by
+/// `r² = min/max`, `√r² · A(r²)`, `π/2 −` that when `y² > x²`.
 #[inline(always)]
-fn atan_unit(x: Vf) -> Vf {
-    let [a1, a3, a5, a7, a9] = super::grid::ATAN.map(Vf::splat);
-    let z = x * x;
-    let z2 = z * z;
-    let lo = a1 + a3 * z;
-    let mid = a5 + a7 * z;
-    x * (lo + z2 * (mid + z2 * a9))
-}
-
-/// The scalar `atan2(|y|, x)` lane-wise.
-#[inline(always)]
-fn atan2(y: Vf, x: Vf) -> Vf {
-    let ax = x.abs();
-    let ay = y.abs();
-    let num = ax.min(ay);
-    let den = ax.max(ay).max(Vf::splat(f32::MIN_POSITIVE));
-    let r = atan_unit(num / den);
-    let r = ay.simd_gt(ax).select(Vf::splat(FRAC_PI_2) - r, r);
-    x.simd_lt(Vf::ZERO).select(Vf::splat(PI) - r, r)
+fn atan2_squares(y2: Vf, x2: Vf) -> Vf {
+    let swap = y2.simd_gt(x2);
+    let num = swap.select(x2, y2);
+    let den = swap.select(y2, x2);
+    let min = Vf::splat(f32::MIN_POSITIVE);
+    let den = den.simd_gt(min).select(den, min);
+    let r2 = num / den;
+    let [c0, c1, c2, c3, c4, c5, c6, c7] = ATAN_R.map(Vf::splat);
+    let z2 = r2 * r2;
+    let z4 = z2 * z2;
+    let p01 = c0 + c1 * r2;
+    let p23 = c2 + c3 * r2;
+    let p45 = c4 + c5 * r2;
+    let p67 = c6 + c7 * r2;
+    let q0 = p01 + z2 * p23;
+    let q1 = p45 + z2 * p67;
+    let a = r2.sqrt() * (q0 + z4 * q1);
+    swap.select(Vf::splat(FRAC_PI_2) - a, a)
 }
 
 impl<S: Spectrum> Kernel for Eval<'_, '_, S> {
@@ -47,31 +51,31 @@ impl<S: Spectrum> Kernel for Eval<'_, '_, S> {
     fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
         let zero = Vf::ZERO;
         let h = wi.add(wo);
-        let len2 = h.length_squared();
-        let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & len2.simd_gt(Vf::splat(1e-30));
-        let pick_i = wi.z.simd_le(wo.z);
-        let a = Dirs {
-            x: pick_i.select(wi.x, wo.x),
-            y: pick_i.select(wi.y, wo.y),
-            z: pick_i.select(wi.z, wo.z),
+        let e = Dirs {
+            x: wi.x - wo.x,
+            y: wi.y - wo.y,
+            z: wi.z - wo.z,
         };
-        let sh2 = h.x * h.x + h.y * h.y;
-        let sh = sh2.sqrt();
-        let theta_h = atan2(sh, h.z);
-        let x1s = h.x * a.x + h.y * a.y;
-        let y1s = h.x * a.y - h.y * a.x;
-        let len = len2.sqrt();
-        let off_pole = sh2.simd_gt(Vf::splat(1e-24) * h.z * h.z);
-        let dx = off_pole.select(h.z * x1s - sh2 * a.z, a.x);
-        let dy = off_pole.select(len * y1s, a.y);
-        let dz = off_pole.select(sh * x1s + h.z * sh * a.z, a.z);
-        let sd = (dx * dx + dy * dy).sqrt();
-        let theta_d = atan2(sd, dz);
-        let flip = dy.simd_lt(zero) | (dy.simd_eq(zero) & dx.simd_lt(zero));
-        let sign = flip.select(Vf::splat(-1.0), Vf::ONE);
-        let phi_d = atan2(dy * sign, dx * sign);
+        let s = h.x * h.x + h.y * h.y;
+        let hz2 = h.z * h.z;
+        let hh = s + hz2;
+        let above = wi.z.simd_gt(zero) & wo.z.simd_gt(zero);
+        let near_opposite = above & !hh.simd_ge(Vf::splat(H_MIN));
+        let ee = e.x * e.x + e.y * e.y + e.z * e.z;
+        // φd: the scalar `phi_d_squares`.
+        let pole = s.simd_le(Vf::splat(1e-24) * hz2);
+        let p = pole.select(e.y, h.x * e.y - h.y * e.x);
+        let q = pole.select(e.x, h.z * (h.x * e.x + h.y * e.y) - s * e.z);
+        let w = pole.select(Vf::ONE, hh);
+        let y2 = p * p * w;
+        let x2 = q * q;
+        let neg = (p * q).simd_lt(zero);
+        let theta_h = atan2_squares(s, hz2);
+        let theta_d = atan2_squares(ee, hh);
+        let a = atan2_squares(y2, x2);
+        let phi_d = neg.select(Vf::splat(PI) - a, a);
         let (th, td, pd) = (theta_h.to_array(), theta_d.to_array(), phi_d.to_array());
-        let ok = valid.to_bitmask();
+        let ok = above.to_bitmask();
         for (k, o) in out.iter_mut().enumerate() {
             *o = if ok & (1 << k) != 0 {
                 self.0.lookup(th[k], td[k], pd[k])
@@ -79,7 +83,7 @@ impl<S: Spectrum> Kernel for Eval<'_, '_, S> {
                 S::zero()
             };
         }
-        cold_lanes(wi, wo)
+        cold_lanes(wi, wo) | near_opposite.to_bitmask()
     }
 
     #[inline(always)]

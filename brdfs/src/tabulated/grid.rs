@@ -37,14 +37,20 @@
 //!
 //! # Accuracy of the coordinate conversion
 //!
-//! The three angles are computed as `atan2` of sine and cosine components
-//! (accurate near the poles, where `acos` of a rounded cosine is not), with
-//! the degree-9 arctangent polynomial of Abramowitz & Stegun 4.4.47 on
-//! `[0, 1]` (absolute error ≤ 1.2·10⁻⁵ rad, relative ≤ 1.4·10⁻⁴, checked in
-//! the tests against `f64::atan2`; 7·10⁻⁴ of a MERL θd cell) and octant
-//! reduction; the half vector is never normalised and no angle needs a
-//! division besides the one inside `atan2`. The round trip
-//! node → directions → coordinates is exact to 1.5·10⁻⁵ rad.
+//! The three angles are computed from `h = ωi + ωo` and `e = ωi − ωo` only
+//! (never normalised; exactly reciprocal, see `coords_above` in the
+//! source), each as an `atan2` of two non-negative components given by
+//! their squares — one division, one square root and a degree-15
+//! arctangent polynomial of this project's fit (constant `ATAN_R`) —
+//! rather than an `acos` of a rounded cosine, which loses accuracy near the
+//! poles. Measured against `f64` in the unit tests: the arctangent to
+//! 2.8·10⁻⁷ rad (relative 3.3·10⁻⁷, i.e. 1.6·10⁻⁵ of a MERL θd cell; the
+//! previous A&S 4.4.47 polynomial had 1.2·10⁻⁵ rad, 7·10⁻⁴ of a cell); the
+//! continuous grid indices of 200 000 random unit pairs to 3.8·10⁻⁵ cells
+//! (θh), 1.6·10⁻⁵ (θd) and 2.9·10⁻⁴ (φd, where θh, θd ≥ 0.01; φd is
+//! undefined at either pole), the rest being the `f32` rounding of
+//! `ωi ± ωo` (the spacing of `f32` at index 90 is alone 7.6·10⁻⁶). The
+//! round trip node → directions → coordinates is exact to 1.5·10⁻⁵ rad.
 //!
 //! # Example
 //!
@@ -61,8 +67,9 @@
 //! ```
 
 use super::TabulatedError;
-use core::f32::consts::{FRAC_2_PI, FRAC_PI_2, PI};
-use radiometry::glam::Vec3;
+use super::coords::{coords_opposite, half_diff_pair};
+use core::f32::consts::{FRAC_1_PI, FRAC_2_PI, FRAC_PI_2, PI};
+use radiometry::glam::{Vec3, Vec4};
 
 /// Largest number of nodes on one axis accepted by [`RusinkiewiczGrid::new`].
 pub const MAX_AXIS: usize = 1 << 12;
@@ -86,14 +93,6 @@ pub struct RusinkiewiczGrid {
     n_theta_h: u32,
     n_theta_d: u32,
     n_phi_d: u32,
-}
-
-/// One axis lookup: the two neighbouring nodes and the weight of the upper one.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct AxisCell {
-    pub(crate) i0: usize,
-    pub(crate) i1: usize,
-    pub(crate) t: f32,
 }
 
 impl RusinkiewiczGrid {
@@ -214,10 +213,10 @@ impl RusinkiewiczGrid {
     /// Rusinkiewicz coordinates `(θh, θd, φd)` of a pair of directions, with
     /// `θh, θd ∈ [0, π]` and `φd` folded into `[0, π)` (module
     /// documentation). The inputs are normalised first; the result is
-    /// symmetric in `ωi ↔ ωo` bit for bit unless `cos θi = cos θo` (the
-    /// difference vector is taken from the direction with the smaller
-    /// `cos θ`, which only changes rounding since the folded φd is
-    /// symmetric).
+    /// symmetric in `ωi ↔ ωo` bit for bit (computed from `ωi + ωo` and
+    /// `±(ωi − ωo)` only, see `coords_above` in the source), and for two
+    /// directions above the horizon it is exactly the coordinates
+    /// [`Tabulated::eval`](super::Tabulated) interpolates at.
     ///
     /// Degenerate input has a documented finite fallback: a zero or
     /// non-finite direction gives `(0, 0, 0)`; `ωi = −ωo` (no half vector)
@@ -225,7 +224,7 @@ impl RusinkiewiczGrid {
     /// cases as `None` instead.
     pub fn half_diff(wi: Vec3, wo: Vec3) -> (f32, f32, f32) {
         match (unit(wi), unit(wo)) {
-            (Some(a), Some(b)) => half_diff_unit(a, b).unwrap_or_else(|| half_diff_about(a, Vec3::Z)),
+            (Some(a), Some(b)) => half_diff_pair(a, b).unwrap_or_else(|| coords_opposite(a)),
             _ => (0.0, 0.0, 0.0),
         }
     }
@@ -233,61 +232,75 @@ impl RusinkiewiczGrid {
     /// [`half_diff`](Self::half_diff), or `None` when a direction is zero or
     /// not finite, or `ωi + ωo` vanishes (no half vector).
     pub fn try_half_diff(wi: Vec3, wo: Vec3) -> Option<(f32, f32, f32)> {
-        half_diff_unit(unit(wi)?, unit(wo)?)
+        half_diff_pair(unit(wi)?, unit(wo)?)
     }
 
-    /// The θh axis cell of `θh` (continuous index `√(θh/(π/2))·Nh`,
-    /// constant beyond the last node).
+    /// The cells of `(θh, θd, φd)` on the three axes at once (four-lane
+    /// `glam::Vec4` arithmetic): continuous indices
+    ///
+    /// ```text
+    /// u_h = √θh · Nh √(2/π),   u_d = θd · Nd (2/π),   u_φ = φd · Nφ/π,
+    /// ```
+    ///
+    /// clamped to `[0, Nh − 1]`, `[0, Nd − 1]` (θ axes constant beyond
+    /// their last node) and `[0, Nφ⁻]` (`Nφ⁻` the float below `Nφ`; φd is
+    /// periodic: node `Nφ` is node 0); NaN and negative input give 0. The
+    /// floor is `i = round(u − ½)` by the `1.5·2²³` rounding trick (`(u − ½) +
+    /// 1.5·2²³` rounds to an integer, read from the bits): exact for
+    /// `0 ≤ u < 2²²`; at an integer `u = k` it may give `i = k − 1, t = 1`
+    /// instead of `i = k, t = 0`, which interpolates to the same value bit
+    /// for bit (`a·0 + b·1 = b = b·1 + c·0` for finite values).
     #[inline(always)]
-    pub(crate) fn cell_theta_h(&self, theta_h: f32) -> AxisCell {
-        let u = libm::sqrtf((theta_h * FRAC_2_PI).max(0.0)) * self.n_theta_h as f32;
-        clamped_cell(u, self.n_theta_h)
-    }
-
-    /// The θd axis cell of `θd` (continuous index `θd/(π/2)·Nd`).
-    #[inline(always)]
-    pub(crate) fn cell_theta_d(&self, theta_d: f32) -> AxisCell {
-        clamped_cell(theta_d * FRAC_2_PI * self.n_theta_d as f32, self.n_theta_d)
-    }
-
-    /// The φd axis cell of a folded `φd ∈ [0, π]` (continuous index
-    /// `φd/π·Nφ`, periodic).
-    #[inline(always)]
-    pub(crate) fn cell_phi_d(&self, phi_d: f32) -> AxisCell {
-        let n = self.n_phi_d;
-        let mut u = (phi_d * (1.0 / PI) * n as f32).max(0.0);
-        let nf = n as f32;
-        if u >= nf {
-            u -= nf;
-        }
-        // u ≥ 0: truncation is the floor (NaN converts to 0).
-        let i0 = (u as usize).min(n as usize - 1);
-        let i1 = if i0 + 1 >= n as usize { 0 } else { i0 + 1 };
-        AxisCell {
-            i0,
-            i1,
-            t: (u - i0 as f32).clamp(0.0, 1.0),
+    pub(crate) fn cells(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> Cells {
+        let (nh, nd, np) = (self.n_theta_h, self.n_theta_d, self.n_phi_d);
+        let scale = Vec4::new(
+            nh as f32 * SQRT_2_OVER_PI,
+            nd as f32 * FRAC_2_PI,
+            np as f32 * FRAC_1_PI,
+            0.0,
+        );
+        let np_f = np as f32;
+        let lim = Vec4::new(
+            nh.saturating_sub(1) as f32,
+            nd.saturating_sub(1) as f32,
+            f32::from_bits(np_f.to_bits() - 1),
+            0.0,
+        );
+        let u = Vec4::new(libm::sqrtf(theta_h), theta_d, phi_d, 0.0) * scale;
+        // NaN → 0, then ≤ lim: `max(u, 0)` returns its second operand for a
+        // NaN `u` (SSE `maxps`; glam's scalar fallback ignores the NaN).
+        let u = u.max(Vec4::ZERO).min(lim);
+        let v = (u - Vec4::splat(0.5)) + Vec4::splat(MAGIC);
+        let t = u - (v - Vec4::splat(MAGIC));
+        let [vh, vd, vp, _] = v.to_array();
+        let index = |v: f32| v.to_bits().wrapping_sub(MAGIC.to_bits());
+        let (ih, id, ip) = (index(vh), index(vd), index(vp));
+        let [th, td, tp, _] = t.to_array();
+        Cells {
+            h: [ih as usize, (ih + 1).min(nh.saturating_sub(1)) as usize],
+            d: [id as usize, (id + 1).min(nd.saturating_sub(1)) as usize],
+            p: [ip as usize, if ip + 1 < np { ip + 1 } else { 0 } as usize],
+            t: [th, td, tp],
         }
     }
 }
 
-/// Cell of a clamped (non-periodic) axis with `n` nodes at continuous index `u`.
-#[inline(always)]
-fn clamped_cell(u: f32, n: u32) -> AxisCell {
-    let last = n as usize - 1;
-    let u = u.max(0.0);
-    // u ≥ 0: truncation is the floor (NaN converts to 0).
-    let i0 = (u as usize).min(last);
-    let i1 = (i0 + 1).min(last);
-    AxisCell {
-        i0,
-        i1,
-        t: if i1 == i0 {
-            0.0
-        } else {
-            (u - i0 as f32).clamp(0.0, 1.0)
-        },
-    }
+/// `1.5 · 2²³`: for `x ∈ [−2²², 2²²]`, `x + MAGIC ∈ [2²³, 2²⁴)`, where the
+/// spacing of `f32` is 1, so the sum rounds `x` to the nearest integer (ties
+/// to even), held in the low mantissa bits.
+const MAGIC: f32 = 12_582_912.0;
+
+/// `√(2/π)`.
+const SQRT_2_OVER_PI: f32 = 0.797_884_6;
+
+/// The lookup cells of [`RusinkiewiczGrid::cells`]: the two nodes of each
+/// axis (`[i0, i1]`) and the weights `t` of the upper nodes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cells {
+    pub(crate) h: [usize; 2],
+    pub(crate) d: [usize; 2],
+    pub(crate) p: [usize; 2],
+    pub(crate) t: [f32; 3],
 }
 
 /// `(ωi, ωo)` of the coordinates `(θh, θd, φd)` with `φh = 0`.
@@ -307,107 +320,10 @@ fn unit(w: Vec3) -> Option<Vec3> {
     crate::microfacet::unitize(w)
 }
 
-/// `(θh, θd, φd)` of unit directions; `None` when `ωi + ωo` vanishes.
-/// The hot path of [`Tabulated::eval`](super::Tabulated).
-#[inline(always)]
-pub(crate) fn half_diff_unit(wi: Vec3, wo: Vec3) -> Option<(f32, f32, f32)> {
-    let h = wi + wo;
-    let len2 = h.length_squared();
-    if len2.is_nan() || len2 <= 1e-30 {
-        return None;
-    }
-    // Difference vector from the direction with the smaller z (a select, not
-    // a branch): the same operations for (ωi, ωo) and (ωo, ωi) unless the two
-    // z are equal, where the two orders differ by rounding only (the folded
-    // φd is symmetric).
-    let a = if wi.z <= wo.z { wi } else { wo };
-    Some(half_diff_about(a, h))
-}
-
-/// `(θh, θd, φd)` of the unit direction `a` about the half vector `h`
-/// (any positive length: every angle below is an `atan2` of components that
-/// scale together, so `h` is never normalised).
-#[inline(always)]
-fn half_diff_about(a: Vec3, h: Vec3) -> (f32, f32, f32) {
-    let sh2 = h.x * h.x + h.y * h.y;
-    let sh = libm::sqrtf(sh2);
-    let theta_h = atan2(sh, h.z);
-    // d = R_y(−θh) R_z(−φh) a, with cos φh = hx/sh, sin φh = hy/sh,
-    // cos θh = hz/|h|, sin θh = sh/|h|, computed as d·sh·|h| (no division):
-    //   x1 = cos φh ax + sin φh ay,  y1 = −sin φh ax + cos φh ay,
-    //   d = (cos θh x1 − sin θh az, y1, sin θh x1 + cos θh az).
-    let x1s = h.x * a.x + h.y * a.y; // sh · x1
-    let y1s = h.x * a.y - h.y * a.x; // sh · y1
-    let len = libm::sqrtf(h.length_squared());
-    let (dx, dy, dz) = if sh2 > 1e-24 * h.z * h.z {
-        (h.z * x1s - sh2 * a.z, len * y1s, sh * x1s + h.z * sh * a.z)
-    } else {
-        // h on the normal (θh < 10⁻¹² rad): φh is arbitrary (0) and d = a.
-        (a.x, a.y, a.z)
-    };
-    let sd = libm::sqrtf(dx * dx + dy * dy);
-    let theta_d = atan2(sd, dz);
-    // Fold by reciprocity: (dx, dy) ~ (−dx, −dy); pick dy ≥ 0 (and dx > 0 on
-    // dy = 0), so that φd ∈ [0, π). A sign select, not a branch (the sign
-    // is unpredictable in a renderer's loop).
-    let flip = dy < 0.0 || (dy == 0.0 && dx < 0.0);
-    let sign = if flip { -1.0 } else { 1.0 };
-    let phi_d = atan2(dy * sign, dx * sign);
-    (theta_h, theta_d, phi_d)
-}
-
-/// The coefficients `a₁, a₃, a₅, a₇, a₉` of [`atan_unit`] (A&S 4.4.47).
-pub(crate) const ATAN: [f32; 5] = [0.999_866, -0.330_299_5, 0.180_141, -0.085_133, 0.020_835_1];
-
-/// `atan(x)` for `x ∈ [0, 1]`: Abramowitz & Stegun 4.4.47,
-/// `atan x = a₁x + a₃x³ + a₅x⁵ + a₇x⁷ + a₉x⁹ + ε`, `|ε| ≤ 10⁻⁵` (we measure
-/// 1.15·10⁻⁵ rad absolute and 1.34·10⁻⁴ relative in f64; 7·10⁻⁴ of a MERL
-/// θd cell). Evaluated in Estrin form (shorter dependency chain than Horner).
-#[inline(always)]
-fn atan_unit(x: f32) -> f32 {
-    let [a1, a3, a5, a7, a9] = ATAN;
-    let z = x * x;
-    let z2 = z * z;
-    let lo = a1 + a3 * z;
-    let mid = a5 + a7 * z;
-    x * (lo + z2 * (mid + z2 * a9))
-}
-
-/// `atan2(|y|, x) ∈ [0, π]` (any sign of `x`; `(0, 0)` → 0), by octant
-/// reduction to [`atan_unit`] with selects rather than branches (the
-/// octant is unpredictable in a renderer's loop). Non-finite input gives a
-/// value in `[0, π]` or NaN, which callers clamp.
-#[inline(always)]
-pub(crate) fn atan2(y: f32, x: f32) -> f32 {
-    let ax = x.abs();
-    let ay = y.abs();
-    let num = ax.min(ay);
-    let den = ax.max(ay).max(f32::MIN_POSITIVE);
-    let r = atan_unit(num / den);
-    let r = if ay > ax { FRAC_PI_2 - r } else { r };
-    if x < 0.0 { PI - r } else { r }
-}
-
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
-
-    /// A&S 4.4.47 in f32 against f64 `atan2` over the upper half plane.
-    #[test]
-    fn atan2_error_is_small() {
-        let mut worst = 0.0f64;
-        for i in 0..=20_000 {
-            let t = i as f64 / 20_000.0 * core::f64::consts::PI;
-            for r in [1e-20f64, 1e-3, 1.0, 1e3] {
-                let (y, x) = ((t.sin() * r) as f32, (t.cos() * r) as f32);
-                let want = (y as f64).atan2(x as f64);
-                worst = worst.max((atan2(y, x) as f64 - want).abs());
-            }
-        }
-        assert!(worst < 1.2e-5, "{worst}");
-        assert_eq!(atan2(0.0, 0.0), 0.0);
-        assert_eq!(atan2(0.0, -1.0), PI);
-    }
 
     /// Round trip node → directions → coordinates on every MERL node of a
     /// sparse sub-grid, against the node values (f64 reference of the
@@ -487,15 +403,48 @@ mod tests {
         );
         // MERL index formulas at a few angles.
         let m = RusinkiewiczGrid::MERL;
-        let c = m.cell_theta_h(FRAC_PI_2 * 0.25);
-        assert_eq!((c.i0, c.t), (45, 0.0));
-        let c = m.cell_theta_d(FRAC_PI_2 * 0.5 + 1e-3);
-        assert_eq!(c.i0, 45);
-        let c = m.cell_phi_d(PI * 0.999_999);
-        assert_eq!((c.i0, c.i1), (179, 0));
-        let c = m.cell_phi_d(PI);
-        assert_eq!(c.i0, 0);
-        let c = m.cell_theta_h(2.0);
-        assert_eq!((c.i0, c.i1, c.t), (89, 89, 0.0));
+        let c = m.cells(FRAC_PI_2 * 0.25, FRAC_PI_2 * 0.5 + 1e-3, PI * 0.999_999);
+        // θh node 45 exactly: (45, t = 0) or, by the rounding floor, (44, t = 1).
+        // (√θh · 90 √(2/π) rounds to 45 + 4·10⁻⁶.)
+        assert!(
+            c.h == [45, 46] && c.t[0] < 1e-5 || c.h == [44, 45] && c.t[0] > 1.0 - 1e-5,
+            "{c:?}"
+        );
+        assert_eq!(c.d[0], 45);
+        assert_eq!(c.p, [179, 0]);
+        let c = m.cells(2.0, 0.0, PI);
+        // Beyond the last node (89, odd): (89, t = 0) or (88, t = 1).
+        assert!(
+            c.h == [89, 89] && c.t[0] == 0.0 || c.h == [88, 89] && c.t[0] == 1.0,
+            "{c:?}"
+        );
+        assert_eq!(c.d, [0, 1]);
+        // φd = π: the periodic end, weight 1 on node 0.
+        assert_eq!(c.p, [179, 0]);
+        assert!(c.t[2] > 0.9999, "{c:?}");
+        let c = m.cells(f32::NAN, -1.0, f32::NAN);
+        assert_eq!((c.h, c.d, c.p, c.t), ([0, 1], [0, 1], [0, 1], [0.0; 3]));
+        // One-node axes.
+        let g = RusinkiewiczGrid::new(1, 1, 1).unwrap();
+        let c = g.cells(1.0, 1.0, 1.0);
+        assert_eq!((c.h, c.d, c.p), ([0, 0], [0, 0], [0, 0]));
+    }
+
+    /// The rounding floor of `cells` against the exact floor over a dense
+    /// sweep of every axis of a large grid (incl. every integer).
+    #[test]
+    fn cells_floor_is_exact() {
+        let g = RusinkiewiczGrid::new(4096, 4096, 16).unwrap();
+        for k in 0..=(4096 * 64) {
+            let u = k as f32 / 64.0;
+            let theta_d = u / (4096.0 * FRAC_2_PI);
+            let c = g.cells(0.0, theta_d, 0.0);
+            // The continuous index the cell sees (same rounding as `cells`).
+            let uu = (theta_d * (4096.0 * FRAC_2_PI)).min(4095.0);
+            let (i, t) = (c.d[0] as f32, c.t[1]);
+            assert!((0.0..=1.0).contains(&t), "{u}: {c:?}");
+            assert_eq!(i + t, uu, "{u}: {c:?}");
+            assert!(uu.floor() == i || uu == i + 1.0 && t == 1.0, "{u}: {c:?}");
+        }
     }
 }

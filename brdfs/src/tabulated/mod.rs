@@ -13,6 +13,7 @@
 
 #[cfg(feature = "simd")]
 mod batch;
+mod coords;
 pub mod error;
 pub mod grid;
 pub mod sampling;

@@ -216,7 +216,7 @@ impl<'a> HalfVectorDistribution<'a> {
     #[inline]
     pub fn pdf_h(&self, h: Vec3) -> f32 {
         let s2 = h.x * h.x + h.y * h.y;
-        let theta_h = super::grid::atan2(libm::sqrtf(s2), h.z);
+        let theta_h = super::coords::atan2(libm::sqrtf(s2), h.z);
         let n = self.n as usize;
         let u = libm::sqrtf((theta_h * (2.0 / PI)).max(0.0)) * n as f32;
         let k = (u as usize).min(n.saturating_sub(1));
