@@ -5,6 +5,8 @@
 //! (`x̃ ≤ 0` and `x̃ > 0`) run in every lane and a select keeps the one the
 //! scalar code takes.
 
+use super::beckmann_slope::lanes::slope_x_v;
+use super::beckmann_slope::{U_HI, U_LO};
 use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, SQRT_PI};
 use super::special_lanes::{
     beckmann_s_v, erfcinv_v, erfcx_v, erfinv_2p_minus_1_v, exp_neg_sq_v, ln64_v, lnf_v,
@@ -113,23 +115,35 @@ fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
 
 /// [`Beckmann`]'s [`sample_visible`](MicrofacetDistribution::sample_visible)
 /// lane-wise for unit `ωo`: `(m, cold)`, `cold` the lanes whose scalar
-/// normalisations leave the hot branches (handed back).
+/// normalisations leave the hot branches (handed back). `x̃` by the fast
+/// path (`beckmann_slope`) in every lane; only when some lane has
+/// `u₀ ∉ [U_LO, U_HI]` the tail scheme runs as well, for those lanes.
 #[inline(always)]
 pub(super) fn sample_visible(alpha: f32, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf) {
     let a = Vf::splat(alpha);
-    let stretched = Dirs {
-        x: a * wo.x,
-        y: a * wo.y,
-        z: wo.z.abs(),
-    };
-    let (v, cold_v) = stretched.unitize();
-    let sin_t = (v.x * v.x + v.y * v.y).sqrt().min(Vf::ONE);
-    let cos_t = v.z;
-    let pos = sin_t.simd_gt(Vf::ZERO);
-    let cos_p = pos.select(v.x / sin_t, Vf::ONE);
-    let sin_p = pos.select(v.y / sin_t, Vf::ZERO);
-    let sx = sample_slope_x(cos_t, sin_t, clamp01(u0));
-    let sy = erfinv_2p_minus_1_v(clamp01(u1));
+    let (u0, u1) = (clamp01(u0), clamp01(u1));
+    let rxy = wo.xy_length_squared().sqrt();
+    let pos = rxy.simd_gt(Vf::ZERO);
+    let inv = Vf::ONE / rxy;
+    let cos_p = pos.select(wo.x * inv, Vf::ONE);
+    let sin_p = pos.select(wo.y * inv, Vf::ZERO);
+    let c = wo.z.abs();
+    let fast = u0.simd_ge(Vf::splat(U_LO)) & u0.simd_le(Vf::splat(U_HI));
+    let mut sx = slope_x_v(c, a * rxy, u0);
+    let mut cold_v = Vf::ZERO;
+    if !fast.all() {
+        // `Beckmann::slope_x_tail`: the stretched direction, normalised.
+        let stretched = Dirs {
+            x: a * wo.x,
+            y: a * wo.y,
+            z: c,
+        };
+        let (v, cold) = stretched.unitize();
+        let sin_t = (v.x * v.x + v.y * v.y).sqrt().min(Vf::ONE);
+        sx = fast.select(sx, sample_slope_x(v.z, sin_t, u0));
+        cold_v = !fast & cold;
+    }
+    let sy = erfinv_2p_minus_1_v(u1);
     let tx = cos_p * sx - sin_p * sy;
     let ty = sin_p * sx + cos_p * sy;
     let na = Vf::splat(-alpha);

@@ -45,6 +45,8 @@ mod beckmann;
 mod beckmann_f32;
 #[cfg(feature = "simd")]
 mod beckmann_lanes;
+mod beckmann_slope;
+mod beckmann_slope_table;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
