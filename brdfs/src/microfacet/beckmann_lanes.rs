@@ -1,9 +1,11 @@
-//! The vector form (feature `simd`) of [`Beckmann::sample_visible`]: the
-//! visible-slope sampler of Heitz & d'Eon 2014 (§4, bounded start and two
-//! safeguarded Halley steps, see `Beckmann::sample_slope_x`) lane for lane,
-//! bit-identical to the scalar code. Both branches of the slope inversion
-//! (`x̃ ≤ 0` and `x̃ > 0`) run in every lane and a select keeps the one the
-//! scalar code takes.
+//! The vector form (feature `simd`) of [`Beckmann::sample_visible`], lane
+//! for lane bit-identical to the scalar code: the `f32` fast path of the
+//! visible-slope inversion (`beckmann_slope::lanes`) in every lane and, only
+//! when some lane has `u₀` outside its range, the tail scheme of Heitz &
+//! d'Eon 2014 (§4, bounded start and two safeguarded Halley steps, see
+//! `Beckmann::sample_slope_x`) for those lanes. In the tail scheme both
+//! branches of the slope inversion (`x̃ ≤ 0` and `x̃ > 0`) run in every lane
+//! and a select keeps the one the scalar code takes.
 
 use super::beckmann_slope::lanes::slope_x_v;
 use super::beckmann_slope::{U_HI, U_LO};
