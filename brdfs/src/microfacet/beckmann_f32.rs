@@ -387,7 +387,7 @@ mod tests {
     /// The whole Beckmann BRDF (height-correlated Smith, `F = 1`) against
     /// Walter et al. 2007 eq. 20 written separately in `f64` — the half
     /// vector, `D` (eq. 25) and the exact `Λ` (erf form, libm's `f64` `erfc`)
-    /// from the same `f32` directions (taken as unit, as the hot path does): relative error ≤ `12 + 6x` ulp of the
+    /// from the same `f32` directions (normalised in `f64`): relative error ≤ `12 + 6x` ulp of the
     /// `f64` value, `x = tan²θh/α²` (the `f32` half vector and `D`'s
     /// exponent; see `d_matches_f64`).
     #[test]
@@ -419,9 +419,15 @@ mod tests {
                     let wo = dir(j as f64 / 60.0 * 1.55, 0.3 + j as f64 * 0.17);
                     let v = b.eval(wi, wo);
                     let (i64_, o64) = (wi.to_array().map(f64::from), wo.to_array().map(f64::from));
-                    // The directions as given (unit to within 4ε, which the
-                    // hot path accepts as unit), not renormalised.
-                    let (wi64, wo64) = (i64_, o64);
+                    // The directions the `f32` vectors point along
+                    // (normalised in `f64`): what `eval` evaluates — its half
+                    // vector is corrected for the input lengths
+                    // (`Half::of`).
+                    let unit = |w: [f64; 3]| {
+                        let l = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+                        [w[0] / l, w[1] / l, w[2] / l]
+                    };
+                    let (wi64, wo64) = (unit(i64_), unit(o64));
                     let h = [wi64[0] + wo64[0], wi64[1] + wo64[1], wi64[2] + wo64[2]];
                     let x = (h[0] * h[0] + h[1] * h[1]) / (h[2] * h[2] * a * a);
                     let c2 = h[2] * h[2] / (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
