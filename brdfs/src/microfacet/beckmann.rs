@@ -418,11 +418,7 @@ impl MicrofacetDistribution for Beckmann {
         } else {
             (1.0, 0.0)
         };
-        let sx = if beckmann_slope::in_fast_range(u0) {
-            beckmann_slope::slope_x(wo.z.abs(), a * rxy, u0)
-        } else {
-            Self::slope_x_tail(a, wo, u0)
-        };
+        let sx = Self::slope_x(a, wo, rxy, u0);
         let sy = erfinv_2p_minus_1(u1);
         let tx = cos_p * sx - sin_p * sy;
         let ty = sin_p * sx + cos_p * sy;
@@ -431,6 +427,18 @@ impl MicrofacetDistribution for Beckmann {
 }
 
 impl Beckmann {
+    /// The visible slope `x̃` of `sample_visible` for unit `wo` (`rxy =
+    /// |wo_xy|`, `u ∈ [0, 1]`): the fast path of `beckmann_slope` on
+    /// `(|ω_z|, α|ω_xy|)` inside its range, else [`slope_x_tail`](Self::slope_x_tail).
+    #[inline(always)]
+    fn slope_x(a: f32, wo: Vec3, rxy: f32, u: f32) -> f32 {
+        if beckmann_slope::in_fast_range(u) {
+            beckmann_slope::slope_x(wo.z.abs(), a * rxy, u)
+        } else {
+            Self::slope_x_tail(a, wo, u)
+        }
+    }
+
     /// The slope `x̃` for `u` outside the fast range of `beckmann_slope`
     /// (`u < 2⁻²⁰` or `u > 1 − 2⁻¹⁰`, 0.1 % of uniform samples): the
     /// bounded start and two safeguarded Halley steps of
@@ -492,6 +500,126 @@ mod tests {
         }
         extern crate std;
         std::println!("Beckmann slope inversion: worst |C(x)/C(b) − u| = {worst:.1} resolution units");
+    }
+
+    /// The slope sampler as `sample_visible` runs it (fast path inside
+    /// `[U_LO, U_HI]`, tail scheme outside), over the whole `u` range and
+    /// across both switch points: finite, in `[−MAX_SLOPE, b]`, monotone in
+    /// `u` (to within `2·10⁻⁶(1 + |x|)`, as the tail scheme's test, plus the
+    /// `x` width of 4 resolution units of `u` where the density vanishes), and
+    /// `|C(x)/C(b) − u|` within 4 resolution units (see
+    /// `slope_inversion_reproduces_u`); edge `u` (0, subnormal, the switch
+    /// points and their neighbours, `1 − ε`, 1) finite and in range.
+    #[test]
+    fn dispatched_slope_sampler_is_monotone_and_accurate() {
+        use super::beckmann_slope::{U_HI, U_LO};
+        let mut us: std::vec::Vec<f32> = (0..=20_000).map(|i| i as f32 / 20_000.0).collect();
+        for v in [U_LO, U_HI] {
+            let mut w = v;
+            for _ in 0..64 {
+                w = w.next_down();
+            }
+            for _ in 0..128 {
+                us.push(w);
+                w = w.next_up();
+            }
+        }
+        let mut t = 1e-45f32;
+        while t < 0.01 {
+            us.push(t);
+            us.push(1.0 - t);
+            t *= 3.0;
+        }
+        // Every 8th f32 in [0.98, 1): where the upper tail is steep in `x`
+        // (near grazing, dx/du ~ 1/(2|x|)).
+        let mut w = 0.98f32;
+        while w < 1.0 {
+            us.push(w);
+            for _ in 0..8 {
+                w = w.next_up();
+            }
+        }
+        us.extend([radiometry::math::ONE_MINUS_EPSILON, 1.0, 0.0]);
+        us.retain(|u| (0.0..=1.0).contains(u));
+        us.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        let mut worst = 0.0f64;
+        // 1 − 2⁻²²: the two largest f32 below 1 are at or above it.
+        const TOP_TWO: f32 = 0.999_999_76;
+        for &alpha in &[1e-4f32, 0.3, 1.0] {
+            let near_grazing = [1.55, 1.565, 1.57, core::f64::consts::FRAC_PI_2 - 1e-4];
+            let thetas = (0..=24).map(|k| k as f64 / 24.0 * core::f64::consts::FRAC_PI_2);
+            for theta in thetas.chain(near_grazing) {
+                let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
+                let rxy = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
+                // The stretched direction, normalised, in f64 for the reference.
+                let (sx64, cz64) = (alpha as f64 * wo.x as f64, wo.z as f64);
+                let n = (sx64 * sx64 + cz64 * cz64).sqrt();
+                let (c64, s64) = (cz64 / n, sx64 / n);
+                let b = if s64 * 9.0 <= c64 { 9.0 } else { c64 / s64 };
+                let total = cdf64(c64, s64, b);
+                let (mut prev, mut prev_tol) = (-MAX_SLOPE, 0.0f64);
+                for &u in &us {
+                    let x = Beckmann::slope_x(alpha, wo, rxy, u);
+                    assert!(
+                        x.is_finite() && x >= -MAX_SLOPE && x as f64 <= b + 1e-6,
+                        "α={alpha} θ={theta} u={u}: {x}"
+                    );
+                    let got = cdf64(c64, s64, x as f64) / total;
+                    let dens = (c64 - x as f64 * s64).max(0.0) * libm::exp(-(x as f64).powi(2))
+                        / core::f64::consts::PI.sqrt()
+                        / total;
+                    let eps = f32::EPSILON as f64;
+                    let unit = dens * (x.abs().max(1e-3) as f64) * eps * 4.0 + 4.0 * eps;
+                    // Monotone up to the accuracy asserted below: a step back
+                    // of at most 2·10⁻⁶(1 + |x|) plus 4 resolution units of
+                    // `u` at either end, converted to `x` by the density.
+                    let tol = 2e-6 * (1.0 + x.abs() as f64) + 4.0 * unit / dens.max(1e-30);
+                    assert!(
+                        u >= TOP_TWO || x as f64 >= prev as f64 - tol.max(prev_tol),
+                        "α={alpha} θ={theta} u={u}: {x} < {prev}"
+                    );
+                    (prev, prev_tol) = (x, tol);
+                    // Below −MAX_SLOPE's mass the clamp decides, by design.
+                    // The two largest `u` below 1 are left to the known issue
+                    // of the tail scheme (`tail_scheme_top_of_range_near_grazing`).
+                    if x > -MAX_SLOPE && u < TOP_TWO {
+                        let err = (got - u as f64).abs() / unit;
+                        worst = worst.max(err);
+                        assert!(err < 4.0, "α={alpha} θ={theta} u={u}: x={x} ({err} units)");
+                    }
+                }
+            }
+        }
+        std::println!("dispatched Beckmann slope sampler: worst {worst:.2} resolution units");
+    }
+
+    /// Known issue of the tail scheme (kept from before the fast path, which
+    /// does not run there): for the two largest `u` below 1 (`1 − 2⁻²³`,
+    /// `1 − 2⁻²⁴`) near grazing, where the slope density vanishes at the
+    /// end point `b = cot θ`, the complement `G(x) = 2C(b) − 2C(x)` is
+    /// formed with cancellation in `f32` and the safeguarded Halley steps
+    /// fall back to bisection: `|C(x̃)/C(b) − u|` reaches 9·10⁻⁵ (α = 0.3,
+    /// θ = 1.565, u = 1 − 2⁻²³) instead of `~10⁻⁷`. Probability 1.2·10⁻⁷ per
+    /// uniform sample; the pdf stays that of the returned direction. A fix
+    /// would evaluate `G` near `b` from its series in `h = b − x`
+    /// (`G ∝ e^{−b²}(h²/2 + 2b h³/3 + …)`) in both the scalar and the lane
+    /// code. Run with `--ignored`.
+    #[test]
+    #[ignore = "known issue of the tail scheme at u = 1 − 2⁻²³ near grazing (see doc)"]
+    fn tail_scheme_top_of_range_near_grazing() {
+        let (alpha, theta) = (0.3f32, 1.565f64);
+        let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
+        let v = unitize(Vec3::new(alpha * wo.x, 0.0, wo.z)).unwrap();
+        let (c, s) = (v.z as f64, v.x as f64);
+        let total = cdf64(c, s, c / s);
+        for u in [1.0 - 2f32.powi(-23), 1.0 - 2f32.powi(-24)] {
+            let x = Beckmann::slope_x_tail(alpha, wo, u);
+            let err = (cdf64(c, s, x as f64) / total - u as f64).abs();
+            assert!(
+                err < 4.0 * 4.0 * f32::EPSILON as f64,
+                "u = {u}: |F − u| = {err:.2e}"
+            );
+        }
     }
 
     fn lambda64(a: f64) -> f64 {
