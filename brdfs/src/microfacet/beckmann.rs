@@ -212,7 +212,11 @@ impl Beckmann {
     /// beckmann_slope_sweep.py` mirrors it in `f64`; θ ∈ [0, π/2],
     /// u ∈ [10⁻³⁸, 1 − 6·10⁻⁸]): after the two Halley steps
     /// `|C(x̃)/C(b) − u| ≤ 6.3·10⁻⁹`, and relative to the tail mass
-    /// `min(u, 1 − u)` ≤ 1.7·10⁻⁴ (worst in the 10⁻²⁰ tails at grazing). A χ²
+    /// `min(u, 1 − u)` ≤ 1.7·10⁻⁴ (worst in the 10⁻²⁰ tails at grazing) for
+    /// `u ≤ 1 − 10⁻⁷`; 1.4·10⁻³ at `u = 1 − 6·10⁻⁸`, where the upper branch
+    /// keeps its start once the target is below the `f32` resolution of `G`
+    /// ([`TAIL_RESOLUTION`]; in `f32` the steps there reached 9·10⁻⁵ absolute
+    /// error, test `tail_scheme_top_of_range_near_grazing`). A χ²
     /// test with 10⁶ samples resolves bin probabilities to ~10⁻³ relative, so
     /// this is invisible to it. In `f32` the result is at the rounding level
     /// of `C` (unit test `slope_inversion_reproduces_u`: ≤ 0.3 of its
@@ -281,7 +285,9 @@ impl Beckmann {
         x + 0.0
     }
 
-    /// The `x̃ > 0` branch of [`sample_slope_x`](Self::sample_slope_x); the
+    /// The `x̃ > 0` branch of [`sample_slope_x`](Self::sample_slope_x)
+    /// (keeping its start where the target is below the resolution of `G`,
+    /// [`TAIL_RESOLUTION`]); the
     /// Halley step over a common denominator (one division):
     /// `Δ = −2φG(c − xs) / (4p(c − xs)(1 + φ/2) − φG(s + 2x(c − xs)))`.
     #[inline]
@@ -297,12 +303,23 @@ impl Beckmann {
                 x = x.min(z - s / (libm::sqrtf(c * c + zs * zs) + c - zs));
             }
         }
+        let mut keep_start = false;
         if b < MAX_SLOPE {
             // b = cot θ, s > 0: endpoint bounds.
-            let xe = (b - libm::sqrtf(SQRT_PI * gs / (s * exp_neg_sq(b)))).max(0.0);
+            let eb = exp_neg_sq(b);
+            let xe = (b - libm::sqrtf(SQRT_PI * gs / (s * eb))).max(0.0);
             x = x.min(b - libm::sqrtf(SQRT_PI * gs / (s * exp_neg_sq(xe))));
+            // Near b, `G = E + e^{−x²}(c erfcx(x) − s/√π)` cancels terms of
+            // size ~`E + e^{−b²}s/√π`: a target below a few ε of that is
+            // beyond the resolution of `G` (a step on a `G` of unresolved
+            // sign would fall back to bisection far from the root), and the
+            // endpoint bound, exact to leading order in b − x there, is kept.
+            keep_start = gs <= TAIL_RESOLUTION * (excess + s * FRAC_1_SQRT_PI * eb);
         }
         x = x.max(0.0);
+        if keep_start {
+            return x.min(b) + 0.0;
+        }
         let (mut lo, mut hi) = (0.0f32, b);
         for _ in 0..2 {
             let e = exp_neg_sq(x);
@@ -333,6 +350,11 @@ impl Beckmann {
         x.max(0.0).min(b) + 0.0
     }
 }
+
+/// `16ε`: where the upper-tail target `2(1 − u)C(b)` of the tail scheme is
+/// below `TAIL_RESOLUTION · 2C(0)`, the scheme keeps its start (see
+/// `Beckmann::slope_upper`).
+pub(super) const TAIL_RESOLUTION: f32 = 16.0 * f32::EPSILON;
 
 impl MicrofacetDistribution for Beckmann {
     #[inline]
@@ -543,8 +565,6 @@ mod tests {
         us.retain(|u| (0.0..=1.0).contains(u));
         us.sort_by(|a, b| a.partial_cmp(b).unwrap());
         let mut worst = 0.0f64;
-        // 1 − 2⁻²²: the two largest f32 below 1 are at or above it.
-        const TOP_TWO: f32 = 0.999_999_76;
         for &alpha in &[1e-4f32, 0.3, 1.0] {
             let near_grazing = [1.55, 1.565, 1.57, core::f64::consts::FRAC_PI_2 - 1e-4];
             let thetas = (0..=24).map(|k| k as f64 / 24.0 * core::f64::consts::FRAC_PI_2);
@@ -575,14 +595,12 @@ mod tests {
                     // `u` at either end, converted to `x` by the density.
                     let tol = 2e-6 * (1.0 + x.abs() as f64) + 4.0 * unit / dens.max(1e-30);
                     assert!(
-                        u >= TOP_TWO || x as f64 >= prev as f64 - tol.max(prev_tol),
+                        x as f64 >= prev as f64 - tol.max(prev_tol),
                         "α={alpha} θ={theta} u={u}: {x} < {prev}"
                     );
                     (prev, prev_tol) = (x, tol);
                     // Below −MAX_SLOPE's mass the clamp decides, by design.
-                    // The two largest `u` below 1 are left to the known issue
-                    // of the tail scheme (`tail_scheme_top_of_range_near_grazing`).
-                    if x > -MAX_SLOPE && u < TOP_TWO {
+                    if x > -MAX_SLOPE {
                         let err = (got - u as f64).abs() / unit;
                         worst = worst.max(err);
                         assert!(err < 4.0, "α={alpha} θ={theta} u={u}: x={x} ({err} units)");
@@ -593,32 +611,31 @@ mod tests {
         std::println!("dispatched Beckmann slope sampler: worst {worst:.2} resolution units");
     }
 
-    /// Known issue of the tail scheme (kept from before the fast path, which
-    /// does not run there): for the two largest `u` below 1 (`1 − 2⁻²³`,
-    /// `1 − 2⁻²⁴`) near grazing, where the slope density vanishes at the
-    /// end point `b = cot θ`, the complement `G(x) = 2C(b) − 2C(x)` is
-    /// formed with cancellation in `f32` and the safeguarded Halley steps
-    /// fall back to bisection: `|C(x̃)/C(b) − u|` reaches 9·10⁻⁵ (α = 0.3,
-    /// θ = 1.565, u = 1 − 2⁻²³) instead of `~10⁻⁷`. Probability 1.2·10⁻⁷ per
-    /// uniform sample; the pdf stays that of the returned direction. A fix
-    /// would evaluate `G` near `b` from its series in `h = b − x`
-    /// (`G ∝ e^{−b²}(h²/2 + 2b h³/3 + …)`) in both the scalar and the lane
-    /// code. Run with `--ignored`.
+    /// Regression test of the tail scheme at the largest `u` below 1 near
+    /// grazing, where the slope density vanishes at the end point
+    /// `b = cot θ`: the complement `G(x) = 2C(b) − 2C(x)` is formed with
+    /// cancellation in `f32`, and before `TAIL_RESOLUTION` the safeguarded
+    /// Halley steps fell back to bisection there: `|C(x̃)/C(b) − u|` reached
+    /// 9·10⁻⁵ (α = 0.3, θ = 1.565, u = 1 − 2⁻²³), 2.9·10⁻⁵ (α = 1,
+    /// θ = 1.55), 1.7·10⁻⁵ (α = 0.05, θ = 1.57). Now within 4 resolution
+    /// units (`4 · 4ε`) for every `u ≥ 1 − 2⁻¹²`.
     #[test]
-    #[ignore = "known issue of the tail scheme at u = 1 − 2⁻²³ near grazing (see doc)"]
     fn tail_scheme_top_of_range_near_grazing() {
-        let (alpha, theta) = (0.3f32, 1.565f64);
-        let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
-        let v = unitize(Vec3::new(alpha * wo.x, 0.0, wo.z)).unwrap();
-        let (c, s) = (v.z as f64, v.x as f64);
-        let total = cdf64(c, s, c / s);
-        for u in [1.0 - 2f32.powi(-23), 1.0 - 2f32.powi(-24)] {
-            let x = Beckmann::slope_x_tail(alpha, wo, u);
-            let err = (cdf64(c, s, x as f64) / total - u as f64).abs();
-            assert!(
-                err < 4.0 * 4.0 * f32::EPSILON as f64,
-                "u = {u}: |F − u| = {err:.2e}"
-            );
+        for (alpha, theta) in [(0.3f32, 1.565f64), (1.0, 1.55), (0.05, 1.57)] {
+            let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
+            let v = unitize(Vec3::new(alpha * wo.x, 0.0, wo.z)).unwrap();
+            let (c, s) = (v.z as f64, v.x as f64);
+            let total = cdf64(c, s, c / s);
+            let mut u = 1.0 - 2f32.powi(-12);
+            while u < 1.0 {
+                let x = Beckmann::slope_x_tail(alpha, wo, u);
+                let err = (cdf64(c, s, x as f64) / total - u as f64).abs();
+                assert!(
+                    err < 4.0 * 4.0 * f32::EPSILON as f64,
+                    "α={alpha} θ={theta} u={u}: |F − u| = {err:.2e}"
+                );
+                u = u.next_up();
+            }
         }
     }
 

@@ -7,6 +7,7 @@
 //! branches of the slope inversion (`x̃ ≤ 0` and `x̃ > 0`) run in every lane
 //! and a select keeps the one the scalar code takes.
 
+use super::beckmann::TAIL_RESOLUTION;
 use super::beckmann_slope::lanes::slope_x_v;
 use super::beckmann_slope::{U_HI, U_LO};
 use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, SQRT_PI};
@@ -75,7 +76,8 @@ fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
     let zs = z * s;
     let shift = z - s / (((c * c + zs * zs).sqrt() + c) - zs);
     let xu = use_q.select(b.min(shift), b);
-    let xe = (b - (sqrt_pi * gs / (s * exp_neg_sq_v(b))).sqrt()).max(zero);
+    let eb = exp_neg_sq_v(b);
+    let xe = (b - (sqrt_pi * gs / (s * eb)).sqrt()).max(zero);
     let end = b - (sqrt_pi * gs / (s * exp_neg_sq_v(xe))).sqrt();
     let xu = b.simd_lt(max).select(xu.min(end), xu).max(zero);
 
@@ -110,6 +112,10 @@ fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
         hi = raise_lo.select(hi, x);
         x = bracketed(lower.select(next_l, next_u), lo, hi);
     }
+    // Upper lanes whose target is below the resolution of `G` keep their
+    // start (`Beckmann::slope_upper`, `TAIL_RESOLUTION`).
+    let keep = !lower & b.simd_lt(max) & gs.simd_le(Vf::splat(TAIL_RESOLUTION) * (excess + sf * eb));
+    let x = keep.select(xu, x);
     let x = lower.select(x.max(-max).min(zero), x.max(zero).min(b)) + zero;
     let x = u.simd_ge(one).select(b, x);
     u.simd_le(zero).select(-max, x)
@@ -209,5 +215,60 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `sample_visible` lane-wise against the scalar, bit for bit, where the
+    /// two slope paths meet and at the top of the `u` range near grazing
+    /// (the tail scheme's kept start, `TAIL_RESOLUTION`).
+    #[test]
+    fn sample_visible_lanes_at_switch_points_and_top_of_range() {
+        use super::super::{Beckmann, MicrofacetDistribution};
+        use radiometry::glam::Vec3;
+        let mut us = std::vec::Vec::new();
+        for v in [U_LO, U_HI, 1.0 - 2f32.powi(-12), 1.0] {
+            let mut w = v;
+            for _ in 0..40 {
+                w = w.next_down();
+            }
+            for _ in 0..80 {
+                if w <= 1.0 {
+                    us.push(w);
+                }
+                w = w.next_up();
+            }
+        }
+        let mut compared = 0;
+        for &alpha in &[0.05f32, 0.3, 1.0] {
+            let d = Beckmann::new(alpha).unwrap();
+            for &theta in &[0.3f64, 1.2, 1.55, 1.565, 1.57, 1.5706] {
+                let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
+                for chunk in us.chunks(LANES) {
+                    let mut u0 = [0.5f32; LANES];
+                    u0[..chunk.len()].copy_from_slice(chunk);
+                    let dirs = Dirs {
+                        x: Vf::splat(wo.x),
+                        y: Vf::splat(wo.y),
+                        z: Vf::splat(wo.z),
+                    };
+                    let (m, cold) = sample_visible(alpha, dirs, Vf::new(u0), Vf::splat(0.3));
+                    let (mx, my, mz, cold) =
+                        (m.x.to_array(), m.y.to_array(), m.z.to_array(), cold.to_array());
+                    for k in 0..LANES {
+                        if cold[k] != 0.0 {
+                            continue;
+                        }
+                        let r = d.sample_visible(wo, [u0[k], 0.3]);
+                        compared += 1;
+                        assert_eq!(
+                            [mx[k].to_bits(), my[k].to_bits(), mz[k].to_bits()],
+                            [r.x.to_bits(), r.y.to_bits(), r.z.to_bits()],
+                            "α={alpha} θ={theta} u={}",
+                            u0[k]
+                        );
+                    }
+                }
+            }
+        }
+        assert!(compared > 4000, "{compared}");
     }
 }
