@@ -255,8 +255,11 @@ fn spectral_channels_integrate_separately() {
     for (i, x) in exact.iter().enumerate() {
         assert!((e.value[i] - x).abs() < 5.0 * e.error[i] + 1e-12, "{e:?}");
     }
-    // z/(z/π) = π exactly for cosine sampling: zero variance on channel 1.
-    assert!(e.error[1] < 1e-6);
+    // z/(z/π) = π exactly for cosine sampling: zero variance on channel 1,
+    // so its error is only the floors: mean/N for events rarer than 1/N
+    // (which no variance estimate sees) and 2⁻²³ mean for f32 rounding.
+    let floors = PI / 4096.0 + PI * 2f64.powi(-23);
+    assert!((e.error[1] - floors).abs() < 1e-3 * floors, "{e:?}");
 }
 
 #[test]

@@ -216,6 +216,38 @@ impl Dirs {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
+    /// [`radiometry::frame::half_vector_sum`] lane-wise (the scalar's
+    /// operations in the scalar's order, so bit-identical): the
+    /// length-corrected `ωi + ωo` and `|ωi + ωo|²`.
+    #[inline(always)]
+    pub(crate) fn half_vector_sum(self, wo: Dirs) -> (Dirs, Vf) {
+        let wi = self;
+        let s = wi.add(wo);
+        let sum2 = s.length_squared();
+        let correct = sum2.simd_lt(Vf::splat(radiometry::frame::HALF_VECTOR_CORRECTION_BELOW));
+        if !correct.any() {
+            return (s, sum2);
+        }
+        let d = Dirs {
+            x: wi.x - wo.x,
+            y: wi.y - wo.y,
+            z: wi.z - wo.z,
+        };
+        let q = Vf::splat(0.25);
+        let k = Dirs {
+            x: q * d.x,
+            y: q * d.y,
+            z: q * d.z,
+        }
+        .dot(s);
+        let h = Dirs {
+            x: correct.select(s.x - k * d.x, s.x),
+            y: correct.select(s.y - k * d.y, s.y),
+            z: correct.select(s.z - k * d.z, s.z),
+        };
+        (h, sum2)
+    }
+
     /// `‖w‖²` in glam's order.
     #[inline(always)]
     pub(crate) fn length_squared(self) -> Vf {

@@ -102,6 +102,28 @@ impl<W: WideSpectrum> SampleDiagnostics<W> {
         self.abs.value().map(|a| a / n * F32_FLOOR)
     }
 
+    /// The resolution floor of a mean of `n` samples, per channel:
+    /// `Σ|x| / n² = mean|x| / n`. A part of the integrand that `n` draws hit
+    /// with probability `p ≲ 1/n` is likely never drawn (`P = (1 − p)ⁿ`), and
+    /// then no variance estimate sees it: when its estimator values are of
+    /// the size of the others (the typical case: a sliver of the sampling
+    /// square where an importance-sampling map leaves the support, while
+    /// every other weight is ≈ 1), it moves the mean by about `p · mean`.
+    /// Adding `mean/n` covers such unseen events up to `p ≈ 3/n` at 3σ; a
+    /// rare event with a *large* estimator value (a peak the sampling
+    /// misses) is not bounded by it and is what the peak probe flags.
+    pub(crate) fn resolution_floor(&self, n: u64) -> W {
+        let n = n.max(1) as f64;
+        self.abs.value().map(|a| a / (n * n))
+    }
+
+    /// [`rounding_floor`](Self::rounding_floor) +
+    /// [`resolution_floor`](Self::resolution_floor): what a Monte Carlo
+    /// estimate adds to its standard error.
+    pub(crate) fn floors(&self, n: u64) -> W {
+        add(self.rounding_floor(n), self.resolution_floor(n))
+    }
+
     /// Adds another set's diagnostics.
     pub(crate) fn merge(&mut self, o: &Self) {
         self.hits += o.hits;

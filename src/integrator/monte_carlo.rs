@@ -9,6 +9,7 @@ use super::points::{
     Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed, sobol_point,
     square_to_cosine_hemisphere_polar,
 };
+use super::probe::{self, PROBE_POINTS, Probe};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf, check_finite};
 use crate::spectrum::{Spectrum, WideSpectrum};
 use crate::warp::{square_to_cosine_hemisphere, square_to_uniform_hemisphere};
@@ -134,13 +135,24 @@ pub const DEFAULT_REPLICATES: u32 = 16;
 ///   (true error)/(error) follows roughly Student's t with 15 degrees of
 ///   freedom, so `|error| ≤ 3σ` holds ≈ 99.1 % of the time (vs 99.7 % for
 ///   the normal limit of `Prng`).
-/// * Both add the `f32` rounding floor `2⁻²³ · mean|F|` to the error: each
-///   integrand value is an `f32` carrying up to about an ulp of systematic
-///   rounding, which no variance estimate can see (the quadrature rules add
-///   the same floor).
+/// * Both add two floors to the error, for what no variance estimate can
+///   see: the `f32` rounding floor `2⁻²³ · mean|F|` (each integrand value
+///   is an `f32` carrying up to about an ulp of systematic rounding; the
+///   quadrature rules add the same floor) and the resolution floor
+///   `mean|F| / N` over `N` draws (an event of probability `p ≲ 1/N` is
+///   likely never drawn and then moves the mean by `≈ p · mean` unseen —
+///   e.g. the sliver where an importance-sampling map leaves the
+///   hemisphere while every other weight is ≈ 1).
 /// * Status ([`super::Status`]): no non-zero draw → `NoSupportSeen`; fewer
 ///   than [`super::MIN_HITS`] → `FewHits`; effective sample size
 ///   `(Σ|F|)²/ΣF²` below [`super::MIN_EFFECTIVE_SAMPLES`] → `HeavyTail`.
+///   The blind strategies (`Uniform`, `Cosine`) also take the peak probe of
+///   [`super::probe`] when the integrand has a sampling map (at budgets
+///   ≥ [`super::probe::PROBE_MIN_BUDGET`]; its [`super::probe::PROBE_POINTS`]
+///   evaluations come out of the budget): a probe value above
+///   [`super::probe::PEAK_RATIO`] × the largest `|g|` at any draw →
+///   `UnseenPeak` (a lobe the draws never came near: their mean converges
+///   to the tails with a small standard error).
 ///
 /// Sobol: one scramble holds at most `2¹⁶` points (`sobol_burley`), so when
 /// `⌊N/K⌋ > 2¹⁶` the number of scrambles grows to `⌈N/2¹⁶⌉` (≤ 16 under
@@ -232,6 +244,7 @@ fn draw_batch<I: Integrand>(
     u1: &[[f32; 2]],
     u2: &[[f32; 2]],
     out: &mut [WideOf<I>],
+    peak: &mut f64,
 ) -> Result<(), IntegrateError> {
     let n = u1.len().min(CHUNK);
     let (u1, u2, out) = (&u1[..n], &u2[..n], &mut out[..n]);
@@ -254,7 +267,9 @@ fn draw_batch<I: Integrand>(
             }
             g.eval_batch(&dirs[..n], &mut vals[..n]);
             for (o, v) in out.iter_mut().zip(&vals[..n]) {
-                *o = check_finite(v.to_wide())?.map(|v| v * TAU);
+                let v = check_finite(v.to_wide())?;
+                *peak = peak.max(acc::max_abs(v));
+                *o = v.map(|v| v * TAU);
             }
         }
         Strategy::Cosine => {
@@ -265,7 +280,9 @@ fn draw_batch<I: Integrand>(
                 *o = if p <= 0.0 {
                     zero
                 } else {
-                    check_finite(v.to_wide())?.map(|v| v / p)
+                    let v = check_finite(v.to_wide())?;
+                    *peak = peak.max(acc::max_abs(v));
+                    v.map(|v| v / p)
                 };
             }
         }
@@ -328,6 +345,9 @@ struct Draws<'g, I> {
     n: usize,
     u1: [[f32; 2]; CHUNK],
     u2: [[f32; 2]; CHUNK],
+    /// The largest `max_channel |g|` at a drawn direction (uniform and
+    /// cosine strategies; compared with the peak probe).
+    peak: f64,
 }
 
 impl<'g, I: Integrand> Draws<'g, I> {
@@ -339,6 +359,7 @@ impl<'g, I: Integrand> Draws<'g, I> {
             n: 0,
             u1: [[0.0; 2]; CHUNK],
             u2: [[0.0; 2]; CHUNK],
+            peak: 0.0,
         }
     }
 
@@ -362,6 +383,7 @@ impl<'g, I: Integrand> Draws<'g, I> {
             &self.u1[..n],
             &self.u2[..n],
             &mut vals[..n],
+            &mut self.peak,
         )?;
         for &v in &vals[..n] {
             m.push(v);
@@ -381,6 +403,20 @@ impl Integrator for MonteCarlo {
             });
         }
         let cost = self.strategy.cost();
+        // The blind strategies (uniform, cosine) probe the integrand's own
+        // sampling map for a peak their draws never came near.
+        let blind = matches!(self.strategy, Strategy::Uniform | Strategy::Cosine);
+        let (budget, probing) = if blind {
+            probe::split_budget(g, budget.min(MAX_MC_EVALUATIONS), self.min_budget())
+        } else {
+            (budget, false)
+        };
+        let probe = if probing { Some(Probe::take(g)?) } else { None };
+        let judge = |status, peak: f64| match &probe {
+            Some(p) => probe::judge(status, peak, p.peak()),
+            None => status,
+        };
+        let extra = if probing { PROBE_POINTS as u64 } else { 0 };
         let draws = budget.min(MAX_MC_EVALUATIONS) / cost;
         let polar = self.points == PointSet::Fibonacci;
         let mut batch = Draws::new(g, self.strategy, polar);
@@ -400,9 +436,9 @@ impl Integrator for MonteCarlo {
             batch.flush(&mut m)?;
             return Ok(Estimate {
                 value: m.mean(),
-                error: acc::add(m.standard_error(), m.diag.rounding_floor(m.count())),
-                evaluations: m.count() * cost as u64,
-                status: m.diag.status(),
+                error: acc::add(m.standard_error(), m.diag.floors(m.count())),
+                evaluations: m.count() * cost as u64 + extra,
+                status: judge(m.diag.status(), batch.peak),
             });
         }
 
@@ -464,9 +500,9 @@ impl Integrator for MonteCarlo {
         }
         Ok(Estimate {
             value: reps.mean(),
-            error: acc::add(reps.standard_error(), diag.rounding_floor(spent / cost as u64)),
-            evaluations: spent,
-            status: diag.status(),
+            error: acc::add(reps.standard_error(), diag.floors(spent / cost as u64)),
+            evaluations: spent + extra,
+            status: judge(diag.status(), batch.peak),
         })
     }
 

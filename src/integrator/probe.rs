@@ -1,4 +1,6 @@
-//! The peak probe of the blind quadrature rules.
+//! The peak probe of the blind quadrature rules (and of uniform and
+//! cosine-weighted Monte Carlo, whose draws are as blind: see
+//! [`MonteCarlo`](super::MonteCarlo)).
 //!
 //! [`GaussLegendre`](super::GaussLegendre) and [`Adaptive`](super::Adaptive)
 //! (not warped) place their nodes in `(μ, φ)` without looking at the

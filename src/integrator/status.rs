@@ -56,11 +56,12 @@ pub enum Unresolved {
     /// sample size `(Σx)²/Σx²` below [`MIN_EFFECTIVE_SAMPLES`]): a
     /// heavy-tailed weight distribution whose standard error understates.
     HeavyTail,
-    /// Quadrature on a fixed grid (`gauss-legendre`, `adaptive`): points
-    /// drawn through the integrand's own sampling map found values more
-    /// than [`PEAK_RATIO`](super::probe::PEAK_RATIO) times the largest value at any
-    /// node — a peak between the nodes, seen by the rule only through its
-    /// tails (see [`probe`](super::probe)).
+    /// Quadrature on a fixed grid (`gauss-legendre`, `adaptive`) or
+    /// uniform / cosine Monte Carlo: points drawn through the integrand's
+    /// own sampling map found values more than
+    /// [`PEAK_RATIO`](super::probe::PEAK_RATIO) times the largest value at
+    /// any node or draw — a peak seen only through its tails (see
+    /// [`probe`](super::probe)).
     UnseenPeak,
 }
 

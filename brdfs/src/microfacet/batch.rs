@@ -182,36 +182,12 @@ impl SampleV for BeckmannV {
 /// valid where both directions are strictly above the horizon and
 /// `|h|² > 10⁻¹⁴` (NaN → invalid).
 ///
-/// `h` carries the length correction of `Half::of` (`s − ((d/4)·s) d`,
-/// `s = ωi + ωo`, `d = ωi − ωo`, in the lanes where `|s|² < 1`), with the
-/// scalar's operations in the scalar's order.
+/// `h` is the length-corrected sum of `Half::of`
+/// ([`Dirs::half_vector_sum`]).
 #[inline(always)]
 fn half(wi: Dirs, wo: Dirs) -> (Vf, Vf, Vf, Vf) {
     let zero = Vf::ZERO;
-    let s = wi.add(wo);
-    let sum2 = s.length_squared();
-    let correct = sum2.simd_lt(Vf::splat(super::CORRECT_BELOW));
-    let h = if correct.any() {
-        let d = Dirs {
-            x: wi.x - wo.x,
-            y: wi.y - wo.y,
-            z: wi.z - wo.z,
-        };
-        let q = Vf::splat(0.25);
-        let k = Dirs {
-            x: q * d.x,
-            y: q * d.y,
-            z: q * d.z,
-        }
-        .dot(s);
-        Dirs {
-            x: correct.select(s.x - k * d.x, s.x),
-            y: correct.select(s.y - k * d.y, s.y),
-            z: correct.select(s.z - k * d.z, s.z),
-        }
-    } else {
-        s
-    };
+    let (h, sum2) = wi.half_vector_sum(wo);
     let len2 = h.length_squared();
     let tiny = Vf::splat(1e-14);
     let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & sum2.simd_gt(tiny) & len2.simd_gt(tiny);

@@ -71,6 +71,7 @@ pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 use core::marker::PhantomData;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
+use radiometry::frame::half_vector_sum;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
@@ -367,10 +368,6 @@ impl<D, G, F> Microfacet<D, G, F> {
     }
 }
 
-/// `|ωi + ωo|²` below which [`Half::of`] corrects the half vector for the
-/// input lengths (`θd > 60°`).
-const CORRECT_BELOW: f32 = 1.0;
-
 /// The half-vector quantities of a valid reflection pair of unit directions
 /// above the horizon: `|ωi + ωo|²`, and `cos²θh`, `sin²θh` of the direction
 /// of the half vector `h` (length-corrected, see [`Half::of`]).
@@ -388,45 +385,19 @@ impl Half {
     /// `|h|² ≤ 4`, so one division gives both squares and `h` itself is
     /// never normalised.
     ///
-    /// `h` points along the sum of the *normalised* inputs,
-    /// `ωi/‖ωi‖ + ωo/‖ωo‖`: with `δ = ‖ω‖² − 1` (`|δ| ≤ 4ε` on the hot path)
-    /// that sum is, up to a common factor `1 + O(δ)` and terms of order `δ²`,
-    /// `h = s − ¼ (δi − δo) d` with `s = ωi + ωo`, `d = ωi − ωo`, and
-    /// `δi − δo = ‖ωi‖² − ‖ωo‖² = d·s` exactly — so the correction needs no
-    /// extra precision: where `s` cancels, its components are exact
-    /// (Sterbenz) and `d·s` is accurate relative to `|s|`. The correction
-    /// matters where `ωi + ωo` cancels (`θd` near 90°: both directions
-    /// grazing, near the mirror configuration): there a length error of one
-    /// `f32` ulp in an input — every `f32` direction near `(±1, 0, small)`
-    /// has one — moves `h` by `~ε/|h|` radians, a large fraction of a narrow
-    /// lobe (GGX α = 0.01, both directions at 89.9°: 1.4·10⁻⁴ relative error
-    /// in the reflected radiance of a sun-sized cap without it, 10⁻⁸ with
-    /// it). `cos θd` keeps the plain `|ωi + ωo|/2`: `F` is insensitive to the
-    /// correction (≤ 10⁻⁶ absolute), and near `θd = 0` an `f32` `cos θd`
-    /// carries a rounding of half an ulp either way. Swapping `ωi` and `ωo`
-    /// negates `d` and `d·s` exactly, so `h` is symmetric bit for bit.
-    ///
-    /// The correction is applied where `|s|² < 1` ([`CORRECT_BELOW`],
-    /// `θd > 60°`) only. Elsewhere it turns `h` by at most
-    /// `¼ |δi − δo| tan θd ≤ 0.43 |δi − δo|` radians (`≤ 2·10⁻⁷` for the
-    /// lengths the hot path accepts, `~4·10⁻⁸` for rounded unit vectors):
-    /// the size of the direction rounding of the `f32` inputs themselves, so
-    /// skipping it there loses nothing a `f32` direction can express, and
-    /// keeps the common case at its former cost.
+    /// `h` is [`radiometry::frame::half_vector_sum`]: it points along the
+    /// sum of the *normalised* inputs, corrected where `ωi + ωo` cancels
+    /// (GGX α = 0.01, both directions at 89.9°: 1.4·10⁻⁴ relative error in
+    /// the reflected radiance of a sun-sized cap without the correction,
+    /// 10⁻⁸ with it). `cos θd` keeps the plain `|ωi + ωo|/2`: `F` is
+    /// insensitive to the correction (≤ 10⁻⁶ absolute), and near `θd = 0` an
+    /// `f32` `cos θd` carries a rounding of half an ulp either way.
     #[inline(always)]
     fn of(wi: Vec3, wo: Vec3) -> Option<Half> {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return None;
         }
-        let s = wi + wo;
-        let sum2 = s.length_squared();
-        let h = if sum2 < CORRECT_BELOW {
-            let d = wi - wo;
-            // `(d/4)·s = ¼ d·s` (`d/4` is exact) without a dependent multiply.
-            s - (0.25 * d).dot(s) * d
-        } else {
-            s
-        };
+        let (h, sum2) = half_vector_sum(wi, wo);
         let len2 = h.length_squared();
         // (Both comparisons are false for NaN.)
         if !(sum2 > 1e-14 && len2 > 1e-14) {
