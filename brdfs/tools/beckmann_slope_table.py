@@ -179,6 +179,7 @@ def emit():
     print("/// `log2(1 + f) ≈ f·P(f)` on `[0, 1)` (least squares, max error 1.7·10⁻⁵).")
     print("pub(super) const LOG2_POLY: [f32; 5] = [" + ", ".join(f32(v) for v in LOG2_POLY) + "];")
     print("/// The exact quantile `x(β_i, t_j)` (row-major, `i` slow), rounded to `f32`.")
+    print("#[rustfmt::skip]")
     print(f"pub(super) static TABLE: [f32; {NB * NT}] = [")
     for row in tab:
         vals = [f32(v) for v in row]
