@@ -7,9 +7,9 @@
 //! branches of the slope inversion (`x̃ ≤ 0` and `x̃ > 0`) run in every lane
 //! and a select keeps the one the scalar code takes.
 
-use super::beckmann::TAIL_RESOLUTION;
 use super::beckmann_slope::lanes::slope_x_v;
 use super::beckmann_slope::{U_HI, U_LO};
+use super::beckmann_tail::TAIL_RESOLUTION;
 use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, SQRT_PI};
 use super::special_lanes::{
     beckmann_s_v, erfcinv_v, erfcx_v, erfinv_2p_minus_1_v, exp_neg_sq_v, ln64_v, lnf_v,

@@ -47,6 +47,7 @@ mod beckmann_f32;
 mod beckmann_lanes;
 mod beckmann_slope;
 mod beckmann_slope_table;
+mod beckmann_tail;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
