@@ -125,17 +125,22 @@ fn ggx_normal_incidence_albedo(alpha: f64) -> f64 {
     r.value
 }
 
+/// GGX with height-correlated `G2` and `F = 1`.
+fn ggx(alpha: f32) -> common::plugins::Dyn {
+    let p = Params {
+        alpha,
+        ..Params::typical()
+    };
+    build(Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, Fres::None), &p).unwrap()
+}
+
 #[test]
 fn horizon_split_resolves_the_step_of_the_ggx_visible_normal_map() {
     let wo = Vec3::Z;
     let exact = ggx_normal_incidence_albedo(0.01);
     // Cross-check of the 1-D reference: α = 1 gives 1 − ln 2 (tests/references.rs).
     assert!((ggx_normal_incidence_albedo(1.0) - (1.0 - core::f64::consts::LN_2)).abs() < 1e-9);
-    let p = Params {
-        alpha: 0.01,
-        ..Params::typical()
-    };
-    let brdf = build(Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, Fres::None), &p).unwrap();
+    let brdf = ggx(0.01);
     let g = DirectionalAlbedo { brdf: &*brdf, wo };
     let budget = 8192;
     let split = WarpedGaussLegendre::horizon_split()
@@ -175,11 +180,7 @@ fn a_glossy_peak_the_blind_rules_miss_is_flagged_by_the_probe() {
     // (cli/src/reference.rs, polar coordinates about the mirror direction;
     // cli/results/references.csv), written separately from the integrators.
     let exact = 0.999_932_508_168_528_7;
-    let p = Params {
-        alpha: 1e-3,
-        ..Params::typical()
-    };
-    let brdf = build(Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, Fres::None), &p).unwrap();
+    let brdf = ggx(1e-3);
     let t = 85f32.to_radians();
     let g = DirectionalAlbedo {
         brdf: &*brdf,
@@ -221,11 +222,7 @@ fn adaptive_warped_sees_the_step_in_the_edge_gap_of_the_square() {
     // the Genz–Malik nodes never enter; without the edge-gap check the
     // error estimate at 256 evaluations understated the error 600×.
     let exact = ggx_normal_incidence_albedo(0.01);
-    let p = Params {
-        alpha: 0.01,
-        ..Params::typical()
-    };
-    let brdf = build(Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, Fres::None), &p).unwrap();
+    let brdf = ggx(0.01);
     let g = DirectionalAlbedo {
         brdf: &*brdf,
         wo: Vec3::Z,
@@ -255,18 +252,19 @@ fn monte_carlo_error_covers_the_sliver_no_draw_lands_in() {
     // constant and the standard error is ~0 while the true error is ~10⁻⁴;
     // the resolution floor mean/N covers it.
     let exact = ggx_normal_incidence_albedo(0.01);
-    let p = Params {
-        alpha: 0.01,
-        ..Params::typical()
-    };
-    let brdf = build(Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, Fres::None), &p).unwrap();
+    let brdf = ggx(0.01);
     let g = DirectionalAlbedo {
         brdf: &*brdf,
         wo: Vec3::Z,
     };
     let mut covered = 0;
     let mut n = 0;
-    for points in [PointSet::Prng, PointSet::Stratified, PointSet::Sobol, PointSet::Fibonacci] {
+    for points in [
+        PointSet::Prng,
+        PointSet::Stratified,
+        PointSet::Sobol,
+        PointSet::Fibonacci,
+    ] {
         for seed in 0..8u64 {
             for budget in [1024u32, 4096] {
                 let e = MonteCarlo::new(Strategy::Integrand, points, seed)
@@ -290,11 +288,7 @@ fn uniform_and_cosine_draws_that_miss_a_glossy_peak_are_flagged() {
     // mean converges to the tails with a small standard error. The peak
     // probe must flag every such estimate that misses by more than 3σ.
     let exact = 0.999_932_508_168_528_7;
-    let p = Params {
-        alpha: 1e-3,
-        ..Params::typical()
-    };
-    let brdf = build(Kind::Micro(Dist::Ggx, Shadow::HeightCorrelated, Fres::None), &p).unwrap();
+    let brdf = ggx(1e-3);
     let t = 85f32.to_radians();
     let g = DirectionalAlbedo {
         brdf: &*brdf,
@@ -302,9 +296,16 @@ fn uniform_and_cosine_draws_that_miss_a_glossy_peak_are_flagged() {
     };
     let mut by_probe = 0;
     for strategy in [Strategy::Uniform, Strategy::Cosine] {
-        for points in [PointSet::Prng, PointSet::Stratified, PointSet::Sobol, PointSet::Fibonacci] {
+        for points in [
+            PointSet::Prng,
+            PointSet::Stratified,
+            PointSet::Sobol,
+            PointSet::Fibonacci,
+        ] {
             for budget in [256u32, 4096, 65536] {
-                let e = MonteCarlo::new(strategy, points, 5).integrate(&g, budget).unwrap();
+                let e = MonteCarlo::new(strategy, points, 5)
+                    .integrate(&g, budget)
+                    .unwrap();
                 let err = (e.value - exact).abs();
                 if err > 3.0 * e.error {
                     assert!(!e.is_resolved(), "{strategy:?} {points:?} {budget}: {e:?}");

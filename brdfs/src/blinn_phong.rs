@@ -404,29 +404,10 @@ mod tests {
             for &theta_deg in &[89.0f64, 89.9, 89.99] {
                 let theta = theta_deg.to_radians();
                 for k in 0..400 {
-                    let phi_o = 0.37 + 0.011 * k as f64;
-                    let s = (k as f64 * 0.618_033_988_749_895).fract() - 0.5;
-                    let t = (k as f64 * 0.754_877_666_246_693).fract() - 0.5;
-                    let lobe = 2.0 * width * theta.cos();
-                    let ti = theta + 4.0 * t * lobe / theta.cos().max(1e-3);
-                    let pi = PI64 + phi_o + 4.0 * s * lobe;
-                    if ti >= FRAC_PI_2 {
+                    let Some((wi, wo)) = grazing_mirror_pair(theta, 2.0 * width, 4.0, k) else {
                         continue;
-                    }
-                    let dir = |th: f64, ph: f64| {
-                        Vec3::new(
-                            (th.sin() * ph.cos()) as f32,
-                            (th.sin() * ph.sin()) as f32,
-                            th.cos() as f32,
-                        )
                     };
-                    let (wi, wo) = (dir(ti, pi), dir(theta, phi_o));
-                    let unit = |w: Vec3| {
-                        let v = [w.x as f64, w.y as f64, w.z as f64];
-                        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-                        [v[0] / l, v[1] / l, v[2] / l]
-                    };
-                    let (i, o) = (unit(wi), unit(wo));
+                    let (i, o) = (unit64(wi), unit64(wo));
                     let h = [i[0] + o[0], i[1] + o[1], i[2] + o[2]];
                     // 1 − cos θh = |h_xy|² / (|h| (|h| + h_z)), no cancellation.
                     let l = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();

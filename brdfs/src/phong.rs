@@ -554,6 +554,39 @@ pub(crate) mod test_support {
     use radiometry::math::ONE_MINUS_EPSILON;
     use radiometry::{Brdf, Spectrum};
 
+    /// `f32` direction pairs near the mirror configuration with `ωo` at
+    /// `theta` from the normal (`k`-th of a sequence over `φo`): `ωi` at the
+    /// mirror direction offset by up to `±spread · width · cos θ` in azimuth
+    /// and `±spread · width` (scaled by `1/cos θ`) in elevation, where
+    /// `width` is the lobe's angular width. `None` where `ωi` would fall
+    /// below the horizon. For the grazing-precision tests.
+    pub fn grazing_mirror_pair(theta: f64, width: f64, spread: f64, k: usize) -> Option<(Vec3, Vec3)> {
+        let phi_o = 0.37 + 0.011 * k as f64;
+        let s = (k as f64 * 0.618_033_988_749_895).fract() - 0.5;
+        let t = (k as f64 * 0.754_877_666_246_693).fract() - 0.5;
+        let lobe = width * libm::cos(theta);
+        let ti = theta + spread * t * lobe / libm::cos(theta).max(1e-3);
+        let pi = core::f64::consts::PI + phi_o + spread * s * lobe;
+        if ti >= FRAC_PI_2 {
+            return None;
+        }
+        let dir = |th: f64, ph: f64| {
+            Vec3::new(
+                (libm::sin(th) * libm::cos(ph)) as f32,
+                (libm::sin(th) * libm::sin(ph)) as f32,
+                libm::cos(th) as f32,
+            )
+        };
+        Some((dir(ti, pi), dir(theta, phi_o)))
+    }
+
+    /// The `f32` vector `w` normalised in `f64`: the direction it stands for.
+    pub fn unit64(w: Vec3) -> [f64; 3] {
+        let v = [w.x as f64, w.y as f64, w.z as f64];
+        let l = libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        [v[0] / l, v[1] / l, v[2] / l]
+    }
+
     /// `∫_H g(ω) dω` by the midpoint rule in `(s, φ)` with `θ = (π/2) s²`
     /// (cells crowd toward the pole, where narrow lobes at normal incidence
     /// live; the horizon is a cell boundary). `dω = sin θ · π s ds dφ`.

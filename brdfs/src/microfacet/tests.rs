@@ -8,6 +8,7 @@
 extern crate std;
 
 use super::*;
+use crate::phong::test_support::{grazing_mirror_pair, unit64};
 use core::f64::consts::{FRAC_PI_2, PI as PI64, TAU as TAU64};
 use radiometry::math::ONE_MINUS_EPSILON;
 use std::println;
@@ -1051,12 +1052,7 @@ fn cheap_paths_match_full_paths() {
 /// eqs. 20, 33; Heitz 2014, eqs. 86, 99) at the *normalised* directions of
 /// the given `f32` vectors, written in the `tan²` forms that do not cancel.
 fn ggx_hc_ref(alpha: f64, wi: Vec3, wo: Vec3) -> f64 {
-    let unit = |w: Vec3| {
-        let v = [w.x as f64, w.y as f64, w.z as f64];
-        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        [v[0] / l, v[1] / l, v[2] / l]
-    };
-    let (i, o) = (unit(wi), unit(wo));
+    let (i, o) = (unit64(wi), unit64(wo));
     let h = [i[0] + o[0], i[1] + o[1], i[2] + o[2]];
     let t2 = (h[0] * h[0] + h[1] * h[1]) / (h[2] * h[2]);
     let c2 = h[2] * h[2] / (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
@@ -1085,25 +1081,9 @@ fn grazing_mirror_pairs_are_exact_to_f32() {
             for k in 0..400 {
                 // wo at azimuth φo, wi around the mirror direction: offsets
                 // across a few lobe widths in azimuth and in elevation.
-                let phi_o = 0.37 + 0.011 * k as f64;
-                let s = (k as f64 * 0.618_033_988_749_895).fract() - 0.5;
-                let t = (k as f64 * 0.754_877_666_246_693).fract() - 0.5;
-                let lobe = 2.0 * alpha * theta.cos();
-                let (ti, pi) = (
-                    theta + 8.0 * t * lobe / theta.cos().max(1e-3),
-                    PI64 + phi_o + 8.0 * s * lobe,
-                );
-                if ti >= FRAC_PI_2 {
+                let Some((wi, wo)) = grazing_mirror_pair(theta, 2.0 * alpha, 8.0, k) else {
                     continue;
-                }
-                let d = |th: f64, ph: f64| {
-                    Vec3::new(
-                        (th.sin() * ph.cos()) as f32,
-                        (th.sin() * ph.sin()) as f32,
-                        th.cos() as f32,
-                    )
                 };
-                let (wi, wo) = (d(ti, pi), d(theta, phi_o));
                 let reference = ggx_hc_ref(alpha, wi, wo);
                 if reference < 1e-30 {
                     continue;
