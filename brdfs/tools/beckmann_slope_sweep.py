@@ -82,6 +82,9 @@ def slope_upper(c, s, u, b, total2, excess, steps):
         xe = max(b - math.sqrt(SQPI * gs / (s * math.exp(-b * b))), 0.0)
         x = min(x, b - math.sqrt(SQPI * gs * math.exp(xe * xe) / s))
     x = max(x, 0.0)
+    # TAIL_RESOLUTION: a target below the f32 resolution of G keeps the start.
+    if b < MAX_SLOPE and gs <= 16 * 2.0 ** -23 * (excess + s / SQPI * math.exp(-b * b)):
+        return min(x, b)
     lo, hi = 0.0, b
     for _ in range(steps):
         e = math.exp(-x * x)

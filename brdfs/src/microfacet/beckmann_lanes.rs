@@ -1,10 +1,15 @@
-//! The vector form (feature `simd`) of [`Beckmann::sample_visible`]: the
-//! visible-slope sampler of Heitz & d'Eon 2014 (§4, bounded start and two
-//! safeguarded Halley steps, see `Beckmann::sample_slope_x`) lane for lane,
-//! bit-identical to the scalar code. Both branches of the slope inversion
-//! (`x̃ ≤ 0` and `x̃ > 0`) run in every lane and a select keeps the one the
-//! scalar code takes.
+//! The vector form (feature `simd`) of [`Beckmann::sample_visible`], lane
+//! for lane bit-identical to the scalar code: the `f32` fast path of the
+//! visible-slope inversion (`beckmann_slope::lanes`) in every lane and, only
+//! when some lane has `u₀` outside its range, the tail scheme of Heitz &
+//! d'Eon 2014 (§4, bounded start and two safeguarded Halley steps, see
+//! `Beckmann::sample_slope_x`) for those lanes. In the tail scheme both
+//! branches of the slope inversion (`x̃ ≤ 0` and `x̃ > 0`) run in every lane
+//! and a select keeps the one the scalar code takes.
 
+use super::beckmann_slope::lanes::slope_x_v;
+use super::beckmann_slope::{U_HI, U_LO};
+use super::beckmann_tail::TAIL_RESOLUTION;
 use super::special::{FRAC_1_SQRT_PI, MAX_SLOPE, SQRT_PI};
 use super::special_lanes::{
     beckmann_s_v, erfcinv_v, erfcx_v, erfinv_2p_minus_1_v, exp_neg_sq_v, ln64_v, lnf_v,
@@ -71,7 +76,8 @@ fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
     let zs = z * s;
     let shift = z - s / (((c * c + zs * zs).sqrt() + c) - zs);
     let xu = use_q.select(b.min(shift), b);
-    let xe = (b - (sqrt_pi * gs / (s * exp_neg_sq_v(b))).sqrt()).max(zero);
+    let eb = exp_neg_sq_v(b);
+    let xe = (b - (sqrt_pi * gs / (s * eb)).sqrt()).max(zero);
     let end = b - (sqrt_pi * gs / (s * exp_neg_sq_v(xe))).sqrt();
     let xu = b.simd_lt(max).select(xu.min(end), xu).max(zero);
 
@@ -106,6 +112,10 @@ fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
         hi = raise_lo.select(hi, x);
         x = bracketed(lower.select(next_l, next_u), lo, hi);
     }
+    // Upper lanes whose target is below the resolution of `G` keep their
+    // start (`Beckmann::slope_upper`, `TAIL_RESOLUTION`).
+    let keep = !lower & b.simd_lt(max) & gs.simd_le(Vf::splat(TAIL_RESOLUTION) * (excess + sf * eb));
+    let x = keep.select(xu, x);
     let x = lower.select(x.max(-max).min(zero), x.max(zero).min(b)) + zero;
     let x = u.simd_ge(one).select(b, x);
     u.simd_le(zero).select(-max, x)
@@ -113,23 +123,35 @@ fn sample_slope_x(c: Vf, s: Vf, u: Vf) -> Vf {
 
 /// [`Beckmann`]'s [`sample_visible`](MicrofacetDistribution::sample_visible)
 /// lane-wise for unit `ωo`: `(m, cold)`, `cold` the lanes whose scalar
-/// normalisations leave the hot branches (handed back).
+/// normalisations leave the hot branches (handed back). `x̃` by the fast
+/// path (`beckmann_slope`) in every lane; only when some lane has
+/// `u₀ ∉ [U_LO, U_HI]` the tail scheme runs as well, for those lanes.
 #[inline(always)]
 pub(super) fn sample_visible(alpha: f32, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf) {
     let a = Vf::splat(alpha);
-    let stretched = Dirs {
-        x: a * wo.x,
-        y: a * wo.y,
-        z: wo.z.abs(),
-    };
-    let (v, cold_v) = stretched.unitize();
-    let sin_t = (v.x * v.x + v.y * v.y).sqrt().min(Vf::ONE);
-    let cos_t = v.z;
-    let pos = sin_t.simd_gt(Vf::ZERO);
-    let cos_p = pos.select(v.x / sin_t, Vf::ONE);
-    let sin_p = pos.select(v.y / sin_t, Vf::ZERO);
-    let sx = sample_slope_x(cos_t, sin_t, clamp01(u0));
-    let sy = erfinv_2p_minus_1_v(clamp01(u1));
+    let (u0, u1) = (clamp01(u0), clamp01(u1));
+    let rxy = wo.xy_length_squared().sqrt();
+    let pos = rxy.simd_gt(Vf::ZERO);
+    let inv = Vf::ONE / rxy;
+    let cos_p = pos.select(wo.x * inv, Vf::ONE);
+    let sin_p = pos.select(wo.y * inv, Vf::ZERO);
+    let c = wo.z.abs();
+    let fast = u0.simd_ge(Vf::splat(U_LO)) & u0.simd_le(Vf::splat(U_HI));
+    let mut sx = slope_x_v(c, a * rxy, u0);
+    let mut cold_v = Vf::ZERO;
+    if !fast.all() {
+        // `Beckmann::slope_x_tail`: the stretched direction, normalised.
+        let stretched = Dirs {
+            x: a * wo.x,
+            y: a * wo.y,
+            z: c,
+        };
+        let (v, cold) = stretched.unitize();
+        let sin_t = (v.x * v.x + v.y * v.y).sqrt().min(Vf::ONE);
+        sx = fast.select(sx, sample_slope_x(v.z, sin_t, u0));
+        cold_v = !fast & cold;
+    }
+    let sy = erfinv_2p_minus_1_v(u1);
     let tx = cos_p * sx - sin_p * sy;
     let ty = sin_p * sx + cos_p * sy;
     let na = Vf::splat(-alpha);
@@ -193,5 +215,60 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `sample_visible` lane-wise against the scalar, bit for bit, where the
+    /// two slope paths meet and at the top of the `u` range near grazing
+    /// (the tail scheme's kept start, `TAIL_RESOLUTION`).
+    #[test]
+    fn sample_visible_lanes_at_switch_points_and_top_of_range() {
+        use super::super::{Beckmann, MicrofacetDistribution};
+        use radiometry::glam::Vec3;
+        let mut us = std::vec::Vec::new();
+        for v in [U_LO, U_HI, 1.0 - 2f32.powi(-12), 1.0] {
+            let mut w = v;
+            for _ in 0..40 {
+                w = w.next_down();
+            }
+            for _ in 0..80 {
+                if w <= 1.0 {
+                    us.push(w);
+                }
+                w = w.next_up();
+            }
+        }
+        let mut compared = 0;
+        for &alpha in &[0.05f32, 0.3, 1.0] {
+            let d = Beckmann::new(alpha).unwrap();
+            for &theta in &[0.3f64, 1.2, 1.55, 1.565, 1.57, 1.5706] {
+                let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
+                for chunk in us.chunks(LANES) {
+                    let mut u0 = [0.5f32; LANES];
+                    u0[..chunk.len()].copy_from_slice(chunk);
+                    let dirs = Dirs {
+                        x: Vf::splat(wo.x),
+                        y: Vf::splat(wo.y),
+                        z: Vf::splat(wo.z),
+                    };
+                    let (m, cold) = sample_visible(alpha, dirs, Vf::new(u0), Vf::splat(0.3));
+                    let (mx, my, mz, cold) =
+                        (m.x.to_array(), m.y.to_array(), m.z.to_array(), cold.to_array());
+                    for k in 0..LANES {
+                        if cold[k] != 0.0 {
+                            continue;
+                        }
+                        let r = d.sample_visible(wo, [u0[k], 0.3]);
+                        compared += 1;
+                        assert_eq!(
+                            [mx[k].to_bits(), my[k].to_bits(), mz[k].to_bits()],
+                            [r.x.to_bits(), r.y.to_bits(), r.z.to_bits()],
+                            "α={alpha} θ={theta} u={}",
+                            u0[k]
+                        );
+                    }
+                }
+            }
+        }
+        assert!(compared > 4000, "{compared}");
     }
 }

@@ -45,6 +45,9 @@ mod beckmann;
 mod beckmann_f32;
 #[cfg(feature = "simd")]
 mod beckmann_lanes;
+mod beckmann_slope;
+mod beckmann_slope_table;
+mod beckmann_tail;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
