@@ -11,9 +11,11 @@
 //! with `μ = cos θi` (`dω = dμ dφ`) and `ωo` in the `φ = 0` half-plane: the
 //! integrand of an isotropic BRDF is even in `φ`, so `φ ∈ [0, π]` is doubled.
 //!
-//! Each reference is computed at two tolerances; the reported bound is
-//! `|R_coarse − R_fine| + ε_fine`, where `ε_fine` is the summed Kronrod error
-//! indicator of the fine run.
+//! Each reference is computed at two relative tolerances, `10⁻⁸` (coarse) and
+//! `10⁻¹¹` (fine); the reported bound is `|R_coarse − R_fine| + ε_fine`, where
+//! `ε_fine` is the summed Kronrod error indicator of the fine run's outer
+//! rule. The inner rules of the fine run work to `10⁻¹³` of their own value
+//! or `10⁻¹³` of the coarse total, whichever is looser ([`inner_abs_tol`]).
 
 use std::collections::BinaryHeap;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -356,6 +358,17 @@ pub struct Reference {
     pub evaluations: u64,
 }
 
+/// The absolute tolerance of an inner integral of a nested rule whose outer
+/// integral is `≈ scale` (the coarse run's value; `0` in the coarse run
+/// itself) and whose inner values are summed with total weight `≤
+/// outer_weight`: `0.01 · tol · |scale| / outer_weight`, so all inner errors
+/// together stay below `tol/100` of the total. The inner rule still stops
+/// earlier at its relative tolerance; this only spares it from resolving
+/// small inner integrals (the tails of a lobe) to `10⁻¹⁴` of their own value.
+fn inner_abs_tol(tol: f64, scale: f64, outer_weight: f64) -> f64 {
+    (0.01 * tol * scale.abs() / outer_weight).max(1e-300)
+}
+
 /// `∫∫ g(μ, φ) dφ dμ` over `μ ∈ [0,1]`, `φ ∈ [0,π]` at relative tolerance
 /// `tol`, with break points around `(mu_peak, π)` of width `width`.
 fn integrate_2d(
@@ -364,6 +377,7 @@ fn integrate_2d(
     kink: Option<&dyn Fn(f64) -> Option<f64>>,
     extra_mu_breaks: &[f64],
     tol: f64,
+    scale: f64,
     evals: &mut u64,
 ) -> (f64, f64) {
     let (mut mu_breaks, phi_breaks) = match peak {
@@ -390,7 +404,7 @@ fn integrate_2d(
                 0.0,
                 PI,
                 &breaks,
-                1e-300,
+                inner_abs_tol(tol, scale, 1.0),
                 tol * 0.01,
                 4000,
             );
@@ -432,16 +446,16 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
     let extra: Vec<f64> = if is_phong { vec![st] } else { vec![] };
     if let Some((_, width)) = peak {
         // Peaked models: polar coordinates about the mirror direction.
-        let (coarse, _) = pole_albedo(model, theta_o, width, 1e-8, &mut evals);
-        let (fine, e) = pole_albedo(model, theta_o, width, 1e-12, &mut evals);
+        let (coarse, _) = pole_albedo(model, theta_o, width, 1e-8, 0.0, &mut evals);
+        let (fine, e) = pole_albedo(model, theta_o, width, 1e-11, coarse, &mut evals);
         return Reference {
             value: fine,
             bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
             evaluations: evals,
         };
     }
-    let (coarse, _) = integrate_2d(&g, peak, kink, &extra, 1e-8, &mut evals);
-    let (fine, e) = integrate_2d(&g, peak, kink, &extra, 1e-12, &mut evals);
+    let (coarse, _) = integrate_2d(&g, peak, kink, &extra, 1e-8, 0.0, &mut evals);
+    let (fine, e) = integrate_2d(&g, peak, kink, &extra, 1e-11, coarse, &mut evals);
     Reference {
         value: fine,
         bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
@@ -460,7 +474,14 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
 /// (isotropic BRDF, `ωo` in the xz-plane). `φ_max` reaches `π` at
 /// `θ' = π/2 − θo` and `0` at `θ' = π/2 + θo`: outer break points, as is
 /// `θ' = π/2` (the modified-Phong kink `cos α = 0`).
-fn pole_albedo(model: &RefModel, theta_o: f64, width: f64, tol: f64, evals: &mut u64) -> (f64, f64) {
+fn pole_albedo(
+    model: &RefModel,
+    theta_o: f64,
+    width: f64,
+    tol: f64,
+    scale: f64,
+    evals: &mut u64,
+) -> (f64, f64) {
     let (st, ct) = theta_o.sin_cos();
     let wo = [st, 0.0, ct];
     let r = [-st, 0.0, ct];
@@ -504,7 +525,8 @@ fn pole_albedo(model: &RefModel, theta_o: f64, width: f64, tol: f64, evals: &mut
                 0.0,
                 phi_max,
                 &[],
-                1e-300,
+                // The inner value is weighted by 2 sin θ' ≤ 2 over θ' ∈ [0, π].
+                inner_abs_tol(tol, scale, 2.0 * PI),
                 tol * 0.01,
                 4000,
             );
@@ -579,7 +601,7 @@ pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) 
     let v_breaks = cluster(v_r, lobe * alpha_r.sin().max(lobe) + lobe * lobe);
     let beta_breaks = cluster(0.0, (lobe / alpha_r.sin().max(lobe)).min(PI / 4.0));
     let mut evals = 0u64;
-    let run = |tol: f64, evals: &mut u64| {
+    let run = |tol: f64, scale: f64, evals: &mut u64| {
         let mut count = 0u64;
         let (v, e) = adaptive(
             |beta| {
@@ -605,7 +627,7 @@ pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) 
                     0.0,
                     v_sigma,
                     &breaks,
-                    1e-300,
+                    inner_abs_tol(tol, scale, 2.0 * PI),
                     tol * 0.01,
                     4000,
                 )
@@ -621,8 +643,8 @@ pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) 
         *evals += count;
         (v, e)
     };
-    let (coarse, _) = run(1e-8, &mut evals);
-    let (fine, e) = run(1e-12, &mut evals);
+    let (coarse, _) = run(1e-8, 0.0, &mut evals);
+    let (fine, e) = run(1e-11, coarse, &mut evals);
     Reference {
         value: fine,
         bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),

@@ -6,8 +6,8 @@
 use super::acc::{self, Moments, SampleDiagnostics};
 use super::chunk::{CHUNK, sample_weight};
 use super::points::{
-    Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed, sobol_point,
-    square_to_cosine_hemisphere_polar,
+    Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed,
+    sobol_point_pairs, square_to_cosine_hemisphere_polar,
 };
 use super::probe::{self, PROBE_POINTS, Probe};
 use super::{Estimate, Integrand, IntegrateError, Integrator, WideOf, check_finite};
@@ -470,12 +470,9 @@ impl Integrator for MonteCarlo {
                 PointSet::Sobol => {
                     let sseed = (rseed ^ (rseed >> 32)) as u32;
                     for i in 0..n.min(SOBOL_MAX_POINTS) {
-                        let u1 = sobol_point(i, 0, sseed);
-                        let u2 = if cost == 2 {
-                            sobol_point(i, 1, sseed)
-                        } else {
-                            [0.0; 2]
-                        };
+                        // One four-dimensional draw: pairs 0 (u₁) and 1 (u₂).
+                        let [u1, u2] = sobol_point_pairs(i, sseed);
+                        let u2 = if cost == 2 { u2 } else { [0.0; 2] };
                         batch.push(u1, u2, &mut m)?;
                     }
                 }
