@@ -255,6 +255,15 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
     }
 
+    /// With the `simd` feature a vector kernel for the mixture sampler,
+    /// bit-identical to [`Brdf::sample`] (the same `None`s; 0 ulp in `wi`,
+    /// pdf and weight).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+        crate::simd::run_samples(&batch::Sample(self), wo, u, out)
+    }
+
     /// Mixture sampling (see the module documentation). `None` when `wo`
     /// is at or below the horizon, when `kd = ks = 0`, or when the
     /// reflected direction is at or below the horizon.
@@ -307,26 +316,58 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
 
 impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 
-/// The vector `eval` kernel (feature `simd`): `f = kd/π + ks N(n) cos^n θh`
+/// The vector kernels (feature `simd`). `eval`: `f = kd/π + ks N(n) cos^n θh`
 /// with the scalar code's input handling (the hot path of `upper_pair`:
 /// both directions unit to within `4ε` and used as given, the other lanes
 /// recomputed by the scalar method; `half_vector`:
 /// `h = (ωi + ωo)/√|ωi + ωo|²`, undefined for `|ωi + ωo|² ≤ 10⁻¹⁴`) and
 /// its two forms of the lobe:
 /// `(1 − δ)^n = exp(n log1p(−δ))`, `δ = (h_x² + h_y²)/(1 + h_z)`, for
-/// `h_z ≥ 1/2`, and `powf(h_z, n)` below.
+/// `h_z ≥ 1/2`, and `powf(h_z, n)` below. `sample`: the mixture sampler,
+/// with the reflection `ωi = 2(ωo·h)h − ωo` of the sampled half vector
+/// and the same lobe evaluation for the pdf and the weight.
 ///
-/// Bit-identical to `eval`: the same operations in the same order, and the
-/// bit-exact ports [`crate::simd::expf`], [`crate::simd::log1pf`] and
-/// [`crate::simd::powf`] of `libm`'s functions.
+/// Bit-identical to `eval` / `sample`: the same operations in the same
+/// order, and the bit-exact ports [`crate::simd::expf`],
+/// [`crate::simd::log1pf`], [`crate::simd::powf`] (and for sampling `logf`,
+/// `expm1f`, `sincosf`) of `libm`'s functions.
 #[cfg(feature = "simd")]
 mod batch {
     use super::BlinnPhong;
+    use crate::phong::batch::{choose_strategy, finish, warp};
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, cold_lanes, pow_one_minus, powf, store};
+    use crate::simd::{Dirs, Kernel, LANES, SampleKernel, cold_lanes, pow_one_minus, powf, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
-    use radiometry::{Brdf, Spectrum};
+    use radiometry::{Brdf, BrdfSample, Spectrum};
+
+    /// `(up, cold, defined, |ωi + ωo|², cos^n θh)`: the hot path of
+    /// `upper_pair` (`up`: both strictly above the horizon; `cold`: the
+    /// lanes where a direction is not unit to within `4ε`, recomputed by the
+    /// driver with the scalar method), `half_vector` (`defined`; its flip
+    /// to the upper hemisphere never applies to a pair above the horizon,
+    /// whose `h_z > 0`) and `lobe(h)` (`0` where `h` is undefined), as the
+    /// scalar code.
+    #[inline(always)]
+    fn upper_half_lobe<S: Spectrum>(b: &BlinnPhong<S>, wi: Dirs, wo: Dirs) -> (Vf, u32, Vf, Vf, Vf) {
+        let (zero, one) = (Vf::ZERO, Vf::ONE);
+        let cold = cold_lanes(wi, wo);
+        let up = wi.z.simd_gt(zero) & wo.z.simd_gt(zero);
+        let (h, sum2) = wi.half_vector_sum(wo);
+        let len2 = h.length_squared();
+        let tiny = Vf::splat(1e-14);
+        let defined = sum2.simd_gt(tiny) & len2.simd_gt(tiny) & len2.is_finite();
+        let h = h.div(len2.sqrt());
+        // `lobe(h)`: `(1 − δ)^n` near the pole, `powf(h_z, n)` below
+        // `h_z = 1/2` (computed only when some lane is there).
+        let pole = h.z.simd_ge(Vf::splat(0.5));
+        let delta = h.xy_length_squared() / (one + h.z);
+        let near = pow_one_minus(delta, b.exponent);
+        let below = !pole & h.z.simd_gt(zero);
+        let far = if below.any() { powf(h.z, b.exponent) } else { zero };
+        let lobe = pole.select(near, below.select(far, zero));
+        (up, cold, defined, sum2, defined.select(lobe, zero))
+    }
 
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a BlinnPhong<S>);
 
@@ -336,31 +377,12 @@ mod batch {
         #[inline(always)]
         fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [S; LANES]) -> u32 {
             let b = self.0;
-            let (zero, one) = (Vf::ZERO, Vf::ONE);
-            // The hot path of `upper_pair`: both used as given, both strictly
-            // above the horizon; lanes where one is not unit to within 4ε
-            // are recomputed by the driver with the scalar method.
-            let (a, c) = (wi, wo);
-            let cold = cold_lanes(a, c);
-            let up = a.z.simd_gt(zero) & c.z.simd_gt(zero);
-            // `half_vector` (h_z > 0 for every pair above the horizon, so its
-            // flip to the upper hemisphere never applies).
-            let (h, sum2) = a.half_vector_sum(c);
-            let len2 = h.length_squared();
-            let tiny = Vf::splat(1e-14);
-            let defined = sum2.simd_gt(tiny) & len2.simd_gt(tiny) & len2.is_finite();
-            let h = h.div(len2.sqrt());
-            // `lobe(h)`.
-            let pole = h.z.simd_ge(Vf::splat(0.5));
-            let delta = h.xy_length_squared() / (one + h.z);
-            let near = pow_one_minus(delta, b.exponent);
-            let far = powf(h.z, b.exponent);
-            let lobe = pole.select(near, h.z.simd_gt(zero).select(far, zero));
-            let lobe = Vf::splat(b.norm) * defined.select(lobe, zero);
+            let (up, cold, _, _, lobe) = upper_half_lobe(b, wi, wo);
+            let lobe = Vf::splat(b.norm) * lobe;
             let diffuse = b.kd * FRAC_1_PI;
             store(out, |ch| {
                 let f = Vf::splat(diffuse.channel(ch)) + Vf::splat(b.ks.channel(ch)) * lobe;
-                up.select(f, zero)
+                up.select(f, Vf::ZERO)
             });
             cold
         }
@@ -368,6 +390,68 @@ mod batch {
         #[inline(always)]
         fn one(&self, wi: Vec3, wo: Vec3) -> S {
             self.0.eval(wi, wo)
+        }
+    }
+
+    /// `sample` of [`BlinnPhong`] lane for lane: the strategy choice, the
+    /// cosine-weighted warp or a half vector `h` with `cos θh = ξ^{1/(n+1)}`
+    /// reflected to `ωi = 2(ωo·h)h − ωo` (`None` where `ωo·h` is NaN or
+    /// `≤ 0`), then `pdf = pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)`
+    /// with `ωo·h = |ωi + ωo|/2`, and `weight = f cos θi/pdf`, as the scalar
+    /// `sample`.
+    ///
+    /// Lanes handed back to the scalar method: `ωo` not unit to within `4ε`,
+    /// and a sampled `ωi` not unit to within `4ε` (the scalar's
+    /// `unit_or_normalize`, or `upper_pair`'s cold path for a diffuse
+    /// sample).
+    pub(super) struct Sample<'a, S: Spectrum>(pub(super) &'a BlinnPhong<S>);
+
+    impl<S: Spectrum> SampleKernel for Sample<'_, S> {
+        type Out = Option<BrdfSample<S>>;
+
+        #[inline(always)]
+        fn lanes(&self, wo: Dirs, u0: Vf, u1: Vf, out: &mut [Self::Out; LANES]) -> u32 {
+            let b = self.0;
+            let zero = Vf::ZERO;
+            let Some((diffuse, v)) = choose_strategy(u0, b.p_diffuse, b.p_lobe, b.inv_p) else {
+                out.fill(None);
+                return 0;
+            };
+            let local = warp(diffuse, v, u1, b.inv_n1);
+            // Lobe lanes: `ωi = 2(ωo·h)h − ωo`, rejected where `ωo·h` is NaN
+            // or not positive.
+            let (wi, rejected) = if diffuse.all() {
+                (local, !diffuse)
+            } else {
+                let h = local;
+                let wo_h = wo.dot(h);
+                let two = Vf::splat(2.0) * wo_h;
+                let wi = Dirs {
+                    x: diffuse.select(h.x, two * h.x - wo.x),
+                    y: diffuse.select(h.y, two * h.y - wo.y),
+                    z: diffuse.select(h.z, two * h.z - wo.z),
+                };
+                (wi, !diffuse & !wo_h.simd_gt(zero))
+            };
+            let (up, cold, defined, sum2, lobe) = upper_half_lobe(b, wi, wo);
+            let lobe_pdf = if b.p_lobe > 0.0 {
+                // `lobe_pdf`: ωo·h = |ωi + ωo|/2.
+                let wo_h = Vf::splat(0.5) * sum2.sqrt();
+                let k = Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI)));
+                let p = k * lobe / (Vf::splat(4.0) * wo_h);
+                (defined & wo_h.simd_gt(zero)).select(p, zero)
+            } else {
+                zero
+            };
+            let pdf = Vf::splat(b.p_diffuse) * wi.z * Vf::splat(FRAC_1_PI) + lobe_pdf;
+            let ls = Vf::splat(b.norm) * lobe;
+            finish(b.kd, b.ks, ls, wi, pdf, up & !rejected, out);
+            cold
+        }
+
+        #[inline(always)]
+        fn one(&self, wo: Vec3, u: [f32; 2]) -> Self::Out {
+            self.0.sample(wo, u)
         }
     }
 }

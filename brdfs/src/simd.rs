@@ -5,7 +5,7 @@
 //! This module holds the shared vector math ([`LANES`] directions in
 //! structure-of-arrays form, the chunk drivers for array-of-structures and
 //! structure-of-arrays input, bit-exact vector ports of `libm`'s `expf`,
-//! `log1pf`, `powf` and `sincosf`, `f32` ↔ `f64` lane conversions, spectrum
+//! `log1pf`, `powf`, `sincosf`, `logf` and `expm1f`, `f32` ↔ `f64` lane conversions, spectrum
 //! stores, the chunk driver of the sampling kernels); it imports nothing from
 //! the plugins. Each
 //! plugin's kernel lives next to its scalar code and follows its formula
@@ -21,7 +21,9 @@
 //! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
 //! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
 //! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | `pd cos θi/π + ps (n+1)/(2π) cos^n α` | 0 ulp |
+//! | `sample_batch` of [`ModifiedPhong<S>`](crate::ModifiedPhong) | one-sample mixture (Veach 1997, §9.2.4): Malley's cosine-weighted concentric map (Shirley & Chiu 1997) or `cos α = ξ^{1/(n+1)}`, `1 − cos α = −expm1(ln ξ/(n+1))` around `ωr` (Lafortune & Willems 1994), rotated by Duff et al. 2017; pdf and weight from one lobe evaluation | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | scalar loop | 0 ulp |
+//! | `sample_batch` of [`BlinnPhong<S>`](crate::BlinnPhong) | the same mixture with the half vector `cos θh = ξ^{1/(n+1)}` reflected, `ωi = 2(ωo·h)h − ωo`, pdf `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` (the reflection Jacobian of Torrance & Sparrow 1967; Walter et al. 2007) | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //!
 //! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
 //!
@@ -33,8 +35,9 @@
 //! scalar `f32` / `libm::sqrtf`; no fused multiply–add, no reciprocal
 //! estimates. The transcendentals are bit-exact vector ports of the `libm`
 //! functions the scalar code calls — `expf` (FreeBSD `e_expf.c`), `log1pf`
-//! (`s_log1pf.c`), `powf` (`e_powf.c`) and `sincosf` (`s_sincosf.c`, for
-//! `x ∈ [0, 2π]`), with integer operations on the
+//! (`s_log1pf.c`), `powf` (`e_powf.c`), `sincosf` (`s_sincosf.c`, for
+//! `x ∈ [−π/4, 2π]`), `logf` (`e_logf.c`) and `expm1f` (`s_expm1f.c`),
+//! with integer operations on the
 //! bits through `wide`'s integer vectors, checked against `libm` by this
 //! module's unit tests on every 7th `f32` of their ranges (`powf`: for
 //! `y = 30`; sparser grids for other exponents) — except the `hypot` inside the
@@ -51,7 +54,10 @@
 //! `wi`, pdf and weight, and the pdf equal to `pdf_batch` of the returned
 //! `wi`, over 1.2 million random `(ωo, u)` and hard cases (grazing and
 //! non-unit `ωo`, `u` at 0, 1 − ε, 1 and out of range, `α = 10⁻⁴` and 1)
-//! in every lane position.
+//! in every lane position; for the Phong family 100 000 random `(ωo, u)` and
+//! the same hard cases for each of a dozen `(kd, ks, n)` (`n` from 0 to
+//! 10⁷, `kd = 0`, `ks = 0`, both), RGB and 4-channel spectra, and proptest
+//! cases with random `(kd, ks, n)`.
 //!
 //! # Special inputs
 //!
@@ -65,7 +71,9 @@
 //! The sampling kernels hand back lanes with a non-unit `ωo` and lanes where
 //! one of the sampler's normalisations (of the stretched `ωo`, of `m`, of
 //! `ωi`) leaves the scalar `unitize`'s two hot branches (unit already, or
-//! `‖w‖² ∈ [10⁻³⁰, 10³⁰]`).
+//! `‖w‖² ∈ [10⁻³⁰, 10³⁰]`); the Phong-family samplers hand back lanes whose
+//! sampled `ωi` is not unit to within `4ε` (the scalar `unit_or_normalize`
+//! or `upper_pair` would normalise it).
 //! Below-horizon, grazing (`cos θ = 0`, or so small that `cos²θ` underflows)
 //! and `ωi = −ωo` lanes stay in the kernel and give `0` exactly where `eval`
 //! does (masked selects replace the scalar early returns). The Lambertian and
@@ -154,9 +162,13 @@
 //! [`Brdf::pdf_batch`]: radiometry::Brdf::pdf_batch
 //! [`Brdf::sample_batch`]: radiometry::Brdf::sample_batch
 
+mod expm1f;
+mod logf;
 mod sample;
 mod sincos;
 
+pub(crate) use expm1f::expm1f;
+pub(crate) use logf::logf;
 pub(crate) use sample::{SampleKernel, run_samples};
 pub(crate) use sincos::sincosf;
 

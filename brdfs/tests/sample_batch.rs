@@ -1,6 +1,8 @@
 //! `sample_batch` must return, element by element, what `sample` returns —
 //! with the vector kernels of the `simd` feature (GGX and Beckmann, either
-//! shadowing–masking variant, every Fresnel term) and with the default loop:
+//! shadowing–masking variant, every Fresnel term; modified Phong and
+//! Blinn–Phong for exponents from 0 to 10⁷ and diffuse/specular mixes
+//! including `kd = 0`, `ks = 0` and both) and with the default loop:
 //!
 //! ```text
 //! cargo test -p radiometry-brdfs --test sample_batch -- --nocapture
@@ -15,13 +17,16 @@
 //!
 //! Inputs: `wo` over the whole sphere with grazing (`z` down to `10⁻⁴⁵`),
 //! non-unit, degenerate and non-finite directions; `u` with `0`, `1 − ε`,
-//! `1`, out-of-range and NaN coordinates; `α` at both ends of its range.
+//! `1`, out-of-range and NaN coordinates; `α` at both ends of its range;
+//! signed-zero components of `wo` (`u₀ = 0` makes the Phong samplers'
+//! `1 − cos θ` a negative zero).
 
 use proptest::prelude::*;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, SampledSpectrum, Spectrum};
 use radiometry_brdfs::{
-    Beckmann, Conductor, Dielectric, Ggx, HeightCorrelated, Microfacet, NoFresnel, Schlick, Separable,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, HeightCorrelated, Microfacet, ModifiedPhong, NoFresnel,
+    Schlick, Separable,
 };
 
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
@@ -162,6 +167,56 @@ fn compare_all(alpha: f32, wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestCas
     Ok(some)
 }
 
+/// `(kd, ks, n)` of the Phong-family configurations (`f32` spectra):
+/// exponents 0, 1, 100, 10⁴, 10⁷ with a mix, the pure lobe, and at
+/// `n = 100` the pure diffuse, the black and a lobe-heavy mix.
+const PHONG_PARAMS: [(f32, f32, f32); 12] = [
+    (0.5, 0.5, 0.0),
+    (0.3, 0.7, 1.0),
+    (0.0, 1.0, 1.0),
+    (0.3, 0.7, 100.0),
+    (0.0, 1.0, 100.0),
+    (1.0, 0.0, 100.0),
+    (0.0, 0.0, 100.0),
+    (0.05, 0.95, 100.0),
+    (0.3, 0.7, 1e4),
+    (0.0, 1.0, 1e4),
+    (0.3, 0.7, 1e7),
+    (0.0, 1.0, 1e7),
+];
+
+/// Every Phong-family configuration of [`PHONG_PARAMS`], both models, and
+/// an RGB and a 4-channel one of each.
+fn compare_phong(wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestCaseError> {
+    let mut some = 0;
+    for (kd, ks, n) in PHONG_PARAMS {
+        let name = format!("modified-phong kd={kd} ks={ks} n={n}");
+        some += compare(&ModifiedPhong::new(kd, ks, n).unwrap(), &name, wo, u)?;
+        let name = format!("blinn-phong kd={kd} ks={ks} n={n}");
+        some += compare(&BlinnPhong::new(kd, ks, n).unwrap(), &name, wo, u)?;
+    }
+    let (kd, ks) = (Vec3::new(0.1, 0.5, 0.0), Vec3::new(0.6, 0.3, 0.9));
+    compare(
+        &ModifiedPhong::new(kd, ks, 30.0).unwrap(),
+        "modified-phong-rgb",
+        wo,
+        u,
+    )?;
+    compare(&BlinnPhong::new(kd, ks, 30.0).unwrap(), "blinn-phong-rgb", wo, u)?;
+    let (kd, ks) = (
+        SampledSpectrum([0.0, 0.2, 0.5, 1.0]),
+        SampledSpectrum([1.0, 0.8, 0.0, 0.0]),
+    );
+    compare(
+        &ModifiedPhong::new(kd, ks, 500.0).unwrap(),
+        "modified-phong-s4",
+        wo,
+        u,
+    )?;
+    compare(&BlinnPhong::new(kd, ks, 500.0).unwrap(), "blinn-phong-s4", wo, u)?;
+    Ok(some)
+}
+
 fn hard_directions() -> Vec<Vec3> {
     vec![
         Vec3::ZERO,
@@ -180,6 +235,10 @@ fn hard_directions() -> Vec<Vec3> {
         Vec3::new(-0.001, 0.0, 0.002),
         Vec3::new(0.0, 0.0, 1.0 + 2.0 * f32::EPSILON),
         Vec3::new(-0.0, -0.0, 1.0),
+        Vec3::new(0.0, -0.0, 1.0),
+        Vec3::new(-0.0, 0.0, 1.0),
+        Vec3::new(0.6, -0.0, 0.8),
+        Vec3::new(-0.0, -0.6, 0.8),
         Vec3::new(0.999_999_9, 0.0, 4.8e-4),
     ]
 }
@@ -252,6 +311,25 @@ fn hard_cases_every_lane_and_tail() {
     }
 }
 
+/// The same for the Phong family: every hard `wo` with every hard `u` in
+/// every lane position and tail length.
+#[test]
+fn phong_hard_cases_every_lane_and_tail() {
+    let (dirs, us) = (hard_directions(), hard_us());
+    let mut all = Vec::new();
+    for &w in &dirs {
+        for &u in &us {
+            all.push((w, u));
+        }
+    }
+    for len in 0..=35usize {
+        for start in (0..all.len()).step_by(37) {
+            let (wo, u): (Vec<Vec3>, Vec<[f32; 2]>) = (0..len).map(|j| all[(start + j) % all.len()]).unzip();
+            compare_phong(&wo, &u).unwrap();
+        }
+    }
+}
+
 /// 100 000 random `(wo, u)` per roughness (both ends of the range and
 /// between), a tenth of the `u` coordinates at `0` or `1 − ε`.
 #[test]
@@ -286,6 +364,37 @@ fn sample_batch_sweep() {
     assert!(some > total / 2, "{some} of {total}");
 }
 
+/// 100 000 random `(wo, u)` for each Phong-family configuration, as in
+/// [`sample_batch_sweep`].
+#[test]
+fn phong_sample_batch_sweep() {
+    let mut rng = Rng(0x5EED_0008);
+    let (mut some, mut total) = (0, 0);
+    for _ in 0..20 {
+        let wo: Vec<Vec3> = (0..5000).map(|k| rng.wo(k)).collect();
+        let u: Vec<[f32; 2]> = (0..5000)
+            .map(|k| {
+                let mut u = [rng.next(), rng.next()];
+                match k % 20 {
+                    0 => u[0] = 0.0,
+                    1 => u[1] = ONE_MINUS_EPS,
+                    2 => u[0] = ONE_MINUS_EPS,
+                    3 => u[1] = 0.0,
+                    _ => {}
+                }
+                u
+            })
+            .collect();
+        some += compare_phong(&wo, &u).unwrap();
+        total += 2 * PHONG_PARAMS.len() * wo.len();
+    }
+    eprintln!(
+        "Phong family sample_batch vs sample: {total} samples, {some} Some; 0 ulp; simd feature: {}",
+        cfg!(feature = "simd")
+    );
+    assert!(some > total / 3, "{some} of {total}");
+}
+
 fn direction() -> impl Strategy<Value = Vec3> {
     let unit = (0.0f32..1.0, 0.0f32..1.0).prop_map(|(u, v)| {
         let z = 1.0 - 2.0 * u;
@@ -314,5 +423,22 @@ proptest! {
         let alpha = 10f32.powf(log_alpha).clamp(1e-4, 1.0);
         let u: Vec<[f32; 2]> = u.iter().take(wo.len()).map(|&(a, b)| [a, b]).collect();
         compare_all(alpha, &wo, &u)?;
+    }
+
+    /// The Phong family on the same inputs, with a random exponent and mix.
+    #[test]
+    fn phong_sample_batch_matches_sample(
+        wo in prop::collection::vec(direction(), 0..40),
+        u in prop::collection::vec((coordinate(), coordinate()), 40),
+        log_n in -1.0f32..7.0,
+        kd in 0.0f32..1.0,
+        ks_frac in 0.0f32..1.0,
+    ) {
+        let n = 10f32.powf(log_n).min(1e7);
+        let ks = (1.0 - kd) * ks_frac;
+        let u: Vec<[f32; 2]> = u.iter().take(wo.len()).map(|&(a, b)| [a, b]).collect();
+        compare(&ModifiedPhong::new(kd, ks, n).unwrap(), "modified-phong", &wo, &u)?;
+        compare(&BlinnPhong::new(kd, ks, n).unwrap(), "blinn-phong", &wo, &u)?;
+        compare_phong(&wo[..wo.len().min(8)], &u[..wo.len().min(8)])?;
     }
 }

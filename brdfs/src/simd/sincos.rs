@@ -48,7 +48,7 @@ fn k_cos(x: Vd) -> Vd {
 
 /// `(sin x, cos x)` lane-wise, **bit for bit** `libm::sincosf` (FreeBSD
 /// `s_sincosf.c`, the same `f64` operations in the same order; no FMA) for
-/// `x ∈ [0, 9π/4]` and `x = −0`: the argument is reduced by the nearest of
+/// `x ∈ [−π/4, 9π/4]`: the argument is reduced by the nearest of
 /// `0, π/2, π, 3π/2, 2π` (as `π/2 − x` or `x − kπ/2`, chosen by the same
 /// thresholds on the bits of `|x|`), the two kernels
 ///
@@ -57,10 +57,13 @@ fn k_cos(x: Vd) -> Vd {
 /// ```
 ///
 /// run in `f64` and the quadrant picks, swaps and negates them; for
-/// `|x| < 2⁻¹²` the result is `(x, 1)`. Other lanes (negative, larger, NaN)
+/// `|x| < 2⁻¹²` the result is `(x, 1)` (on `[−π/4, 0]`, libm's first branch,
+/// the kernels run on `x` itself). Other lanes (below `−π/4`, larger, NaN)
 /// are outside the contract (finite garbage, never a panic); the callers
-/// pass `2π u` with `u ∈ [0, 1]` (`2π` rounded to `f32`, `≤ 9π/4`). Unit test
-/// `sincosf_is_libm_bit_for_bit`: every `f32` in `[0, 2π]` with a stride of 7.
+/// pass `2π u` with `u ∈ [0, 1]` (`2π` rounded to `f32`, `≤ 9π/4`) and the
+/// concentric map's angles `π/4 · q`, `π/2 − π/4 · q` with `q ∈ [−1, 1]`.
+/// Unit test `sincosf_is_libm_bit_for_bit`: every `f32` in `[−π/4, 2π]`
+/// with a stride of 7.
 #[inline(always)]
 pub(crate) fn sincosf(x: Vf) -> (Vf, Vf) {
     let thr = |bits: u32| Vd::splat(f32::from_bits(bits) as f64);
@@ -101,8 +104,9 @@ mod tests {
     use super::super::LANES;
     use super::*;
 
-    /// Every 7th `f32` of `[0, 2π]` (about 154 million values), `−0`, `2π`
-    /// as `f32` and its neighbours, and the branch thresholds ± 2 ulp.
+    /// Every 7th `f32` of `[0, 2π]` and of `[−π/4, −0]` (about 154 + 151
+    /// million values), `2π` as `f32` and its neighbours, and the branch
+    /// thresholds ± 2 ulp (`−π/4` and `−2⁻¹²` too).
     #[test]
     fn sincosf_is_libm_bit_for_bit() {
         let check = |xs: &[f32; LANES]| {
@@ -121,6 +125,11 @@ mod tests {
             }
         };
         let mut specials = std::vec![-0.0f32, 0.0, core::f32::consts::TAU, 1e-45, f32::MIN_POSITIVE];
+        for bits in [0xb980_0000u32, 0xbf49_0fda] {
+            for d in -2i32..=0 {
+                specials.push(f32::from_bits(bits.wrapping_add_signed(d)));
+            }
+        }
         for bits in [
             0x3980_0000u32,
             0x3f49_0fda,
@@ -138,18 +147,24 @@ mod tests {
             xs[..chunk.len()].copy_from_slice(chunk);
             check(&xs);
         }
-        let end = core::f32::consts::TAU.to_bits();
         let mut xs = [0.0f32; LANES];
         let mut n = 0;
-        let mut bits = 0u32;
-        while bits <= end {
-            xs[n] = f32::from_bits(bits);
-            n += 1;
-            if n == LANES {
-                check(&xs);
-                n = 0;
+        // [0, 2π] and [−π/4, −0] (sign bit set; −π/4 rounded down in
+        // magnitude, libm's threshold `0x3f490fda`).
+        for (start, end) in [
+            (0u32, core::f32::consts::TAU.to_bits()),
+            (0x8000_0000, 0xbf49_0fda),
+        ] {
+            let mut bits = start;
+            while bits <= end {
+                xs[n] = f32::from_bits(bits);
+                n += 1;
+                if n == LANES {
+                    check(&xs);
+                    n = 0;
+                }
+                bits += 7;
             }
-            bits += 7;
         }
     }
 
