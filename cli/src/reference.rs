@@ -16,7 +16,7 @@
 //! `ε_fine` is the summed Kronrod error indicator of the fine run's outer
 //! rule. The inner rules work to a tenth of the tolerance, relative to their
 //! own value or (fine run) to the coarse total, whichever is looser
-//! ([`inner_abs_tol`]). (A fine tolerance of `10⁻¹¹` would be four times
+//! (`inner_abs_tol`). (A fine tolerance of `10⁻¹¹` would be four times
 //! cheaper but misses a feature of Beckmann α = 0.05 at θo = 89.9° that the
 //! coarse run misses too, so the bound would understate its error 38×.)
 

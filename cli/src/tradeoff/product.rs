@@ -175,7 +175,7 @@ pub fn reference(c: &ProductCase) -> Reference {
 /// The f64 reference of the problem the integrators are handed: `ωo` and
 /// the light axis rounded to `f32` component by component (as
 /// [`measure`] passes them; `f32` code takes such a vector, unit to within
-/// `4ε`, as it is), `σ` rounded to `f32`. Its distance from [`reference`]
+/// `4ε`, as it is), `σ` rounded to `f32`. Its distance from [`reference()`]
 /// is the case's conditioning with respect to `f32` input: no integrator
 /// working on `f32` input can be expected to come closer to the `f64`
 /// reference than that, whatever its budget.
