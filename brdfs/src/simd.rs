@@ -865,6 +865,26 @@ impl<O> Batch<'_, O> {
     }
 }
 
+/// Test support of the bit-exact ports: asserts that `vector` returns the
+/// bits of `scalar` (any NaN for a NaN) in every lane of `xs`.
+#[cfg(test)]
+pub(crate) fn assert_lanes_match(
+    name: &str,
+    vector: impl Fn(Vf) -> Vf,
+    scalar: impl Fn(f32) -> f32,
+    xs: &[f32; LANES],
+) {
+    let got = vector(Vf::new(*xs)).to_array();
+    for (&x, g) in xs.iter().zip(got) {
+        let want = scalar(x);
+        assert!(
+            want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
+            "{name}({x:e} = {:#x}): libm {want:e}, vector {g:e}",
+            x.to_bits()
+        );
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -905,17 +925,7 @@ mod tests {
                 specials.push(-v);
             }
         }
-        let check = |xs: &[f32; LANES]| {
-            let got = expf(Vf::new(*xs)).to_array();
-            for (x, g) in xs.iter().zip(got) {
-                let want = libm::expf(*x);
-                assert!(
-                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
-                    "expf({x:e} = {:#x}): libm {want:e}, vector {g:e}",
-                    x.to_bits()
-                );
-            }
-        };
+        let check = |xs: &[f32; LANES]| super::assert_lanes_match("expf", expf, libm::expf, xs);
         for chunk in specials.chunks(LANES) {
             let mut xs = [0.5f32; LANES];
             xs[..chunk.len()].copy_from_slice(chunk);
@@ -1059,17 +1069,7 @@ mod tests {
                 specials.push(-v);
             }
         }
-        let check = |xs: &[f32; LANES]| {
-            let got = log1pf(Vf::new(*xs)).to_array();
-            for (x, g) in xs.iter().zip(got) {
-                let want = libm::log1pf(*x);
-                assert!(
-                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
-                    "log1pf({x:e} = {:#x}): libm {want:e}, vector {g:e}",
-                    x.to_bits()
-                );
-            }
-        };
+        let check = |xs: &[f32; LANES]| super::assert_lanes_match("log1pf", log1pf, libm::log1pf, xs);
         for chunk in specials.chunks(LANES) {
             let mut xs = [0.5f32; LANES];
             xs[..chunk.len()].copy_from_slice(chunk);

@@ -97,17 +97,7 @@ mod tests {
     /// thresholds ± 2 ulp.
     #[test]
     fn expm1f_is_libm_bit_for_bit() {
-        let check = |xs: &[f32; LANES]| {
-            let got = expm1f(Vf::new(*xs)).to_array();
-            for (x, g) in xs.iter().zip(got) {
-                let want = libm::expm1f(*x);
-                assert!(
-                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
-                    "expm1f({x:e} = {:#x}): libm {want:e}, vector {g:e}",
-                    x.to_bits()
-                );
-            }
-        };
+        let check = |xs: &[f32; LANES]| crate::simd::assert_lanes_match("expm1f", expm1f, libm::expm1f, xs);
         let mut specials = std::vec![
             0.0f32,
             -0.0,

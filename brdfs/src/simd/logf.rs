@@ -65,17 +65,7 @@ mod tests {
     /// the reduction thresholds ± 2 ulp.
     #[test]
     fn logf_is_libm_bit_for_bit() {
-        let check = |xs: &[f32; LANES]| {
-            let got = logf(Vf::new(*xs)).to_array();
-            for (x, g) in xs.iter().zip(got) {
-                let want = libm::logf(*x);
-                assert!(
-                    want.to_bits() == g.to_bits() || (want.is_nan() && g.is_nan()),
-                    "logf({x:e} = {:#x}): libm {want:e}, vector {g:e}",
-                    x.to_bits()
-                );
-            }
-        };
+        let check = |xs: &[f32; LANES]| crate::simd::assert_lanes_match("logf", logf, libm::logf, xs);
         let mut specials = std::vec![
             0.0f32,
             -0.0,
