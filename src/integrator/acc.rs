@@ -93,6 +93,15 @@ impl<W: WideSpectrum> SampleDiagnostics<W> {
         self.sq.add(x.map(|v| v * v));
     }
 
+    /// Adds `hits` non-zero samples whose `Σ|x|` and `Σx²` are `abs`, `sq`
+    /// (the plain sums of a chunk, see [`Moments::push_chunk`]).
+    #[inline]
+    fn add_sums(&mut self, hits: u64, abs: W, sq: W) {
+        self.hits += hits;
+        self.abs.add(abs);
+        self.sq.add(sq);
+    }
+
     /// The `f32` rounding floor of a mean of `n` samples, per channel:
     /// `2⁻²³ Σ|x| / n`. Every sample is an `f32` integrand value carrying up
     /// to about one ulp of systematic rounding, which no variance estimate
@@ -177,6 +186,40 @@ impl<W: WideSpectrum> Moments<W> {
         self.diag.push(x);
     }
 
+    /// [`push`](Self::push) for each of `xs` in order, with the sums of the
+    /// chunk formed plainly in `f64` and then added to the compensated
+    /// totals once: for chunks of at most [`CHUNK`](super::chunk::CHUNK) = 64
+    /// samples the plain sums carry a relative error `≤ 64 ε₆₄ ≈ 1.4·10⁻¹⁴`
+    /// of `Σ|term|` (Higham 2002, *Accuracy and Stability of Numerical
+    /// Algorithms*, §4.2), nine orders below the `f32` resolution of the
+    /// samples, at a quarter of the cost of four compensated additions per
+    /// sample.
+    #[inline]
+    pub(crate) fn push_chunk(&mut self, xs: &[W]) {
+        let Some(&first) = xs.first() else {
+            return;
+        };
+        if self.n == 0 {
+            self.shift = first;
+        }
+        let k = self.shift;
+        let zero = W::splat(0.0);
+        let (mut d, mut d2, mut abs, mut sq, mut hits) = (zero, zero, zero, zero, 0u64);
+        for &x in xs {
+            let dx = x.zip(k, |a, b| a - b);
+            d = d.zip(dx, |s, v| s + v);
+            d2 = d2.zip(dx, |s, v| s + v * v);
+            let ax = x.map(f64::abs);
+            hits += u64::from(ax.max_channel() > 0.0);
+            abs = abs.zip(ax, |s, v| s + v);
+            sq = sq.zip(x, |s, v| s + v * v);
+        }
+        self.d.add(d);
+        self.d2.add(d2);
+        self.n += xs.len() as u64;
+        self.diag.add_sums(hits, abs, sq);
+    }
+
     #[inline]
     pub(crate) fn count(&self) -> u64 {
         self.n
@@ -253,3 +296,46 @@ pub(crate) fn nonzero<W: WideSpectrum>(v: &W) -> bool {
 /// `Σ wₖ g(ωₖ)` cannot be trusted below about `2⁻²³ Σ |wₖ g(ωₖ)|`
 /// (unit roundoff of the value plus that of the rounded node direction).
 pub(crate) const F32_FLOOR: f64 = f32::EPSILON as f64;
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::integrator::points::Pcg32;
+
+    /// `push_chunk` over chunks of 64 gives the moments and diagnostics of
+    /// `push` one by one, to the plain-sum error it documents (here a
+    /// sample with heavy tails, zeros and a large offset: the hard case of
+    /// the shifted-data sums).
+    #[test]
+    fn push_chunk_matches_push() {
+        let mut rng = Pcg32::new(7, 11);
+        let xs: std::vec::Vec<f64> = (0..10_000)
+            .map(|k| {
+                let u = rng.next_f64();
+                if k % 5 == 0 { 0.0 } else { 1e3 + 1.0 / (u + 1e-3) }
+            })
+            .collect();
+        let (mut one, mut chunked) = (Moments::<f64>::new(), Moments::<f64>::new());
+        for &x in &xs {
+            one.push(x);
+        }
+        for c in xs.chunks(64) {
+            chunked.push_chunk(c);
+        }
+        chunked.push_chunk(&[]);
+        assert_eq!(one.count(), chunked.count());
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-13 * a.abs().max(b.abs());
+        assert!(
+            close(one.mean(), chunked.mean()),
+            "{} vs {}",
+            one.mean(),
+            chunked.mean()
+        );
+        assert!(close(one.standard_error(), chunked.standard_error()));
+        let n = one.count();
+        assert!(close(one.diag.floors(n), chunked.diag.floors(n)));
+        assert_eq!(one.diag.hits, chunked.diag.hits);
+        assert_eq!(one.diag.status(), chunked.diag.status());
+    }
+}

@@ -385,9 +385,7 @@ impl<'g, I: Integrand> Draws<'g, I> {
             &mut vals[..n],
             &mut self.peak,
         )?;
-        for &v in &vals[..n] {
-            m.push(v);
-        }
+        m.push_chunk(&vals[..n]);
         Ok(())
     }
 }

@@ -237,6 +237,11 @@ pub fn square_to_cosine_hemisphere_polar(u: [f32; 2]) -> Vec3 {
 
 #[inline]
 fn frac(x: f64) -> f64 {
+    // For 0 ≤ x < 2⁵³ truncation is the floor and exact, and needs no
+    // libm call (`floor` is a software routine without SSE4.1).
+    if (0.0..9.0e15).contains(&x) {
+        return x - (x as i64) as f64;
+    }
     let f = x - libm::floor(x);
     if f.is_finite() { f } else { 0.0 }
 }
@@ -263,6 +268,24 @@ pub fn mix_seed(seed: u64, index: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The truncation shortcut of `frac` is `x − floor(x)` bit for bit on
+    /// `[0, 9·10¹⁵)`, and the libm path takes over beyond.
+    #[test]
+    fn frac_is_x_minus_floor() {
+        let mut rng = Pcg32::new(3, 5);
+        for k in 0..200_000 {
+            let scale = [1.0, 7.0, 1e3, 1e9, 4.5e15, 8.999e15, 2e16][k % 7];
+            let x = rng.next_f64() * scale;
+            assert_eq!(frac(x).to_bits(), (x - libm::floor(x)).to_bits(), "x = {x}");
+        }
+        for x in [0.0, 0.5, 1.0, 1.0 - f64::EPSILON / 2.0, 9.0e15, 1e300, -0.25] {
+            let want = x - libm::floor(x);
+            assert_eq!(frac(x).to_bits(), want.to_bits(), "x = {x}");
+        }
+        assert_eq!(frac(f64::INFINITY), 0.0);
+        assert_eq!(frac(f64::NAN), 0.0);
+    }
 
     #[test]
     fn sobol_point_pairs_are_the_two_first_pairs_bit_for_bit() {
