@@ -4,6 +4,7 @@
 
 use super::Cap;
 use crate::brdf::Brdf;
+use crate::integrator::chunk::CHUNK;
 use crate::integrator::{Integrand, IntegrandSample};
 use crate::math::safe_sqrt;
 use crate::spectrum::Spectrum;
@@ -131,6 +132,31 @@ impl<B: Brdf> CapSampled<B> {
         self.brdf.eval(w, self.wo) * self.cap.cap_radiance() * w.z
     }
 
+    /// `out[k] = unmasked(w)` where `dirs[k]` is `Some(w)`, zero elsewhere:
+    /// one [`Brdf::eval_batch`] over the directions above the horizon, then
+    /// `f_r · L · cos θ` in the order of `unmasked`.
+    fn unmasked_where(&self, dirs: &[Option<Vec3>], out: &mut [B::Spectrum]) {
+        let wos = [self.wo; CHUNK];
+        let mut dense = [Vec3::ZERO; CHUNK];
+        let mut index = [0usize; CHUNK];
+        let mut vals = [B::Spectrum::zero(); CHUNK];
+        let n = dirs.len().min(out.len()).min(CHUNK);
+        let mut m = 0;
+        for k in 0..n {
+            out[k] = B::Spectrum::zero();
+            if let Some(w) = dirs[k].filter(|w| w.z > 0.0) {
+                dense[m] = w;
+                index[m] = k;
+                m += 1;
+            }
+        }
+        self.brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
+        let l = self.cap.cap_radiance();
+        for j in 0..m {
+            out[index[j]] = vals[j] * l * dense[j].z;
+        }
+    }
+
     #[inline]
     fn light_pdf(&self, w: Vec3) -> f32 {
         if self.cap.contains(w) { self.cone_pdf } else { 0.0 }
@@ -203,6 +229,138 @@ impl<B: Brdf> Integrand for CapSampled<B> {
             CapStrategy::Light => self.light_pdf(w),
             CapStrategy::Brdf => self.brdf.pdf(w, self.wo),
             CapStrategy::Mis => 0.5 * (self.light_pdf(w) + self.brdf.pdf(w, self.wo)),
+        }
+    }
+
+    /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per chunk over
+    /// the points inside the cap and above the horizon.
+    fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        let mut dirs = [None; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            for (d, &w) in dirs[..n].iter_mut().zip(w) {
+                *d = self.cap.contains(w).then_some(w);
+            }
+            self.unmasked_where(&dirs[..n], &mut out[..n]);
+        }
+    }
+
+    /// As [`Integrand::sample`] point for point, with the BRDF's
+    /// [`Brdf::sample_batch`], [`Brdf::pdf_batch`] and [`Brdf::eval_batch`]
+    /// once per chunk.
+    fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        let wos = [self.wo; CHUNK];
+        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = u.len().min(out.len());
+            let (u, out) = (&u[..n], &mut out[..n]);
+            // 1. Directions and densities, as `sample` draws them.
+            let mut dirs = [None; CHUNK];
+            let mut pdfs = [0.0f32; CHUNK];
+            let mut s = [None; CHUNK];
+            match self.strategy {
+                CapStrategy::Light => {
+                    for k in 0..n {
+                        let w = self.cone_sample(u[k]);
+                        if w.z > 0.0 && self.cone_pdf != 0.0 {
+                            (dirs[k], pdfs[k]) = (Some(w), self.cone_pdf);
+                        }
+                    }
+                }
+                CapStrategy::Brdf => {
+                    self.brdf.sample_batch(&wos[..n], u, &mut s[..n]);
+                    for k in 0..n {
+                        if let Some(s) = s[k] {
+                            (dirs[k], pdfs[k]) = (Some(s.wi), s.pdf);
+                        }
+                    }
+                }
+                CapStrategy::Mis => {
+                    // Cone lanes directly; the BRDF lanes compacted into one
+                    // `sample_batch`, then one `pdf_batch` for the mixture.
+                    let mut ub = [[0.0f32; 2]; CHUNK];
+                    let mut index = [0usize; CHUNK];
+                    let mut m = 0;
+                    for k in 0..n {
+                        let u0 = u[k][0].clamp(0.0, 1.0);
+                        if u0 < 0.5 {
+                            let w = self.cone_sample([2.0 * u0, u[k][1]]);
+                            if w.z > 0.0 && self.cone_pdf != 0.0 {
+                                dirs[k] = Some(w);
+                            }
+                        } else {
+                            let v = (2.0 * u0 - 1.0).min(crate::math::ONE_MINUS_EPSILON);
+                            ub[m] = [v, u[k][1]];
+                            index[m] = k;
+                            m += 1;
+                        }
+                    }
+                    self.brdf.sample_batch(&wos[..m], &ub[..m], &mut s[..m]);
+                    for (&k, s) in index[..m].iter().zip(&s[..m]) {
+                        dirs[k] = s.map(|s| s.wi);
+                    }
+                    let mut dense = [Vec3::ZERO; CHUNK];
+                    let mut bp = [0.0f32; CHUNK];
+                    let mut m = 0;
+                    for k in 0..n {
+                        if let Some(w) = dirs[k] {
+                            dense[m] = w;
+                            index[m] = k;
+                            m += 1;
+                        }
+                    }
+                    self.brdf.pdf_batch(&dense[..m], &wos[..m], &mut bp[..m]);
+                    for j in 0..m {
+                        let (k, w, b) = (index[j], dense[j], bp[j]);
+                        let pdf = 0.5 * (self.light_pdf(w) + b);
+                        if pdf.is_nan() || pdf <= 0.0 {
+                            dirs[k] = None;
+                        } else {
+                            pdfs[k] = pdf;
+                        }
+                    }
+                }
+            }
+            // 2. Values: `unmasked` for the cone technique (its draws are in
+            // the cap by construction), `eval` (cap test first) otherwise.
+            let mut masked = [None; CHUNK];
+            for k in 0..n {
+                masked[k] = match self.strategy {
+                    CapStrategy::Light => dirs[k],
+                    _ => dirs[k].filter(|&w| self.cap.contains(w)),
+                };
+            }
+            let mut vals = [B::Spectrum::zero(); CHUNK];
+            self.unmasked_where(&masked[..n], &mut vals[..n]);
+            for k in 0..n {
+                out[k] = dirs[k].map(|w| IntegrandSample {
+                    w,
+                    pdf: pdfs[k],
+                    value: vals[k],
+                });
+            }
+        }
+    }
+
+    /// As [`Integrand::pdf`], with one [`Brdf::pdf_batch`] per chunk where
+    /// the BRDF's density is needed.
+    fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        let wos = [self.wo; CHUNK];
+        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            let n = w.len().min(out.len());
+            match self.strategy {
+                CapStrategy::Light => {
+                    for (o, &w) in out[..n].iter_mut().zip(w) {
+                        *o = self.light_pdf(w);
+                    }
+                }
+                CapStrategy::Brdf => self.brdf.pdf_batch(&w[..n], &wos[..n], &mut out[..n]),
+                CapStrategy::Mis => {
+                    self.brdf.pdf_batch(&w[..n], &wos[..n], &mut out[..n]);
+                    for (o, &w) in out[..n].iter_mut().zip(w) {
+                        *o = 0.5 * (self.light_pdf(w) + *o);
+                    }
+                }
+            }
         }
     }
 }
