@@ -301,8 +301,8 @@ impl<B: Brdf> Integrand for CapSampled<B> {
                     let mut dense = [Vec3::ZERO; CHUNK];
                     let mut bp = [0.0f32; CHUNK];
                     let mut m = 0;
-                    for k in 0..n {
-                        if let Some(w) = dirs[k] {
+                    for (k, d) in dirs[..n].iter().enumerate() {
+                        if let Some(w) = *d {
                             dense[m] = w;
                             index[m] = k;
                             m += 1;
