@@ -865,6 +865,44 @@ impl<O> Batch<'_, O> {
     }
 }
 
+/// Test support: calls `check` on `values` in chunks of [`LANES`], the last
+/// chunk padded with `0.5`.
+#[cfg(test)]
+pub(crate) fn check_values(check: &dyn Fn(&[f32; LANES]), values: &[f32]) {
+    for chunk in values.chunks(LANES) {
+        let mut xs = [0.5f32; LANES];
+        xs[..chunk.len()].copy_from_slice(chunk);
+        check(&xs);
+    }
+}
+
+/// Test support: calls `check` on every 7th `f32` from 0 to `end` with the
+/// given sign bit, for each `(sign, end)`.
+#[cfg(test)]
+pub(crate) fn sweep(check: &dyn Fn(&[f32; LANES]), ranges: &[(u32, f32)]) {
+    sweep_stride(check, ranges, 7)
+}
+
+/// [`sweep`] with another stride (a chunk not yet full when a range ends
+/// is completed by the next range's values; the last one is dropped).
+#[cfg(test)]
+pub(crate) fn sweep_stride(check: &dyn Fn(&[f32; LANES]), ranges: &[(u32, f32)], stride: u32) {
+    let mut xs = [0.0f32; LANES];
+    let mut n = 0;
+    for &(sign, end) in ranges {
+        let mut bits = 0u32;
+        while f32::from_bits(bits) <= end {
+            xs[n] = f32::from_bits(bits | sign);
+            n += 1;
+            if n == LANES {
+                check(&xs);
+                n = 0;
+            }
+            bits += stride;
+        }
+    }
+}
+
 /// Test support of the bit-exact ports: asserts that `vector` returns the
 /// bits of `scalar` (any NaN for a NaN) in every lane of `xs`.
 #[cfg(test)]
@@ -926,36 +964,8 @@ mod tests {
             }
         }
         let check = |xs: &[f32; LANES]| super::assert_lanes_match("expf", expf, libm::expf, xs);
-        for chunk in specials.chunks(LANES) {
-            let mut xs = [0.5f32; LANES];
-            xs[..chunk.len()].copy_from_slice(chunk);
-            check(&xs);
-        }
+        check_values(&check, &specials);
         sweep(&check, &[(0, 89.0), (0x8000_0000, 104.0)]);
-    }
-
-    /// Calls `check` on every 7th `f32` from 0 to `end` with the given sign
-    /// bit, for each `(sign, end)`.
-    fn sweep(check: &dyn Fn(&[f32; LANES]), ranges: &[(u32, f32)]) {
-        sweep_stride(check, ranges, 7)
-    }
-
-    /// [`sweep`] with another stride.
-    fn sweep_stride(check: &dyn Fn(&[f32; LANES]), ranges: &[(u32, f32)], stride: u32) {
-        let mut xs = [0.0f32; LANES];
-        let mut n = 0;
-        for &(sign, end) in ranges {
-            let mut bits = 0u32;
-            while f32::from_bits(bits) <= end {
-                xs[n] = f32::from_bits(bits | sign);
-                n += 1;
-                if n == LANES {
-                    check(&xs);
-                    n = 0;
-                }
-                bits += stride;
-            }
-        }
     }
 
     /// `powf` equals `libm::powf` bit for bit: every 7th `f32` of `(0, 1]`
@@ -1070,11 +1080,7 @@ mod tests {
             }
         }
         let check = |xs: &[f32; LANES]| super::assert_lanes_match("log1pf", log1pf, libm::log1pf, xs);
-        for chunk in specials.chunks(LANES) {
-            let mut xs = [0.5f32; LANES];
-            xs[..chunk.len()].copy_from_slice(chunk);
-            check(&xs);
-        }
+        check_values(&check, &specials);
         sweep(&check, &[(0, f32::MAX), (0x8000_0000, 1.0)]);
     }
 }

@@ -127,25 +127,9 @@ mod tests {
                 specials.push(-v);
             }
         }
-        for chunk in specials.chunks(LANES) {
-            let mut xs = [0.5f32; LANES];
-            xs[..chunk.len()].copy_from_slice(chunk);
-            check(&xs);
-        }
-        let sweep = |sign: u32, end: f32, stride: u32| {
-            let mut xs = [0.0f32; LANES];
-            let mut n = 0;
-            let mut bits = 0u32;
-            while bits <= end.to_bits() {
-                xs[n] = f32::from_bits(bits | sign);
-                n += 1;
-                if n == LANES {
-                    check(&xs);
-                    n = 0;
-                }
-                bits += stride;
-            }
-        };
+        crate::simd::check_values(&check, &specials);
+        let sweep =
+            |sign: u32, end: f32, stride: u32| crate::simd::sweep_stride(&check, &[(sign, end)], stride);
         sweep(0, 89.0, 7);
         sweep(0x8000_0000, 104.0, 7);
         sweep(0, f32::MAX, 7919);

@@ -87,26 +87,9 @@ mod tests {
                 specials.push(f32::from_bits(bits.wrapping_add_signed(d)));
             }
         }
-        for chunk in specials.chunks(LANES) {
-            let mut xs = [0.5f32; LANES];
-            xs[..chunk.len()].copy_from_slice(chunk);
-            check(&xs);
-        }
-        let sweep = |start: u32, end: u32, stride: u32| {
-            let mut xs = [0.0f32; LANES];
-            let mut n = 0;
-            let mut bits = start;
-            while bits <= end {
-                xs[n] = f32::from_bits(bits);
-                n += 1;
-                if n == LANES {
-                    check(&xs);
-                    n = 0;
-                }
-                bits += stride;
-            }
-        };
-        sweep(0, f32::MAX.to_bits(), 7);
-        sweep(0x8000_0000, 0xff80_0000, 7919);
+        crate::simd::check_values(&check, &specials);
+        // [0, f32::MAX] by 7, then the negatives from −0 to −∞ by 7919.
+        crate::simd::sweep_stride(&check, &[(0, f32::MAX)], 7);
+        crate::simd::sweep_stride(&check, &[(0x8000_0000, f32::INFINITY)], 7919);
     }
 }

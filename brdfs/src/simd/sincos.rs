@@ -142,30 +142,16 @@ mod tests {
                 specials.push(f32::from_bits(bits.wrapping_add_signed(d)));
             }
         }
-        for chunk in specials.chunks(LANES) {
-            let mut xs = [0.5f32; LANES];
-            xs[..chunk.len()].copy_from_slice(chunk);
-            check(&xs);
-        }
-        let mut xs = [0.0f32; LANES];
-        let mut n = 0;
+        crate::simd::check_values(&check, &specials);
         // [0, 2π] and [−π/4, −0] (sign bit set; −π/4 rounded down in
         // magnitude, libm's threshold `0x3f490fda`).
-        for (start, end) in [
-            (0u32, core::f32::consts::TAU.to_bits()),
-            (0x8000_0000, 0xbf49_0fda),
-        ] {
-            let mut bits = start;
-            while bits <= end {
-                xs[n] = f32::from_bits(bits);
-                n += 1;
-                if n == LANES {
-                    check(&xs);
-                    n = 0;
-                }
-                bits += 7;
-            }
-        }
+        crate::simd::sweep(
+            &check,
+            &[
+                (0, core::f32::consts::TAU),
+                (0x8000_0000, f32::from_bits(0x3f49_0fda)),
+            ],
+        );
     }
 
     extern crate std;
