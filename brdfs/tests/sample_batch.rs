@@ -330,6 +330,26 @@ fn phong_hard_cases_every_lane_and_tail() {
     }
 }
 
+/// 5,000 random `ωo` (drawn first), then 5,000 random `u` with a tenth of
+/// the coordinates at `0` or `1 − ε`: the inputs of one round of the sweeps.
+fn sweep_inputs(rng: &mut Rng) -> (Vec<Vec3>, Vec<[f32; 2]>) {
+    let wo: Vec<Vec3> = (0..5000).map(|k| rng.wo(k)).collect();
+    let u: Vec<[f32; 2]> = (0..5000)
+        .map(|k| {
+            let mut u = [rng.next(), rng.next()];
+            match k % 20 {
+                0 => u[0] = 0.0,
+                1 => u[1] = ONE_MINUS_EPS,
+                2 => u[0] = ONE_MINUS_EPS,
+                3 => u[1] = 0.0,
+                _ => {}
+            }
+            u
+        })
+        .collect();
+    (wo, u)
+}
+
 /// 100 000 random `(wo, u)` per roughness (both ends of the range and
 /// between), a tenth of the `u` coordinates at `0` or `1 − ε`.
 #[test]
@@ -339,20 +359,7 @@ fn sample_batch_sweep() {
     let mut total = 0;
     for alpha in [1e-4f32, 1e-3, 0.05, 0.3, 0.7, 1.0] {
         for _ in 0..20 {
-            let wo: Vec<Vec3> = (0..5000).map(|k| rng.wo(k)).collect();
-            let u: Vec<[f32; 2]> = (0..5000)
-                .map(|k| {
-                    let mut u = [rng.next(), rng.next()];
-                    match k % 20 {
-                        0 => u[0] = 0.0,
-                        1 => u[1] = ONE_MINUS_EPS,
-                        2 => u[0] = ONE_MINUS_EPS,
-                        3 => u[1] = 0.0,
-                        _ => {}
-                    }
-                    u
-                })
-                .collect();
+            let (wo, u) = sweep_inputs(&mut rng);
             some += compare_all(alpha, &wo, &u).unwrap();
             total += 2 * wo.len();
         }
@@ -371,20 +378,7 @@ fn phong_sample_batch_sweep() {
     let mut rng = Rng(0x5EED_0008);
     let (mut some, mut total) = (0, 0);
     for _ in 0..20 {
-        let wo: Vec<Vec3> = (0..5000).map(|k| rng.wo(k)).collect();
-        let u: Vec<[f32; 2]> = (0..5000)
-            .map(|k| {
-                let mut u = [rng.next(), rng.next()];
-                match k % 20 {
-                    0 => u[0] = 0.0,
-                    1 => u[1] = ONE_MINUS_EPS,
-                    2 => u[0] = ONE_MINUS_EPS,
-                    3 => u[1] = 0.0,
-                    _ => {}
-                }
-                u
-            })
-            .collect();
+        let (wo, u) = sweep_inputs(&mut rng);
         some += compare_phong(&wo, &u).unwrap();
         total += 2 * PHONG_PARAMS.len() * wo.len();
     }
