@@ -54,16 +54,16 @@ pub(crate) const H_MIN: f32 = 1e-8;
 pub(crate) fn coords_above(h: Vec3, hh: f32, e: Vec3) -> (f32, f32, f32) {
     let s = h.x * h.x + h.y * h.y;
     let ee = e.x * e.x + e.y * e.y + e.z * e.z;
-    let (y2, x2, neg) = phi_d_squares(h, s, hh, e);
+    let (y2, x2, pq) = phi_d_squares(h, s, hh, e);
     let a = atan2_squares(Vec4::new(s, ee, y2, 0.0), Vec4::new(h.z * h.z, hh, x2, 1.0));
-    let phi_d = if neg { PI - a.z } else { a.z };
+    let phi_d = if pq < 0.0 { PI - a.z } else { a.z };
     (a.x, a.y, phi_d)
 }
 
-/// `(P²‖h‖², Q², P·Q < 0)` of [`coords_above`] (`s = hx² + hy²`,
-/// `hh = ‖h‖²`; at the pole `(ey², ex², ey·ex < 0)`).
+/// `(P²‖h‖², Q², P·Q)` of [`coords_above`] (`s = hx² + hy²`,
+/// `hh = ‖h‖²`; at the pole `(ey², ex², ey·ex)`).
 #[inline(always)]
-fn phi_d_squares(h: Vec3, s: f32, hh: f32, e: Vec3) -> (f32, f32, bool) {
+fn phi_d_squares(h: Vec3, s: f32, hh: f32, e: Vec3) -> (f32, f32, f32) {
     let pole = s <= 1e-24 * (h.z * h.z);
     let p = if pole { e.y } else { h.x * e.y - h.y * e.x };
     let q = if pole {
@@ -72,7 +72,7 @@ fn phi_d_squares(h: Vec3, s: f32, hh: f32, e: Vec3) -> (f32, f32, bool) {
         h.z * (h.x * e.x + h.y * e.y) - s * e.z
     };
     let w = if pole { 1.0 } else { hh };
-    (p * p * w, q * q, p * q < 0.0)
+    (p * p * w, q * q, p * q)
 }
 
 /// `atan2(√y², √x²) ∈ [0, π/2]` lane-wise for `x², y² ≥ 0` (`(0, 0)` → 0):
@@ -86,8 +86,22 @@ fn atan2_squares(y2: Vec4, x2: Vec4) -> Vec4 {
     let min = Vec4::splat(f32::MIN_POSITIVE);
     let den = Vec4::select(den.cmpgt(min), den, min);
     let r2 = num / den;
-    let a = r2.sqrt() * atan_poly4(r2);
+    let a = sqrt4(r2) * atan_poly4(r2);
     Vec4::select(swap, Vec4::splat(FRAC_PI_2) - a, a)
+}
+
+/// The lane square roots of `x` (IEEE, correctly rounded: bit-identical to
+/// `sqrtf` per lane): one vector instruction with the `simd` feature (via
+/// `wide`; glam's `Vec4::sqrt` takes four scalar roots).
+#[inline(always)]
+fn sqrt4(x: Vec4) -> Vec4 {
+    #[cfg(feature = "simd")]
+    {
+        let w = wide::f32x4::from(x.to_array()).sqrt();
+        Vec4::from_array(w.to_array())
+    }
+    #[cfg(not(feature = "simd"))]
+    x.sqrt()
 }
 
 /// `A(z) = Σₖ cₖ zᵏ` of [`ATAN_R`] on four lanes (Estrin form).

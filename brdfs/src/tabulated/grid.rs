@@ -235,6 +235,59 @@ impl RusinkiewiczGrid {
         half_diff_pair(unit(wi)?, unit(wo)?)
     }
 
+    /// [`CellMap::cells`] of this grid (tests; the BRDF keeps its `CellMap`).
+    #[cfg(test)]
+    #[inline(always)]
+    pub(crate) fn cells(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> Cells {
+        CellMap::new(*self).cells(theta_h, theta_d, phi_d)
+    }
+}
+
+/// The constants of [`cells`](Self::cells) for one grid, computed
+/// once (by [`Tabulated::new`](super::Tabulated::new)) instead of on every
+/// lookup: the index scales, the clamps, the last node of each axis and the
+/// strides of the flat index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CellMap {
+    /// `(Nh √(2/π), Nd · 2/π, Nφ/π, 0)`.
+    scale: Vec4,
+    /// `(Nh − 1, Nd − 1, Nφ⁻, 0)`.
+    lim: Vec4,
+    /// `Nh − 1`, `Nd − 1`, `Nφ`.
+    last_h: u32,
+    last_d: u32,
+    n_phi: u32,
+    /// Strides of the flat index: `Nφ·Nd` (θh) and `Nφ` (θd).
+    pub(crate) plane: usize,
+    pub(crate) row: usize,
+}
+
+impl CellMap {
+    /// The constants of `grid`.
+    pub(crate) fn new(grid: RusinkiewiczGrid) -> Self {
+        let (nh, nd, np) = (grid.n_theta_h, grid.n_theta_d, grid.n_phi_d);
+        let np_f = np as f32;
+        CellMap {
+            scale: Vec4::new(
+                nh as f32 * SQRT_2_OVER_PI,
+                nd as f32 * FRAC_2_PI,
+                np_f * FRAC_1_PI,
+                0.0,
+            ),
+            lim: Vec4::new(
+                nh.saturating_sub(1) as f32,
+                nd.saturating_sub(1) as f32,
+                f32::from_bits(np_f.to_bits() - 1),
+                0.0,
+            ),
+            last_h: nh.saturating_sub(1),
+            last_d: nd.saturating_sub(1),
+            n_phi: np,
+            plane: grid.n_phi_d() * grid.n_theta_d(),
+            row: grid.n_phi_d(),
+        }
+    }
+
     /// The cells of `(θh, θd, φd)` on the three axes at once (four-lane
     /// `glam::Vec4` arithmetic): continuous indices
     ///
@@ -252,24 +305,10 @@ impl RusinkiewiczGrid {
     /// for bit (`a·0 + b·1 = b = b·1 + c·0` for finite values).
     #[inline(always)]
     pub(crate) fn cells(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> Cells {
-        let (nh, nd, np) = (self.n_theta_h, self.n_theta_d, self.n_phi_d);
-        let scale = Vec4::new(
-            nh as f32 * SQRT_2_OVER_PI,
-            nd as f32 * FRAC_2_PI,
-            np as f32 * FRAC_1_PI,
-            0.0,
-        );
-        let np_f = np as f32;
-        let lim = Vec4::new(
-            nh.saturating_sub(1) as f32,
-            nd.saturating_sub(1) as f32,
-            f32::from_bits(np_f.to_bits() - 1),
-            0.0,
-        );
-        let u = Vec4::new(libm::sqrtf(theta_h), theta_d, phi_d, 0.0) * scale;
+        let u = Vec4::new(libm::sqrtf(theta_h), theta_d, phi_d, 0.0) * self.scale;
         // NaN → 0, then ≤ lim: `max(u, 0)` returns its second operand for a
         // NaN `u` (SSE `maxps`; glam's scalar fallback ignores the NaN).
-        let u = u.max(Vec4::ZERO).min(lim);
+        let u = u.max(Vec4::ZERO).min(self.lim);
         let v = (u - Vec4::splat(0.5)) + Vec4::splat(MAGIC);
         let t = u - (v - Vec4::splat(MAGIC));
         let [vh, vd, vp, _] = v.to_array();
@@ -277,9 +316,9 @@ impl RusinkiewiczGrid {
         let (ih, id, ip) = (index(vh), index(vd), index(vp));
         let [th, td, tp, _] = t.to_array();
         Cells {
-            h: [ih as usize, (ih + 1).min(nh.saturating_sub(1)) as usize],
-            d: [id as usize, (id + 1).min(nd.saturating_sub(1)) as usize],
-            p: [ip as usize, if ip + 1 < np { ip + 1 } else { 0 } as usize],
+            h: [ih as usize, (ih + 1).min(self.last_h) as usize],
+            d: [id as usize, (id + 1).min(self.last_d) as usize],
+            p: [ip as usize, if ip + 1 < self.n_phi { ip + 1 } else { 0 } as usize],
             t: [th, td, tp],
         }
     }

@@ -1,6 +1,7 @@
 //! The [`Tabulated`] BRDF plugin.
 
 use super::coords::{H_MIN, coords_above, coords_unit};
+use super::grid::{CellMap, Cells};
 use super::sampling::DEFAULT_COSINE_WEIGHT;
 use super::{HalfVectorDistribution, MAX_VALUE, RusinkiewiczGrid, TabulatedError};
 use crate::microfacet::{is_unit, unitize};
@@ -83,6 +84,8 @@ use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 #[derive(Clone, Copy, PartialEq)]
 pub struct Tabulated<'a, S: Spectrum = Vec3> {
     grid: RusinkiewiczGrid,
+    /// The lookup constants of `grid`, computed once.
+    map: CellMap,
     values: &'a [S],
     sampling: Option<HalfVectorDistribution<'a>>,
 }
@@ -130,6 +133,7 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
         }
         Ok(Self {
             grid,
+            map: CellMap::new(grid),
             values,
             sampling: None,
         })
@@ -188,9 +192,13 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
     /// `(θh, θd, φd)` with `φd` folded into `[0, π]` (no horizon test).
     #[inline(always)]
     pub fn lookup(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> S {
-        let c = self.grid.cells(theta_h, theta_d, phi_d);
-        let np = self.grid.n_phi_d();
-        let plane = np * self.grid.n_theta_d();
+        self.lookup_cells(self.map.cells(theta_h, theta_d, phi_d))
+    }
+
+    /// The trilinear interpolation over the cells `c`.
+    #[inline(always)]
+    fn lookup_cells(&self, c: Cells) -> S {
+        let (np, plane) = (self.map.row, self.map.plane);
         // Two independent products (not `np·(id + nd·ih)`): shorter latency.
         let row = |ih: usize, id: usize| plane * ih + np * id;
         let [th, td, tp] = c.t;
