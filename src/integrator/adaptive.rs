@@ -331,10 +331,85 @@ fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Res
         let strip = (e - lo).abs();
         let side = 2.0 * r.h[1 - ax];
         r.error = acc::add(r.error, ve.zip(vx, |a, b| a.abs().max(b.abs()) * strip * side));
+        // Split across the strip next (see `cut_gaps`).
+        r.axis = ax as u8;
         grew = true;
     }
     if grew {
         r.key = acc::max_abs(acc::add(r.error, r.abs.map(|x| x * F32_FLOOR)));
+    }
+    Ok(evals)
+}
+
+/// Most evaluations of one [`cut_gaps`] check: three points on the line
+/// across the cut and the bisection of a step on each side.
+const CUT_POINTS: u64 = 3 + 2 * EDGE_BISECTIONS;
+
+/// Cut-gap check after splitting a region into `a` (below the cut) and `b`
+/// (above it) along `axis` (warped square only), run when one child's
+/// nodes saw support and the other's did not: the support boundary then
+/// crosses the region near the cut, and may lie in the margin between the
+/// cut and either child's nearest nodes, where neither rule sees it — e.g.
+/// the horizon pre-image of GGX's visible-normal map at `α = 1` is the line
+/// `u₁ ≈ 2/3`, which a dyadic cut `u₁ = 0.6659` leaves 0.0008 inside the
+/// zero child's 0.0012-wide margin: that child reports `0 ± 0` for the
+/// sliver of support it holds, at every budget (the relative bias
+/// `4·10⁻⁶` at `θo = 60°` that an estimate of `10⁻⁷` did not cover).
+/// On the line across the cut's midpoint, the integrand is evaluated at
+/// the cut `e` and at the nearest node position of each child (`x_a`,
+/// `x_b`); where the support flag changes between `x` and `e`, the step is
+/// located by [`EDGE_BISECTIONS`] bisections and that child's error grows
+/// by the strip beyond it, `max(|g(x)|, |g(e)|) · |e − s₋| · side`, as in
+/// [`edge_gaps`], and its next split is across the cut's axis (halving it
+/// along the cut would leave the step in both grandchildren's margins,
+/// with no error left to refine them). Refinement of the child then brings
+/// the boundary into view. Returns the evaluations spent (≤ [`CUT_POINTS`]).
+fn cut_gaps<W: WideSpectrum>(
+    a: &mut Region<W>,
+    b: &mut Region<W>,
+    axis: usize,
+    f: &mut impl BatchFn<W>,
+) -> Result<u64, IntegrateError> {
+    let l3 = libm::sqrt(0.9);
+    let cut = a.c[axis] + a.h[axis];
+    let mut e = a.c;
+    e[axis] = cut;
+    let mut xa = e;
+    xa[axis] = cut - (1.0 - l3) * a.h[axis] / a.n as f64;
+    let mut xb = e;
+    xb[axis] = cut + (1.0 - l3) * b.h[axis] / b.n as f64;
+    let pts = [xa, e, xb];
+    let mut vals = [W::splat(0.0); 3];
+    f(&pts, &mut vals)?;
+    let mut evals = 3u64;
+    let side = 2.0 * a.h[1 - axis];
+    let flag_e = nonzero(&vals[1]);
+    for (r, x, vx) in [(a, xa, vals[0]), (b, xb, vals[2])] {
+        if nonzero(&vx) == flag_e {
+            continue;
+        }
+        // Bisection on the line from x to e: `lo` keeps x's flag.
+        let (mut lo, mut hi) = (x[axis], cut);
+        let mut p = e;
+        let mut v = [W::splat(0.0)];
+        for _ in 0..EDGE_BISECTIONS {
+            let mid = 0.5 * (lo + hi);
+            p[axis] = mid;
+            f(&[p], &mut v)?;
+            evals += 1;
+            if nonzero(&v[0]) == flag_e {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let strip = (cut - lo).abs();
+        let ve = vals[1];
+        r.error = acc::add(r.error, ve.zip(vx, |p, q| p.abs().max(q.abs()) * strip * side));
+        r.key = acc::max_abs(acc::add(r.error, r.abs.map(|x| x * F32_FLOOR)));
+        // Split across the strip next: halving along it would leave the step
+        // in both children's margins, and the error with it.
+        r.axis = axis as u8;
     }
     Ok(evals)
 }
@@ -407,7 +482,11 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 ///    side and at the nearest node position; a support step between them is
 ///    located by 6 bisections and the strip beyond it added to the region's
 ///    error), because the sampling map often stops producing directions in
-///    a sliver at the edge that no node ever enters;
+///    a sliver at the edge that no node ever enters; likewise, a split
+///    whose children disagree on support (one child's nodes all zero, the
+///    other's not) gets a cut-gap check across the cut (`cut_gaps`), since
+///    the support boundary may sit in the margin beside the cut; a region
+///    whose error grew by either check is next split across that strip;
 /// 5. on the plain hemisphere, with a sampling map and a budget ≥ 84, a
 ///    peak probe ([`probe`], 16 draws from the budget): a
 ///    probe value above twice the largest node value of the leaf region
@@ -640,6 +719,9 @@ impl Adaptive {
             evals += 2 * GM_POINTS as u64;
             if edge {
                 evals += edge_gaps(&mut a, &mut f)? + edge_gaps(&mut b, &mut f)?;
+                if nonzero(&a.abs) != nonzero(&b.abs) && evals + CUT_POINTS <= budget {
+                    evals += cut_gaps(&mut a, &mut b, ax, &mut f)?;
+                }
             }
             splits += 1;
             two_level(&r, &mut a, &mut b);
