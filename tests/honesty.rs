@@ -277,6 +277,97 @@ fn adaptive_warped_sees_the_support_boundary_beside_a_cut() {
     }
 }
 
+/// Directional albedo of `brdf` at `wo` by the `f64` quadrature of
+/// [`common::quad`] (independent of the integrators under test), about the
+/// mirror direction with breakpoints for a lobe of width `width`.
+fn albedo_f64(brdf: &common::plugins::Dyn, wo: Vec3, width: f64) -> f64 {
+    use common::quad::{integrate_hemisphere, lobe_breaks};
+    use radiometry::glam::DVec3;
+    let tol = Tol {
+        abs: 1e-7,
+        rel: 1e-7,
+        depth: 14,
+    };
+    let pole = DVec3::new(-wo.x as f64, -wo.y as f64, wo.z as f64);
+    let r = integrate_hemisphere(&RefQuad::default(), pole, &lobe_breaks(width), tol, &mut |wi| {
+        brdf.eval(common::strategies::to_f32(wi), wo) as f64 * wi.z
+    });
+    assert!(r.err < 1e-6, "{r:?}");
+    r.value
+}
+
+#[test]
+fn split_rule_estimate_is_not_one_accidentally_small_difference() {
+    // GGX α = 0.05 at θo = 60°, budget 4096: the split rule's orders 16 and
+    // 8 were both 7.8·10⁻⁵ low and only 2.7·10⁻⁶ apart; with the coarser
+    // differences shrinking fast (e₂/e₃ = 0.01) an earlier version took that
+    // one difference as the error (28× understated). The estimate now never
+    // drops below the error of the order-8 rule extrapolated at the observed
+    // rate.
+    let brdf = ggx(0.05);
+    let t = 60f32.to_radians();
+    let wo = Vec3::new(t.sin(), 0.0, t.cos());
+    let exact = albedo_f64(&brdf, wo, 0.1);
+    let g = DirectionalAlbedo { brdf: &*brdf, wo };
+    let split = WarpedGaussLegendre::horizon_split();
+    for budget in [1024u32, 4096, 16384, 65536] {
+        let e = split.integrate(&g, budget).unwrap();
+        let err = (e.value - exact).abs();
+        eprintln!(
+            "split {budget}: {:.10} ± {:.1e} (true {err:.1e}), {}",
+            e.value, e.error, e.status
+        );
+        assert!(
+            err <= 10.0 * e.error || !e.is_resolved(),
+            "{budget}: {e:?}, exact {exact}"
+        );
+    }
+}
+
+#[test]
+fn mean_check_flags_a_lobe_the_plain_adaptive_rule_under_integrates() {
+    // Beckmann α = 10⁻³ at θo = 60°: the lobe (≈ 0.1° wide) sits far from
+    // the horizon, where Λ = 0 in f64, so G2 = 1 and the albedo is the weak
+    // white furnace ∫ D(h)⟨ωo·h⟩ dh / cos θo = 1 + Λ(ωo) = 1 (Heitz 2014,
+    // eq. 20; the report's f64 reference: 1 + 2·10⁻¹³). Plain `adaptive`
+    // finds the lobe but leaves part of it in region margins: 1.4 % low with
+    // an estimate of 1.5·10⁻⁴ at 2²⁰ evaluations. The importance-sampled
+    // mean check (one draw per 1,024 evaluations) disagrees and marks it.
+    let p = Params {
+        alpha: 1e-3,
+        ..Params::typical()
+    };
+    let brdf = build(
+        Kind::Micro(Dist::Beckmann, Shadow::HeightCorrelated, Fres::None),
+        &p,
+    )
+    .unwrap();
+    let t = 60f32.to_radians();
+    let g = DirectionalAlbedo {
+        brdf: &*brdf,
+        wo: Vec3::new(t.sin(), 0.0, t.cos()),
+    };
+    let exact = 1.0;
+    let adaptive = Adaptive::new(0.0, 0.0).unwrap();
+    let mut flagged = 0;
+    for budget in [65536u32, 262144, 1 << 20] {
+        let e = adaptive.integrate(&g, budget).unwrap();
+        let err = (e.value - exact).abs();
+        eprintln!(
+            "adaptive {budget}: {:.8} ± {:.1e} (true {err:.1e}), {}",
+            e.value, e.error, e.status
+        );
+        assert!(e.evaluations <= budget as u64, "{e:?}");
+        assert!(
+            err <= 10.0 * e.error || !e.is_resolved(),
+            "{budget}: {e:?}, exact {exact}"
+        );
+        flagged += usize::from(e.status == Status::Unresolved(Unresolved::ProbeDisagrees));
+    }
+    // The mean check is what catches it (no earlier reason applies).
+    assert!(flagged > 0);
+}
+
 #[test]
 fn monte_carlo_error_covers_the_sliver_no_draw_lands_in() {
     // GGX α = 0.01 at normal incidence, sampled through its own

@@ -63,6 +63,13 @@ pub enum Unresolved {
     /// any node or draw — a peak seen only through its tails (see
     /// [`probe`](super::probe)).
     UnseenPeak,
+    /// Quadrature on a fixed grid (`gauss-legendre`, `adaptive`), budgets
+    /// ≥ [`MEAN_CHECK_MIN_BUDGET`](super::probe::MEAN_CHECK_MIN_BUDGET): an
+    /// importance-sampled estimate through the integrand's own map, drawn
+    /// beside the rule, differs from the rule's value by more than both
+    /// errors allow — part of the integral lies where the rule's nodes do
+    /// not reach (see [`probe`](super::probe)).
+    ProbeDisagrees,
 }
 
 /// Fewest non-zero Monte Carlo samples for a [`Status::Resolved`] estimate.
@@ -119,6 +126,7 @@ impl Unresolved {
             Unresolved::FewHits => "few-hits",
             Unresolved::HeavyTail => "heavy-tail",
             Unresolved::UnseenPeak => "unseen-peak",
+            Unresolved::ProbeDisagrees => "probe-disagrees",
         }
     }
 }
