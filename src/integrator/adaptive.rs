@@ -491,8 +491,8 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 ///    peak probe ([`probe`], 16 draws from the budget): a
 ///    probe value above twice the largest node value of the leaf region
 ///    holding it marks the estimate [`Unresolved::UnseenPeak`]; at budgets
-///    ≥ 65,536 the probe's mean check (one evaluation in 1,024: an
-///    importance-sampled estimate through the map) marks an estimate that
+///    ≥ 4,096 the probe's mean check (one evaluation in 64, at most 1,024:
+///    an importance-sampled estimate through the map) marks an estimate that
 ///    misses it by more than both errors [`Unresolved::ProbeDisagrees`]
 ///    (part of a lobe left in region margins: Beckmann `α = 10⁻³` at
 ///    `θo = 60°` converged 1.4 % low with an estimate of `1.5·10⁻⁴`).

@@ -594,9 +594,9 @@ fn order_for_budget(budget: u32, k: usize) -> usize {
 /// budgets ≥ 64 spend 16 evaluations on a peak probe
 /// ([`probe`]): draws of the map whose integrand value
 /// exceeds twice the largest value at a node of the rule mark the estimate
-/// [`Unresolved::UnseenPeak`]; budgets ≥ 65,536 also spend one evaluation
-/// in 1,024 on the probe's mean check (an importance-sampled estimate
-/// through the map; disagreement beyond both errors marks
+/// [`Unresolved::UnseenPeak`]; budgets ≥ 4,096 also spend one evaluation in
+/// 64 (at most 1,024) on the probe's mean check (an importance-sampled
+/// estimate through the map; disagreement beyond both errors marks
 /// [`Unresolved::ProbeDisagrees`]).
 ///
 /// **Budget**: the largest `n_θ` whose rule plus comparison rules

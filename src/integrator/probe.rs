@@ -36,17 +36,22 @@
 //! `adaptive` on Beckmann `α = 10⁻³` at `θo = 60°`, 1.4 % low with an
 //! estimate of 1.5·10⁻⁴ at 10⁶ evaluations). At budgets of at least
 //! [`MEAN_CHECK_MIN_BUDGET`] the blind rules also spend one evaluation in
-//! [`MEAN_CHECK_SHARE`] on an importance-sampled estimate through the same
-//! map (`n` points of a rank-1 lattice, mean `P` of `g/p`,
-//! standard error `σ`), independent of the rule's nodes. When the rule's
-//! value `Q` misses `P` by more than `error(Q) + 4σ + |P|/n` in some channel
-//! (`|P|/n`: what a region of mass `1/n` of the map that no point entered
-//! could hide), one of the two is wrong and the rule's estimate is marked
+//! [`MEAN_CHECK_SHARE`] (at most [`MEAN_CHECK_MAX_POINTS`]) on an
+//! importance-sampled estimate through the same map (`n` points of a
+//! rank-1 lattice, mean `P` of `g/p`, standard error `σ`), independent of
+//! the rule's nodes. When that estimate is itself resolved (enough hits, no
+//! heavy tail: the Monte Carlo criteria) and the rule's value `Q` misses `P`
+//! by more than `error(Q) + 4σ + |P|/n` in some channel (`|P|/n`: what a
+//! region of mass `1/n` of the map that no point entered could hide), one
+//! of the two is wrong and the rule's estimate is marked
 //! [`Unresolved::ProbeDisagrees`].
 
 use super::acc::{self, WideSum, to_unit_f32};
 use super::chunk::{CHUNK, sample_weight};
-use super::{Integrand, IntegrandSample, IntegrateError, Status, Unresolved, check_finite};
+use super::{
+    Integrand, IntegrandSample, IntegrateError, MIN_EFFECTIVE_SAMPLES, MIN_HITS, Status, Unresolved,
+    check_finite,
+};
 use crate::spectrum::{Spectrum, WideSpectrum};
 use glam::Vec3;
 
@@ -123,18 +128,26 @@ impl Probe {
 }
 
 /// One draw of the [mean check](self) per this many evaluations of the
-/// budget.
-pub const MEAN_CHECK_SHARE: u32 = 1024;
+/// budget, between [`MEAN_CHECK_MIN_POINTS`] and [`MEAN_CHECK_MAX_POINTS`]
+/// draws.
+pub const MEAN_CHECK_SHARE: u32 = 64;
 
-/// Smallest budget with a mean check (64 draws; below, `|P|/n` is too
-/// coarse to judge anything a 10⁻⁴ rule gets wrong).
-pub const MEAN_CHECK_MIN_BUDGET: u32 = 64 * MEAN_CHECK_SHARE;
+/// Fewest draws of a mean check (below, `|P|/n` is too coarse to judge
+/// anything).
+pub const MEAN_CHECK_MIN_POINTS: u32 = 64;
+
+/// Most draws of a mean check (`|P|/n` ≈ 10⁻³; the budget share falls to
+/// 0.1 % at 2²⁰).
+pub const MEAN_CHECK_MAX_POINTS: u32 = 1024;
+
+/// Smallest budget with a mean check (4,096: 64 draws, 1.6 % of it).
+pub const MEAN_CHECK_MIN_BUDGET: u32 = MEAN_CHECK_MIN_POINTS * MEAN_CHECK_SHARE;
 
 /// Draws of the mean check at `budget` (0 below [`MEAN_CHECK_MIN_BUDGET`]
 /// or without a sampling map).
 pub(crate) fn mean_check_points<I: Integrand>(g: &I, budget: u32) -> u32 {
     if g.has_sampling_map() && budget >= MEAN_CHECK_MIN_BUDGET {
-        budget / MEAN_CHECK_SHARE
+        (budget / MEAN_CHECK_SHARE).min(MEAN_CHECK_MAX_POINTS)
     } else {
         0
     }
@@ -149,6 +162,11 @@ pub(crate) struct MeanCheck<W> {
     pub(crate) mean: W,
     pub(crate) sigma: W,
     pub(crate) n: u32,
+    /// The check is itself resolved by the Monte Carlo criteria (at least
+    /// [`MIN_HITS`] non-zero draws and an effective sample size
+    /// `(Σ|x|)²/Σx² ≥` [`MIN_EFFECTIVE_SAMPLES`] in every channel): only
+    /// then can it contradict the rule.
+    pub(crate) usable: bool,
 }
 
 impl<W: WideSpectrum> MeanCheck<W> {
@@ -162,6 +180,8 @@ impl<W: WideSpectrum> MeanCheck<W> {
         const INV_GOLDEN: f64 = 0.618_033_988_749_894_8;
         let mut sum = WideSum::<W>::new();
         let mut sq = WideSum::<W>::new();
+        let mut abs = WideSum::<W>::new();
+        let mut hits = 0u64;
         let mut us = [[0.0f32; 2]; CHUNK];
         let mut ss: [Option<IntegrandSample<S>>; CHUNK] = [None; CHUNK];
         let mut k = 0u32;
@@ -177,6 +197,8 @@ impl<W: WideSpectrum> MeanCheck<W> {
                 if let Some((_, _, w)) = sample_weight(*s)? {
                     sum.add(w);
                     sq.add(w.map(|x| x * x));
+                    abs.add(w.map(f64::abs));
+                    hits += u64::from(acc::nonzero(&w));
                 }
             }
             k += m as u32;
@@ -187,19 +209,31 @@ impl<W: WideSpectrum> MeanCheck<W> {
             let var = (s2 / nf - m * m).max(0.0) * nf / (nf - 1.0).max(1.0);
             libm::sqrt(var / nf)
         });
-        Ok(MeanCheck { mean, sigma, n })
+        let (a, q) = (abs.value(), sq.value());
+        let usable = hits >= MIN_HITS
+            && (0..W::CHANNELS).all(|i| {
+                let (a, q) = (a.channel(i), q.channel(i));
+                q <= 0.0 || a * a / q >= MIN_EFFECTIVE_SAMPLES
+            });
+        Ok(MeanCheck {
+            mean,
+            sigma,
+            n,
+            usable,
+        })
     }
 
-    /// `status` unless it is resolved and `value ± error` (the rule's
-    /// estimate) misses the check's mean by more than
-    /// `error + 4σ + |mean|/n` in some channel: then
+    /// `status` unless it is resolved, the check is usable and
+    /// `value ± error` (the rule's estimate) misses the check's mean by more
+    /// than `error + 4σ + |mean|/n` in some channel: then
     /// [`Unresolved::ProbeDisagrees`].
     pub(crate) fn judge(&self, status: Status, value: W, error: W) -> Status {
         let n = self.n as f64;
-        let off = (0..W::CHANNELS).any(|i| {
-            let (m, s) = (self.mean.channel(i), self.sigma.channel(i));
-            (value.channel(i) - m).abs() > error.channel(i) + 4.0 * s + m.abs() / n
-        });
+        let off = self.usable
+            && (0..W::CHANNELS).any(|i| {
+                let (m, s) = (self.mean.channel(i), self.sigma.channel(i));
+                (value.channel(i) - m).abs() > error.channel(i) + 4.0 * s + m.abs() / n
+            });
         if off {
             status.combine(Status::Unresolved(Unresolved::ProbeDisagrees))
         } else {
@@ -297,6 +331,7 @@ mod tests {
     fn mean_check_estimates_and_judges() {
         use core::f64::consts::PI;
         assert_eq!(mean_check_points(&HalfUniform, MEAN_CHECK_MIN_BUDGET - 1), 0);
+        assert_eq!(mean_check_points(&HalfUniform, 4096), 64);
         assert_eq!(mean_check_points(&HalfUniform, 1 << 20), 1024);
         let n = 200;
         let m = MeanCheck::take(&HalfUniform, n).unwrap();
@@ -320,6 +355,10 @@ mod tests {
         );
         let few = Status::Unresolved(Unresolved::FewNodes);
         assert_eq!(m.judge(few, 0.0, 0.0), few);
+        // 40 draws, 20 hits (< MIN_HITS): the check cannot judge.
+        let m = MeanCheck::take(&HalfUniform, 40).unwrap();
+        assert!(!m.usable);
+        assert_eq!(m.judge(Status::Resolved, 0.0, 0.0), Status::Resolved);
     }
 
     #[test]
