@@ -260,6 +260,33 @@ const EDGE_POINTS: u64 = 2 * (2 + EDGE_BISECTIONS);
 /// Tolerance of "on the boundary" (region sides are sums of halvings).
 const EDGE_EPS: f64 = 1e-12;
 
+/// The support step on the line through `p` along `axis`, between `x`
+/// (on the side whose support flag is `!flag_e`) and `e` (flag `flag_e`):
+/// [`EDGE_BISECTIONS`] bisections, returning the bound `s₋` nearer `x` (the
+/// last point found with `x`'s flag, or `x`).
+fn locate_step<W: WideSpectrum>(
+    mut p: [f64; 2],
+    axis: usize,
+    x: f64,
+    e: f64,
+    flag_e: bool,
+    f: &mut impl BatchFn<W>,
+) -> Result<f64, IntegrateError> {
+    let (mut lo, mut hi) = (x, e);
+    let mut v = [W::splat(0.0)];
+    for _ in 0..EDGE_BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        p[axis] = mid;
+        f(&[p], &mut v)?;
+        if nonzero(&v[0]) == flag_e {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(lo)
+}
+
 /// Edge-gap check of the region `r` (warped square only). The rule's nodes
 /// stay `(1 − λ₃) h/n` (`λ₃ = √0.9`, `n × n` cells) away from the region's
 /// sides, so a step of the warped integrand in that margin — typically
@@ -312,22 +339,9 @@ fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Res
         if flag_e == nonzero(&vx) {
             continue;
         }
-        // Bisection on the line from x to e: `lo` keeps x's flag.
         let (e, x) = (pts[2 * k][ax], pts[2 * k + 1][ax]);
-        let (mut lo, mut hi) = (x, e);
-        let mut p = pts[2 * k];
-        let mut v = [W::splat(0.0)];
-        for _ in 0..EDGE_BISECTIONS {
-            let mid = 0.5 * (lo + hi);
-            p[ax] = mid;
-            f(&[p], &mut v)?;
-            evals += 1;
-            if nonzero(&v[0]) == flag_e {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
+        let lo = locate_step(pts[2 * k], ax, x, e, flag_e, f)?;
+        evals += EDGE_BISECTIONS;
         let strip = (e - lo).abs();
         let side = 2.0 * r.h[1 - ax];
         r.error = acc::add(r.error, ve.zip(vx, |a, b| a.abs().max(b.abs()) * strip * side));
@@ -388,21 +402,8 @@ fn cut_gaps<W: WideSpectrum>(
         if nonzero(&vx) == flag_e {
             continue;
         }
-        // Bisection on the line from x to e: `lo` keeps x's flag.
-        let (mut lo, mut hi) = (x[axis], cut);
-        let mut p = e;
-        let mut v = [W::splat(0.0)];
-        for _ in 0..EDGE_BISECTIONS {
-            let mid = 0.5 * (lo + hi);
-            p[axis] = mid;
-            f(&[p], &mut v)?;
-            evals += 1;
-            if nonzero(&v[0]) == flag_e {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
+        let lo = locate_step(e, axis, x[axis], cut, flag_e, f)?;
+        evals += EDGE_BISECTIONS;
         let strip = (cut - lo).abs();
         let ve = vals[1];
         r.error = acc::add(r.error, ve.zip(vx, |p, q| p.abs().max(q.abs()) * strip * side));
