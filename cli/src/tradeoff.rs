@@ -735,10 +735,7 @@ impl Report<'_> {
                 met += 1;
             } else {
                 fails.push(match self.input_shift {
-                    Some(s) => format!(
-                        "{} (rounding its inputs to f32 moves the exact value by {:.1e})",
-                        c.name, s[ci]
-                    ),
+                    Some(s) => format!("{} (f32 input shift {:.1e})", c.name, s[ci]),
                     None => c.name.clone(),
                 });
             }
