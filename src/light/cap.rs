@@ -208,11 +208,19 @@ impl<S: Spectrum> Light for Cap<S> {
 /// the cap, `J(β)` has kinks at `β = ±β*`, `cos β* = cot σ cos θa / sin θa`
 /// (where the horizon starts to cut the radial segments), and for an axis
 /// at or below the horizon `J = 0` on `|β| < β*`. Then φ' is mapped
-/// piecewise onto the visible β-pieces (`[−β*, β*]` on `φ' ∈ [0, π)`, the
-/// rest on `[π, 2π)`; or only `|β| > β*` over all of φ'), each through
-/// Sidi's sin²-transform (Sidi 1993), whose Jacobian vanishes to second
-/// order at the piece ends, so the kinks no longer slow quadrature down
-/// and no node is spent on the invisible part. The Jacobian `dβ/dφ'`
+/// piecewise onto the visible β-pieces, each a quarter (or half) of φ' —
+/// `[−β*, 0]`, `[0, β*]`, `[β*, π]`, `[π, 2π − β*]`; for an axis at or
+/// below the horizon `[β*, π]`, `[π, 2π − β*]` — each through Sidi's
+/// sin²-transform (Sidi 1993), whose Jacobian vanishes to second order at
+/// the piece ends, so the kinks no longer slow quadrature down and no node
+/// is spent on the invisible part. The cuts at `β = 0, π` lie in the
+/// vertical plane through the axis, the plane of symmetry of the clipped
+/// cap: there, for a glossy BRDF seen near its grazing mirror direction,
+/// the reflected lobe is a thin ridge (narrow in azimuth about the normal,
+/// wide in elevation), and Sidi's crowding of nodes at piece ends
+/// resolves it (GGX α = 0.01 under a 5° lamp 2° above the horizon, seen at
+/// the mirror direction: `cap-adaptive` reaches 4.5·10⁻⁷ at 65,536
+/// evaluations, 1.6·10⁻⁶ with the ridge mid-piece). The Jacobian `dβ/dφ'`
 /// multiplies `g'`. Its sampling map is uniform on the hemisphere
 /// (density `1/2π`). Using `v`
 /// instead of `cos α` keeps full precision for tiny caps (the sun).
@@ -363,19 +371,29 @@ impl<B: Brdf> CapIntegrand<B> {
         match self.azimuth {
             Azimuth::Full => (phi, 1.0),
             Azimuth::Lower(bs) => {
-                let width = TAU - 2.0 * bs;
-                let (st, ds) = sidi(phi / TAU);
-                (bs + width * st, width * ds / TAU)
+                // Two pieces, [β*, π] and [π, 2π − β*].
+                let half = pi - bs;
+                let (k, t) = if phi < pi {
+                    (0.0, phi / pi)
+                } else {
+                    (1.0, (phi - pi) / pi)
+                };
+                let (st, ds) = sidi(t);
+                (bs + half * (k + st), half * ds / pi)
             }
             Azimuth::Split(bs) => {
-                if phi < pi {
-                    let (st, ds) = sidi(phi / pi);
-                    (-bs + 2.0 * bs * st, 2.0 * bs * ds / pi)
-                } else {
-                    let width = TAU - 2.0 * bs;
-                    let (st, ds) = sidi((phi - pi) / pi);
-                    (bs + width * st, width * ds / pi)
-                }
+                // Four pieces: [−β*, 0], [0, β*] on φ' < π; [β*, π], [π, 2π − β*] on φ' ≥ π.
+                let h = 0.5 * pi;
+                let q = (phi / h).clamp(0.0, 3.999_999_8);
+                let k = libm::floorf(q);
+                let (st, ds) = sidi(q - k);
+                let (lo, width) = match k as u32 {
+                    0 => (-bs, bs),
+                    1 => (0.0, bs),
+                    2 => (bs, pi - bs),
+                    _ => (pi, pi - bs),
+                };
+                (lo + width * st, width * ds / h)
             }
         }
     }
