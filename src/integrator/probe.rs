@@ -88,19 +88,22 @@ pub(crate) struct Probe {
     pub(crate) len: usize,
 }
 
+/// Point `k` of the `n`-point rank-1 lattice-like set of the probes:
+/// `((k + ½)/n, frac((k + ½)/φ))`, `φ` the golden ratio.
+fn lattice_point(k: usize, n: usize) -> [f32; 2] {
+    const INV_GOLDEN: f64 = 0.618_033_988_749_894_8;
+    let t = k as f64 + 0.5;
+    let b = t * INV_GOLDEN;
+    [to_unit_f32(t / n as f64), to_unit_f32(b - libm::floor(b))]
+}
+
 impl Probe {
     /// Draws the probe. A non-finite value is
     /// [`IntegrateError::NonFiniteIntegrand`].
     pub(crate) fn take<I: Integrand>(g: &I) -> Result<Self, IntegrateError> {
-        const INV_GOLDEN: f64 = 0.618_033_988_749_894_8;
         let mut us = [[0.0f32; 2]; PROBE_POINTS];
         for (k, u) in us.iter_mut().enumerate() {
-            let t = k as f64 + 0.5;
-            let b = t * INV_GOLDEN;
-            *u = [
-                to_unit_f32(t / PROBE_POINTS as f64),
-                to_unit_f32(b - libm::floor(b)),
-            ];
+            *u = lattice_point(k, PROBE_POINTS);
         }
         let mut ss: [Option<IntegrandSample<I::Spectrum>>; PROBE_POINTS] = [None; PROBE_POINTS];
         g.sample_batch(&us, &mut ss);
@@ -177,7 +180,6 @@ impl<W: WideSpectrum> MeanCheck<W> {
         g: &I,
         n: u32,
     ) -> Result<Self, IntegrateError> {
-        const INV_GOLDEN: f64 = 0.618_033_988_749_894_8;
         let mut sum = WideSum::<W>::new();
         let mut sq = WideSum::<W>::new();
         let mut abs = WideSum::<W>::new();
@@ -188,9 +190,7 @@ impl<W: WideSpectrum> MeanCheck<W> {
         while k < n {
             let m = ((n - k) as usize).min(CHUNK);
             for (j, u) in us[..m].iter_mut().enumerate() {
-                let t = (k as usize + j) as f64 + 0.5;
-                let b = t * INV_GOLDEN;
-                *u = [to_unit_f32(t / n as f64), to_unit_f32(b - libm::floor(b))];
+                *u = lattice_point(k as usize + j, n as usize);
             }
             g.sample_batch(&us[..m], &mut ss[..m]);
             for s in &ss[..m] {
