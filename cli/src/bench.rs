@@ -59,13 +59,21 @@ This CPU's limits, timed in the same process on the same inputs:
                         auto-vectorises
   stream                out[k] = x_i + y_i + z_i + x_o + y_o + z_o over SoA slices
                         (reads 24 B, writes 4 B per element): the memory-stream bound
+  reference-ggx-sample-scalar
+                        GGX α 0.3 visible-normal sampling (spherical caps) with the sample's pdf
+                        and weight, F = 1, as a plain scalar loop with no input checks
+                        (sin/cos by a branch-free polynomial)
+  reference-ggx-sample-soa
+                        the same sampler over SoA slices (wo, u in; wi, pdf, weight out), a
+                        branch-free loop LLVM auto-vectorises
 
 Columns:
   m_per_s      million elements (pairs, or samples) per second, single thread
   ns_per_elem  1000 / m_per_s
-  vs_ref       m_per_s / m_per_s of the reference at the same n: reference-ggx-scalar for the
-               scalar paths (eval, pdf, sample), reference-ggx-soa for the batch paths
-               (eval_batch, eval_batch_soa, pdf_batch, sample_batch); json key `ref` names it
+  vs_ref       m_per_s / m_per_s of the reference at the same n: reference-ggx-scalar for eval
+               and pdf, reference-ggx-soa for eval_batch, eval_batch_soa and pdf_batch,
+               reference-ggx-sample-scalar for sample, reference-ggx-sample-soa for
+               sample_batch; json key `ref` names it
   vs_stream    m_per_s / m_per_s of stream at the same n
 
 Timing: per measurement a warm-up, then repetitions of whole passes over the n elements (each
@@ -106,6 +114,8 @@ fn is_batch(path: &str) -> bool {
 
 const REF_SCALAR: &str = "reference-ggx-scalar";
 const REF_SOA: &str = "reference-ggx-soa";
+const REF_SAMPLE_SCALAR: &str = "reference-ggx-sample-scalar";
+const REF_SAMPLE_SOA: &str = "reference-ggx-sample-soa";
 const STREAM: &str = "stream";
 /// α of the reference GGX (that of the `ggx-hc-a0.3` plugin).
 const REF_ALPHA: f32 = 0.3;
@@ -145,6 +155,8 @@ struct Inputs {
     /// `[j (n + SOA_PAD), j (n + SOA_PAD) + n)`.
     soa: Vec<f32>,
     u: Vec<[f32; 2]>,
+    /// `u₀` at `[0, n)`, `u₁` at `[n + SOA_PAD, 2n + SOA_PAD)`.
+    u_soa: Vec<f32>,
 }
 
 const AOS_PAD: usize = 16;
@@ -182,7 +194,24 @@ impl Inputs {
                 soa.extend(std::iter::repeat_n(0.0, SOA_PAD));
             }
         }
-        Inputs { n, aos, soa, u }
+        let mut u_soa = Vec::with_capacity(2 * (n + SOA_PAD));
+        for j in 0..2 {
+            u_soa.extend(u.iter().map(|v| v[j]));
+            u_soa.extend(std::iter::repeat_n(0.0, SOA_PAD));
+        }
+        Inputs {
+            n,
+            aos,
+            soa,
+            u,
+            u_soa,
+        }
+    }
+
+    /// `(u₀, u₁)` as two slices.
+    fn u_soa(&self, n: usize) -> (&[f32], &[f32]) {
+        let s = self.n + SOA_PAD;
+        (&self.u_soa[..n], &self.u_soa[s..s + n])
     }
 
     fn wi(&self, n: usize) -> &[Vec3] {
@@ -334,8 +363,9 @@ impl Run<'_> {
         }
     }
 
-    /// Seconds per element of the three reference kernels.
-    fn references(&self) -> [f64; 3] {
+    /// Seconds per element of the five reference kernels (eval scalar and
+    /// SoA, stream, sample scalar and SoA).
+    fn references(&self) -> [f64; 5] {
         self.note("references");
         let (n, mt) = (self.n, self.min_time);
         let (wi, wo) = (self.inputs.wi(n), self.inputs.wo(n));
@@ -360,7 +390,30 @@ impl Run<'_> {
         let stream = measure(n, mt, || {
             reference::stream(black_box(si), black_box(so), black_box(&mut out[..]))
         });
-        [scalar, soa, stream]
+        let u = &self.inputs.u[..n];
+        let mut samples = vec![reference::RefSample::default(); n];
+        let sample_scalar = measure(n, mt, || {
+            reference::ggx_sample_scalar(
+                black_box(REF_ALPHA),
+                black_box(wo),
+                black_box(u),
+                black_box(&mut samples[..]),
+            )
+        });
+        let (u0, u1) = self.inputs.u_soa(n);
+        let mut o: [Vec<f32>; 5] = std::array::from_fn(|_| vec![0.0f32; n]);
+        let sample_soa = measure(n, mt, || {
+            let [x, y, z, pdf, weight] = &mut o;
+            reference::ggx_sample_soa(
+                black_box(REF_ALPHA),
+                black_box(so),
+                black_box(u0),
+                black_box(u1),
+                black_box(reference::SampleSoa { x, y, z, pdf, weight }),
+            )
+        });
+        black_box((&out, &samples, &o));
+        [scalar, soa, stream, sample_scalar, sample_soa]
     }
 
     /// Times the seven paths of one plugin.
@@ -512,6 +565,8 @@ impl Run<'_> {
         self.push(REF_SCALAR, "eval", best(0));
         self.push(REF_SOA, "eval_batch_soa", best(1));
         self.push(STREAM, "stream", best(2));
+        self.push(REF_SAMPLE_SCALAR, "sample", best(3));
+        self.push(REF_SAMPLE_SOA, "sample_batch", best(4));
         self.rows.extend(plugin_rows);
         let rate = |name: &str| {
             self.rows
@@ -520,13 +575,15 @@ impl Run<'_> {
                 .map_or(f64::NAN, |r| r.m_per_s)
         };
         let (scalar, soa, stream) = (rate(REF_SCALAR), rate(REF_SOA), rate(STREAM));
+        let (sample_scalar, sample_soa) = (rate(REF_SAMPLE_SCALAR), rate(REF_SAMPLE_SOA));
         for r in &mut self.rows {
             r.vs_stream = r.m_per_s / stream;
             if r.plugin != STREAM {
-                let (name, m) = if is_batch(r.path) {
-                    (REF_SOA, soa)
-                } else {
-                    (REF_SCALAR, scalar)
+                let (name, m) = match r.path {
+                    "sample" => (REF_SAMPLE_SCALAR, sample_scalar),
+                    "sample_batch" => (REF_SAMPLE_SOA, sample_soa),
+                    p if is_batch(p) => (REF_SOA, soa),
+                    _ => (REF_SCALAR, scalar),
                 };
                 r.reference = Some(name);
                 r.vs_ref = Some(r.m_per_s / m);
@@ -610,8 +667,9 @@ warm-up); single thread",
     )
 }
 
-const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf, sample) or / reference-ggx-soa \
-(eval_batch, eval_batch_soa, pdf_batch, sample_batch) at the same n; vs_stream = m_per_s / stream at the same n";
+const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf), / reference-ggx-soa (eval_batch, \
+eval_batch_soa, pdf_batch), / reference-ggx-sample-scalar (sample) or / reference-ggx-sample-soa (sample_batch) at the \
+same n; vs_stream = m_per_s / stream at the same n";
 
 /// Runs the command.
 pub fn run(args: BenchArgs) -> ExitCode {

@@ -69,7 +69,9 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
     let stream = rate(get("stream", "stream"));
     let ref_scalar = rate(get("reference-ggx-scalar", "eval"));
     let ref_soa = rate(get("reference-ggx-soa", "eval_batch_soa"));
-    assert_eq!(rows.len(), 3 + PLUGINS.len() * PATHS.len());
+    let ref_sample = rate(get("reference-ggx-sample-scalar", "sample"));
+    let ref_sample_soa = rate(get("reference-ggx-sample-soa", "sample_batch"));
+    assert_eq!(rows.len(), 5 + PLUGINS.len() * PATHS.len());
     for r in rows {
         assert_eq!(r["n"], 4096, "--quick is n = 4096 only: {r}");
         let m = rate(r);
@@ -85,7 +87,11 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
             continue;
         }
         let batch = BATCH_PATHS.iter().any(|p| r["path"] == *p);
-        let (name, denom) = if batch {
+        let (name, denom) = if r["path"] == "sample" {
+            ("reference-ggx-sample-scalar", ref_sample)
+        } else if r["path"] == "sample_batch" {
+            ("reference-ggx-sample-soa", ref_sample_soa)
+        } else if batch {
             ("reference-ggx-soa", ref_soa)
         } else {
             ("reference-ggx-scalar", ref_scalar)

@@ -228,6 +228,7 @@ impl MicrofacetDistribution for Beckmann {
     /// Halley steps of `Beckmann::sample_slope_x`. Either way
     /// the returned `pdf` of `Microfacet::sample` is computed from the
     /// returned direction.
+    #[inline]
     fn sample_visible(&self, wo: Vec3, u: [f32; 2]) -> Vec3 {
         let a = self.alpha;
         let wo = unitize(wo).unwrap_or(Vec3::Z);

@@ -140,6 +140,7 @@ impl MicrofacetDistribution for Ggx {
     /// `1 − z_c = u₁(1 + v_z)`, `1 + z_c = (1 − u₁)(1 + v_z) + (1 − v_z)` and
     /// `h_z = (1 − u₁)(1 + v_z)` are evaluated in these cancellation-free
     /// forms.
+    #[inline]
     fn sample_visible(&self, wo: Vec3, u: [f32; 2]) -> Vec3 {
         let a = self.alpha;
         let wo = unitize(wo).unwrap_or(Vec3::Z);
