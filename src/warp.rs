@@ -10,8 +10,8 @@
 //! [`ONE_MINUS_EPSILON`](crate::math::ONE_MINUS_EPSILON) — and returns a
 //! finite, unit-length direction on the closed domain.
 
-use crate::math::{clamp01, safe_sqrt};
-use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use crate::math::{clamp01, safe_sqrt, sincos_turn};
+use core::f32::consts::{FRAC_1_PI, PI, TAU};
 use glam::{Vec2, Vec3};
 
 /// Concentric map of the unit square onto the unit disk (Shirley & Chiu
@@ -24,12 +24,13 @@ pub fn square_to_concentric_disk(u: [f32; 2]) -> Vec2 {
     if ox == 0.0 && oy == 0.0 {
         return Vec2::ZERO;
     }
-    let (r, theta) = if ox.abs() > oy.abs() {
-        (ox, FRAC_PI_4 * (oy / ox))
+    // θ = π/4 · o_y/o_x or π/2 − π/4 · o_x/o_y, in turns (θ/2π).
+    let (r, turns) = if ox.abs() > oy.abs() {
+        (ox, 0.125 * (oy / ox))
     } else {
-        (oy, FRAC_PI_2 - FRAC_PI_4 * (ox / oy))
+        (oy, 0.25 - 0.125 * (ox / oy))
     };
-    let (s, c) = libm::sincosf(theta);
+    let (s, c) = sincos_turn(turns);
     Vec2::new(r * c, r * s)
 }
 
@@ -45,7 +46,7 @@ pub fn concentric_disk_pdf(p: Vec2) -> f32 {
 pub fn square_to_uniform_hemisphere(u: [f32; 2]) -> Vec3 {
     let z = clamp01(u[0]);
     let r = safe_sqrt(1.0 - z * z);
-    let (s, c) = libm::sincosf(TAU * clamp01(u[1]));
+    let (s, c) = sincos_turn(clamp01(u[1]));
     Vec3::new(r * c, r * s, z)
 }
 
@@ -81,7 +82,7 @@ pub fn square_to_uniform_cone(u: [f32; 2], cos_theta_max: f32) -> Vec3 {
     let ctm = cos_theta_max.clamp(-1.0, 1.0);
     let z = (1.0 - clamp01(u[0]) * (1.0 - ctm)).clamp(-1.0, 1.0);
     let r = safe_sqrt(1.0 - z * z);
-    let (s, c) = libm::sincosf(TAU * clamp01(u[1]));
+    let (s, c) = sincos_turn(clamp01(u[1]));
     Vec3::new(r * c, r * s, z)
 }
 
@@ -103,7 +104,7 @@ pub fn uniform_cone_pdf(w: Vec3, cos_theta_max: f32) -> f32 {
 pub fn square_to_uniform_sphere(u: [f32; 2]) -> Vec3 {
     let z = 1.0 - 2.0 * clamp01(u[0]);
     let r = safe_sqrt(1.0 - z * z);
-    let (s, c) = libm::sincosf(TAU * clamp01(u[1]));
+    let (s, c) = sincos_turn(clamp01(u[1]));
     Vec3::new(r * c, r * s, z)
 }
 

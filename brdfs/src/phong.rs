@@ -83,10 +83,10 @@
 
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::is_unit;
-use core::f32::consts::{FRAC_1_PI, TAU};
+use core::f32::consts::FRAC_1_PI;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
-use radiometry::frame::{Frame, reflect_z, spherical_direction_sc, try_normalize};
+use radiometry::frame::{Frame, reflect_z, try_normalize};
 use radiometry::glam::Vec3;
 use radiometry::math::{ONE_MINUS_EPSILON, safe_sqrt};
 use radiometry::warp::square_to_cosine_hemisphere;
@@ -306,9 +306,9 @@ pub(crate) mod batch {
     use super::ModifiedPhong;
     use crate::simd::Vf;
     use crate::simd::{
-        Dirs, Kernel, LANES, SampleKernel, cold_lanes, expm1f, logf, pow_one_minus, sincosf, store,
+        Dirs, Kernel, LANES, SampleKernel, cold_lanes, expm1f, logf, pow_one_minus, sincos_turn, store,
     };
-    use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, TAU};
+    use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
     use radiometry::math::ONE_MINUS_EPSILON;
     use radiometry::{Brdf, BrdfSample, Spectrum};
@@ -535,13 +535,13 @@ pub(crate) mod batch {
         Some((diffuse, clamp_unit(v)))
     }
 
-    /// The sampler's two warps, one per lane (one `sincosf` for both):
+    /// The sampler's two warps, one per lane (one `sincos_turn` for both):
     /// `square_to_cosine_hemisphere([v, u₁])` on the `diffuse` lanes
-    /// (Shirley & Chiu's concentric map, `r = ±o`, `θ = π/4 · o_y/o_x` or
-    /// `π/2 − π/4 · o_x/o_y`, lifted by `z = √(1 − |d|²)`), and
+    /// (Shirley & Chiu's concentric map, `r = ±o`, `θ/2π = o_y/o_x / 8` or
+    /// `1/4 − o_x/o_y / 8`, lifted by `z = √(1 − |d|²)`), and
     /// `sample_cos_power([v, u₁], 1/(n+1))` on the others
     /// (`1 − cos θ = −expm1(ln ξ/(n+1))`, `ξ = 1 − v`, `φ = 2π u₁`, with
-    /// the bit-exact ports [`logf`], [`expm1f`], [`sincosf`]); the
+    /// the bit-exact ports [`logf`], [`expm1f`] and [`sincos_turn`]); the
     /// operations and clamps of the scalar functions, in their order.
     #[inline(always)]
     pub(crate) fn warp(diffuse: Vf, v: Vf, u1: Vf, inv_n1: f32) -> Dirs {
@@ -556,14 +556,14 @@ pub(crate) mod batch {
         let (r, angle) = if any_diffuse {
             // One division: o_y/o_x where |o_x| > |o_y|, else o_x/o_y.
             let ratio = horiz.select(oy, ox) / horiz.select(ox, oy);
-            let q = Vf::splat(FRAC_PI_4) * ratio;
-            let theta = horiz.select(q, Vf::splat(FRAC_PI_2) - q);
-            (horiz.select(ox, oy), center.select(zero, theta))
+            // θ/2π = o_y/o_x / 8 or 1/4 − o_x/o_y / 8 (turns).
+            let q = Vf::splat(0.125) * ratio;
+            let turns = horiz.select(q, Vf::splat(0.25) - q);
+            (horiz.select(ox, oy), center.select(zero, turns))
         } else {
             (zero, zero)
         };
-        let phi = Vf::splat(TAU) * clamp_unit(u1);
-        let (sn, cs) = sincosf(diffuse.select(angle, phi));
+        let (sn, cs) = sincos_turn(diffuse.select(angle, clamp_unit(u1)));
         // Cosine-weighted hemisphere (the centre maps to (0, 0, 1)).
         let dx = center.select(zero, r * cs);
         let dy = center.select(zero, r * sn);
@@ -711,7 +711,10 @@ pub(crate) fn sample_cos_power(u: [f32; 2], inv_n1: f32) -> Vec3 {
     let xi = 1.0 - clamp_unit(u[0]); // in [2⁻²⁴, 1]
     let delta = (-libm::expm1f(libm::logf(xi) * inv_n1)).clamp(0.0, 1.0);
     let sin_t = safe_sqrt(delta * (2.0 - delta));
-    spherical_direction_sc(sin_t, 1.0 - delta, TAU * clamp_unit(u[1]))
+    let (sp, cp) = radiometry::math::sincos_turn(clamp_unit(u[1]));
+    // The clamps of `spherical_direction_sc`.
+    let (s, c) = (sin_t.clamp(-1.0, 1.0), (1.0 - delta).clamp(-1.0, 1.0));
+    Vec3::new(s * cp, s * sp, c)
 }
 
 /// `(ωi, ωo)` as unit vectors with both strictly above the horizon, or

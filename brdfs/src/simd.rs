@@ -5,7 +5,7 @@
 //! This module holds the shared vector math ([`LANES`] directions in
 //! structure-of-arrays form, the chunk drivers for array-of-structures and
 //! structure-of-arrays input, bit-exact vector ports of `libm`'s `expf`,
-//! `log1pf`, `powf`, `sincosf`, `logf` and `expm1f`, `f32` ↔ `f64` lane conversions, spectrum
+//! `log1pf`, `powf`, `logf` and `expm1f` and of the crate's own `sincos_turn`, `f32` ↔ `f64` lane conversions, spectrum
 //! stores, the chunk driver of the sampling kernels); it imports nothing from
 //! the plugins. Each
 //! plugin's kernel lives next to its scalar code and follows its formula
@@ -33,12 +33,12 @@
 //! operations as the scalar code, in the same order: `+ − × ÷ √`,
 //! comparisons and selects, all correctly rounded in `wide`'s vectors and in
 //! scalar `f32` / `libm::sqrtf`; no fused multiply–add, no reciprocal
-//! estimates. The transcendentals are bit-exact vector ports of the `libm`
-//! functions the scalar code calls — `expf` (FreeBSD `e_expf.c`), `log1pf`
-//! (`s_log1pf.c`), `powf` (`e_powf.c`), `sincosf` (`s_sincosf.c`, for
-//! `x ∈ [−π/4, 2π]`), `logf` (`e_logf.c`) and `expm1f` (`s_expm1f.c`),
+//! estimates. The transcendentals are bit-exact vector ports of the
+//! functions the scalar code calls — of `libm`: `expf` (FreeBSD `e_expf.c`), `log1pf`
+//! (`s_log1pf.c`), `powf` (`e_powf.c`), `logf` (`e_logf.c`) and `expm1f` (`s_expm1f.c`);
+//! of this project: [`radiometry::math::sincos_turn`] (the samplers' azimuths);
 //! with integer operations on the
-//! bits through `wide`'s integer vectors, checked against `libm` by this
+//! bits through `wide`'s integer vectors, checked against the scalar functions by this
 //! module's unit tests on every 7th `f32` of their ranges (`powf`: for
 //! `y = 30`; sparser grids for other exponents) — except the `hypot` inside the
 //! complex square root of [`Conductor`](crate::Conductor), which is
@@ -170,7 +170,7 @@ mod sincos;
 pub(crate) use expm1f::expm1f;
 pub(crate) use logf::logf;
 pub(crate) use sample::{SampleKernel, run_samples};
-pub(crate) use sincos::sincosf;
+pub(crate) use sincos::sincos_turn;
 
 use core::any::Any;
 use radiometry::Spectrum;

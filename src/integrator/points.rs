@@ -15,7 +15,6 @@
 //! ```
 
 use crate::math::ONE_MINUS_EPSILON;
-use core::f32::consts::TAU;
 use glam::Vec3;
 
 /// PCG32 (XSH-RR variant): 64-bit LCG state, 32-bit output with an
@@ -230,7 +229,7 @@ pub fn sobol_point_pairs(i: u32, seed: u32) -> [[f32; 2]; 2] {
 pub fn square_to_cosine_hemisphere_polar(u: [f32; 2]) -> Vec3 {
     let u0 = u[0].clamp(0.0, 1.0);
     let r = libm::sqrtf(u0);
-    let (s, c) = libm::sincosf(TAU * u[1].clamp(0.0, 1.0));
+    let (s, c) = crate::math::sincos_turn(u[1].clamp(0.0, 1.0));
     let z = libm::sqrtf((1.0 - u0).max(0.0));
     Vec3::new(r * c, r * s, z)
 }

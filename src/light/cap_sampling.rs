@@ -119,7 +119,7 @@ impl<B: Brdf> CapSampled<B> {
     fn cone_sample(&self, u: [f32; 2]) -> Vec3 {
         let v = u[0].clamp(0.0, 1.0) * self.v_sigma;
         let sin_a = safe_sqrt(v * (2.0 - v));
-        let (sb, cb) = libm::sincosf(TAU * u[1].clamp(0.0, 1.0));
+        let (sb, cb) = crate::math::sincos_turn(u[1].clamp(0.0, 1.0));
         (1.0 - v) * self.cap.axis() + sin_a * (cb * self.e1 + sb * self.e2)
     }
 

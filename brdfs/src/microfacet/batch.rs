@@ -12,8 +12,8 @@
 
 use super::{Fresnel, Microfacet, MicrofacetDistribution, ShadowingMasking};
 use crate::simd::Vf;
-use crate::simd::{Batch, Dirs, Kernel, LANES, SampleKernel, finite_nonneg, run_samples, sincosf};
-use core::f32::consts::{PI, TAU};
+use crate::simd::{Batch, Dirs, Kernel, LANES, SampleKernel, finite_nonneg, run_samples, sincos_turn};
+use core::f32::consts::PI;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, Spectrum};
 
@@ -107,7 +107,7 @@ use super::beckmann_lanes::clamp01;
 impl SampleV for GgxV {
     /// `Ggx::sample_visible` lane for lane: spherical caps (Dupuy & Benyoub
     /// 2023, §3) between the stretch and unstretch of Heitz 2018, with
-    /// `libm::sincosf` as its bit-exact vector port.
+    /// `radiometry::math::sincos_turn` as its bit-exact vector port.
     #[inline(always)]
     fn sample_visible(&self, wo: Dirs, u0: Vf, u1: Vf) -> (Dirs, Vf) {
         let a = self.alpha;
@@ -124,7 +124,7 @@ impl SampleV for GgxV {
         let hz = (one - u1) * one_plus_vz;
         let one_plus_zc = hz + (one - v.z);
         let sin_c = (one_minus_zc * one_plus_zc).max(zero).sqrt();
-        let (sp, cp) = sincosf(Vf::splat(TAU) * u0);
+        let (sp, cp) = sincos_turn(u0);
         let h = Dirs {
             x: a * (sin_c * cp + v.x),
             y: a * (sin_c * sp + v.y),

@@ -4,7 +4,7 @@ use super::{
     MAX_ALPHA, MIN_ALPHA, MicrofacetDistribution, clamp01, finite_nonneg, tan2_theta_robust, unitize,
 };
 use crate::error::{BrdfError, check_range};
-use core::f32::consts::{PI, TAU};
+use core::f32::consts::PI;
 use radiometry::glam::Vec3;
 use radiometry::math::safe_sqrt;
 
@@ -151,7 +151,7 @@ impl MicrofacetDistribution for Ggx {
         let hz = (1.0 - u1) * one_plus_vz;
         let one_plus_zc = hz + (1.0 - v.z);
         let sin_c = safe_sqrt(one_minus_zc * one_plus_zc);
-        let (sp, cp) = libm::sincosf(TAU * u0);
+        let (sp, cp) = radiometry::math::sincos_turn(u0);
         let h = Vec3::new(sin_c * cp + v.x, sin_c * sp + v.y, hz);
         unitize(Vec3::new(a * h.x, a * h.y, h.z.max(0.0))).unwrap_or(Vec3::Z)
     }

@@ -71,7 +71,7 @@
 //! 0.06–0.84.
 
 use super::{RusinkiewiczGrid, TabulatedError};
-use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, PI, TAU};
+use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, PI};
 use radiometry::Spectrum;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
@@ -281,7 +281,7 @@ impl<'a> HalfVectorDistribution<'a> {
         let (v0, v1) = (at(self.edges, k), at(self.edges, k + 1));
         let v = v0 + t * (v1 - v0);
         let sin_t = libm::sqrtf((v * (2.0 - v)).max(0.0));
-        let (sp, cp) = libm::sincosf(TAU * u[1]);
+        let (sp, cp) = radiometry::math::sincos_turn(u[1]);
         Vec3::new(sin_t * cp, sin_t * sp, 1.0 - v)
     }
 
