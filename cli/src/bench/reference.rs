@@ -37,9 +37,9 @@
 //! w    = f cos θi / pdf = (1 + Λ(wo)) / (1 + Λ(wo) + Λ(wi))      G2/G1(wo)
 //! ```
 //!
-//! with `D`, `Λ` as above and `(sin φ, cos φ)` from [`sincos_turn`]
-//! (quadrant reduction and Taylor polynomials: no call, no table, so the
-//! SoA loop vectorises; within `4·10⁻⁸` of the exact values).
+//! with `D`, `Λ` as above and `(sin φ, cos φ)` from
+//! [`radiometry::math::sincos_turn`] (the samplers' own: quadrant reduction
+//! and Taylor polynomials, branch-free, so the SoA loop vectorises).
 //!
 //! Valid (and used) only for unit directions strictly above the horizon,
 //! which the bench inputs are; anything else gives garbage, not `0`.
@@ -117,30 +117,6 @@ pub fn stream(wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [f32]) {
     }
 }
 
-/// `(sin 2πu, cos 2πu)` for `u ∈ [0, 1]`, branch-free: `t = 4u`, the
-/// nearest quadrant `q` by the `1.5·2²³` rounding trick, `r = (π/2)(t − q)`
-/// in `[−π/4, π/4]`, Taylor polynomials of `sin r` (to `r⁹`, remainder
-/// `< 2·10⁻⁹`) and `cos r` (to `r⁸`, `< 3·10⁻⁸`), then the quadrant's swap
-/// and signs as selects.
-#[inline(always)]
-pub fn sincos_turn(u: f32) -> (f32, f32) {
-    const SHIFTER: f32 = 12_582_912.0;
-    let t = 4.0 * u;
-    let shifted = t + SHIFTER;
-    let q = shifted - SHIFTER;
-    let quadrant = shifted.to_bits() & 3;
-    let r = (t - q) * std::f32::consts::FRAC_PI_2;
-    let r2 = r * r;
-    let s =
-        r * (1.0 + r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0)))));
-    let c = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40_320.0))));
-    // angle = quadrant·π/2 + r: (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s).
-    let (s1, c1) = if quadrant & 1 != 0 { (c, s) } else { (s, c) };
-    let sin = if quadrant & 2 != 0 { -s1 } else { s1 };
-    let cos = if (quadrant + 1) & 2 != 0 { -c1 } else { c1 };
-    (sin, cos)
-}
-
 /// One GGX visible-normal sample `(wi, pdf, weight)` of `wo` (see the
 /// module docs for the formulas), no checks. `alpha2 = α²`.
 #[inline(always)]
@@ -151,7 +127,7 @@ fn ggx_vndf(alpha: f32, alpha2: f32, o: [f32; 3], u: [f32; 2]) -> ([f32; 3], f32
     let inv_v = 1.0 / (sx * sx + sy * sy + zo * zo).sqrt();
     let (vx, vy, vz) = (sx * inv_v, sy * inv_v, zo * inv_v);
     // a point of the spherical cap z_c ∈ [−v_z, 1], and h = c + v
-    let (sp, cp) = sincos_turn(u[0]);
+    let (sp, cp) = radiometry::math::sincos_turn(u[0]);
     let zc = (1.0 - u[1]) * (1.0 + vz) - vz;
     let sc = (1.0 - zc * zc).max(0.0).sqrt();
     let (hx, hy, hz) = (sc * cp + vx, sc * sp + vy, zc + vz);
@@ -281,21 +257,6 @@ mod tests {
             let sum = wi[k].x + wi[k].y + wi[k].z + wo[k].x + wo[k].y + wo[k].z;
             assert!((s[k] - sum).abs() <= 1e-5, "k={k}");
         }
-    }
-
-    /// `sincos_turn` against libm's `f64` `sin`, `cos` over `[0, 1]`.
-    #[test]
-    fn sincos_turn_is_accurate() {
-        let mut worst = 0.0f64;
-        for k in 0..=1_000_000 {
-            let u = k as f32 / 1e6;
-            let (s, c) = sincos_turn(u);
-            let x = std::f64::consts::TAU * u as f64;
-            worst = worst
-                .max((s as f64 - x.sin()).abs())
-                .max((c as f64 - x.cos()).abs());
-        }
-        assert!(worst < 4e-7, "{worst}");
     }
 
     /// The reference samplers draw the plugin's samples (up to rounding):
