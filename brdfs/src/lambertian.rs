@@ -123,6 +123,15 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
         crate::simd::Batch::Aos(wi, wo, out).run(&batch::Pdf(self))
     }
 
+    /// With the `simd` feature a vector kernel: the concentric map lifted
+    /// to the hemisphere and the pdf of [`Brdf::pdf`], lane for lane
+    /// (results, `None`s included, equal [`Brdf::sample`] exactly).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+        crate::simd::run_samples(&batch::Sample(self), wo, u, out)
+    }
+
     /// Cosine-weighted sampling; `weight = ρ`. `None` when `wo` is at or
     /// below the horizon (or not finite) or `wi` lands on the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
@@ -161,10 +170,10 @@ impl<S: Spectrum> IsotropicBrdf for Lambertian<S> {}
 mod batch {
     use super::Lambertian;
     use crate::simd::Vf;
-    use crate::simd::{Dirs, Kernel, LANES, store};
+    use crate::simd::{Dirs, Kernel, LANES, SampleKernel, store};
     use core::f32::consts::FRAC_1_PI;
     use radiometry::glam::Vec3;
-    use radiometry::{Brdf, Spectrum};
+    use radiometry::{Brdf, BrdfSample, Spectrum};
 
     /// `eval`: `ρ/π` where `cos θi > 0`, `cos θo > 0` and both directions
     /// are finite, else 0.
@@ -207,6 +216,42 @@ mod batch {
         #[inline(always)]
         fn one(&self, wi: Vec3, wo: Vec3) -> f32 {
             self.0.pdf(wi, wo)
+        }
+    }
+
+    /// `sample`: `ωi = square_to_cosine_hemisphere(u)` (the Phong family's
+    /// vector warp with every lane diffuse: Shirley & Chiu's concentric
+    /// map, lifted by `z = √(1 − |d|²)`), its pdf as [`Pdf`] computes it, and
+    /// `Some { ωi, pdf, ρ }` where `ωo` is finite and above the horizon and
+    /// `pdf > 0`, else `None`.
+    pub(super) struct Sample<'a, S: Spectrum>(pub(super) &'a Lambertian<S>);
+
+    impl<S: Spectrum> SampleKernel for Sample<'_, S> {
+        type Out = Option<BrdfSample<S>>;
+
+        #[inline(always)]
+        fn lanes(&self, wo: Dirs, u0: Vf, u1: Vf, out: &mut [Self::Out; LANES]) -> u32 {
+            let zero = Vf::ZERO;
+            let all = zero.simd_eq(zero);
+            let wi = crate::phong::batch::warp(all, u0, u1, 1.0);
+            let (w, ok) = wi.try_normalize();
+            let pdf = (wo.is_finite() & wo.z.simd_gt(zero) & ok & w.z.simd_gt(zero))
+                .select(w.z * Vf::splat(FRAC_1_PI), zero);
+            let some = pdf.simd_gt(zero).to_bitmask();
+            let (x, y, z, p) = (wi.x.to_array(), wi.y.to_array(), wi.z.to_array(), pdf.to_array());
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = (some & (1 << k) != 0).then(|| BrdfSample {
+                    wi: Vec3::new(x[k], y[k], z[k]),
+                    pdf: p[k],
+                    weight: self.0.albedo,
+                });
+            }
+            0
+        }
+
+        #[inline(always)]
+        fn one(&self, wo: Vec3, u: [f32; 2]) -> Self::Out {
+            self.0.sample(wo, u)
         }
     }
 }

@@ -20,6 +20,7 @@
 //! | `sample_batch` of [`Microfacet<Beckmann, G, F>`](crate::Microfacet), either `G`, every `F` | visible slopes (Heitz & d'Eon 2014, §4): the bounded start and two bracketed Halley steps of the scalar inversion, `erfinv` for the second slope, on `f64` vectors where the scalar code uses `f64` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | Fresnel of the microfacet kernels: [`NoFresnel`](crate::NoFresnel), [`Schlick`](crate::Schlick) (Schlick 1994, eq. 15), [`Dielectric`](crate::Dielectric), [`Conductor`](crate::Conductor) | vector, per channel | — | 0 ulp |
 //! | [`Lambertian<S>`](crate::Lambertian) | horizon and finiteness masks | `cos θi/π` | 0 ulp |
+//! | `sample_batch` of [`Lambertian<S>`](crate::Lambertian) | Malley's cosine-weighted concentric map (Shirley & Chiu 1997; the Phong family's warp), pdf `cos θi/π` of the normalised `ωi` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | `pd cos θi/π + ps (n+1)/(2π) cos^n α` | 0 ulp |
 //! | `sample_batch` of [`ModifiedPhong<S>`](crate::ModifiedPhong) | one-sample mixture (Veach 1997, §9.2.4): Malley's cosine-weighted concentric map (Shirley & Chiu 1997) or `cos α = ξ^{1/(n+1)}`, `1 − cos α = −expm1(ln ξ/(n+1))` around `ωr` (Lafortune & Willems 1994), rotated by Duff et al. 2017; pdf and weight from one lobe evaluation | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | scalar loop | 0 ulp |
@@ -57,7 +58,8 @@
 //! in every lane position; for the Phong family 100 000 random `(ωo, u)` and
 //! the same hard cases for each of a dozen `(kd, ks, n)` (`n` from 0 to
 //! 10⁷, `kd = 0`, `ks = 0`, both), RGB and 4-channel spectra, and proptest
-//! cases with random `(kd, ks, n)`.
+//! cases with random `(kd, ks, n)`; for Lambertian (`f32`, RGB, 4 channels)
+//! the same inputs.
 //!
 //! # Special inputs
 //!

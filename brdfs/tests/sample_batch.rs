@@ -2,7 +2,7 @@
 //! with the vector kernels of the `simd` feature (GGX and Beckmann, either
 //! shadowing–masking variant, every Fresnel term; modified Phong and
 //! Blinn–Phong for exponents from 0 to 10⁷ and diffuse/specular mixes
-//! including `kd = 0`, `ks = 0` and both) and with the default loop:
+//! including `kd = 0`, `ks = 0` and both; Lambertian) and with the default loop:
 //!
 //! ```text
 //! cargo test -p radiometry-brdfs --test sample_batch -- --nocapture
@@ -11,8 +11,8 @@
 //!
 //! Tolerance: **0 ulp** in `wi` (each component), `pdf` and every channel
 //! of `weight`, and the same `None` decisions: the kernels perform the
-//! scalar operations in the scalar order (`sincosf` is a bit-exact port of
-//! `libm`'s). The returned pdf must also equal `pdf_batch` (and `pdf`) of
+//! scalar operations in the scalar order (the azimuths' `sincos_turn` is a
+//! bit-exact port of the scalar one). The returned pdf must also equal `pdf_batch` (and `pdf`) of
 //! the returned `wi` bit for bit.
 //!
 //! Inputs: `wo` over the whole sphere with grazing (`z` down to `10⁻⁴⁵`),
@@ -25,8 +25,8 @@ use proptest::prelude::*;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, SampledSpectrum, Spectrum};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, HeightCorrelated, Microfacet, ModifiedPhong, NoFresnel,
-    Schlick, Separable,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet,
+    ModifiedPhong, NoFresnel, Schlick, Separable,
 };
 
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
@@ -186,9 +186,22 @@ const PHONG_PARAMS: [(f32, f32, f32); 12] = [
 ];
 
 /// Every Phong-family configuration of [`PHONG_PARAMS`], both models, and
-/// an RGB and a 4-channel one of each.
+/// an RGB and a 4-channel one of each; and Lambertian (whose kernel shares
+/// the Phong family's cosine-hemisphere warp) in `f32`, RGB and 4 channels.
 fn compare_phong(wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestCaseError> {
-    let mut some = 0;
+    let mut some = compare(&Lambertian::new(0.7f32).unwrap(), "lambertian", wo, u)?;
+    compare(
+        &Lambertian::new(Vec3::new(0.2, 0.5, 0.9)).unwrap(),
+        "lambertian-rgb",
+        wo,
+        u,
+    )?;
+    compare(
+        &Lambertian::new(SampledSpectrum([0.0, 0.3, 0.6, 1.0])).unwrap(),
+        "lambertian-s4",
+        wo,
+        u,
+    )?;
     for (kd, ks, n) in PHONG_PARAMS {
         let name = format!("modified-phong kd={kd} ks={ks} n={n}");
         some += compare(&ModifiedPhong::new(kd, ks, n).unwrap(), &name, wo, u)?;
@@ -380,10 +393,10 @@ fn phong_sample_batch_sweep() {
     for _ in 0..20 {
         let (wo, u) = sweep_inputs(&mut rng);
         some += compare_phong(&wo, &u).unwrap();
-        total += 2 * PHONG_PARAMS.len() * wo.len();
+        total += (2 * PHONG_PARAMS.len() + 1) * wo.len();
     }
     eprintln!(
-        "Phong family sample_batch vs sample: {total} samples, {some} Some; 0 ulp; simd feature: {}",
+        "Phong family and Lambertian sample_batch vs sample: {total} samples, {some} Some; 0 ulp; simd feature: {}",
         cfg!(feature = "simd")
     );
     assert!(some > total / 3, "{some} of {total}");
