@@ -255,6 +255,14 @@ impl<S: Spectrum> Brdf for BlinnPhong<S> {
         crate::simd::Batch::Soa(wi, wo, out).run(&batch::Eval(self))
     }
 
+    /// With the `simd` feature a vector kernel, bit-identical to
+    /// [`Brdf::pdf`] (the arithmetic of the sampling kernel's pdf).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        crate::simd::Batch::Aos(wi, wo, out).run(&batch::Pdf(self))
+    }
+
     /// With the `simd` feature a vector kernel for the mixture sampler,
     /// bit-identical to [`Brdf::sample`] (the same `None`s; 0 ulp in `wi`,
     /// pdf and weight).
@@ -327,10 +335,12 @@ impl<S: Spectrum> IsotropicBrdf for BlinnPhong<S> {}
 /// with the reflection `ωi = 2(ωo·h)h − ωo` of the sampled half vector
 /// and the same lobe evaluation for the pdf and the weight.
 ///
-/// Bit-identical to `eval` / `sample`: the same operations in the same
+/// `pdf`: the sampling kernel's pdf of the given pair.
+///
+/// Bit-identical to `eval` / `pdf` / `sample`: the same operations in the same
 /// order, and the bit-exact ports [`crate::simd::expf`],
 /// [`crate::simd::log1pf`], [`crate::simd::powf`] (and for sampling `logf`,
-/// `expm1f`, `sincosf`) of `libm`'s functions.
+/// `expm1f`) of `libm`'s functions and `sincos_turn` of the scalar one.
 #[cfg(feature = "simd")]
 mod batch {
     use super::BlinnPhong;
@@ -369,6 +379,23 @@ mod batch {
         (up, cold, defined, sum2, defined.select(lobe, zero))
     }
 
+    /// `pd cos θi/π + lobe_pdf`, `lobe_pdf = ps (n+1)/(2π) cos^n θh/(4 ωo·h)`
+    /// with `ωo·h = |ωi + ωo|/2` where `h` is defined (else 0): the pdf of
+    /// the scalar `pdf` and `sample` from the values of [`upper_half_lobe`].
+    #[inline(always)]
+    fn pdf_of<S: Spectrum>(b: &BlinnPhong<S>, wi_z: Vf, defined: Vf, sum2: Vf, lobe: Vf) -> Vf {
+        let zero = Vf::ZERO;
+        let lobe_pdf = if b.p_lobe > 0.0 {
+            let wo_h = Vf::splat(0.5) * sum2.sqrt();
+            let k = Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI)));
+            let p = k * lobe / (Vf::splat(4.0) * wo_h);
+            (defined & wo_h.simd_gt(zero)).select(p, zero)
+        } else {
+            zero
+        };
+        Vf::splat(b.p_diffuse) * wi_z * Vf::splat(FRAC_1_PI) + lobe_pdf
+    }
+
     pub(super) struct Eval<'a, S: Spectrum>(pub(super) &'a BlinnPhong<S>);
 
     impl<S: Spectrum> Kernel for Eval<'_, S> {
@@ -390,6 +417,27 @@ mod batch {
         #[inline(always)]
         fn one(&self, wi: Vec3, wo: Vec3) -> S {
             self.0.eval(wi, wo)
+        }
+    }
+
+    /// `pdf`: [`pdf_of`] where both directions are above the horizon, else 0.
+    pub(super) struct Pdf<'a, S: Spectrum>(pub(super) &'a BlinnPhong<S>);
+
+    impl<S: Spectrum> Kernel for Pdf<'_, S> {
+        type Out = f32;
+
+        #[inline(always)]
+        fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
+            let (up, cold, defined, sum2, lobe) = upper_half_lobe(self.0, wi, wo);
+            *out = up
+                .select(pdf_of(self.0, wi.z, defined, sum2, lobe), Vf::ZERO)
+                .to_array();
+            cold
+        }
+
+        #[inline(always)]
+        fn one(&self, wi: Vec3, wo: Vec3) -> f32 {
+            self.0.pdf(wi, wo)
         }
     }
 
@@ -434,16 +482,7 @@ mod batch {
                 (wi, !diffuse & !wo_h.simd_gt(zero))
             };
             let (up, cold, defined, sum2, lobe) = upper_half_lobe(b, wi, wo);
-            let lobe_pdf = if b.p_lobe > 0.0 {
-                // `lobe_pdf`: ωo·h = |ωi + ωo|/2.
-                let wo_h = Vf::splat(0.5) * sum2.sqrt();
-                let k = Vf::splat(b.p_lobe * ((b.exponent + 1.0) * (0.5 * FRAC_1_PI)));
-                let p = k * lobe / (Vf::splat(4.0) * wo_h);
-                (defined & wo_h.simd_gt(zero)).select(p, zero)
-            } else {
-                zero
-            };
-            let pdf = Vf::splat(b.p_diffuse) * wi.z * Vf::splat(FRAC_1_PI) + lobe_pdf;
+            let pdf = pdf_of(b, wi.z, defined, sum2, lobe);
             let ls = Vf::splat(b.norm) * lobe;
             finish(b.kd, b.ks, ls, wi, pdf, up & !rejected, out);
             cold

@@ -23,7 +23,7 @@
 //! | `sample_batch` of [`Lambertian<S>`](crate::Lambertian) | Malley's cosine-weighted concentric map (Shirley & Chiu 1997; the Phong family's warp), pdf `cos θi/π` of the normalised `ωi` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | [`ModifiedPhong<S>`](crate::ModifiedPhong) | `kd/π + ks (n+2)/(2π) exp(n log1p(−δ))` (Lafortune & Willems 1994) | `pd cos θi/π + ps (n+1)/(2π) cos^n α` | 0 ulp |
 //! | `sample_batch` of [`ModifiedPhong<S>`](crate::ModifiedPhong) | one-sample mixture (Veach 1997, §9.2.4): Malley's cosine-weighted concentric map (Shirley & Chiu 1997) or `cos α = ξ^{1/(n+1)}`, `1 − cos α = −expm1(ln ξ/(n+1))` around `ωr` (Lafortune & Willems 1994), rotated by Duff et al. 2017; pdf and weight from one lobe evaluation | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
-//! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | scalar loop | 0 ulp |
+//! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` | 0 ulp |
 //! | `sample_batch` of [`BlinnPhong<S>`](crate::BlinnPhong) | the same mixture with the half vector `cos θh = ξ^{1/(n+1)}` reflected, `ωi = 2(ωo·h)h − ωo`, pdf `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` (the reflection Jacobian of Torrance & Sparrow 1967; Walter et al. 2007) | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //!
 //! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
