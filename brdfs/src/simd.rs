@@ -41,10 +41,7 @@
 //! with integer operations on the
 //! bits through `wide`'s integer vectors, checked against the scalar functions by this
 //! module's unit tests on every 7th `f32` of their ranges (`powf`: for
-//! `y = 30`; sparser grids for other exponents) — except the `hypot` inside the
-//! complex square root of [`Conductor`](crate::Conductor), which is
-//! `libm::hypotf` called per lane (it rounds a sum formed in `f64`, and
-//! `wide` has no `f64` conversion). Each lane is therefore bit-identical to
+//! `y = 30`; sparser grids for other exponents). Each lane is therefore bit-identical to
 //! `eval` / `pdf` of the same pair, on every target: `brdfs/tests/batch.rs`
 //! asserts 0 ulp for every such kernel, array-of-structures and
 //! structure-of-arrays alike, over proptest cases, hard cases in every lane

@@ -244,6 +244,10 @@ impl Fresnel for Dielectric {
 pub struct Conductor<S = f32> {
     eta: S,
     k: S,
+    /// `1/(η + ik)²` per channel (real and imaginary parts), formed once
+    /// here as `fr_complex` would form it per call.
+    inv_eta2_re: S,
+    inv_eta2_im: S,
 }
 
 impl<S: Spectrum> Conductor<S> {
@@ -253,7 +257,13 @@ impl<S: Spectrum> Conductor<S> {
             check_range("eta", eta.channel(i), MIN_ETA, MAX_ETA)?;
             check_range("k", k.channel(i), 0.0, MAX_K)?;
         }
-        Ok(Conductor { eta, k })
+        let inv = |i: usize| inv_eta2(eta.channel(i), k.channel(i));
+        Ok(Conductor {
+            eta,
+            k,
+            inv_eta2_re: S::from_fn(|i| inv(i).re),
+            inv_eta2_im: S::from_fn(|i| inv(i).im),
+        })
     }
 
     /// The real part `η` of the index.
@@ -264,6 +274,15 @@ impl<S: Spectrum> Conductor<S> {
     /// The extinction coefficient `k`.
     pub fn k(&self) -> S {
         self.k
+    }
+
+    /// `1/(η + ik)²` of channel `i`.
+    #[inline(always)]
+    fn inv_eta2(&self, i: usize) -> Cx {
+        Cx {
+            re: self.inv_eta2_re.channel(i),
+            im: self.inv_eta2_im.channel(i),
+        }
     }
 }
 
@@ -308,10 +327,17 @@ impl Cx {
         self.re * self.re + self.im * self.im
     }
     /// Principal square root (Re ≥ 0), in the cancellation-free form
-    /// (Kahan 1987, "Branch cuts for complex elementary functions").
+    /// (Kahan 1987, "Branch cuts for complex elementary functions"), with
+    /// `|z| = √(re² + im²)` in `f32`: the one argument, `1 − sin²θt`, has
+    /// `|re|, |im| ≤ 1 + 10⁶` for every `η`, `k` the constructor accepts
+    /// (`|sin²θt| ≤ 1/|η + ik|² ≤ 10⁶`), so the squares cannot overflow;
+    /// where they underflow `|z| < 10⁻¹⁹`, `cos θt ≈ 0` and `F` is 1 to far
+    /// below `f32` resolution either way. (`libm::hypotf` rounds an `f64`
+    /// sum: a little more accurate, but a scalar call per lane in the
+    /// vector kernel, which made the conductor 8× slower than Schlick.)
     #[inline]
     fn sqrt(self) -> Cx {
-        let r = libm::hypotf(self.re, self.im);
+        let r = libm::sqrtf(self.norm2());
         if r == 0.0 {
             return Cx { re: 0.0, im: 0.0 };
         }
@@ -341,17 +367,24 @@ fn ratio_norm2(a: Cx, b: Cx) -> f32 {
     (a.norm2() / nb).clamp(0.0, 1.0)
 }
 
-/// `FrComplex(cos θi, η + ik)` for one channel.
-fn fr_complex(ci: f32, eta: f32, k: f32) -> f32 {
+/// `1/(η + ik)² = conj(e²)/|e²|²`, `e = η + ik`.
+fn inv_eta2(eta: f32, k: f32) -> Cx {
     let e = Cx { re: eta, im: k };
-    let sin2_i = (1.0 - ci * ci).max(0.0);
-    // sin²θt = sin²θi / η² = sin²θi · conj(η²)/|η²|²
     let e2 = e.mul(e);
-    let inv_e2 = Cx {
+    Cx {
         re: e2.re,
         im: -e2.im,
     }
-    .scale(1.0 / e2.norm2());
+    .scale(1.0 / e2.norm2())
+}
+
+/// `FrComplex(cos θi, η + ik)` for one channel, given `inv_e2 = 1/(η + ik)²`
+/// ([`inv_eta2`]).
+#[inline]
+fn fr_complex(ci: f32, eta: f32, k: f32, inv_e2: Cx) -> f32 {
+    let e = Cx { re: eta, im: k };
+    let sin2_i = (1.0 - ci * ci).max(0.0);
+    // sin²θt = sin²θi / η² = sin²θi · conj(η²)/|η²|²
     let sin2_t = inv_e2.scale(sin2_i);
     let ct = Cx {
         re: 1.0 - sin2_t.re,
@@ -371,7 +404,7 @@ impl<S: Spectrum> Fresnel for Conductor<S> {
     #[inline]
     fn eval(&self, cos_theta_d: f32) -> S {
         let ci = clamp_cos(cos_theta_d);
-        S::from_fn(|i| fr_complex(ci, self.eta.channel(i), self.k.channel(i)))
+        S::from_fn(|i| fr_complex(ci, self.eta.channel(i), self.k.channel(i), self.inv_eta2(i)))
     }
 
     /// [`fr_complex`] lane-wise per channel (`fr_complex_v`), times `s`.
@@ -380,7 +413,7 @@ impl<S: Spectrum> Fresnel for Conductor<S> {
     fn eval_scaled_lanes(&self, cos_theta_d: Vf, scale: Vf, out: &mut [S; LANES]) {
         let ci = clamp_cos_v(cos_theta_d);
         store(out, |c| {
-            fr_complex_v(ci, self.eta.channel(c), self.k.channel(c)) * scale
+            fr_complex_v(ci, self.eta.channel(c), self.k.channel(c), self.inv_eta2(c)) * scale
         });
     }
 }
@@ -423,13 +456,11 @@ impl CxV {
     fn norm2(self) -> Vf {
         self.re * self.re + self.im * self.im
     }
-    /// [`Cx::sqrt`] lane-wise: both branches, then a select; `hypot` is
-    /// `libm::hypotf` per lane (it rounds an `f64` sum, which `Vf` cannot
-    /// reproduce), so the result is bit-identical.
+    /// [`Cx::sqrt`] lane-wise: both branches, then a select (the same
+    /// operations, so bit-identical).
     #[inline(always)]
     fn sqrt(self) -> CxV {
-        let (re, im) = (self.re.to_array(), self.im.to_array());
-        let r = Vf::new(core::array::from_fn(|k| libm::hypotf(re[k], im[k])));
+        let r = self.norm2().sqrt();
         let half = Vf::splat(0.5);
         let two = Vf::splat(2.0);
         let pos = self.re.simd_ge(Vf::ZERO);
@@ -455,19 +486,13 @@ fn ratio_norm2_v(a: CxV, b: CxV) -> Vf {
     nb.simd_gt(Vf::ZERO).select(r, Vf::ONE)
 }
 
-/// [`fr_complex`] of a vector of cosines `ci ∈ [0, 1]` and one channel `η + ik`:
-/// the lane-constant `1/η²` is formed in scalar exactly as `fr_complex`
-/// forms it, every per-lane operation is the scalar one.
+/// [`fr_complex`] of a vector of cosines `ci ∈ [0, 1]` and one channel `η + ik`
+/// (with the conductor's stored `1/η²`): every per-lane operation is the
+/// scalar one.
 #[cfg(feature = "simd")]
 #[inline(always)]
-fn fr_complex_v(ci: Vf, eta: f32, k: f32) -> Vf {
+fn fr_complex_v(ci: Vf, eta: f32, k: f32, inv_e2: Cx) -> Vf {
     let e = Cx { re: eta, im: k };
-    let e2 = e.mul(e);
-    let inv_e2 = Cx {
-        re: e2.re,
-        im: -e2.im,
-    }
-    .scale(1.0 / e2.norm2());
     let (zero, one) = (Vf::ZERO, Vf::ONE);
     let sin2_i = (one - ci * ci).max(zero);
     // sin²θt = inv_e2 · sin²θi; ct = √(1 − sin²θt).

@@ -409,6 +409,11 @@ fn fresnel_closed_forms() {
         (2.5, 1.0),
         (1.0, 1e-3),
         (100.0, 500.0),
+        // The corners of the accepted domain (largest and smallest |η + ik|).
+        (1e-3, 0.0),
+        (1e-3, 1e3),
+        (1e3, 0.0),
+        (1e3, 1e3),
     ] {
         let c = Conductor::new(eta, k).unwrap();
         let (e, kk) = (eta as f64, k as f64);
