@@ -16,6 +16,7 @@ pub mod phong;
 #[cfg(feature = "simd")]
 pub mod simd;
 pub mod tabulated;
+mod vec4;
 
 pub use error::BrdfError;
 // -- re-exports: Lambertian / Phong family (keep this block for those modules)

@@ -5,7 +5,11 @@ use crate::error::{BrdfError, check_range};
 use crate::simd::Vf;
 #[cfg(feature = "simd")]
 use crate::simd::{LANES, store};
+#[cfg(feature = "simd")]
+use crate::vec4::sqrt4;
 use radiometry::Spectrum;
+#[cfg(feature = "simd")]
+use radiometry::glam::Vec4;
 use radiometry::math::safe_sqrt;
 
 /// Smallest accepted (real part of the) relative index of refraction `η`.
@@ -276,6 +280,34 @@ impl<S: Spectrum> Conductor<S> {
         self.k
     }
 
+    /// `fr_complex4` on groups of four channels.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_grouped(&self, ci: f32) -> S {
+        // Lanes past the last channel evaluate a harmless η = 1, k = 0.
+        let lanes = |v: &S, g: usize, pad: f32| {
+            Vec4::from_array(core::array::from_fn(|j| {
+                let i = 4 * g + j;
+                if i < S::CHANNELS { v.channel(i) } else { pad }
+            }))
+        };
+        let mut group = (usize::MAX, Vec4::ZERO);
+        S::from_fn(|i| {
+            let g = i / 4;
+            if group.0 != g {
+                let f = fr_complex4(
+                    ci,
+                    lanes(&self.eta, g, 1.0),
+                    lanes(&self.k, g, 0.0),
+                    lanes(&self.inv_eta2_re, g, 1.0),
+                    lanes(&self.inv_eta2_im, g, 0.0),
+                );
+                group = (g, f);
+            }
+            group.1[i % 4]
+        })
+    }
+
     /// `1/(η + ik)²` of channel `i`.
     #[inline(always)]
     fn inv_eta2(&self, i: usize) -> Cx {
@@ -399,11 +431,70 @@ fn fr_complex(ci: f32, eta: f32, k: f32, inv_e2: Cx) -> f32 {
     (0.5 * (rp + rs)).clamp(0.0, 1.0)
 }
 
+/// [`fr_complex`] on four channels at once, one per lane of a
+/// `glam::Vec4`: per lane the same operations in the same order (both
+/// branches of [`Cx::sqrt`] and of [`ratio_norm2`] as selects), so every
+/// lane is bit-identical to `fr_complex` of its channel, while the
+/// channels of an RGB conductor share one vector square root or division
+/// where `fr_complex` would take three (used with the `simd` feature, whose
+/// [`sqrt4`] is one instruction; glam's four scalar roots would cost more
+/// than the per-channel form saves).
+#[cfg(feature = "simd")]
+#[inline]
+fn fr_complex4(ci: f32, eta: Vec4, k: Vec4, inv_re: Vec4, inv_im: Vec4) -> Vec4 {
+    let (zero, one, half, two) = (Vec4::ZERO, Vec4::ONE, Vec4::splat(0.5), Vec4::splat(2.0));
+    let sin2_i = (1.0 - ci * ci).max(0.0);
+    // ct = √(1 − sin²θt), sin²θt = sin²θi/η² (`Cx::sqrt`).
+    let (z_re, z_im) = (one - inv_re * sin2_i, -(inv_im * sin2_i));
+    let r = sqrt4(z_re * z_re + z_im * z_im);
+    let tp = sqrt4(half * (r + z_re));
+    let tn = sqrt4(half * (r - z_re));
+    let pos = z_re.cmpge(zero);
+    let at_zero = r.cmpeq(zero);
+    let ct_re = Vec4::select(at_zero, zero, Vec4::select(pos, tp, z_im.abs() / (two * tn)));
+    let ct_im = Vec4::select(
+        at_zero,
+        zero,
+        Vec4::select(pos, z_im / (two * tp), tn.copysign(z_im)),
+    );
+    // ec = η ci, ect = η ct; rp = |ec − ct|²/|ec + ct|², rs = |ci − ect|²/|ci + ect|².
+    let c = Vec4::splat(ci);
+    let (ec_re, ec_im) = (eta * ci, k * ci);
+    let (ect_re, ect_im) = (eta * ct_re - k * ct_im, eta * ct_im + k * ct_re);
+    let rp = ratio_norm2_4((ec_re - ct_re, ec_im - ct_im), (ec_re + ct_re, ec_im + ct_im));
+    let rs = ratio_norm2_4((c - ect_re, zero - ect_im), (c + ect_re, zero + ect_im));
+    clamp01_4(half * (rp + rs))
+}
+
+/// [`ratio_norm2`] on four lanes (`(re, im)` pairs).
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn ratio_norm2_4(a: (Vec4, Vec4), b: (Vec4, Vec4)) -> Vec4 {
+    let nb = b.0 * b.0 + b.1 * b.1;
+    let na = a.0 * a.0 + a.1 * a.1;
+    // `!(nb > 0)`: NaN or ≤ 0 gives 1, as the scalar test.
+    Vec4::select(nb.cmpgt(Vec4::ZERO), clamp01_4(na / nb), Vec4::ONE)
+}
+
+/// `f32::clamp(x, 0, 1)` per lane (NaN stays NaN).
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn clamp01_4(x: Vec4) -> Vec4 {
+    let x = Vec4::select(x.cmplt(Vec4::ZERO), Vec4::ZERO, x);
+    Vec4::select(x.cmpgt(Vec4::ONE), Vec4::ONE, x)
+}
+
 impl<S: Spectrum> Fresnel for Conductor<S> {
     type Spectrum = S;
+    /// [`fr_complex`] per channel; with the `simd` feature and more than
+    /// one channel, `fr_complex4` on groups of four channels (the same bits).
     #[inline]
     fn eval(&self, cos_theta_d: f32) -> S {
         let ci = clamp_cos(cos_theta_d);
+        #[cfg(feature = "simd")]
+        if S::CHANNELS > 1 {
+            return self.eval_grouped(ci);
+        }
         S::from_fn(|i| fr_complex(ci, self.eta.channel(i), self.k.channel(i), self.inv_eta2(i)))
     }
 

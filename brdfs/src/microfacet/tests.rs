@@ -441,6 +441,45 @@ fn fresnel_closed_forms() {
     println!("Fresnel: worst |dielectric − ref| = {worst_d:.2e}, |conductor − ref| = {worst_c:.2e}");
 }
 
+/// A conductor of several channels evaluates them four at a time
+/// (`fr_complex4`): each channel must be bit for bit the one-channel
+/// conductor of that channel's `η`, `k` (RGB, 4 and 6 channels, a sweep of
+/// cosines with the edges and out-of-range values).
+#[test]
+fn multichannel_conductor_is_the_one_channel_conductor_bit_for_bit() {
+    use radiometry::SampledSpectrum;
+    let etas = [0.2f32, 0.9, 1.1, 1.5, 1e-3, 1e3];
+    let ks = [3.0f32, 2.5, 2.2, 0.0, 1e3, 0.5];
+    let rgb = Conductor::new(
+        Vec3::new(etas[0], etas[1], etas[2]),
+        Vec3::new(ks[0], ks[1], ks[2]),
+    )
+    .unwrap();
+    let s4 = Conductor::new(
+        SampledSpectrum([etas[0], etas[3], etas[4], etas[5]]),
+        SampledSpectrum([ks[0], ks[3], ks[4], ks[5]]),
+    )
+    .unwrap();
+    let s6 = Conductor::new(SampledSpectrum(etas), SampledSpectrum(ks)).unwrap();
+    let one = |i: usize, c: f32| Conductor::new(etas[i], ks[i]).unwrap().eval(c).to_bits();
+    let mut cosines: std::vec::Vec<f32> = (0..=4000).map(|i| i as f32 / 4000.0).collect();
+    cosines.extend([-0.5, 1.5, f32::NAN, 1e-30, 1.0 - f32::EPSILON]);
+    for c in cosines {
+        let v = rgb.eval(c);
+        for (ch, i) in [(v.x, 0), (v.y, 1), (v.z, 2)] {
+            assert_eq!(ch.to_bits(), one(i, c), "rgb channel {i} at cos {c}");
+        }
+        let v = s4.eval(c);
+        for (j, i) in [0usize, 3, 4, 5].into_iter().enumerate() {
+            assert_eq!(v.0[j].to_bits(), one(i, c), "4-channel lane {j} at cos {c}");
+        }
+        let v = s6.eval(c);
+        for i in 0..6 {
+            assert_eq!(v.0[i].to_bits(), one(i, c), "6-channel lane {i} at cos {c}");
+        }
+    }
+}
+
 #[test]
 fn constructors_reject_invalid() {
     for a in [0.0f32, -0.1, 1e-5, 1.5, f32::NAN, f32::INFINITY] {

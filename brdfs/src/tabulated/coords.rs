@@ -6,6 +6,7 @@
 
 #[cfg(doc)]
 use super::RusinkiewiczGrid;
+use crate::vec4::sqrt4;
 use core::f32::consts::{FRAC_PI_2, PI};
 use radiometry::glam::{Vec3, Vec4};
 
@@ -88,20 +89,6 @@ fn atan2_squares(y2: Vec4, x2: Vec4) -> Vec4 {
     let r2 = num / den;
     let a = sqrt4(r2) * atan_poly4(r2);
     Vec4::select(swap, Vec4::splat(FRAC_PI_2) - a, a)
-}
-
-/// The lane square roots of `x` (IEEE, correctly rounded: bit-identical to
-/// `sqrtf` per lane): one vector instruction with the `simd` feature (via
-/// `wide`; glam's `Vec4::sqrt` takes four scalar roots).
-#[inline(always)]
-fn sqrt4(x: Vec4) -> Vec4 {
-    #[cfg(feature = "simd")]
-    {
-        let w = wide::f32x4::from(x.to_array()).sqrt();
-        Vec4::from_array(w.to_array())
-    }
-    #[cfg(not(feature = "simd"))]
-    x.sqrt()
 }
 
 /// `A(z) = Σₖ cₖ zᵏ` of [`ATAN_R`] on four lanes (Estrin form).
