@@ -486,8 +486,9 @@ fn clamp01_4(x: Vec4) -> Vec4 {
 
 impl<S: Spectrum> Fresnel for Conductor<S> {
     type Spectrum = S;
-    /// [`fr_complex`] per channel; with the `simd` feature and more than
-    /// one channel, `fr_complex4` on groups of four channels (the same bits).
+    /// The complex Fresnel formula per channel; with the `simd` feature and
+    /// more than one channel, four channels at a time in vector lanes (the
+    /// same bits).
     #[inline]
     fn eval(&self, cos_theta_d: f32) -> S {
         let ci = clamp_cos(cos_theta_d);
