@@ -18,6 +18,33 @@ use core::f32::consts::{FRAC_PI_2, PI};
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, Spectrum};
 
+/// `pdf` over [`LANES`] pairs: `HalfVectorDistribution::pdf_lanes` with
+/// sampling enabled, else the cosine density `cos θi/π` above the horizon;
+/// lanes with a non-unit direction go back to the scalar method (which
+/// normalises first).
+pub(super) struct Pdf<'t, 'a, S: Spectrum>(pub(super) &'t Tabulated<'a, S>);
+
+impl<S: Spectrum> Kernel for Pdf<'_, '_, S> {
+    type Out = f32;
+
+    #[inline(always)]
+    fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
+        let zero = Vf::ZERO;
+        let p = match self.0.sampling() {
+            Some(d) => d.pdf_lanes(wi, wo),
+            None => (wi.z.simd_gt(zero) & wo.z.simd_gt(zero))
+                .select(wi.z * Vf::splat(core::f32::consts::FRAC_1_PI), zero),
+        };
+        *out = p.to_array();
+        cold_lanes(wi, wo)
+    }
+
+    #[inline(always)]
+    fn one(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.0.pdf(wi, wo)
+    }
+}
+
 /// `eval` over [`LANES`] pairs.
 pub(super) struct Eval<'t, 'a, S: Spectrum>(pub(super) &'t Tabulated<'a, S>);
 

@@ -195,6 +195,19 @@ pub(crate) const ATAN_R: [f32; 8] = [
 /// The coefficients `a₁, a₃, a₅, a₇, a₉` of [`atan_unit`] (A&S 4.4.47).
 pub(crate) const ATAN: [f32; 5] = [0.999_866, -0.330_299_5, 0.180_141, -0.085_133, 0.020_835_1];
 
+/// [`atan_unit`] lane-wise (feature `simd`; the same operations).
+#[cfg(feature = "simd")]
+#[inline(always)]
+pub(crate) fn atan_unit_lanes(x: crate::simd::Vf) -> crate::simd::Vf {
+    use crate::simd::Vf;
+    let [a1, a3, a5, a7, a9] = ATAN.map(Vf::splat);
+    let z = x * x;
+    let z2 = z * z;
+    let lo = a1 + a3 * z;
+    let mid = a5 + a7 * z;
+    x * (lo + z2 * (mid + z2 * a9))
+}
+
 /// `atan(x)` for `x ∈ [0, 1]`: Abramowitz & Stegun 4.4.47,
 /// `atan x = a₁x + a₃x³ + a₅x⁵ + a₇x⁷ + a₉x⁹ + ε`, `|ε| ≤ 10⁻⁵` (we measure
 /// 1.15·10⁻⁵ rad absolute and 1.34·10⁻⁴ relative in f64; 7·10⁻⁴ of a MERL

@@ -255,6 +255,61 @@ impl<'a> HalfVectorDistribution<'a> {
         if p.is_finite() { p } else { cos_part }
     }
 
+    /// [`pdf`](Self::pdf) of [`LANES`](crate::simd::LANES) pairs of unit
+    /// directions (feature `simd`), lane for lane the scalar operations
+    /// (bit-identical): the masks and arithmetic in vectors, the bin index
+    /// and the four reads of [`pdf_h`](Self::pdf_h) per lane.
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    pub(crate) fn pdf_lanes(&self, wi: crate::simd::Dirs, wo: crate::simd::Dirs) -> crate::simd::Vf {
+        use crate::simd::{LANES, Vf};
+        let (zero, one) = (Vf::ZERO, Vf::ONE);
+        let c = self.cosine_weight;
+        let above = wi.z.simd_gt(zero) & wo.z.simd_gt(zero);
+        let cos_part = Vf::splat(c) * wi.z * Vf::splat(FRAC_1_PI);
+        let h = wi.add(wo);
+        let len2 = h.x * h.x + h.y * h.y + h.z * h.z;
+        let h_ok = len2.simd_gt(Vf::splat(1e-30));
+        let inv = one / len2.sqrt();
+        let (hx, hy, hz) = (h.x * inv, h.y * inv, h.z * inv);
+        let dot = wo.x * hx + wo.y * hy + wo.z * hz;
+        let dot_ok = dot.simd_gt(zero);
+        // `pdf_h`: θh = atan2(√s², h_z) (`coords::atan2`), its bin, `v`.
+        let s2 = hx * hx + hy * hy;
+        let (ax, ay) = (hz.abs(), s2.sqrt().abs());
+        let num = ax.fast_min(ay);
+        let den = ax.fast_max(ay).fast_max(Vf::splat(f32::MIN_POSITIVE));
+        let r = super::coords::atan_unit_lanes(num / den);
+        let r = ay.simd_gt(ax).select(Vf::splat(FRAC_PI_2) - r, r);
+        let theta_h = hz.simd_lt(zero).select(Vf::splat(PI) - r, r);
+        let u = (theta_h * Vf::splat(2.0 / PI)).fast_max(zero).sqrt() * Vf::splat(self.n as f32);
+        let v = hz.simd_gt(zero).select(s2 / (one + hz), one);
+        let n = self.n as usize;
+        let at = |s: &[f32], i: usize| s.get(i).copied().unwrap_or(0.0);
+        let ua = u.to_array();
+        let mut reads = [[0.0f32; LANES]; 4];
+        for (j, &uj) in ua.iter().enumerate() {
+            let k = (uj as usize).min(n.saturating_sub(1));
+            reads[0][j] = at(self.edges, k);
+            reads[1][j] = at(self.edges, k + 1);
+            reads[2][j] = at(self.density, k);
+            reads[3][j] = at(self.density, k + 1);
+        }
+        let [v0, v1, d0, d1] = reads.map(Vf::new);
+        // `((v − v0)/(v1 − v0)).clamp(0, 1)` (NaN stays NaN) where `v1 > v0`.
+        let t = (v - v0) / (v1 - v0);
+        let t = t.simd_lt(zero).select(zero, t);
+        let t = t.simd_gt(one).select(one, t);
+        let t = v1.simd_gt(v0).select(t, zero);
+        let p = d0 * (one - t) + d1 * t;
+        let p = (p.simd_gt(zero) & p.is_finite()).select(p, zero);
+        let spec = Vf::splat(1.0 - c) * p / (Vf::splat(4.0) * dot);
+        let total = cos_part + spec;
+        let total = total.is_finite().select(total, cos_part);
+        let total = (h_ok & dot_ok).select(total, cos_part);
+        above.select(total, zero)
+    }
+
     /// A half vector from the tabulated density `p_h`, for `u ∈ [0,1)²`.
     #[inline]
     pub fn sample_h(&self, u: [f32; 2]) -> Vec3 {
