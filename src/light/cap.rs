@@ -275,12 +275,62 @@ enum Azimuth {
 /// transformation for numerical integration", Int. Ser. Numer. Math. 112):
 /// it flattens the integrand at both ends of a piece, so a kink at a piece
 /// boundary becomes a jump in a high derivative only.
+///
+/// Returned as `(S(τ), S'(t), from_end)` with `τ = min(t, 1 − t)` (exact in
+/// `f32`) and `from_end = t > ½`; since `S(1 − τ) = 1 − S(τ)`, the mapped
+/// point is `lo + w·S(τ)` from the start of a piece `[lo, lo + w]`, or
+/// `hi − w·S(τ)` from its end. `S(τ) = (x − sin x)/(2π)`, `x = 2πτ ∈ [0, π]`,
+/// comes from the Taylor series of `x − sin x = x³ Σₖ (−z)ᵏ/(2k + 3)!`,
+/// `z = x²` (10 terms: truncation < 10⁻¹² relative on `[0, π]`; the terms
+/// alternate with a largest term below `S(τ)`, so the `f32` sum keeps a
+/// relative error of a few ulp): the plain `t − sin(2πt)/(2π)` cancels
+/// near the ends, where `S ≈ (2πτ)³/(12π)` is far below `t` — a relative
+/// error of 10⁻⁴ at `τ = 0.01` and of 1 at `τ = 5·10⁻⁴` — so the mapped
+/// points drifted away from the Jacobian `S'`, which is exact there, and
+/// the quadrature's error levelled off at 10⁻⁶ (GGX α = 0.01 under the
+/// sun at the horizon, seen at the grazing mirror direction, where the
+/// lobe is a ridge at a piece end).
 #[inline]
-fn sidi(t: f32) -> (f32, f32) {
+fn sidi(t: f32) -> (f32, f32, bool) {
     let t = t.clamp(0.0, 1.0);
-    let (s2, _) = libm::sincosf(TAU * t);
-    let s1 = libm::sinf(core::f32::consts::PI * t);
-    ((t - s2 / TAU).clamp(0.0, 1.0), 2.0 * s1 * s1)
+    let from_end = t > 0.5;
+    let tau = if from_end { 1.0 - t } else { t };
+    let x = TAU * tau;
+    let z = x * x;
+    // 1/(2k + 3)! for k = 0 … 9.
+    const C: [f32; 10] = [
+        1.0 / 6.0,
+        1.0 / 120.0,
+        1.0 / 5040.0,
+        1.0 / 362_880.0,
+        1.0 / 39_916_800.0,
+        1.0 / 6_227_020_800.0,
+        1.0 / 1_307_674_368_000.0,
+        1.0 / 355_687_428_096_000.0,
+        1.0 / 121_645_100_408_832_000.0,
+        1.0 / 51_090_942_171_709_440_000.0,
+    ];
+    let mut acc = C[9];
+    for &c in C[..9].iter().rev() {
+        acc = c - z * acc;
+    }
+    let s_tau = (x * z * acc / TAU).clamp(0.0, 0.5);
+    let s1 = libm::sinf(core::f32::consts::PI * tau);
+    (s_tau, 2.0 * s1 * s1, from_end)
+}
+
+/// The point of a piece `[lo, lo + width]` at Sidi parameter `t` (see
+/// [`sidi`]): `lo + width·S(t)`, measured from the nearer end, and the
+/// Jacobian `width·S'(t)`.
+#[inline]
+fn sidi_piece(lo: f32, width: f32, t: f32) -> (f32, f32) {
+    let (s_tau, ds, from_end) = sidi(t);
+    let x = if from_end {
+        (lo + width) - width * s_tau
+    } else {
+        lo + width * s_tau
+    };
+    (x, width * ds)
 }
 
 /// `v(α) = 1 − cos α = 2 sin²(α/2)` without cancellation.
@@ -373,27 +423,27 @@ impl<B: Brdf> CapIntegrand<B> {
             Azimuth::Lower(bs) => {
                 // Two pieces, [β*, π] and [π, 2π − β*].
                 let half = pi - bs;
-                let (k, t) = if phi < pi {
-                    (0.0, phi / pi)
+                let (lo, t) = if phi < pi {
+                    (bs, phi / pi)
                 } else {
-                    (1.0, (phi - pi) / pi)
+                    (pi, (phi - pi) / pi)
                 };
-                let (st, ds) = sidi(t);
-                (bs + half * (k + st), half * ds / pi)
+                let (b, db) = sidi_piece(lo, half, t);
+                (b, db / pi)
             }
             Azimuth::Split(bs) => {
                 // Four pieces: [−β*, 0], [0, β*] on φ' < π; [β*, π], [π, 2π − β*] on φ' ≥ π.
                 let h = 0.5 * pi;
                 let q = (phi / h).clamp(0.0, 3.999_999_8);
                 let k = libm::floorf(q);
-                let (st, ds) = sidi(q - k);
                 let (lo, width) = match k as u32 {
                     0 => (-bs, bs),
                     1 => (0.0, bs),
                     2 => (bs, pi - bs),
                     _ => (pi, pi - bs),
                 };
-                (lo + width * st, width * ds / h)
+                let (b, db) = sidi_piece(lo, width, q - k);
+                (b, db / h)
             }
         }
     }
@@ -563,5 +613,68 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
                 });
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    /// The Sidi map against `f64` on a grid dense near both piece ends:
+    /// the mapped point is accurate *relative to its distance from the
+    /// nearer end* (where the plain `t − sin(2πt)/(2π)` lost every digit),
+    /// the Jacobian relative to itself, and the two ends are hit exactly.
+    #[test]
+    fn sidi_piece_is_accurate_near_both_ends() {
+        // S(τ) in f64: the formula where its cancellation costs < 10⁻¹¹, the
+        // series (x³/6)(1 − x²/20)/(2π) below (truncation < 2·10⁻¹²).
+        let exact = |tau: f64| {
+            let x = core::f64::consts::TAU * tau;
+            if tau >= 1e-3 {
+                tau - x.sin() / core::f64::consts::TAU
+            } else {
+                x * x * x / 6.0 * (1.0 - x * x / 20.0) / core::f64::consts::TAU
+            }
+        };
+        let mut ts: std::vec::Vec<f32> = (0..=4000).map(|i| i as f32 / 4000.0).collect();
+        for k in 1..=60 {
+            let tau = 10f32.powf(-(k as f32) / 10.0);
+            ts.push(tau);
+            ts.push(1.0 - tau);
+        }
+        let (lo, width) = (-1.3f32, 1.3f32); // the piece [−β*, 0]
+        let (mut worst_x, mut worst_j) = (0.0f64, 0.0f64);
+        for &t in &ts {
+            let (x, j) = sidi_piece(lo, width, t);
+            let t64 = t as f64;
+            let tau = t64.min(1.0 - t64);
+            let want = if t64 > 0.5 {
+                (lo + width) as f64 - width as f64 * exact(tau)
+            } else {
+                lo as f64 + width as f64 * exact(tau)
+            };
+            // Beyond the rounding of the result itself (one ulp of x), the
+            // error relative to the distance from the nearer end (computed
+            // without cancellation).
+            let dist = width as f64 * exact(tau);
+            let ulp = (x.abs() as f64 * f32::EPSILON as f64).max(f32::from_bits(1) as f64);
+            if dist > 0.0 {
+                let e = ((x as f64 - want).abs() - ulp).max(0.0) / dist;
+                worst_x = worst_x.max(e);
+            }
+            let want_j = width as f64 * 2.0 * (core::f64::consts::PI * t64).sin().powi(2);
+            if want_j > 1e-30 {
+                worst_j = worst_j.max((j as f64 - want_j).abs() / want_j);
+            }
+        }
+        // Measured: 2.5e-7 (point, beyond one ulp of the result, relative to
+        // the distance from the nearer end; the plain t − sin(2πt)/(2π)
+        // gives 1: every digit of the displacement lost) and 2.9e-7
+        // (Jacobian).
+        assert!(worst_x <= 1e-6, "point {worst_x:e}");
+        assert!(worst_j <= 1e-6, "Jacobian {worst_j:e}");
+        assert_eq!(sidi_piece(lo, width, 0.0).0, lo);
+        assert_eq!(sidi_piece(lo, width, 1.0).0, lo + width);
     }
 }
