@@ -115,15 +115,15 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             }
         }
     }
-    // Integrators on a directional-albedo integrand (stack only, no heap).
-    // Linked for the std/alloc check; not yet part of the no-panic proof
-    // (bounds checks on their fixed-size node/region tables survive).
-    #[cfg(not(feature = "prove-no-panic"))]
+    // Integrators on a directional-albedo integrand (stack only, no heap):
+    // every quadrature rule under the no-panic proof too. Monte Carlo is
+    // linked for the std/alloc check only: its Sobol point set calls the
+    // `sobol_burley` crate, which keeps one bounds check the optimiser cannot
+    // remove (`vecs[i + j]` in `sobol_int4_rev`; unreachable, `i + j < 16`
+    // for the 16 index bits it walks), and the point set is a run-time value.
     {
         use radiometry::Integrator;
-        use radiometry::integrator::{
-            Adaptive, DirectionalAlbedo, GaussLegendre, MonteCarlo, PointSet, Strategy, WarpedGaussLegendre,
-        };
+        use radiometry::integrator::{Adaptive, DirectionalAlbedo, GaussLegendre, WarpedGaussLegendre};
         if let Ok(d) = Ggx::new(black_box(0.2)) {
             let g = DirectionalAlbedo {
                 brdf: Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel),
@@ -136,14 +136,61 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             if let Ok(e) = WarpedGaussLegendre::new().integrate(&g, budget) {
                 acc += e.value as f32;
             }
+            if let Ok(e) = WarpedGaussLegendre::horizon_split().integrate(&g, budget) {
+                acc += e.value as f32;
+            }
             if let Ok(a) = Adaptive::new(1e-6, 0.0) {
+                if let Ok(e) = a.integrate(&g, budget) {
+                    acc += e.value as f32;
+                }
                 if let Ok(e) = a.warped().integrate(&g, budget) {
                     acc += e.value as f32;
                 }
             }
-            let mc = MonteCarlo::new(Strategy::Integrand, PointSet::Sobol, black_box(7));
-            if let Ok(e) = mc.integrate(&g, budget) {
+            #[cfg(not(feature = "prove-no-panic"))]
+            {
+                use radiometry::integrator::{Heuristic, MonteCarlo, PointSet, Strategy};
+                let strategies = [
+                    Strategy::Uniform,
+                    Strategy::Cosine,
+                    Strategy::Integrand,
+                    Strategy::Mis(Heuristic::Balance),
+                    Strategy::Mis(Heuristic::Power),
+                ];
+                for p in [
+                    PointSet::Prng,
+                    PointSet::Stratified,
+                    PointSet::Fibonacci,
+                    PointSet::Sobol,
+                ] {
+                    for s in strategies {
+                        let mc = MonteCarlo::new(s, p, black_box(7));
+                        if let Ok(e) = mc.integrate(&g, budget) {
+                            acc += e.value as f32;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // A cap light's reflected radiance through its integrand, by quadrature.
+    {
+        use radiometry::Integrator;
+        use radiometry::integrator::{Adaptive, GaussLegendre};
+        use radiometry::light::{Cap, CapIntegrand};
+        if let (Ok(d), Ok(cap)) = (
+            Ggx::new(black_box(0.05)),
+            Cap::new(black_box(Vec3::new(1.0, 0.0, 0.02)), black_box(0.01), 1.0f32),
+        ) {
+            let b = Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel);
+            let g = CapIntegrand::new(b, black_box(Vec3::new(-1.0, 0.0, 0.02).normalize()), &cap);
+            if let Ok(e) = GaussLegendre::new().integrate(&g, black_box(1024)) {
                 acc += e.value as f32;
+            }
+            if let Ok(a) = Adaptive::new(1e-6, 0.0) {
+                if let Ok(e) = a.integrate(&g, black_box(1024)) {
+                    acc += e.value as f32;
+                }
             }
         }
     }

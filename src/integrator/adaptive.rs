@@ -193,19 +193,21 @@ fn rule_points(c: [f64; 2], h: [f64; 2], out: &mut [[f64; 2]]) {
 /// The rule on the rectangle `c ± h` from the values `vals[..17]` at its
 /// [`rule_points`].
 fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
+    // A fixed-size copy: constant indices below, no panic path.
+    let vals: [W; GM_POINTS] = core::array::from_fn(|k| vals.get(k).copied().unwrap_or(W::splat(0.0)));
     let pts = gm_points();
     let vol = 4.0 * h[0] * h[1];
     let mut i7 = WideSum::<W>::new();
     let mut i5 = WideSum::<W>::new();
     let mut ab = WideSum::<W>::new();
     let mut peak = 0.0f64;
-    for (k, &(_, _, cls)) in pts.iter().enumerate() {
-        let v = vals[k];
+    for (&(_, _, cls), &v) in pts.iter().zip(&vals) {
         peak = peak.max(acc::max_abs(v));
-        i7.add(v.map(|x| x * W7[cls] * vol));
-        ab.add(v.map(|x| (x * W7[cls] * vol).abs()));
-        if cls < 4 {
-            i5.add(v.map(|x| x * W5[cls] * vol));
+        let w7 = W7.get(cls).copied().unwrap_or(0.0);
+        i7.add(v.map(|x| x * w7 * vol));
+        ab.add(v.map(|x| (x * w7 * vol).abs()));
+        if let Some(&w5) = W5.get(cls) {
+            i5.add(v.map(|x| x * w5 * vol));
         }
     }
     let (i7, i5) = (i7.value(), i5.value());
@@ -276,7 +278,7 @@ fn locate_step<W: WideSpectrum>(
     let mut v = [W::splat(0.0)];
     for _ in 0..EDGE_BISECTIONS {
         let mid = 0.5 * (lo + hi);
-        p[axis] = mid;
+        p[axis & 1] = mid;
         f(&[p], &mut v)?;
         if nonzero(&v[0]) == flag_e {
             hi = mid;
@@ -326,6 +328,9 @@ fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Res
             }
         }
     }
+    // `m ≤ 2` (see the guard above; `min` lets the optimiser drop the
+    // slicing's panic path).
+    let m = m.min(2);
     if m == 0 {
         return Ok(0);
     }
@@ -333,17 +338,26 @@ fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Res
     f(&pts[..2 * m], &mut vals[..2 * m])?;
     let mut evals = 2 * m as u64;
     let mut grew = false;
-    for (k, &ax) in axes[..m].iter().enumerate() {
-        let (ve, vx) = (vals[2 * k], vals[2 * k + 1]);
+    for k in 0..m {
+        // `ax ∈ {0, 1}`; masking states it for the optimiser.
+        let ax = axes.get(k).copied().unwrap_or(0) & 1;
+        let (Some(&ve), Some(&vx), Some(&pe), Some(&px)) = (
+            vals.get(2 * k),
+            vals.get(2 * k + 1),
+            pts.get(2 * k),
+            pts.get(2 * k + 1),
+        ) else {
+            continue;
+        };
         let flag_e = nonzero(&ve);
         if flag_e == nonzero(&vx) {
             continue;
         }
-        let (e, x) = (pts[2 * k][ax], pts[2 * k + 1][ax]);
-        let lo = locate_step(pts[2 * k], ax, x, e, flag_e, f)?;
+        let (e, x) = (pe[ax], px[ax]);
+        let lo = locate_step(pe, ax, x, e, flag_e, f)?;
         evals += EDGE_BISECTIONS;
         let strip = (e - lo).abs();
-        let side = 2.0 * r.h[1 - ax];
+        let side = 2.0 * r.h[ax ^ 1];
         r.error = acc::add(r.error, ve.zip(vx, |a, b| a.abs().max(b.abs()) * strip * side));
         // Split across the strip next (see `cut_gaps`).
         r.axis = ax as u8;
@@ -631,13 +645,17 @@ impl Adaptive {
             c0[k] = [0.5 * (x0 + x1), 0.5 * (y0 + y1)];
             h0[k] = [0.5 * (x1 - x0), 0.5 * (y1 - y0)];
         }
+        // Checked writes and `take(live)` below: `live ≤ MAX_REGIONS` holds
+        // by construction, and the code keeps no panic path for it.
         rules(&c0, &h0, &mut f, |r| {
-            regions[live] = r;
-            live += 1;
+            if let Some(slot) = regions.get_mut(live) {
+                *slot = r;
+                live += 1;
+            }
         })?;
         let mut evals = 4 * GM_POINTS as u64;
         if edge {
-            for r in &mut regions[..live] {
+            for r in regions.iter_mut().take(live) {
                 evals += edge_gaps(r, &mut f)?;
             }
         }
@@ -646,23 +664,25 @@ impl Adaptive {
             // Totals and the worst region.
             let mut worst = 0usize;
             let mut largest = 0usize;
+            // The worst region's error and area, the largest region's area
+            // and key (−1: none yet, so region 0 is taken first).
+            let (mut we, mut wa) = (-1.0f64, -1.0f64);
+            let (mut la, mut lk) = (-1.0f64, -1.0f64);
             let mut err_sum = 0.0f64;
             let mut val = WideSum::<W>::new();
-            for (k, r) in regions[..live].iter().enumerate() {
+            for (k, r) in regions.iter().take(live).enumerate() {
                 err_sum += r.key;
                 val.add(r.value);
                 // Largest error first; among equal errors (e.g. all zero on a
                 // piecewise-constant integrand) the largest region.
                 // (By the estimate alone: the f32 floor term of the key does
                 // not shrink under refinement.)
-                let w = &regions[worst];
-                let (re, we) = (acc::max_abs(r.error), acc::max_abs(w.error));
-                if re > we || (re == we && r.cell_area() > w.cell_area()) {
-                    worst = k;
+                let (re, ra) = (acc::max_abs(r.error), r.cell_area());
+                if re > we || (re == we && ra > wa) {
+                    (worst, we, wa) = (k, re, ra);
                 }
-                let l = &regions[largest];
-                if r.cell_area() > l.cell_area() || (r.cell_area() == l.cell_area() && r.key > l.key) {
-                    largest = k;
+                if ra > la || (ra == la && r.key > lk) {
+                    (largest, la, lk) = (k, ra, r.key);
                 }
             }
             let target = self.abs_tol.max(self.rel_tol * acc::max_abs(val.value()));
@@ -674,7 +694,9 @@ impl Adaptive {
             // regardless of its estimate (see the type's docs).
             // So does the worst region once its estimate is below its f32
             // floor (refining it cannot help).
-            let w = &regions[worst];
+            let Some(&w) = regions.get(worst) else {
+                break;
+            };
             let mut forced = splits % FORCED_EVERY == FORCED_EVERY - 1
                 || acc::max_abs(w.error) <= F32_FLOOR * acc::max_abs(w.abs);
             if live == MAX_REGIONS && !forced {
@@ -684,7 +706,9 @@ impl Adaptive {
             if forced {
                 worst = largest;
             }
-            let r = regions[worst];
+            let Some(&r) = regions.get(worst) else {
+                break;
+            };
             if live == MAX_REGIONS {
                 // Table full: re-evaluate the region with the composite
                 // rule on a grid twice as fine per axis (the table never
@@ -705,10 +729,12 @@ impl Adaptive {
                 let excess = d.zip(r.error, |d, e| (d - e).max(0.0));
                 q.error = acc::add(q.error, excess);
                 q.key = acc::max_abs(acc::add(q.error, q.abs.map(|x| x * F32_FLOOR)));
-                regions[worst] = q;
+                if let Some(slot) = regions.get_mut(worst) {
+                    *slot = q;
+                }
                 continue;
             }
-            let ax = r.axis as usize;
+            let ax = r.axis as usize & 1;
             let mut h = r.h;
             h[ax] *= 0.5;
             let mut c1 = r.c;
@@ -731,13 +757,17 @@ impl Adaptive {
             }
             splits += 1;
             two_level(&r, &mut a, &mut b);
-            regions[worst] = a;
-            regions[live] = b;
-            live += 1;
+            if let Some(slot) = regions.get_mut(worst) {
+                *slot = a;
+            }
+            if let Some(slot) = regions.get_mut(live) {
+                *slot = b;
+                live += 1;
+            }
         }
         let (mut val, mut err, mut abs) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
         let mut sq = WideSum::<W>::new();
-        for r in &regions[..live] {
+        for r in regions.iter().take(live) {
             val.add(r.value);
             err.add(r.error);
             abs.add(r.abs);
@@ -752,8 +782,9 @@ impl Adaptive {
         // a peak (or part of a lobe) between the nodes that refinement never
         // reached (see `probe`).
         let unseen = probe.iter().any(|&(p, v)| {
-            regions[..live]
+            regions
                 .iter()
+                .take(live)
                 .find(|r| (p[0] - r.c[0]).abs() <= r.h[0] && (p[1] - r.c[1]).abs() <= r.h[1])
                 .is_some_and(|r| v > probe::PEAK_RATIO * r.peak)
         });
@@ -800,13 +831,17 @@ impl Integrator for Adaptive {
                     let phi = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
                     let b = phi - PHI_OFFSET;
                     let b = b - libm::floor(b);
-                    pts[n] = ([w.z as f64, b], v * core::f64::consts::TAU);
-                    n += 1;
+                    if let Some(p) = pts.get_mut(n) {
+                        *p = ([w.z as f64, b], v * core::f64::consts::TAU);
+                        n += 1;
+                    }
                 }
             }
-            let mut e = self.run(rule_budget, &pts[..n], |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
-                chunk::hemisphere_values(g, p, turn, out)
-            })?;
+            let mut e = self.run(
+                rule_budget,
+                pts.get(..n).unwrap_or_default(),
+                |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, turn, out),
+            )?;
             if probing {
                 e.evaluations += probe::PROBE_POINTS as u64;
             }

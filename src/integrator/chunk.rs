@@ -124,17 +124,22 @@ pub(crate) fn brdf_eval_where<B: Brdf>(brdf: &B, wo: Vec3, wi: &[Option<Vec3>], 
     let mut index = [0usize; CHUNK];
     let mut vals = [B::Spectrum::zero(); CHUNK];
     for (wi, out) in wi.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        // Checked writes: `m ≤ k < CHUNK` by construction, and the code
+        // keeps no panic path for it.
         let mut m = 0;
         for (k, w) in wi.iter().take(out.len()).enumerate() {
-            if let Some(w) = *w {
-                dense[m] = w;
-                index[m] = k;
+            if let (Some(w), Some(d), Some(i)) = (*w, dense.get_mut(m), index.get_mut(m)) {
+                *d = w;
+                *i = k;
                 m += 1;
             }
         }
+        let m = m.min(CHUNK);
         brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
         for (&k, &v) in index[..m].iter().zip(&vals[..m]) {
-            out[k] = v;
+            if let Some(o) = out.get_mut(k) {
+                *o = v;
+            }
         }
     }
 }

@@ -80,21 +80,24 @@ pub fn gauss_legendre_rule(n: usize, x: &mut [f64], w: &mut [f64]) -> usize {
     if n == 0 || n > x.len() || n > w.len() {
         return 0;
     }
+    // Checked writes (no panic path; `n` fits both slices, see above).
+    let set = |s: &mut [f64], k: usize, v: f64| {
+        if let Some(e) = s.get_mut(k) {
+            *e = v;
+        }
+    };
     if n == 1 {
-        x[0] = 0.0;
-        w[0] = 2.0;
+        set(x, 0, 0.0);
+        set(w, 0, 2.0);
         return 1;
     }
     for i in 0..n.div_ceil(2) {
         let (xi, wi) = positive_root(n, i);
         // i-th largest root sits at ascending index n-1-i; its mirror at i.
-        x[n - 1 - i] = xi;
-        w[n - 1 - i] = wi;
-        x[i] = -xi;
-        w[i] = wi;
-        if 2 * i + 1 == n {
-            x[i] = 0.0;
-        }
+        set(x, n - 1 - i, xi);
+        set(w, n - 1 - i, wi);
+        set(x, i, if 2 * i + 1 == n { 0.0 } else { -xi });
+        set(w, i, wi);
     }
     n
 }
@@ -114,11 +117,20 @@ impl UnitRule {
             w: [0.0; MAX_ORDER],
         };
         r.n = gauss_legendre_rule(n.min(MAX_ORDER), &mut r.x, &mut r.w);
-        for k in 0..r.n {
-            r.x[k] = 0.5 * (r.x[k] + 1.0);
-            r.w[k] *= 0.5;
+        for (x, w) in r.x.iter_mut().zip(r.w.iter_mut()).take(r.n) {
+            *x = 0.5 * (*x + 1.0);
+            *w *= 0.5;
         }
         r
+    }
+
+    /// Node `k` and its weight (`(0, 0)` beyond the rule: no panic path).
+    #[inline]
+    fn node(&self, k: usize) -> (f64, f64) {
+        match (self.x.get(k), self.w.get(k)) {
+            (Some(&x), Some(&w)) if k < self.n => (x, w),
+            _ => (0.0, 0.0),
+        }
     }
 }
 
@@ -142,13 +154,17 @@ fn product_square<W: WideSpectrum>(
     let mut wts = [0.0f64; CHUNK];
     let mut vals = [W::splat(0.0); CHUNK];
     let total = ra.n * rb.n;
+    // `rb.n ≥ 1` whenever `total > 0`; `max(1)` lets the optimiser drop the
+    // division-by-zero path.
+    let nb = rb.n.max(1);
     let mut start = 0;
     while start < total {
         let n = (total - start).min(CHUNK);
-        for k in 0..n {
-            let (i, j) = ((start + k) / rb.n, (start + k) % rb.n);
-            pts[k] = [ra.x[i], rb.x[j]];
-            wts[k] = ra.w[i] * rb.w[j];
+        for (k, (p, wt)) in pts.iter_mut().zip(wts.iter_mut()).take(n).enumerate() {
+            let (i, j) = ((start + k) / nb, (start + k) % nb);
+            let ((xa, wa), (xb, wb)) = (ra.node(i), rb.node(j));
+            *p = [xa, xb];
+            *wt = wa * wb;
         }
         f(&pts[..n], &mut vals[..n])?;
         for (k, (v, &wt)) in vals[..n].iter().zip(&wts[..n]).enumerate() {
@@ -156,7 +172,7 @@ fn product_square<W: WideSpectrum>(
             sum.add(v);
             abs.add(v.map(f64::abs));
             sq.add(v.map(|c| c * c));
-            let i = (start + k) / rb.n;
+            let i = (start + k) / nb;
             let m = v.map(f64::abs).max_channel();
             if i == 0 {
                 first_row += m;
@@ -206,11 +222,11 @@ fn edge_gap_bound<W: WideSpectrum>(
 ) -> Result<(W, usize), IntegrateError> {
     let ra = UnitRule::new(na);
     let rb = UnitRule::new(nb);
-    let (lo, hi) = (rb.x[0], rb.x[rb.n - 1]);
+    let (lo, hi) = (rb.node(0).0, rb.node(rb.n.saturating_sub(1)).0);
     let mut bound = WideSum::<W>::new();
     let mut vals = [W::splat(0.0); 4];
     for i in 0..ra.n {
-        let a = ra.x[i];
+        let (a, wa) = ra.node(i);
         f(&[[a, 0.0], [a, lo], [a, hi], [a, 1.0]], &mut vals)?;
         let mut b = W::splat(0.0);
         let larger = |p: W, q: W, gap: f64| p.zip(q, |p, q| p.abs().max(q.abs()) * gap);
@@ -220,7 +236,7 @@ fn edge_gap_bound<W: WideSpectrum>(
         if nonzero(&vals[3]) != nonzero(&vals[2]) {
             b = acc::add(b, larger(vals[3], vals[2], 1.0 - hi));
         }
-        bound.add(b.map(|v| v * ra.w[i]));
+        bound.add(b.map(|v| v * wa));
     }
     Ok((bound.value(), 4 * ra.n))
 }
@@ -434,7 +450,8 @@ fn split_rule<W: WideSpectrum>(
     let ra = UnitRule::new(na);
     let rb = UnitRule::new(nb);
     let rh = UnitRule::new(nb.div_ceil(2));
-    let (m, mh) = (rb.n, rh.n);
+    // `n ≤ MAX_ORDER` for every rule; `min` states it for the optimiser.
+    let (m, mh) = (rb.n.min(MAX_ORDER), rh.n.min(MAX_ORDER));
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
     let mut sq = WideSum::<W>::new();
@@ -446,10 +463,10 @@ fn split_rule<W: WideSpectrum>(
     let mut vals = [W::splat(0.0); MAX_ORDER + 2];
     let mut one = [W::splat(0.0); 1];
     for i in 0..ra.n {
-        let a = ra.x[i];
+        let (a, wa) = ra.node(i);
         pts[0] = [a, 0.0];
-        for j in 0..m {
-            pts[j + 1] = [a, rb.x[j]];
+        for (j, p) in pts.iter_mut().skip(1).take(m).enumerate() {
+            *p = [a, rb.node(j).0];
         }
         pts[m + 1] = [a, 1.0];
         f(&pts[..m + 2], &mut vals[..m + 2])?;
@@ -471,8 +488,8 @@ fn split_rule<W: WideSpectrum>(
         let mut line_sq = WideSum::<W>::new();
         if count == 0 || count > MAX_STEPS_PER_LINE {
             unlocated |= count > MAX_STEPS_PER_LINE;
-            for j in 0..m {
-                let v = vals[j + 1].map(|c| c * rb.w[j]);
+            for (j, v) in vals.iter().skip(1).take(m).enumerate() {
+                let v = v.map(|c| c * rb.node(j).1);
                 line.add(v);
                 line_abs.add(v.map(f64::abs));
                 line_sq.add(v.map(|c| c * c));
@@ -485,13 +502,13 @@ fn split_rule<W: WideSpectrum>(
                 } else if k == m + 1 {
                     1.0
                 } else {
-                    rb.x[k - 1]
+                    rb.node(k - 1).0
                 }
             };
             let mut cuts = [0.0f64; MAX_STEPS_PER_LINE + 2];
             cuts[0] = 0.0;
-            for (c, &k) in steps[..count].iter().enumerate() {
-                let left = nonzero(&vals[k]);
+            for (c, &k) in steps.iter().take(count).enumerate() {
+                let left = vals.get(k).is_some_and(nonzero);
                 let (mut lo, mut hi) = (pos(k), pos(k + 1));
                 for _ in 0..BISECTION_STEPS {
                     let mid = 0.5 * (lo + hi);
@@ -527,10 +544,11 @@ fn split_rule<W: WideSpectrum>(
                 let mut wt = [0.0f64; CHUNK];
                 while start < n {
                     let c = (n - start).min(CHUNK);
-                    for k in 0..c {
-                        let (t, dt) = sidi(r.x[start + k]);
-                        pts[k] = [a, lo + len * t];
-                        wt[k] = len * r.w[start + k] * dt;
+                    for (k, (p, w)) in pts.iter_mut().zip(wt.iter_mut()).take(c).enumerate() {
+                        let (x, wr) = r.node(start + k);
+                        let (t, dt) = sidi(x);
+                        *p = [a, lo + len * t];
+                        *w = len * wr * dt;
                     }
                     f(&pts[..c], &mut vals[..c])?;
                     evaluations += c;
@@ -544,7 +562,6 @@ fn split_rule<W: WideSpectrum>(
                 }
             }
         }
-        let wa = ra.w[i];
         sum.add(line.value().map(|x| x * wa));
         abs.add(line_abs.value().map(|x| x * wa));
         sq.add(line_sq.value().map(|x| x * wa * wa));

@@ -366,15 +366,19 @@ impl<'g, I: Integrand> Draws<'g, I> {
     /// Queues the draw `(u1, u2)`.
     #[inline]
     fn push(&mut self, u1: [f32; 2], u2: [f32; 2], m: &mut Moments<WideOf<I>>) -> Result<(), IntegrateError> {
-        self.u1[self.n] = u1;
-        self.u2[self.n] = u2;
-        self.n += 1;
-        if self.n == CHUNK { self.flush(m) } else { Ok(()) }
+        // `n < CHUNK` between calls (a full queue is flushed at once); the
+        // checked writes keep the code free of panic paths.
+        if let (Some(a), Some(b)) = (self.u1.get_mut(self.n), self.u2.get_mut(self.n)) {
+            *a = u1;
+            *b = u2;
+            self.n += 1;
+        }
+        if self.n >= CHUNK { self.flush(m) } else { Ok(()) }
     }
 
     /// Evaluates the queued draws into `m`.
     fn flush(&mut self, m: &mut Moments<WideOf<I>>) -> Result<(), IntegrateError> {
-        let n = core::mem::replace(&mut self.n, 0);
+        let n = core::mem::replace(&mut self.n, 0).min(CHUNK);
         let mut vals = [WideOf::<I>::splat(0.0); CHUNK];
         draw_batch(
             self.g,

@@ -113,15 +113,17 @@ impl Probe {
         };
         for s in ss.iter().flatten() {
             let v = check_finite(s.value.to_wide())?;
-            probe.points[probe.len] = (s.w, acc::max_abs(v));
-            probe.len += 1;
+            if let Some(p) = probe.points.get_mut(probe.len) {
+                *p = (s.w, acc::max_abs(v));
+                probe.len += 1;
+            }
         }
         Ok(probe)
     }
 
     /// The probe's points and values.
     pub(crate) fn points(&self) -> &[(Vec3, f64)] {
-        &self.points[..self.len]
+        self.points.get(..self.len).unwrap_or_default()
     }
 
     /// The largest value of the probe (0 if it has no point).
