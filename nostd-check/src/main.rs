@@ -105,7 +105,7 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
     {
         use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
         let values = black_box([0.3f32; 4 * 4 * 4]);
-        let mut buf = [0.0f32; 15];
+        let mut buf = [0.0f32; 33];
         if let Ok(g) = RusinkiewiczGrid::new(black_box(4), 4, 4) {
             if let Ok(t) = Tabulated::new(g, &values[..]) {
                 exercise(&t, &mut acc);

@@ -192,51 +192,6 @@ pub(crate) const ATAN_R: [f32; 8] = [
     -0.004_693_354,
 ];
 
-/// The coefficients `a₁, a₃, a₅, a₇, a₉` of [`atan_unit`] (A&S 4.4.47).
-pub(crate) const ATAN: [f32; 5] = [0.999_866, -0.330_299_5, 0.180_141, -0.085_133, 0.020_835_1];
-
-/// [`atan_unit`] lane-wise (feature `simd`; the same operations).
-#[cfg(feature = "simd")]
-#[inline(always)]
-pub(crate) fn atan_unit_lanes(x: crate::simd::Vf) -> crate::simd::Vf {
-    use crate::simd::Vf;
-    let [a1, a3, a5, a7, a9] = ATAN.map(Vf::splat);
-    let z = x * x;
-    let z2 = z * z;
-    let lo = a1 + a3 * z;
-    let mid = a5 + a7 * z;
-    x * (lo + z2 * (mid + z2 * a9))
-}
-
-/// `atan(x)` for `x ∈ [0, 1]`: Abramowitz & Stegun 4.4.47,
-/// `atan x = a₁x + a₃x³ + a₅x⁵ + a₇x⁷ + a₉x⁹ + ε`, `|ε| ≤ 10⁻⁵` (we measure
-/// 1.15·10⁻⁵ rad absolute and 1.34·10⁻⁴ relative in f64; 7·10⁻⁴ of a MERL
-/// θd cell). Evaluated in Estrin form (shorter dependency chain than Horner).
-#[inline(always)]
-fn atan_unit(x: f32) -> f32 {
-    let [a1, a3, a5, a7, a9] = ATAN;
-    let z = x * x;
-    let z2 = z * z;
-    let lo = a1 + a3 * z;
-    let mid = a5 + a7 * z;
-    x * (lo + z2 * (mid + z2 * a9))
-}
-
-/// `atan2(|y|, x) ∈ [0, π]` (any sign of `x`; `(0, 0)` → 0), by octant
-/// reduction to [`atan_unit`] with selects rather than branches (the
-/// octant is unpredictable in a renderer's loop). Non-finite input gives a
-/// value in `[0, π]` or NaN, which callers clamp.
-#[inline(always)]
-pub(crate) fn atan2(y: f32, x: f32) -> f32 {
-    let ax = x.abs();
-    let ay = y.abs();
-    let num = ax.min(ay);
-    let den = ax.max(ay).max(f32::MIN_POSITIVE);
-    let r = atan_unit(num / den);
-    let r = if ay > ax { FRAC_PI_2 - r } else { r };
-    if x < 0.0 { PI - r } else { r }
-}
-
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -394,22 +349,5 @@ mod tests {
             );
             assert!((0.0..=PI).contains(&a.2), "{wi:?} {wo:?}: {a:?}");
         }
-    }
-
-    /// A&S 4.4.47 in f32 against f64 `atan2` over the upper half plane.
-    #[test]
-    fn atan2_error_is_small() {
-        let mut worst = 0.0f64;
-        for i in 0..=20_000 {
-            let t = i as f64 / 20_000.0 * core::f64::consts::PI;
-            for r in [1e-20f64, 1e-3, 1.0, 1e3] {
-                let (y, x) = ((t.sin() * r) as f32, (t.cos() * r) as f32);
-                let want = (y as f64).atan2(x as f64);
-                worst = worst.max((atan2(y, x) as f64 - want).abs());
-            }
-        }
-        assert!(worst < 1.2e-5, "{worst}");
-        assert_eq!(atan2(0.0, 0.0), 0.0);
-        assert_eq!(atan2(0.0, -1.0), PI);
     }
 }

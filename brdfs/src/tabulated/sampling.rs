@@ -49,8 +49,9 @@
 //! # Choice and figures
 //!
 //! A per-`ωo` 2D distribution (pbrt-v4's `MeasuredBxDF` approach) needs a
-//! buffer per outgoing direction; this one needs `3 (Nh + 1)` floats
-//! (273 for MERL) and no `alloc`. Measured on a table of GGX α = 0.3
+//! buffer per outgoing direction; this one needs `3 (Nh + 1)` floats and a
+//! guide table for the bin lookup of the pdf (2,001 floats in all for MERL,
+//! [`HalfVectorDistribution::buffer_len`]) and no `alloc`. Measured on a table of GGX α = 0.3
 //! (`F = 1`, height-correlated) on the MERL grid with the default cosine
 //! weight `c = 0.25` (test `variance_figures` in
 //! `brdfs/tests/tabulated.rs`, 512² stratified samples): per-sample
@@ -76,13 +77,61 @@ use radiometry::Spectrum;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
 
+/// Guide-table entries per θh bin (see [`HalfVectorDistribution`]).
+/// Bin edge `k` of `nh` bins: `v_k = 2 sin²(θ_k/2)`, `θ_k = (k/Nh)² π/2`.
+#[inline]
+fn edge(k: usize, nh: usize) -> f32 {
+    let x = k as f32 / nh as f32;
+    let s = libm::sinf(0.5 * x * x * FRAC_PI_2);
+    2.0 * s * s
+}
+
+/// The shape of the guide table of `nh` bins: `(e_lo, c)` with cells of
+/// `2⁻ᶜ` octave (the top `c` mantissa bits of `v`) from `v = 2^e_lo`, the
+/// largest power of two `≤ v_1`, up to `v < 2`: `(1 − e_lo)·2ᶜ` cells. `c` is
+/// the smallest with every cell narrower than the narrowest bin
+/// `[v_k, v_{k+1}]`, `k ≥ 1`, in `log₂ v` (a cell spans at most
+/// `log₂(1 + 2⁻ᶜ) < 1.45·2⁻ᶜ` octave), with a margin of 1.5, so a cell holds
+/// at most one edge.
+fn guide_shape(nh: usize) -> (i32, u32) {
+    let v1 = edge(1, nh.max(1));
+    let e_lo = if v1 > 0.0 {
+        ((v1.to_bits() >> 23) as i32 - 127).max(-126)
+    } else {
+        -126
+    };
+    let mut narrowest = f32::INFINITY;
+    for k in 1..nh {
+        let (a, b) = (edge(k, nh), edge(k + 1, nh));
+        if a > 0.0 && b > a {
+            narrowest = narrowest.min(libm::log2f(b / a));
+        }
+    }
+    let mut c = 0u32;
+    while c < 16 && 1.5 * 1.45 / ((1u32 << c) as f32) >= narrowest {
+        c += 1;
+    }
+    (e_lo, c)
+}
+
+/// Entries of the guide table of `nh` bins ([`guide_shape`]).
+fn guide_len(nh: usize) -> usize {
+    let (e_lo, c) = guide_shape(nh);
+    (1 - e_lo) as usize * (1usize << c)
+}
+
 /// The default cosine weight `c` of the mixture (see the
 /// [module documentation](self)).
 pub const DEFAULT_COSINE_WEIGHT: f32 = 0.25;
 
 /// The half-vector distribution of the [module documentation](self), over
 /// a buffer borrowed from the caller: `Nh + 1` entries each for the CDF over
-/// θh bins, the bin edges `v_k = 1 − cos θ_k` and the node densities `d_k`.
+/// θh bins, the bin edges `v_k = 1 − cos θ_k` and the node densities `d_k`,
+/// then a guide table to the bin of a given `v`, indexed by the bits of `v`
+/// itself — its exponent and top mantissa bits, a piecewise-linear `log₂ v`
+/// — with cells narrower than any bin, so a cell holds at most one edge
+/// (`v_k ∝ k⁴` near the pole: uniform cells in `v` or `√v` would hold dozens
+/// there).
 ///
 /// ```
 /// use radiometry_brdfs::tabulated::{HalfVectorDistribution, RusinkiewiczGrid};
@@ -100,15 +149,22 @@ pub struct HalfVectorDistribution<'a> {
     cdf: &'a [f32],
     edges: &'a [f32],
     density: &'a [f32],
+    /// The guide table (bin indices as exact `f32` integers) and its shape
+    /// ([`guide_shape`]): the bits of `2^e_lo`, and `23 − c`.
+    guide: &'a [f32],
+    guide_base: u32,
+    guide_shift: u32,
     n: u32,
     /// Probability of the cosine lobe (1 when the table is all zero).
     cosine_weight: f32,
 }
 
 impl<'a> HalfVectorDistribution<'a> {
-    /// Buffer entries needed for `grid`: `3 (n_theta_h + 1)`.
+    /// Buffer entries needed for `grid`: `3 (n_theta_h + 1)` and the guide
+    /// table's `(1 − e_lo)·2ᶜ` (27 octaves of 64 cells for MERL: 2,001 in
+    /// all, 8 kB; a 4-bin θh axis: 15 + 18).
     pub fn buffer_len(grid: &RusinkiewiczGrid) -> usize {
-        3 * (grid.n_theta_h() + 1)
+        3 * (grid.n_theta_h() + 1) + guide_len(grid.n_theta_h())
     }
 
     /// Builds the distribution of `values` (one per node of `grid`, already
@@ -147,12 +203,12 @@ impl<'a> HalfVectorDistribution<'a> {
         // Checked splits (no panic path; the lengths were checked above).
         let (cdf, rest) = buffer.split_at_mut_checked(nh + 1).unwrap_or_default();
         let (edges, rest) = rest.split_at_mut_checked(nh + 1).unwrap_or_default();
-        let density = rest.get_mut(..nh + 1).unwrap_or_default();
+        let (density, rest) = rest.split_at_mut_checked(nh + 1).unwrap_or_default();
+        let (e_lo, c) = guide_shape(nh);
+        let guide = rest.get_mut(..guide_len(nh)).unwrap_or_default();
         // Bin edges v_k = 2 sin²(θ_k/2), θ_k = (k/Nh)² π/2.
         for (k, e) in edges.iter_mut().enumerate() {
-            let x = k as f32 / nh as f32;
-            let s = libm::sinf(0.5 * x * x * FRAC_PI_2);
-            *e = 2.0 * s * s;
+            *e = edge(k, nh);
         }
         // Node profile g_i (module documentation); g_Nh = g_{Nh−1}.
         let (nd, np) = (grid.n_theta_d(), grid.n_phi_d());
@@ -196,10 +252,25 @@ impl<'a> HalfVectorDistribution<'a> {
         for d in density.iter_mut() {
             *d = if ok { *d / total } else { 0.0 };
         }
+        // Guide: entry j holds the bin of the cell's lowest value (edges
+        // ascending).
+        let guide_base = ((e_lo + 127) as u32) << 23;
+        let guide_shift = 23 - c;
+        let mut k = 0usize;
+        for (j, e) in guide.iter_mut().enumerate() {
+            let v = f32::from_bits(guide_base + ((j as u32) << guide_shift));
+            while k + 1 < nh && edges.get(k + 1).is_some_and(|&e| e <= v) {
+                k += 1;
+            }
+            *e = k as f32;
+        }
         Ok(Self {
             cdf,
             edges,
             density,
+            guide,
+            guide_base,
+            guide_shift,
             n: nh as u32,
             cosine_weight: if ok { cosine_weight } else { 1.0 },
         })
@@ -211,18 +282,16 @@ impl<'a> HalfVectorDistribution<'a> {
     }
 
     /// The density `p_h(h)` [sr⁻¹] of the [module documentation](self) for
-    /// a unit half vector above the horizon (bin from `θh`, position in the
-    /// bin from `v = sin²θh/(1 + cos θh)`).
+    /// a unit half vector above the horizon: bin and position in the bin
+    /// from `v = 1 − cos θh = sin²θh/(1 + cos θh)` (1 at or below the
+    /// horizon), the bin by the guide table (see the type).
     #[inline]
     pub fn pdf_h(&self, h: Vec3) -> f32 {
         let s2 = h.x * h.x + h.y * h.y;
-        let theta_h = super::coords::atan2(libm::sqrtf(s2), h.z);
-        let n = self.n as usize;
-        let u = libm::sqrtf((theta_h * (2.0 / PI)).max(0.0)) * n as f32;
-        let k = (u as usize).min(n.saturating_sub(1));
+        let v = if h.z > 0.0 { s2 / (1.0 + h.z) } else { 1.0 };
+        let k = self.bin(v);
         let at = |s: &[f32], i: usize| s.get(i).copied().unwrap_or(0.0);
         let (v0, v1) = (at(self.edges, k), at(self.edges, k + 1));
-        let v = if h.z > 0.0 { s2 / (1.0 + h.z) } else { 1.0 };
         let t = if v1 > v0 {
             ((v - v0) / (v1 - v0)).clamp(0.0, 1.0)
         } else {
@@ -230,6 +299,28 @@ impl<'a> HalfVectorDistribution<'a> {
         };
         let p = at(self.density, k) * (1.0 - t) + at(self.density, k + 1) * t;
         if p > 0.0 && p.is_finite() { p } else { 0.0 }
+    }
+
+    /// The bin `k < Nh` with `v_k ≤ v < v_{k+1}` (the last bin for
+    /// `v ≥ v_{Nh−1}`, bin 0 for `v ≤ 0` or NaN): the guide cell from the
+    /// bits of `v` (integer arithmetic, exact: `v` is never below its cell's
+    /// lowest value), then one branch-free step up, as a cell holds at most
+    /// one edge. Replaces an arctangent, a division and two square roots (θh
+    /// and the grid's square-root mapping).
+    #[inline]
+    pub(crate) fn bin(&self, v: f32) -> usize {
+        let n = self.n as usize;
+        // `max` maps NaN and negative values to 0 (the bits of +0.0).
+        let bits = v.max(0.0).to_bits();
+        let j = (bits.saturating_sub(self.guide_base) >> self.guide_shift) as usize;
+        let j = j.min(self.guide.len().saturating_sub(1));
+        let k = self
+            .guide
+            .get(j)
+            .map_or(0, |&b| b as usize)
+            .min(n.saturating_sub(1));
+        let up = k + 1 < n && self.edges.get(k + 1).is_some_and(|&e| v >= e);
+        k + up as usize
     }
 
     /// The mixture density `p(ωi | ωo)` of the [module documentation](self)
@@ -274,22 +365,14 @@ impl<'a> HalfVectorDistribution<'a> {
         let (hx, hy, hz) = (h.x * inv, h.y * inv, h.z * inv);
         let dot = wo.x * hx + wo.y * hy + wo.z * hz;
         let dot_ok = dot.simd_gt(zero);
-        // `pdf_h`: θh = atan2(√s², h_z) (`coords::atan2`), its bin, `v`.
+        // `pdf_h`: `v` and its bin (`bin`, per lane).
         let s2 = hx * hx + hy * hy;
-        let (ax, ay) = (hz.abs(), s2.sqrt().abs());
-        let num = ax.fast_min(ay);
-        let den = ax.fast_max(ay).fast_max(Vf::splat(f32::MIN_POSITIVE));
-        let r = super::coords::atan_unit_lanes(num / den);
-        let r = ay.simd_gt(ax).select(Vf::splat(FRAC_PI_2) - r, r);
-        let theta_h = hz.simd_lt(zero).select(Vf::splat(PI) - r, r);
-        let u = (theta_h * Vf::splat(2.0 / PI)).fast_max(zero).sqrt() * Vf::splat(self.n as f32);
         let v = hz.simd_gt(zero).select(s2 / (one + hz), one);
-        let n = self.n as usize;
         let at = |s: &[f32], i: usize| s.get(i).copied().unwrap_or(0.0);
-        let ua = u.to_array();
+        let va = v.to_array();
         let mut reads = [[0.0f32; LANES]; 4];
-        for (j, &uj) in ua.iter().enumerate() {
-            let k = (uj as usize).min(n.saturating_sub(1));
+        for (j, &vj) in va.iter().enumerate() {
+            let k = self.bin(vj);
             reads[0][j] = at(self.edges, k);
             reads[1][j] = at(self.edges, k + 1);
             reads[2][j] = at(self.density, k);
@@ -390,6 +473,51 @@ mod tests {
         }
     }
 
+    /// The guide-table bin equals a plain search of the edges for every `v`
+    /// tried: each edge and its neighbouring floats, the guide cells'
+    /// boundaries `(j/G)²` and theirs, a dense sweep, and 0, 1, negative,
+    /// NaN (bin 0) — on the MERL θh axis and a coarse one.
+    #[test]
+    fn guide_table_bin_is_the_searched_bin() {
+        for nh in [90usize, 7, 1, 2, 500] {
+            let grid = RusinkiewiczGrid::new(nh, 4, 4).unwrap();
+            let values = vec![0.5f32; grid.len()];
+            let mut buf = vec![0.0f32; HalfVectorDistribution::buffer_len(&grid)];
+            let d = HalfVectorDistribution::build(&grid, &values, &mut buf, 0.25).unwrap();
+            let search = |v: f32| -> usize {
+                // Largest k < nh with edges[k] ≤ v (0 if none).
+                (0..nh).rev().find(|&k| d.edges[k] <= v).unwrap_or(0)
+            };
+            let mut vs = std::vec::Vec::new();
+            for &e in d.edges {
+                vs.extend([
+                    e,
+                    f32::from_bits(e.to_bits().saturating_sub(1)),
+                    f32::from_bits(e.to_bits() + 1),
+                ]);
+            }
+            for j in 0..=d.guide.len() as u32 {
+                let v = f32::from_bits(d.guide_base + (j << d.guide_shift));
+                vs.extend([
+                    v,
+                    f32::from_bits(v.to_bits().saturating_sub(1)),
+                    f32::from_bits(v.to_bits() + 1),
+                ]);
+            }
+            // Geometric sweep down to the subnormals.
+            vs.extend((0..=3000).map(|i| 2f32.powf(-(i as f32) * 0.05)));
+            vs.extend((0..=100_000).map(|i| i as f32 / 100_000.0));
+            vs.extend([0.0, 1.0, 1.5, f32::MIN_POSITIVE]);
+            for v in vs {
+                assert_eq!(d.bin(v), search(v), "nh {nh}, v {v:e}");
+            }
+            for v in [-0.5f32, f32::NAN, f32::NEG_INFINITY] {
+                assert_eq!(d.bin(v), 0, "{v}");
+            }
+            assert_eq!(d.bin(f32::INFINITY), nh - 1);
+        }
+    }
+
     #[test]
     fn errors_and_all_zero_table() {
         let grid = RusinkiewiczGrid::new(4, 4, 4).unwrap();
@@ -397,9 +525,9 @@ mod tests {
         let mut short = [0.0f32; 3];
         assert_eq!(
             HalfVectorDistribution::build(&grid, &zeros, &mut short, 0.25),
-            Err(TabulatedError::Buffer { needed: 15, found: 3 })
+            Err(TabulatedError::Buffer { needed: 33, found: 3 })
         );
-        let mut buf = vec![0.0f32; 15];
+        let mut buf = vec![0.0f32; 33];
         assert!(HalfVectorDistribution::build(&grid, &zeros[1..], &mut buf, 0.25).is_err());
         for c in [0.0, -1.0, 1.5, f32::NAN] {
             assert!(HalfVectorDistribution::build(&grid, &zeros, &mut buf, c).is_err());

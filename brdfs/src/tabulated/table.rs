@@ -140,7 +140,7 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
     }
 
     /// Floats needed by [`with_sampling`](Self::with_sampling) for `grid`:
-    /// `3 (n_theta_h + 1)` (273 for MERL).
+    /// `3 (n_theta_h + 1)` and a guide table (2,001 in all for MERL).
     pub fn sampling_buffer_len(grid: &RusinkiewiczGrid) -> usize {
         HalfVectorDistribution::buffer_len(grid)
     }
