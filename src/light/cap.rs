@@ -206,24 +206,26 @@ impl<S: Spectrum> Light for Cap<S> {
 /// elevation of the axis (`ω_z = √(1 − y²) sin(ε_a − ψ)`), the same for
 /// every `y`. A hemisphere direction `ω' = (sin θ' cos φ', sin θ' sin φ',
 /// cos θ')` maps `1 − cos θ' ∈ [0, 1]` linearly onto the visible
-/// `ψ ∈ [−ψ_max(y), min(ψ_max(y), ε_a)]` and `φ'` piecewise onto the
-/// visible `y`: equal parts of `φ'` onto the pieces between the break
-/// points `−Y, (−y*), 0, (y*), Y` — `Y` the largest visible `|y|`, `y*`
-/// where the horizon meets the cap's rim (`ψ_max(y*) = ε_a`; a kink of the
-/// ψ-range) — each through Sidi's sin²-transform (Sidi 1993), whose
-/// Jacobian vanishes to second order at the piece ends. So
+/// `ψ ∈ [−ψ_max(y), min(ψ_max(y), ε_a)]` and `φ'` onto the visible `y`
+/// through `y = sin σ sin χ` (so the chord `√(sin²σ − y²) = sin σ cos χ`
+/// has no square-root end at the rim): a cap entirely above the horizon
+/// maps `φ'` linearly onto `χ ∈ [−π/2, π/2]`, one smooth piece; a clipped
+/// cap splits χ at the break points `−X, (−χ*), 0, (χ*), X` — `X` the
+/// largest visible `|χ|`, `χ*` where the horizon meets the rim
+/// (`ψ_max(y*) = ε_a`, a kink of the ψ-range) — and maps equal parts of `φ'`
+/// onto the pieces through Sidi's sin⁴-transform (Sidi 1993), whose Jacobian
+/// vanishes to fourth order at the piece ends. So
 ///
 /// `∫_H g'(ω') dω' = ∫_{cap ∩ H} f_r L cos θ dω`,
 /// `g'(ω') = f_r(ω, ωo) L cos θ · (ψ_hi − ψ_lo) · dy/dφ'`.
 ///
-/// Why these coordinates: the piece ends crowd nodes at `y = 0`, the
-/// vertical plane through the axis, where a glossy lobe seen near its
-/// grazing mirror direction is a thin ridge (narrow in azimuth about the
-/// normal, `|Δy| ≲ α ω_z` for GGX, long in elevation), and at `|y| = Y`,
-/// where the ψ-range closes with a square-root profile; the ridge runs
-/// along ψ, where the integrand is smooth. Polar coordinates about the axis
-/// (an earlier version) put their pole on that ridge, which slowed every
-/// rule to algebraic convergence (GGX α = 0.01 under the sun at the
+/// Why these coordinates: for a clipped cap the piece ends crowd nodes at
+/// `y = 0`, the vertical plane through the axis, where a glossy lobe seen
+/// near its grazing mirror direction is a thin ridge (narrow in azimuth
+/// about the normal, `|Δy| ≲ α ω_z` for GGX, long in elevation); the ridge
+/// runs along ψ, where the integrand is smooth. Polar coordinates about the
+/// axis (an earlier version) put their pole on that ridge, which slowed
+/// every rule to algebraic convergence (GGX α = 0.01 under the sun at the
 /// horizon, seen at the mirror direction: relative error 2.6·10⁻³ at 4,096
 /// evaluations). All the quantities stay accurate for tiny caps (the sun):
 /// `y`, `ψ` and `ε_a − ψ` are small numbers carried as such, and `ω_z`

@@ -77,7 +77,6 @@ use radiometry::Spectrum;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
 
-/// Guide-table entries per θh bin (see [`HalfVectorDistribution`]).
 /// Bin edge `k` of `nh` bins: `v_k = 2 sin²(θ_k/2)`, `θ_k = (k/Nh)² π/2`.
 #[inline]
 fn edge(k: usize, nh: usize) -> f32 {
@@ -114,9 +113,8 @@ fn guide_shape(nh: usize) -> (i32, u32) {
     (e_lo, c)
 }
 
-/// Entries of the guide table of `nh` bins ([`guide_shape`]).
-fn guide_len(nh: usize) -> usize {
-    let (e_lo, c) = guide_shape(nh);
+/// Entries of a guide table of shape `(e_lo, c)` ([`guide_shape`]).
+fn guide_len((e_lo, c): (i32, u32)) -> usize {
     (1 - e_lo) as usize * (1usize << c)
 }
 
@@ -164,7 +162,7 @@ impl<'a> HalfVectorDistribution<'a> {
     /// table's `(1 − e_lo)·2ᶜ` (27 octaves of 64 cells for MERL: 2,001 in
     /// all, 8 kB; a 4-bin θh axis: 15 + 18).
     pub fn buffer_len(grid: &RusinkiewiczGrid) -> usize {
-        3 * (grid.n_theta_h() + 1) + guide_len(grid.n_theta_h())
+        3 * (grid.n_theta_h() + 1) + guide_len(guide_shape(grid.n_theta_h()))
     }
 
     /// Builds the distribution of `values` (one per node of `grid`, already
@@ -205,7 +203,7 @@ impl<'a> HalfVectorDistribution<'a> {
         let (edges, rest) = rest.split_at_mut_checked(nh + 1).unwrap_or_default();
         let (density, rest) = rest.split_at_mut_checked(nh + 1).unwrap_or_default();
         let (e_lo, c) = guide_shape(nh);
-        let guide = rest.get_mut(..guide_len(nh)).unwrap_or_default();
+        let guide = rest.get_mut(..guide_len((e_lo, c))).unwrap_or_default();
         // Bin edges v_k = 2 sin²(θ_k/2), θ_k = (k/Nh)² π/2.
         for (k, e) in edges.iter_mut().enumerate() {
             *e = edge(k, nh);
