@@ -51,13 +51,13 @@ pub enum G2Kind {
     Separable,
 }
 
-/// The distribution half of a kernel: `D` from `cos²θh`, `sin²θh`, and the
+/// The distribution half of a kernel: `D` as a quotient from the squares
+/// `h_z²`, `h_x² + h_y²` of the un-normalised half vector, and the
 /// projected area `A(cos θ, sin²θ)`, lane-wise and bit-identical to
-/// [`MicrofacetDistribution::d_cos2`] / [`projected_area`](MicrofacetDistribution::projected_area).
+/// [`MicrofacetDistribution::d_ratio`] / [`projected_area`](MicrofacetDistribution::projected_area).
 trait DistV {
-    /// `(D, cold)`: `cold` masks the lanes this kernel does not evaluate
-    /// (handed back to the scalar method).
-    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf);
+    /// `(num, den)`, `D = num/den`.
+    fn d_ratio(&self, hz2: Vf, hxy2: Vf) -> (Vf, Vf);
     fn area(&self, cos_theta: Vf, sin2: Vf) -> Vf;
 }
 
@@ -83,9 +83,10 @@ impl GgxV {
 
 impl DistV for GgxV {
     #[inline(always)]
-    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        let t = self.a2 * cos2 + sin2;
-        (finite_nonneg(self.a2 / (Vf::splat(PI) * t * t)), Vf::ZERO)
+    fn d_ratio(&self, hz2: Vf, hxy2: Vf) -> (Vf, Vf) {
+        let l = hz2 + hxy2;
+        let t = self.a2 * hz2 + hxy2;
+        ((self.a2 * l) * l, (Vf::splat(PI) * t) * t)
     }
 
     #[inline(always)]
@@ -158,8 +159,8 @@ impl BeckmannV {
 
 impl DistV for BeckmannV {
     #[inline(always)]
-    fn d_cos2(&self, cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        super::beckmann::lanes::d_cos2(self.d_consts, cos2, sin2)
+    fn d_ratio(&self, hz2: Vf, hxy2: Vf) -> (Vf, Vf) {
+        (super::beckmann::lanes::d(self.d_consts, hz2, hxy2), Vf::ONE)
     }
 
     #[inline(always)]
@@ -178,9 +179,10 @@ impl SampleV for BeckmannV {
     }
 }
 
-/// `Half::of` lane-wise: `(valid, |ωi + ωo|², cos²θh, sin²θh)`,
+/// `Half::of` lane-wise: `(valid, |ωi + ωo|², h_z², h_x² + h_y²)`,
 /// valid where both directions are strictly above the horizon and
-/// `|h|² > 10⁻¹⁴` (NaN → invalid).
+/// `|h|² > 10⁻¹⁴` (NaN → invalid), the squares scaled by `2⁶⁴` where
+/// `|h|² < 2⁻³²`.
 ///
 /// `h` is the length-corrected sum of `Half::of`
 /// ([`Dirs::half_vector_sum`]).
@@ -191,8 +193,31 @@ fn half(wi: Dirs, wo: Dirs) -> (Vf, Vf, Vf, Vf) {
     let len2 = h.length_squared();
     let tiny = Vf::splat(1e-14);
     let valid = wi.z.simd_gt(zero) & wo.z.simd_gt(zero) & sum2.simd_gt(tiny) & len2.simd_gt(tiny);
-    let inv = Vf::ONE / len2;
-    (valid, sum2, (h.z * h.z) * inv, h.xy_length_squared() * inv)
+    let scale = len2
+        .simd_lt(Vf::splat(super::HALF_SQUARES_SMALL))
+        .select(Vf::splat(super::HALF_SQUARES_SCALE), Vf::ONE);
+    (valid, sum2, (h.z * h.z) * scale, h.xy_length_squared() * scale)
+}
+
+/// `d_quotient` of the scalar path lane-wise: `(num/(den_d den), cold)`,
+/// `cold` where the product `den_d den` is not a normal `f32` (the
+/// scalar's two-division `#[cold]` path; those lanes are handed back).
+#[inline(always)]
+fn d_quotient(num: Vf, den_d: Vf, den: Vf) -> (Vf, Vf) {
+    let q = den_d * den;
+    (finite_nonneg(num / q), !q.simd_ge(Vf::splat(f32::MIN_POSITIVE)))
+}
+
+/// `ShadowingMasking::inverse_visibility` lane-wise: `4 Ai Ao`
+/// (separable) or `4 ((cos θo Ai + cos θi Ao) − cos θi cos θo)`.
+#[inline(always)]
+fn inverse_visibility<const SEPARABLE: bool>(cos_i: Vf, area_i: Vf, cos_o: Vf, area_o: Vf) -> Vf {
+    let four = Vf::splat(4.0);
+    if SEPARABLE {
+        four * (area_i * area_o)
+    } else {
+        four * ((cos_o * area_i + cos_i * area_o) - cos_i * cos_o)
+    }
 }
 
 /// Bit `k` set when lane `k` is not on the hot path (a direction that is
@@ -220,17 +245,13 @@ where
 
     #[inline(always)]
     fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [F::Spectrum; LANES]) -> u32 {
-        let (valid, len2, cos2, sin2) = half(wi, wo);
-        let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
+        let (valid, len2, hz2, hxy2) = half(wi, wo);
+        let (dn, dd) = self.dist.d_ratio(hz2, hxy2);
         let ai = self.dist.area(wi.z, wi.xy_length_squared());
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
-        let four = Vf::splat(4.0);
-        let v = if SEPARABLE {
-            Vf::ONE / (four * (ai * ao))
-        } else {
-            Vf::ONE / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
-        };
-        let s = valid.select(finite_nonneg(d * v), Vf::ZERO);
+        let inv_v = inverse_visibility::<SEPARABLE>(wi.z, ai, wo.z, ao);
+        let (s, d_cold) = d_quotient(dn, dd, inv_v);
+        let s = valid.select(s, Vf::ZERO);
         // cos θd = |ωi + ωo|/2 (`Half::cos_theta_d`).
         // (`fast_min` differs from `min` only for NaN, which only cold lanes hold.)
         let cos_d = (Vf::splat(0.5) * len2.sqrt()).fast_min(Vf::ONE);
@@ -262,10 +283,10 @@ where
 
     #[inline(always)]
     fn lanes(&self, wi: Dirs, wo: Dirs, out: &mut [f32; LANES]) -> u32 {
-        let (valid, _, cos2, sin2) = half(wi, wo);
-        let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
+        let (valid, _, hz2, hxy2) = half(wi, wo);
+        let (dn, dd) = self.dist.d_ratio(hz2, hxy2);
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
-        let p = finite_nonneg(d / (Vf::splat(4.0) * ao));
+        let (p, d_cold) = d_quotient(dn, dd, Vf::splat(4.0) * ao);
         *out = valid.select(p, Vf::ZERO).to_array();
         cold_lanes(wi, wo) | (valid & d_cold).to_bitmask()
     }
@@ -309,18 +330,14 @@ where
         };
         let (wi1, cold_1) = reflected.unitize();
         let (wi, cold_2) = wi1.unitize_again();
-        let (valid, len2, cos2, sin2) = half(wi, wo);
-        let (d, d_cold) = self.dist.d_cos2(cos2, sin2);
+        let (valid, len2, hz2, hxy2) = half(wi, wo);
+        let (dn, dd) = self.dist.d_ratio(hz2, hxy2);
         let ai = self.dist.area(wi.z, wi.xy_length_squared());
         let ao = self.dist.area(wo.z, wo.xy_length_squared());
-        let pdf = finite_nonneg(d / (four * ao));
-        let v = if SEPARABLE {
-            one / (four * (ai * ao))
-        } else {
-            one / (four * ((wo.z * ai + wi.z * ao) - wi.z * wo.z))
-        };
+        let (pdf, d_cold) = d_quotient(dn, dd, four * ao);
+        let inv_v = inverse_visibility::<SEPARABLE>(wi.z, ai, wo.z, ao);
         // `f32::clamp(0, 1)`, NaN kept.
-        let r = four * v * wi.z * ao;
+        let r = (four * wi.z) * ao / inv_v;
         let ratio = r.simd_lt(zero).select(zero, r.simd_gt(one).select(one, r));
         let ok = wo.z.simd_gt(zero)
             & dot.simd_gt(zero)
@@ -344,7 +361,7 @@ where
                 None
             };
         }
-        (!wo.is_unit() | cold_m | cold_1 | cold_2 | d_cold).to_bitmask()
+        (!wo.is_unit() | cold_m | cold_1 | cold_2 | (valid & d_cold)).to_bitmask()
     }
 
     #[inline(always)]

@@ -134,7 +134,7 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
     lambda_from_exp(libm::sqrt(a2), exp_neg64(a2))
 }
 
-/// The vector forms of [`Beckmann::d_cos2`] and [`Beckmann::projected_area`]
+/// The vector forms of [`Beckmann::d_ratio`] and [`Beckmann::projected_area`]
 /// (feature `simd`), lane for lane the scalar operations (bit-identical):
 /// `expf` is the bit-exact vector port, and the `f64` parts of `Λ` run on
 /// `f64` vectors.
@@ -142,11 +142,11 @@ pub(crate) fn beckmann_lambda_tan2(alpha: f32, tan2: f32) -> f32 {
 pub(super) mod lanes {
     use crate::simd::Vf;
 
-    /// `Beckmann::d_cos2` lane-wise, bit for bit: `(D, cold)`; no lane is
-    /// cold.
+    /// `Beckmann::d_ratio` lane-wise, bit for bit: `D` (the quotient's
+    /// denominator is 1).
     #[inline(always)]
-    pub(in super::super) fn d_cos2(consts: (f32, f32), cos2: Vf, sin2: Vf) -> (Vf, Vf) {
-        (super::super::beckmann_f32::d_v(consts, cos2, sin2), Vf::ZERO)
+    pub(in super::super) fn d(consts: (f32, f32), hz2: Vf, hxy2: Vf) -> Vf {
+        super::super::beckmann_f32::d_v(consts, hz2, hxy2)
     }
 
     /// `Beckmann::projected_area` lane-wise (bit for bit).
@@ -180,6 +180,15 @@ impl MicrofacetDistribution for Beckmann {
     #[inline(always)]
     fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
         super::beckmann_f32::d(self.d_consts, cos2, sin2)
+    }
+
+    /// [`d_cos2`](MicrofacetDistribution::d_cos2) in the squares of a
+    /// vector of any length along `m` (`beckmann_f32::d`):
+    /// `τ = tan²θm = h_xy²/h_z²`, `u = 1 + τ`, `x = τ/α²`,
+    /// `D = e^{−x} u²/(πα²)`, returned as `(D, 1)`; one division.
+    #[inline(always)]
+    fn d_ratio(&self, hz2: f32, hxy2: f32) -> (f32, f32) {
+        (super::beckmann_f32::d(self.d_consts, hz2, hxy2), 1.0)
     }
 
     /// The exact Smith `Λ` (Walter et al. 2007, eq. 27 in Λ form) of `ω`

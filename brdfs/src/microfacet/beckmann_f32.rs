@@ -158,16 +158,19 @@ pub(crate) fn exp_neg<T: F32Arith>(x: T) -> T {
 }
 
 /// `D(m) = exp(−tan²θm/α²) / (π α² cos⁴θm)` (Walter et al. 2007, eq. 25)
-/// in `f32` from `cos²θm`, `sin²θm` (the arithmetic shared by the scalar
-/// and the vector form): `u = 1/cos²θm`, `x = (sin²θm u) · (1/α²)`,
+/// in `f32` from the squares `hz2 = h_z²`, `hxy2 = h_x² + h_y²` of any
+/// nonzero vector `h` along `m` (the arithmetic shared by the scalar and the
+/// vector form; homogeneous of degree 0): with `τ = tan²θm = h_xy²/h_z²`,
+/// `u = 1/cos²θm = 1 + τ`, `x = τ · (1/α²)`,
 /// `D = ((e^{−x} · (1/(πα²))) u) u`, with `e^{−x}` of [`exp_neg`] and `0`
 /// for `x > EXP_NEG_MAX` or NaN (where `D < 1.7·10⁻³⁸/(πα² cos⁴θm)`).
 /// `inv_a2 = 1/α²` and `k = 1/(πα²)` come from [`d_consts`]. The caller
-/// maps NaN (`0·∞` at `cos²θm = 0`) to 0 and `+∞` to `f32::MAX`.
+/// maps NaN (`0·∞` at `h_z² = 0`) to 0 and `+∞` to `f32::MAX`.
 #[inline(always)]
-fn d_parts<T: F32Arith>(inv_a2: T, k: T, cos2: T, sin2: T) -> (T, T) {
-    let u = T::splat(1.0) / cos2;
-    let x = (sin2 * u) * inv_a2;
+fn d_parts<T: F32Arith>(inv_a2: T, k: T, hz2: T, hxy2: T) -> (T, T) {
+    let tan2 = hxy2 / hz2;
+    let u = T::splat(1.0) + tan2;
+    let x = tan2 * inv_a2;
     ((exp_neg(x) * k * u) * u, x)
 }
 
@@ -178,13 +181,14 @@ pub(crate) fn d_consts(alpha: f32) -> (f32, f32) {
     ((1.0 / a2) as f32, (core::f64::consts::FRAC_1_PI / a2) as f32)
 }
 
-/// Beckmann `D` from `cos²θm`, `sin²θm` of a unit normal in `f32` (see
-/// [`d_parts`]), given [`d_consts`] of `α`; finite and `≥ 0` (0 at `cos²θm = 0`). Relative error
+/// Beckmann `D` from the squares `h_z²`, `h_x² + h_y²` of a vector along
+/// the normal (unit or not; see [`d_parts`]) in `f32`, given [`d_consts`]
+/// of `α`; finite and `≥ 0` (0 at `h_z² = 0`). Relative error
 /// ≤ `4 + 3x` ulp at `x = tan²θm/α²` (the rounding of `x` is amplified
 /// by `e^{−x}`; unit test `d_matches_f64`).
 #[inline(always)]
-pub(crate) fn d((inv_a2, k): (f32, f32), cos2: f32, sin2: f32) -> f32 {
-    let (v, x) = d_parts(inv_a2, k, cos2, sin2);
+pub(crate) fn d((inv_a2, k): (f32, f32), hz2: f32, hxy2: f32) -> f32 {
+    let (v, x) = d_parts(inv_a2, k, hz2, hxy2);
     if x > EXP_NEG_MAX || x.is_nan() {
         return 0.0;
     }
@@ -194,9 +198,9 @@ pub(crate) fn d((inv_a2, k): (f32, f32), cos2: f32, sin2: f32) -> f32 {
 /// [`d`] lane-wise, bit for bit.
 #[cfg(feature = "simd")]
 #[inline(always)]
-pub(crate) fn d_v((inv_a2, k): (f32, f32), cos2: crate::simd::Vf, sin2: crate::simd::Vf) -> crate::simd::Vf {
+pub(crate) fn d_v((inv_a2, k): (f32, f32), hz2: crate::simd::Vf, hxy2: crate::simd::Vf) -> crate::simd::Vf {
     use crate::simd::Vf;
-    let (v, x) = d_parts(Vf::splat(inv_a2), Vf::splat(k), cos2, sin2);
+    let (v, x) = d_parts(Vf::splat(inv_a2), Vf::splat(k), hz2, hxy2);
     x.simd_le(Vf::splat(EXP_NEG_MAX))
         .select(crate::simd::finite_nonneg(v), Vf::ZERO)
 }
@@ -338,8 +342,9 @@ mod tests {
         std::println!("exp_neg (f32): worst {worst:.2} ulp");
     }
 
-    /// `D` against Walter et al. eq. 25 in `f64` at the same `f32`
-    /// `cos²θm`, `sin²θm`: relative error ≤ `4 + 3x` ulp, `x = tan²θm/α²`
+    /// `D` against Walter et al. eq. 25 in `f64` at the same `f32` squares
+    /// `h_z² = cos²θ`, `h_xy² = sin²θ` (of a direction `h` unit to rounding,
+    /// the reference taking `cos²θm = h_z²/(h_z² + h_xy²)`): relative error ≤ `4 + 3x` ulp, `x = tan²θm/α²`
     /// (the argument of the exponential is formed in `f32`, and `e^{−x}`
     /// amplifies its relative rounding by `x`); 0 exactly where `x > 87`;
     /// finite and `≥ 0` everywhere, `0` at `cos²θm = 0`.
@@ -355,8 +360,11 @@ mod tests {
                 let v = d(d_consts(alpha), c2, s2);
                 assert!(v.is_finite() && v >= 0.0, "α={alpha} θ={theta}: {v}");
                 let a2 = alpha as f64 * alpha as f64;
+                // The squares of a vector that is unit only to rounding:
+                // `cos²θm = c2/(c2 + s2)` exactly.
                 let x = s2 as f64 / (c2 as f64 * a2);
-                let r = libm::exp(-x) / (core::f64::consts::PI * a2 * (c2 as f64) * (c2 as f64));
+                let u = (c2 as f64 + s2 as f64) / c2 as f64;
+                let r = libm::exp(-x) * u * u / (core::f64::consts::PI * a2);
                 if x > EXP_NEG_MAX as f64 * (1.0 + 1e-6) {
                     assert_eq!(v, 0.0);
                     continue;

@@ -73,6 +73,19 @@ impl MicrofacetDistribution for Ggx {
         finite_nonneg(a2 / (PI * t * t))
     }
 
+    /// `D = α² L² / (π (α² h_z² + h_x² + h_y²)²)`, `L = h_z² + h_x² + h_y²`
+    /// ([`d_cos2`](MicrofacetDistribution::d_cos2) multiplied through by
+    /// `L²`), returned as the quotient `(α² L², π t²)`,
+    /// `t = α² h_z² + h_x² + h_y²`. Within the contract (`L ∈ [2⁻³², 2³²]`)
+    /// `t ≥ α² L ≥ 2.3·10⁻¹⁸`, so both parts are normal, finite `f32`.
+    #[inline(always)]
+    fn d_ratio(&self, hz2: f32, hxy2: f32) -> (f32, f32) {
+        let a2 = self.alpha * self.alpha;
+        let l = hz2 + hxy2;
+        let t = a2 * hz2 + hxy2;
+        ((a2 * l) * l, (PI * t) * t)
+    }
+
     /// `Λ(ω)` of `ω` normalised robustly; see
     /// [`lambda_tan2`](MicrofacetDistribution::lambda_tan2).
     #[inline]

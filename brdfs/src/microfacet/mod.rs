@@ -147,6 +147,24 @@ pub trait MicrofacetDistribution {
         self.d(Vec3::new(libm::sqrtf(sin2), 0.0, libm::sqrtf(cos2)))
     }
 
+    /// `D` of the direction of a nonzero vector `h` that need not be unit,
+    /// as a quotient `(num, den)`, `D = num/den`, given `hz2 = h_z²` and
+    /// `hxy2 = h_x² + h_y²`. `D` is homogeneous of degree 0 in the two
+    /// squares, so the BRDF's hot path passes those of the un-normalised half
+    /// vector `h ∝ ωi + ωo` (no division to normalise it), and it divides
+    /// once for `D V` or `D/(4A)` (the quotient is folded into that division).
+    ///
+    /// Contract: `hz2, hxy2 ≥ 0` with `hz2 + hxy2 ∈ [2⁻³², 2³²]`; returns
+    /// finite `num ≥ 0` and `den > 0` with `num/den` finite (`num = 0` where
+    /// `hz2 = 0`). The default normalises, calls [`d_cos2`](Self::d_cos2) and
+    /// returns `(D, 1)`; [`Ggx`] and [`Beckmann`] evaluate their formulas in
+    /// the squares directly.
+    #[inline]
+    fn d_ratio(&self, hz2: f32, hxy2: f32) -> (f32, f32) {
+        let inv = 1.0 / (hz2 + hxy2);
+        (self.d_cos2(hz2 * inv, hxy2 * inv), 1.0)
+    }
+
     /// The projected area of the microsurface seen from a unit direction
     /// `ω` above the horizon, `A(ω) = ∫ ⟨ω·m⟩ D(m) dm = cos θ (1 + Λ(ω))`
     /// (Heitz 2014, eq. 16 with the Smith `Λ`), from `cos θ ≥ 0` and
@@ -370,21 +388,32 @@ impl<D, G, F> Microfacet<D, G, F> {
 }
 
 /// The half-vector quantities of a valid reflection pair of unit directions
-/// above the horizon: `|ωi + ωo|²`, and `cos²θh`, `sin²θh` of the direction
-/// of the half vector `h` (length-corrected, see [`Half::of`]).
+/// above the horizon: `|ωi + ωo|²`, and the squares `h_z²`, `h_x² + h_y²`
+/// of the un-normalised, length-corrected half vector `h` (see
+/// [`Half::of`]), the input of [`MicrofacetDistribution::d_ratio`].
 #[derive(Clone, Copy)]
 struct Half {
     len2: f32,
-    cos2: f32,
-    sin2: f32,
+    hz2: f32,
+    hxy2: f32,
 }
+
+/// Below `|h|² = 2⁻³²` [`Half::of`] scales the squares of `h` by
+/// [`HALF_SQUARES_SCALE`] `= 2⁶⁴` (exact), which keeps them inside the
+/// range [`MicrofacetDistribution::d_ratio`] accepts (`|h|² > 10⁻¹⁴`
+/// for every valid pair).
+pub(crate) const HALF_SQUARES_SMALL: f32 = 2.328_306_4e-10;
+
+/// `2⁶⁴`, see [`HALF_SQUARES_SMALL`].
+pub(crate) const HALF_SQUARES_SCALE: f32 = 1.844_674_4e19;
 
 impl Half {
     /// `None` when either direction is at or below the horizon or the half
     /// vector is undefined (`|ωi + ωo|² ≤ 10⁻¹⁴`, i.e. `ωi ≈ −ωo`, the
-    /// threshold of [`radiometry::frame::half_vector`]). For unit inputs
-    /// `|h|² ≤ 4`, so one division gives both squares and `h` itself is
-    /// never normalised.
+    /// threshold of [`radiometry::frame::half_vector`]). `h` itself is
+    /// never normalised: `D` takes the squares of its components
+    /// ([`MicrofacetDistribution::d_ratio`]), scaled by `2⁶⁴` where
+    /// `|h|² < 2⁻³²` (pairs near `ωi = −ωo` at grazing).
     ///
     /// `h` is [`radiometry::frame::half_vector_sum`]: it points along the
     /// sum of the *normalised* inputs, corrected where `ωi + ωo` cancels
@@ -404,11 +433,16 @@ impl Half {
         if !(sum2 > 1e-14 && len2 > 1e-14) {
             return None;
         }
-        let inv = 1.0 / len2;
+        let (hz2, hxy2) = (h.z * h.z, h.x * h.x + h.y * h.y);
+        let (hz2, hxy2) = if len2 < HALF_SQUARES_SMALL {
+            (hz2 * HALF_SQUARES_SCALE, hxy2 * HALF_SQUARES_SCALE)
+        } else {
+            (hz2, hxy2)
+        };
         Some(Half {
             len2: sum2,
-            cos2: (h.z * h.z) * inv,
-            sin2: (h.x * h.x + h.y * h.y) * inv,
+            hz2,
+            hxy2,
         })
     }
 
@@ -424,6 +458,30 @@ impl Half {
     fn cos_theta_d(&self) -> f32 {
         (0.5 * libm::sqrtf(self.len2)).min(1.0)
     }
+}
+
+/// `(num/den_d)/den` for the quotient `num/den_d` of
+/// [`MicrofacetDistribution::d_ratio`] and a positive denominator `den`
+/// (`4 A(ωo)` or `1/V`), as one division `num/(den_d den)`, NaN mapped to 0
+/// and `+∞` saturated ([`finite_nonneg`]). Where the product `den_d den`
+/// is not a normal `f32` (both directions grazing at once, or `h` along the
+/// normal with tiny `α` and `|h|`), the two quotients are taken one after
+/// the other in a `#[cold]` path, so no intermediate underflows.
+#[inline(always)]
+fn d_quotient(num: f32, den_d: f32, den: f32) -> f32 {
+    let q = den_d * den;
+    if q >= f32::MIN_POSITIVE {
+        finite_nonneg(num / q)
+    } else {
+        d_quotient_cold(num, den_d, den)
+    }
+}
+
+/// The two-division form of [`d_quotient`].
+#[cold]
+#[inline(never)]
+fn d_quotient_cold(num: f32, den_d: f32, den: f32) -> f32 {
+    finite_nonneg((num / den_d) / den)
 }
 
 /// Both directions normalised by the robust [`unitize`], or `None` for a
@@ -448,9 +506,9 @@ where
         let Some(h) = Half::of(wi, wo) else {
             return F::Spectrum::zero();
         };
-        let d = self.distribution.d_cos2(h.cos2, h.sin2);
-        let v = G::visibility(wi.z, self.area(wi), wo.z, self.area(wo));
-        let s = finite_nonneg(d * v);
+        let (dn, dd) = self.distribution.d_ratio(h.hz2, h.hxy2);
+        let inv_v = G::inverse_visibility(wi.z, self.area(wi), wo.z, self.area(wo));
+        let s = d_quotient(dn, dd, inv_v);
         if s == 0.0 {
             return F::Spectrum::zero();
         }
@@ -481,7 +539,8 @@ where
             return 0.0;
         };
         // ωo·h = |ωi + ωo|/2 > 0 for every pair `Half::of` accepts.
-        finite_nonneg(self.distribution.d_cos2(h.cos2, h.sin2) / (4.0 * self.area(wo)))
+        let (dn, dd) = self.distribution.d_ratio(h.hz2, h.hxy2);
+        d_quotient(dn, dd, 4.0 * self.area(wo))
     }
 
     /// The cold path of `pdf`.
@@ -496,7 +555,8 @@ where
 
     /// `(wi, pdf, weight)` of the pair `(wi, wo)`, the density exactly as
     /// `pdf` computes it (same normalisation decisions, so bit-identical),
-    /// the weight `F(cos θd) G2(ωi, ωo)/G1(ωo) = F · 4 V cos θi A(ωo)`.
+    /// the weight `F(cos θd) G2(ωi, ωo)/G1(ωo) = F · 4 V cos θi A(ωo)`
+    /// (divided by `1/V`).
     #[inline(always)]
     fn pdf_and_weight(&self, wi: Vec3, wo: Vec3) -> Option<(Vec3, f32, F::Spectrum)> {
         let (wi, wo) = if is_unit(wi) && is_unit(wo) {
@@ -505,14 +565,14 @@ where
             unitize_pair(wi, wo)?
         };
         let h = Half::of(wi, wo)?;
-        let d = self.distribution.d_cos2(h.cos2, h.sin2);
+        let (dn, dd) = self.distribution.d_ratio(h.hz2, h.hxy2);
         let (ai, ao) = (self.area(wi), self.area(wo));
-        let pdf = finite_nonneg(d / (4.0 * ao));
+        let pdf = d_quotient(dn, dd, 4.0 * ao);
         if !(pdf > 0.0 && pdf < f32::INFINITY) {
             return None;
         }
-        let v = G::visibility(wi.z, ai, wo.z, ao);
-        let ratio = (4.0 * v * wi.z * ao).clamp(0.0, 1.0);
+        let inv_v = G::inverse_visibility(wi.z, ai, wo.z, ao);
+        let ratio = ((4.0 * wi.z) * ao / inv_v).clamp(0.0, 1.0);
         Some((wi, pdf, self.fresnel.eval(h.cos_theta_d()) * ratio))
     }
 }

@@ -33,6 +33,16 @@ pub trait ShadowingMasking {
     /// grazing value of `f_r`, not a `0·∞`). Symmetric in `(i, o)` bit for bit.
     fn visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32;
 
+    /// `1/V = 4 cos θi cos θo / G2(ωi, ωo)` from the same inputs as
+    /// [`visibility`](Self::visibility): the denominator the BRDF's hot path
+    /// folds into its one division (`D/(1/V)`). Positive for directions
+    /// strictly above the horizon; symmetric in `(i, o)` bit for bit. The
+    /// default is `1/visibility`.
+    #[inline]
+    fn inverse_visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32 {
+        1.0 / Self::visibility(cos_i, area_i, cos_o, area_o)
+    }
+
     /// Hidden hook of the `simd` feature: which vectorised `G2` (if any) the
     /// batched microfacet kernel may use. The default keeps the scalar loop.
     /// Not part of the stable API.
@@ -84,8 +94,13 @@ impl ShadowingMasking for HeightCorrelated {
     /// (Heitz 2014, eq. 99 divided through).
     #[inline(always)]
     fn visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32 {
-        let den = (cos_o * area_i + cos_i * area_o) - cos_i * cos_o;
-        1.0 / (4.0 * den)
+        1.0 / Self::inverse_visibility(cos_i, area_i, cos_o, area_o)
+    }
+
+    /// `1/V = 4 ((cos θo Ai + cos θi Ao) − cos θi cos θo)`.
+    #[inline(always)]
+    fn inverse_visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32 {
+        4.0 * ((cos_o * area_i + cos_i * area_o) - cos_i * cos_o)
     }
 }
 
@@ -101,7 +116,13 @@ impl ShadowingMasking for Separable {
     /// `V = G1(ωi) G1(ωo) / (4 cos θi cos θo) = 1 / (4 Ai Ao)`, since
     /// `G1(ω) = cos θ / A(ω)`.
     #[inline(always)]
-    fn visibility(_cos_i: f32, area_i: f32, _cos_o: f32, area_o: f32) -> f32 {
-        1.0 / (4.0 * (area_i * area_o))
+    fn visibility(cos_i: f32, area_i: f32, cos_o: f32, area_o: f32) -> f32 {
+        1.0 / Self::inverse_visibility(cos_i, area_i, cos_o, area_o)
+    }
+
+    /// `1/V = 4 Ai Ao`.
+    #[inline(always)]
+    fn inverse_visibility(_cos_i: f32, area_i: f32, _cos_o: f32, area_o: f32) -> f32 {
+        4.0 * (area_i * area_o)
     }
 }

@@ -1144,3 +1144,73 @@ fn grazing_mirror_pairs_are_exact_to_f32() {
     }
     println!("grazing mirror pairs: worst relative error {worst:.2e}");
 }
+
+/// `eval` and `pdf` divide once (`D V = num/(den_D · 1/V)`); where that
+/// product of denominators underflows — `ωi ≈ −ωo` both grazing, so that
+/// `h` is short and along the normal, with the smallest `α` — they fall back
+/// to two divisions. The values there are large but finite: checked against
+/// the `f64` BRDF ([`ggx_hc_ref`]) and the `f64` pdf `D(h)/(4 A(ωo))`, and
+/// the batch kernels (feature `simd`) hand those lanes back to the scalar
+/// method, so they agree bit for bit.
+#[test]
+fn one_division_falls_back_where_the_denominators_underflow() {
+    let alpha = 1e-4f64;
+    let brdf = GgxHc::new(Ggx::new(alpha as f32).unwrap(), NoFresnel);
+    let mut pairs = std::vec::Vec::new();
+    for &z in &[1e-5f32, 3e-6, 1e-6, 3e-5, 1e-4] {
+        let s = (1.0 - z * z).sqrt();
+        for &phi in &[0.0f32, 0.7, 2.0] {
+            let (c, sn) = (phi.cos(), phi.sin());
+            pairs.push((Vec3::new(s * c, s * sn, z), Vec3::new(-s * c, -s * sn, z)));
+        }
+    }
+    let mut fallbacks = 0;
+    for &(wi, wo) in &pairs {
+        let reference = ggx_hc_ref(alpha, wi, wo);
+        let got = brdf.eval(wi, wo) as f64;
+        assert!(
+            reference.is_finite() && reference > 1e10,
+            "{wi:?} {wo:?}: {reference:e}"
+        );
+        let err = (got - reference).abs() / reference;
+        assert!(
+            err < 1e-4,
+            "wi={wi:?} wo={wo:?}: {got:e} vs {reference:e} ({err:e})"
+        );
+        // The pdf D(h)/(4 A(ωo)) with A = cos θ (1 + Λ), in f64.
+        let (i, o) = (unit64(wi), unit64(wo));
+        let h = [i[0] + o[0], i[1] + o[1], i[2] + o[2]];
+        let (hz2, hxy2) = (h[2] * h[2], h[0] * h[0] + h[1] * h[1]);
+        let a2 = alpha * alpha;
+        let t = a2 * hz2 + hxy2;
+        let d = a2 * (hz2 + hxy2).powi(2) / (PI64 * t * t);
+        let area_o = 0.5 * (o[2] + (o[2] * o[2] + a2 * (o[0] * o[0] + o[1] * o[1])).sqrt());
+        let pdf_ref = d / (4.0 * area_o);
+        let pdf = brdf.pdf(wi, wo) as f64;
+        assert!(
+            (pdf - pdf_ref).abs() < 1e-4 * pdf_ref,
+            "pdf {pdf:e} vs {pdf_ref:e}"
+        );
+        // Whether this pair took the two-division path: the f32 product of
+        // the denominators (π t² · 4 (cos θo Ai + cos θi Ao − cos θi cos θo))
+        // is below the normal range.
+        let inv_v64 = 4.0 * (o[2] * 2.0 * area_o - o[2] * o[2]);
+        if PI64 * t * t * inv_v64 < f32::MIN_POSITIVE as f64 {
+            fallbacks += 1;
+        }
+    }
+    assert!(fallbacks >= 6, "only {fallbacks} pairs exercise the fallback");
+    #[cfg(feature = "simd")]
+    {
+        let wi: std::vec::Vec<Vec3> = pairs.iter().map(|p| p.0).collect();
+        let wo: std::vec::Vec<Vec3> = pairs.iter().map(|p| p.1).collect();
+        let mut out = std::vec![0.0f32; pairs.len()];
+        brdf.eval_batch(&wi, &wo, &mut out);
+        let mut pdfs = std::vec![0.0f32; pairs.len()];
+        brdf.pdf_batch(&wi, &wo, &mut pdfs);
+        for (k, &(a, b)) in pairs.iter().enumerate() {
+            assert_eq!(out[k].to_bits(), brdf.eval(a, b).to_bits(), "eval_batch lane {k}");
+            assert_eq!(pdfs[k].to_bits(), brdf.pdf(a, b).to_bits(), "pdf_batch lane {k}");
+        }
+    }
+}
