@@ -65,9 +65,10 @@
 //! `4ε` (`|‖ω‖² − 1| ≤ 4ε`, the scalar hot path's test) in vector form and
 //! recompute any other lane — non-unit, zero, subnormal, huge, infinite or
 //! NaN components: the scalar cold path — with the scalar `eval`/`pdf`, so
-//! the special-case handling is the scalar one by construction. The Beckmann
-//! kernel also hands back lanes with `cos²θh < 10⁻⁸` (the scalar `D`'s
-//! separate grazing form).
+//! the special-case handling is the scalar one by construction. They also
+//! hand back the lanes where the product of the denominators of `D` and of
+//! `1/V` (or `4A(ωo)`) is not a normal `f32` (the scalar path's two-division
+//! `#[cold]` form).
 //! The sampling kernels hand back lanes with a non-unit `ωo` and lanes where
 //! one of the sampler's normalisations (of the stretched `ωo`, of `m`, of
 //! `ωi`) leaves the scalar `unitize`'s two hot branches (unit already, or

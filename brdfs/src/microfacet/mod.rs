@@ -588,9 +588,11 @@ where
     /// `D(h) G2(ωi, ωo) F(ωi·h) / (4 cos θi cos θo)` (Walter et al. 2007, eq. 20).
     ///
     /// Hot path: one squared-length test per direction, then straight-line
-    /// arithmetic on `h = ωi + ωo` (never normalised: `D` takes
-    /// `cos²θh = h_z²/|h|²`), evaluated as `D(h) V F` with the visibility
-    /// `V = G2/(4 cos θi cos θo)` of [`ShadowingMasking::visibility`]. Non-unit,
+    /// arithmetic on `h = ωi + ωo` (never normalised: `D` comes as a quotient
+    /// of the squares of its components, [`MicrofacetDistribution::d_ratio`]),
+    /// evaluated as `D(h) V F` with the visibility
+    /// `V = G2/(4 cos θi cos θo)` of [`ShadowingMasking::inverse_visibility`]
+    /// in one division, `num_D/(den_D · 1/V)`. Non-unit,
     /// degenerate or non-finite input goes to a `#[cold]` path that
     /// normalises robustly first.
     #[inline(always)]
