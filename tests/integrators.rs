@@ -252,9 +252,16 @@ fn spectral_channels_integrate_separately() {
     }
     let mc = MonteCarlo::new(Strategy::Cosine, PointSet::Sobol, 1);
     let e = mc.integrate(&Rgb, 4096).unwrap();
-    for (i, x) in exact.iter().enumerate() {
-        assert!((e.value[i] - x).abs() < 5.0 * e.error[i] + 1e-12, "{e:?}");
-    }
+    // Channel 0 (∫ 1 dω) under cosine sampling has the weight π/cos θ, of
+    // infinite variance (∫ π/cos θ dω diverges at the horizon): its standard
+    // error is no error bar (over 200 seeds 2–3 % of the estimates lie beyond
+    // 5σ, with the Sobol points of this crate and with those of the
+    // `sobol_burley` crate alike), so it is held to 10 % of 2π — a channel
+    // mixed up with another would be off by 50 % or more. Channel 2
+    // (∫ z² dω, weight π z) has a finite variance and a calibrated error.
+    assert!((e.value[0] - exact[0]).abs() < 0.1 * exact[0], "{e:?}");
+    assert!((e.value[2] - exact[2]).abs() < 5.0 * e.error[2] + 1e-12, "{e:?}");
+    assert!((e.value[1] - exact[1]).abs() < 5.0 * e.error[1] + 1e-12, "{e:?}");
     // z/(z/π) = π exactly for cosine sampling: zero variance on channel 1,
     // so its error is only the floors: mean/N for events rarer than 1/N
     // (which no variance estimate sees) and 2⁻²³ mean for f32 rounding.

@@ -116,11 +116,8 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
         }
     }
     // Integrators on a directional-albedo integrand (stack only, no heap):
-    // every quadrature rule under the no-panic proof too. Monte Carlo is
-    // linked for the std/alloc check only: its Sobol point set calls the
-    // `sobol_burley` crate, which keeps one bounds check the optimiser cannot
-    // remove (`vecs[i + j]` in `sobol_int4_rev`; unreachable, `i + j < 16`
-    // for the 16 index bits it walks), and the point set is a run-time value.
+    // every quadrature rule and every Monte Carlo strategy × point set under
+    // the no-panic proof too.
     {
         use radiometry::Integrator;
         use radiometry::integrator::{Adaptive, DirectionalAlbedo, GaussLegendre, WarpedGaussLegendre};
@@ -147,7 +144,6 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
                     acc += e.value as f32;
                 }
             }
-            #[cfg(not(feature = "prove-no-panic"))]
             {
                 use radiometry::integrator::{Heuristic, MonteCarlo, PointSet, Strategy};
                 let strategies = [

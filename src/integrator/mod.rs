@@ -297,6 +297,8 @@ mod acc;
 pub(crate) mod chunk;
 pub mod gauss_legendre;
 pub mod points;
+mod sobol;
+mod sobol_table;
 
 pub use gauss_legendre::{GaussLegendre, WarpedGaussLegendre};
 pub mod monte_carlo;

@@ -154,7 +154,7 @@ pub const DEFAULT_REPLICATES: u32 = 16;
 ///   `UnseenPeak` (a lobe the draws never came near: their mean converges
 ///   to the tails with a small standard error).
 ///
-/// Sobol: one scramble holds at most `2¹⁶` points (`sobol_burley`), so when
+/// Sobol: one scramble holds at most `2¹⁶` points ([`super::points::SOBOL_MAX_POINTS`]), so when
 /// `⌊N/K⌋ > 2¹⁶` the number of scrambles grows to `⌈N/2¹⁶⌉` (≤ 16 under
 /// the cap). Jittered grids use `⌊√n⌋ × ⌊n/⌊√n⌋⌋ ≤ n` cells per replicate.
 /// Cosine sampling uses the concentric map of [`crate::warp`] except with

@@ -1,6 +1,6 @@
 //! Point sets on the unit square for Monte Carlo and randomized quasi-Monte
 //! Carlo: a seeded PRNG ([`Pcg32`]), jittered (stratified) grids,
-//! Owen-scrambled Sobol points (via `sobol_burley`), and the Fibonacci
+//! Owen-scrambled Sobol points (computed here, see [`sobol_value`]), and the Fibonacci
 //! lattice behind spherical Fibonacci point sets.
 //!
 //! Everything is deterministic for a given seed and allocation-free.
@@ -14,6 +14,7 @@
 //! assert!((p[0] - 3.5 / 8.0).abs() < 1e-6);
 //! ```
 
+pub use super::sobol::{SOBOL_DIMENSIONS, SOBOL_MAX_POINTS, sobol_point, sobol_point_pairs, sobol_value};
 use crate::math::ONE_MINUS_EPSILON;
 use glam::Vec3;
 
@@ -95,7 +96,7 @@ pub enum PointSet {
     /// "Stochastic sampling in computer graphics", ACM TOG 5(1)).
     Stratified,
     /// Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen
-    /// Scrambling", JCGT 9(4)) via `sobol_burley`.
+    /// Scrambling", JCGT 9(4)), see [`sobol_value`].
     Sobol,
     /// The Fibonacci lattice `((i + ½)/n, {i/Φ})` with a random toroidal
     /// shift (Cranley & Patterson 1976); mapped through the uniform or polar
@@ -124,10 +125,6 @@ impl PointSet {
         }
     }
 }
-
-/// Largest number of points of one Owen-scrambled Sobol sequence
-/// (`sobol_burley` supports indices `< 2¹⁶` per seed).
-pub const SOBOL_MAX_POINTS: u32 = 1 << 16;
 
 /// `1/Φ = (√5 − 1)/2`, the golden-ratio conjugate.
 const INV_PHI: f64 = 0.618_033_988_749_894_8;
@@ -181,37 +178,6 @@ pub fn jitter_grid(n: u32) -> (u32, u32) {
     }
     let nx = nx.max(1);
     (nx, n / nx)
-}
-
-/// Point `i` (`< 2¹⁶`) of the Owen-scrambled Sobol sequence with the given
-/// seed, dimensions `2·pair` and `2·pair + 1` (`pair ≤ 127`).
-pub fn sobol_point(i: u32, pair: u32, seed: u32) -> [f32; 2] {
-    let i = i.min(SOBOL_MAX_POINTS - 1);
-    let d = 2 * pair.min(127);
-    [
-        unit_f32(sobol_burley::sample(i, d, seed) as f64),
-        unit_f32(sobol_burley::sample(i, d + 1, seed) as f64),
-    ]
-}
-
-/// Dimension pairs 0 and 1 of point `i` (`< 2¹⁶`) of the Owen-scrambled Sobol
-/// sequence with the given seed: `[sobol_point(i, 0, seed), sobol_point(i, 1,
-/// seed)]` bit for bit, from one four-dimensional draw (`sobol_burley::sample_4d`,
-/// which computes the four dimensions together, with SIMD on x86-64).
-///
-/// ```
-/// use radiometry::integrator::points::{sobol_point, sobol_point_pairs};
-/// let [a, b] = sobol_point_pairs(5, 7);
-/// assert_eq!(a, sobol_point(5, 0, 7));
-/// assert_eq!(b, sobol_point(5, 1, 7));
-/// ```
-pub fn sobol_point_pairs(i: u32, seed: u32) -> [[f32; 2]; 2] {
-    let i = i.min(SOBOL_MAX_POINTS - 1);
-    let p = sobol_burley::sample_4d(i, 0, seed);
-    [
-        [unit_f32(p[0] as f64), unit_f32(p[1] as f64)],
-        [unit_f32(p[2] as f64), unit_f32(p[3] as f64)],
-    ]
 }
 
 /// Polar (Malley) cosine-weighted hemisphere map:
