@@ -1,5 +1,7 @@
-//! Owen-scrambled Sobol points, computed in this crate without tables
-//! beyond the direction numbers and without any panicking operation.
+//! Owen-scrambled Sobol points, computed in this crate from the direction
+//! numbers (for dimensions 0–3 through nibble tables built from them at
+//! compile time) without any panicking operation: `MonteCarlo` is part of
+//! the no-panic proof of `nostd-check`.
 //!
 //! # The construction
 //!
