@@ -154,9 +154,9 @@ pub trait MicrofacetDistribution {
     /// vector `h ∝ ωi + ωo` (no division to normalise it), and it divides
     /// once for `D V` or `D/(4A)` (the quotient is folded into that division).
     ///
-    /// Contract: `hz2, hxy2 ≥ 0` with `hz2 + hxy2 ∈ [2⁻³², 2³²]`; returns
-    /// finite `num ≥ 0` and `den > 0` with `num/den` finite (`num = 0` where
-    /// `hz2 = 0`). The default normalises, calls [`d_cos2`](Self::d_cos2) and
+    /// Contract: `hz2, hxy2 ≥ 0` with `hz2 + hxy2 ∈ [2⁻³², 2³²]` (the hot
+    /// path has `hz2 > 0`); returns finite `num ≥ 0` and `den > 0` with
+    /// `num/den` finite. The default normalises, calls [`d_cos2`](Self::d_cos2) and
     /// returns `(D, 1)`; [`Ggx`] and [`Beckmann`] evaluate their formulas in
     /// the squares directly.
     #[inline]
