@@ -1,7 +1,9 @@
-//! Throughput of BRDF evaluation and sampling (criterion).
+//! Throughput of BRDF evaluation and sampling (criterion), and of the Monte
+//! Carlo point sets.
 //!
 //! `cargo bench --bench throughput` — reports time per batch of 4096
-//! evaluations / samples for each plugin, scalar `eval` vs `eval_batch`.
+//! evaluations / samples for each plugin, scalar `eval` vs `eval_batch`, and
+//! per 4096 points for the Sobol, PCG32 and Fibonacci point sets (`points/`).
 //!
 //! With the vector `eval_batch` kernels of `radiometry-brdfs` (feature
 //! `simd`; GGX and Beckmann with either Smith `G2` and any Fresnel,
@@ -116,5 +118,56 @@ fn plugins(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, plugins);
+/// The unit-square point sets of the Monte Carlo integrators, 4096 points
+/// each: the crate's Owen-scrambled Sobol points (four dimensions per point,
+/// the `MonteCarlo` path; one dimension pair), PCG32 and the shifted
+/// Fibonacci lattice.
+fn point_sets(c: &mut Criterion) {
+    use radiometry::integrator::points::{Pcg32, fibonacci_point, sobol_point, sobol_point_pairs};
+    let mut g = c.benchmark_group("points");
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function("sobol_point_pairs", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for i in 0..N as u32 {
+                let [p, q] = sobol_point_pairs(black_box(i), 7);
+                acc += p[0] + p[1] + q[0] + q[1];
+            }
+            acc
+        })
+    });
+    g.bench_function("sobol_point", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for i in 0..N as u32 {
+                let p = sobol_point(black_box(i), 3, 7);
+                acc += p[0] + p[1];
+            }
+            acc
+        })
+    });
+    g.bench_function("pcg32_pairs", |b| {
+        b.iter(|| {
+            let mut rng = Pcg32::new(black_box(7), 0);
+            let mut acc = 0.0f32;
+            for _ in 0..N {
+                acc += rng.next_f32() + rng.next_f32();
+            }
+            acc
+        })
+    });
+    g.bench_function("fibonacci_point", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for i in 0..N as u32 {
+                let p = fibonacci_point(black_box(i), N as u32, [0.25, 0.5]);
+                acc += p[0] + p[1];
+            }
+            acc
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, plugins, point_sets);
 criterion_main!(benches);
