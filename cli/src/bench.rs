@@ -67,6 +67,15 @@ This CPU's limits, timed in the same process on the same inputs:
                         the same sampler over SoA slices (wo, u in; wi, pdf, weight out), a
                         branch-free loop LLVM auto-vectorises
 
+Plain loops of other plugins' own formulas (no input checks, libm for the special functions):
+  reference-beckmann-scalar
+                        Beckmann α 0.3, height-correlated Smith, F = 1: D = exp(−tan²θh/α²)/(πα²h_z⁴);
+                        Λ = (exp(−a²)/(a√π) − erfc a)/2, a = z/(α sin θ); f = D/(1 + Λi + Λo)/(4 z_i z_o)
+  reference-tabulated-scalar
+                        the tabulated-merl-ggx-a0.3 table looked up the textbook way: θh = acos h_z,
+                        d = R_y(−θh) R_z(−φh) wi, θd = acos d_z, φd = atan2(d_y, d_x) folded into [0, π),
+                        the MERL index mappings, trilinear interpolation
+
 Columns:
   m_per_s      million elements (pairs, or samples) per second, single thread
   ns_per_elem  1000 / m_per_s
@@ -75,6 +84,10 @@ Columns:
                reference-ggx-sample-scalar for sample, reference-ggx-sample-soa for
                sample_batch; json key `ref` names it
   vs_stream    m_per_s / m_per_s of stream at the same n
+  vs_own_ref   m_per_s / m_per_s of the plain loop of the plugin's own formula at the same n, where
+               there is one: ggx-hc-a0.3 (eval; eval_batch and eval_batch_soa vs reference-ggx-soa;
+               sample, sample_batch vs the sampler references), beckmann-hc-a0.3 (eval) and
+               tabulated-merl-ggx-a0.3 (eval); json key `own_ref` names it
 
 Timing: per measurement a warm-up, then repetitions of whole passes over the n elements (each
 repetition about a tenth of the minimum time, at least one pass) until at least 50 ms
@@ -117,6 +130,22 @@ const REF_SOA: &str = "reference-ggx-soa";
 const REF_SAMPLE_SCALAR: &str = "reference-ggx-sample-scalar";
 const REF_SAMPLE_SOA: &str = "reference-ggx-sample-soa";
 const STREAM: &str = "stream";
+const REF_BECKMANN_SCALAR: &str = "reference-beckmann-scalar";
+const REF_TABULATED_SCALAR: &str = "reference-tabulated-scalar";
+
+/// The plain loop of the plugin's own formula for `(plugin, path)`, if the
+/// bench has one.
+fn own_reference(plugin: &str, path: &str) -> Option<&'static str> {
+    match (plugin, path) {
+        ("ggx-hc-a0.3", "eval") => Some(REF_SCALAR),
+        ("ggx-hc-a0.3", "eval_batch" | "eval_batch_soa") => Some(REF_SOA),
+        ("ggx-hc-a0.3", "sample") => Some(REF_SAMPLE_SCALAR),
+        ("ggx-hc-a0.3", "sample_batch") => Some(REF_SAMPLE_SOA),
+        ("beckmann-hc-a0.3", "eval") => Some(REF_BECKMANN_SCALAR),
+        ("tabulated-merl-ggx-a0.3", "eval") => Some(REF_TABULATED_SCALAR),
+        _ => None,
+    }
+}
 /// α of the reference GGX (that of the `ggx-hc-a0.3` plugin).
 const REF_ALPHA: f32 = 0.3;
 /// A repetition lasts about `min_time / REP_SLICES` (at least one pass):
@@ -138,6 +167,9 @@ struct Row {
     reference: Option<&'static str>,
     vs_ref: Option<f64>,
     vs_stream: f64,
+    /// The plain loop of the plugin's own formula `vs_own_ref` divides by.
+    own_reference: Option<&'static str>,
+    vs_own_ref: Option<f64>,
 }
 
 /// Deterministic inputs of the largest size; every run uses a prefix.
@@ -342,6 +374,9 @@ struct Run<'a> {
     min_time: Duration,
     progress: bool,
     rows: Vec<Row>,
+    /// Seconds per element of `reference-tabulated-scalar` (set by the
+    /// `Tabulated` rows).
+    tabulated_ref: f64,
 }
 
 impl Run<'_> {
@@ -354,6 +389,8 @@ impl Run<'_> {
             reference: None,
             vs_ref: None,
             vs_stream: f64::NAN,
+            own_reference: None,
+            vs_own_ref: None,
         });
     }
 
@@ -363,9 +400,9 @@ impl Run<'_> {
         }
     }
 
-    /// Seconds per element of the five reference kernels (eval scalar and
-    /// SoA, stream, sample scalar and SoA).
-    fn references(&self) -> [f64; 5] {
+    /// Seconds per element of the six reference kernels (eval scalar and
+    /// SoA, stream, sample scalar and SoA, Beckmann scalar).
+    fn references(&self) -> [f64; 6] {
         self.note("references");
         let (n, mt) = (self.n, self.min_time);
         let (wi, wo) = (self.inputs.wi(n), self.inputs.wo(n));
@@ -412,8 +449,16 @@ impl Run<'_> {
                 black_box(reference::SampleSoa { x, y, z, pdf, weight }),
             )
         });
+        let beckmann = measure(n, mt, || {
+            reference::beckmann_scalar(
+                black_box(REF_ALPHA),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out[..]),
+            )
+        });
         black_box((&out, &samples, &o));
-        [scalar, soa, stream, sample_scalar, sample_soa]
+        [scalar, soa, stream, sample_scalar, sample_soa, beckmann]
     }
 
     /// Times the seven paths of one plugin.
@@ -547,11 +592,36 @@ impl Run<'_> {
         let t = Tabulated::new(grid, &mono)
             .and_then(|t| t.with_sampling(&mut buf))
             .expect(BAD);
+        // The plain loop of the same lookup, before and after (best kept).
+        let plain = reference::Table {
+            values: &mono,
+            dims: grid.dims(),
+        };
+        let before = self.tabulated_reference(plain);
         self.plugin("tabulated-merl-ggx-a0.3", &t);
+        let after = self.tabulated_reference(plain);
+        self.tabulated_ref = before.min(after);
         let t = Tabulated::new(grid, &table.values[..])
             .and_then(|t| t.with_sampling(&mut buf_rgb))
             .expect(BAD);
         self.plugin("tabulated-merl-rgb-ggx-a0.3", &t);
+    }
+
+    /// Seconds per element of [`reference::tabulated_scalar`] on `table`.
+    fn tabulated_reference(&self, table: reference::Table<'_>) -> f64 {
+        self.note("references");
+        let (n, inputs) = (self.n, self.inputs);
+        let mut out = vec![0.0f32; n];
+        let t = measure(n, self.min_time, || {
+            reference::tabulated_scalar(
+                black_box(table),
+                black_box(inputs.wi(n)),
+                black_box(inputs.wo(n)),
+                black_box(&mut out[..]),
+            )
+        });
+        black_box(&out);
+        t
     }
 
     /// References, plugins, references again (best of both kept); then the
@@ -567,6 +637,8 @@ impl Run<'_> {
         self.push(STREAM, "stream", best(2));
         self.push(REF_SAMPLE_SCALAR, "sample", best(3));
         self.push(REF_SAMPLE_SOA, "sample_batch", best(4));
+        self.push(REF_BECKMANN_SCALAR, "eval", best(5));
+        self.push(REF_TABULATED_SCALAR, "eval", self.tabulated_ref);
         self.rows.extend(plugin_rows);
         let rate = |name: &str| {
             self.rows
@@ -576,6 +648,16 @@ impl Run<'_> {
         };
         let (scalar, soa, stream) = (rate(REF_SCALAR), rate(REF_SOA), rate(STREAM));
         let (sample_scalar, sample_soa) = (rate(REF_SAMPLE_SCALAR), rate(REF_SAMPLE_SOA));
+        let (beckmann, tabulated) = (rate(REF_BECKMANN_SCALAR), rate(REF_TABULATED_SCALAR));
+        let own_rates = |name: &str| match name {
+            REF_SCALAR => scalar,
+            REF_SOA => soa,
+            REF_SAMPLE_SCALAR => sample_scalar,
+            REF_SAMPLE_SOA => sample_soa,
+            REF_BECKMANN_SCALAR => beckmann,
+            REF_TABULATED_SCALAR => tabulated,
+            _ => f64::NAN,
+        };
         for r in &mut self.rows {
             r.vs_stream = r.m_per_s / stream;
             if r.plugin != STREAM {
@@ -588,6 +670,8 @@ impl Run<'_> {
                 r.reference = Some(name);
                 r.vs_ref = Some(r.m_per_s / m);
             }
+            r.own_reference = own_reference(r.plugin, r.path);
+            r.vs_own_ref = r.own_reference.map(|name| r.m_per_s / own_rates(name));
         }
         self.rows
     }
@@ -669,7 +753,8 @@ warm-up); single thread",
 
 const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf), / reference-ggx-soa (eval_batch, \
 eval_batch_soa, pdf_batch), / reference-ggx-sample-scalar (sample) or / reference-ggx-sample-soa (sample_batch) at the \
-same n; vs_stream = m_per_s / stream at the same n";
+same n; vs_stream = m_per_s / stream at the same n; vs_own_ref = m_per_s / the plain loop of the plugin's own formula \
+(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval) at the same n";
 
 /// Runs the command.
 pub fn run(args: BenchArgs) -> ExitCode {
@@ -691,6 +776,7 @@ pub fn run(args: BenchArgs) -> ExitCode {
                 min_time,
                 progress,
                 rows: Vec::new(),
+                tabulated_ref: f64::NAN,
             }
             .measure_all(),
         );
@@ -725,6 +811,8 @@ pub fn run(args: BenchArgs) -> ExitCode {
                         "vs_ref": r.vs_ref.map(json_num),
                         "vs_stream": json_num(r.vs_stream),
                         "ref": r.reference,
+                        "vs_own_ref": r.vs_own_ref.map(json_num),
+                        "own_ref": r.own_reference,
                     })
                 })
                 .collect();
@@ -778,21 +866,22 @@ pub fn run(args: BenchArgs) -> ExitCode {
                 if r.n != last_n {
                     println!();
                     println!(
-                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9}",
-                        "plugin", "path", "n", "m_per_s", "ns_per_elem", "vs_ref", "vs_stream"
+                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9} {:>10}",
+                        "plugin", "path", "n", "m_per_s", "ns_per_elem", "vs_ref", "vs_stream", "vs_own_ref"
                     );
                     last_n = r.n;
                 }
-                let vs_ref = r.vs_ref.map_or("-".to_string(), |v| format!("{v:.3}"));
+                let ratio = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
                 println!(
-                    "{:<26} {:<15} {:>8} {:>10.1} {:>11.2} {:>7} {:>9.3}",
+                    "{:<26} {:<15} {:>8} {:>10.1} {:>11.2} {:>7} {:>9.3} {:>10}",
                     r.plugin,
                     r.path,
                     r.n,
                     r.m_per_s,
                     1e3 / r.m_per_s,
-                    vs_ref,
-                    r.vs_stream
+                    ratio(r.vs_ref),
+                    r.vs_stream,
+                    ratio(r.vs_own_ref)
                 );
             }
         }

@@ -71,7 +71,9 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
     let ref_soa = rate(get("reference-ggx-soa", "eval_batch_soa"));
     let ref_sample = rate(get("reference-ggx-sample-scalar", "sample"));
     let ref_sample_soa = rate(get("reference-ggx-sample-soa", "sample_batch"));
-    assert_eq!(rows.len(), 5 + PLUGINS.len() * PATHS.len());
+    let ref_beckmann = rate(get("reference-beckmann-scalar", "eval"));
+    let ref_tabulated = rate(get("reference-tabulated-scalar", "eval"));
+    assert_eq!(rows.len(), 7 + PLUGINS.len() * PATHS.len());
     for r in rows {
         assert_eq!(r["n"], 4096, "--quick is n = 4096 only: {r}");
         let m = rate(r);
@@ -98,6 +100,29 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
         };
         assert_eq!(r["ref"], name, "{r}");
         assert!(close(r["vs_ref"].as_f64().expect("vs_ref"), m / denom), "{r}");
+        // The plain loop of the plugin's own formula, where the bench has one.
+        let own = match (
+            r["plugin"].as_str().expect("plugin"),
+            r["path"].as_str().expect("path"),
+        ) {
+            ("ggx-hc-a0.3", "eval") => Some(("reference-ggx-scalar", ref_scalar)),
+            ("ggx-hc-a0.3", "eval_batch" | "eval_batch_soa") => Some(("reference-ggx-soa", ref_soa)),
+            ("ggx-hc-a0.3", "sample") => Some(("reference-ggx-sample-scalar", ref_sample)),
+            ("ggx-hc-a0.3", "sample_batch") => Some(("reference-ggx-sample-soa", ref_sample_soa)),
+            ("beckmann-hc-a0.3", "eval") => Some(("reference-beckmann-scalar", ref_beckmann)),
+            ("tabulated-merl-ggx-a0.3", "eval") => Some(("reference-tabulated-scalar", ref_tabulated)),
+            _ => None,
+        };
+        match own {
+            Some((name, denom)) => {
+                assert_eq!(r["own_ref"], name, "{r}");
+                assert!(
+                    close(r["vs_own_ref"].as_f64().expect("vs_own_ref"), m / denom),
+                    "{r}"
+                );
+            }
+            None => assert!(r["own_ref"].is_null() && r["vs_own_ref"].is_null(), "{r}"),
+        }
     }
     for p in PLUGINS {
         for path in PATHS {
@@ -128,7 +153,8 @@ fn quick_table_has_the_header_and_ratio_columns() {
             "m_per_s",
             "ns_per_elem",
             "vs_ref",
-            "vs_stream"
+            "vs_stream",
+            "vs_own_ref"
         ]
     );
     for p in PLUGINS {
@@ -151,6 +177,7 @@ fn help_documents_method_and_native_build() {
         "BEST",
         "vs_ref",
         "vs_stream",
+        "vs_own_ref",
         "--quick",
     ] {
         assert!(s.contains(key), "missing `{key}`:\n{s}");

@@ -43,6 +43,32 @@
 //!
 //! Valid (and used) only for unit directions strictly above the horizon,
 //! which the bench inputs are; anything else gives garbage, not `0`.
+//!
+//! # The other plugins' own formulas
+//!
+//! The GGX references measure this CPU; the two below measure what a plain
+//! loop of *another plugin's* formula reaches, so that a plugin's speed can
+//! also be read against its own arithmetic (`vs_own_ref`). Both call `libm`
+//! for the special functions, as a plain loop would.
+//!
+//! * [`beckmann_scalar`] — Beckmann, height-correlated Smith, `F = 1`:
+//!
+//!   ```text
+//!   h    = normalize(wi + wo),  tan²θh = (h_x² + h_y²)/h_z²
+//!   D    = exp(−tan²θh/α²) / (π α² h_z⁴)                          (Walter et al. 2007, eq. 25)
+//!   a(w) = z / (α √(x² + y²))
+//!   Λ(w) = (e^{−a²}/(a √π) − erfc(a)) / 2                         (Walter et al. 2007, eq. 27)
+//!   f    = D / (1 + Λ(wi) + Λ(wo)) / (4 z_i z_o)
+//!   ```
+//!
+//! * [`tabulated_scalar`] — a Rusinkiewicz-grid table (MERL layout,
+//!   Matusik et al. 2003) looked up the textbook way (Rusinkiewicz 1998,
+//!   §3): `h = normalize(wi + wo)`, `θh = acos h_z`, `φh` from `h`'s azimuth
+//!   (its cosine and sine as `h_x, h_y` over `sin θh`), the difference vector
+//!   `d = R_y(−θh) R_z(−φh) wi`, `θd = acos d_z`, `φd = atan2(d_y, d_x)`
+//!   folded into `[0, π)`; continuous indices `√(θh/(π/2)) Nh`,
+//!   `θd/(π/2) Nd`, `φd/π Nφ` (clamped to the last node; `φd` periodic) and
+//!   trilinear interpolation of the 8 surrounding values.
 
 use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
@@ -210,6 +236,109 @@ pub fn ggx_sample_soa(alpha: f32, wo: Vec3Soa<'_>, u0: &[f32], u1: &[f32], out: 
     }
 }
 
+/// The Beckmann height-correlated `f_r` with `F = 1` of one pair, no checks
+/// (see the module docs). `inv_a2 = 1/α²`, `k = 1/(π α²)`.
+#[inline(always)]
+fn beckmann_hc(alpha: f32, inv_a2: f32, k: f32, i: [f32; 3], o: [f32; 3]) -> f32 {
+    let [xi, yi, zi] = i;
+    let [xo, yo, zo] = o;
+    let (hx, hy, hz) = (xi + xo, yi + yo, zi + zo);
+    let inv_len2 = 1.0 / (hx * hx + hy * hy + hz * hz);
+    let cos2 = hz * hz * inv_len2;
+    let tan2 = (hx * hx + hy * hy) / (hz * hz);
+    // D = exp(−tan²θh/α²) / (π α² cos⁴θh)
+    let d = libm::expf(-tan2 * inv_a2) * k / (cos2 * cos2);
+    // Λ(w) = (e^{−a²}/(a √π) − erfc(a)) / 2,  a = z/(α sin θ)
+    let lambda = |x: f32, y: f32, z: f32| {
+        let a = z / (alpha * (x * x + y * y).sqrt());
+        0.5 * (libm::expf(-a * a) / (a * SQRT_PI) - libm::erfcf(a))
+    };
+    d / (1.0 + lambda(xi, yi, zi) + lambda(xo, yo, zo)) / (4.0 * zi * zo)
+}
+
+/// `√π`.
+const SQRT_PI: f32 = 1.772_453_9;
+
+/// `out[k] = f_Beckmann(wi[k], wo[k])` for `k < out.len()` (panics if an
+/// input is shorter): the plain scalar loop over AoS input (opaque index, as
+/// in [`ggx_scalar`]).
+#[inline(never)]
+#[allow(clippy::needless_range_loop)]
+pub fn beckmann_scalar(alpha: f32, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    let n = out.len();
+    let (wi, wo) = (&wi[..n], &wo[..n]);
+    let a2 = alpha as f64 * alpha as f64;
+    let (inv_a2, k) = ((1.0 / a2) as f32, (std::f64::consts::FRAC_1_PI / a2) as f32);
+    for j in 0..n {
+        let j = std::hint::black_box(j);
+        let (i, o) = (wi[j], wo[j]);
+        out[j] = beckmann_hc(alpha, inv_a2, k, [i.x, i.y, i.z], [o.x, o.y, o.z]);
+    }
+}
+
+/// A table on a Rusinkiewicz grid in the MERL layout (flat index
+/// `k + Nφ (j + Nd i)`), for [`tabulated_scalar`].
+#[derive(Clone, Copy, Debug)]
+pub struct Table<'a> {
+    pub values: &'a [f32],
+    /// `[Nh, Nd, Nφ]`.
+    pub dims: [usize; 3],
+}
+
+/// The trilinear lookup of one pair, no checks beyond the index clamps
+/// (see the module docs).
+#[inline(always)]
+fn tabulated(t: Table<'_>, i: Vec3, o: Vec3) -> f32 {
+    use std::f32::consts::FRAC_PI_2;
+    let [nh, nd, np] = t.dims;
+    let h = (i + o).normalize();
+    let theta_h = libm::acosf(h.z);
+    let sin_h = (h.x * h.x + h.y * h.y).sqrt();
+    let (cos_p, sin_p) = if sin_h > 0.0 {
+        (h.x / sin_h, h.y / sin_h)
+    } else {
+        (1.0, 0.0)
+    };
+    // d = R_y(−θh) R_z(−φh) wi
+    let (x1, y1) = (cos_p * i.x + sin_p * i.y, cos_p * i.y - sin_p * i.x);
+    let (dx, dz) = (h.z * x1 - sin_h * i.z, sin_h * x1 + h.z * i.z);
+    let theta_d = libm::acosf(dz.clamp(-1.0, 1.0));
+    let mut phi_d = libm::atan2f(y1, dx);
+    if phi_d < 0.0 {
+        phi_d += PI;
+    }
+    // Continuous indices, cell and weight per axis.
+    let axis = |u: f32, n: usize| {
+        let u = u.clamp(0.0, (n - 1) as f32);
+        let i0 = u as usize;
+        (i0, (i0 + 1).min(n - 1), u - i0 as f32)
+    };
+    let (h0, h1, th) = axis((theta_h / FRAC_PI_2).sqrt() * nh as f32, nh);
+    let (d0, d1, td) = axis(theta_d / FRAC_PI_2 * nd as f32, nd);
+    let up = (phi_d / PI * np as f32).clamp(0.0, np as f32);
+    let p0 = (up as usize).min(np - 1);
+    let (p1, tp) = ((p0 + 1) % np, up - p0 as f32);
+    let at = |a: usize, b: usize, c: usize| t.values[c + np * (b + nd * a)];
+    let lerp = |a: f32, b: f32, w: f32| a * (1.0 - w) + b * w;
+    let row = |a: usize, b: usize| lerp(at(a, b, p0), at(a, b, p1), tp);
+    let plane = |a: usize| lerp(row(a, d0), row(a, d1), td);
+    lerp(plane(h0), plane(h1), th)
+}
+
+/// `out[k]` = the table of `t` at `(wi[k], wo[k])` for `k < out.len()`
+/// (panics if an input is shorter or the table shorter than its dims): the
+/// plain scalar loop over AoS input (opaque index, as in [`ggx_scalar`]).
+#[inline(never)]
+#[allow(clippy::needless_range_loop)]
+pub fn tabulated_scalar(t: Table<'_>, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    let n = out.len();
+    let (wi, wo) = (&wi[..n], &wo[..n]);
+    for k in 0..n {
+        let k = std::hint::black_box(k);
+        out[k] = tabulated(t, wi[k], wo[k]);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -256,6 +385,79 @@ mod tests {
             }
             let sum = wi[k].x + wi[k].y + wi[k].z + wo[k].x + wo[k].y + wo[k].z;
             assert!((s[k] - sum).abs() <= 1e-5, "k={k}");
+        }
+    }
+
+    /// The Beckmann reference computes the plugin's `f_r` (up to the
+    /// rounding of `libm`'s `expf`, `erfcf` and of the cancelling `Λ` form).
+    #[test]
+    fn beckmann_reference_matches_the_plugin() {
+        use radiometry_brdfs::Beckmann;
+        let alpha = 0.3;
+        let plugin = Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(alpha).unwrap(), NoFresnel);
+        let n = 401;
+        let wi: Vec<Vec3> = (0..n)
+            .map(|k| spherical_direction(0.0035 * k as f32, 0.7 * k as f32))
+            .collect();
+        let wo: Vec<Vec3> = (0..n)
+            .map(|k| spherical_direction(1.5 - 0.0036 * k as f32, 2.1 + 1.3 * k as f32))
+            .collect();
+        let mut a = vec![0.0f32; n];
+        beckmann_scalar(alpha, &wi, &wo, &mut a);
+        let mut compared = 0;
+        for k in 0..n {
+            let want = plugin.eval(wi[k], wo[k]);
+            // Far out in the tail the two `exp(−x)` differ in relative terms by ~x·ε.
+            if want > 1e-20 {
+                assert!((a[k] - want).abs() <= 1e-4 * want, "k={k}: {} vs {want}", a[k]);
+                compared += 1;
+            }
+        }
+        assert!(compared > n / 2, "{compared}");
+    }
+
+    /// The tabulated reference interpolates what the plugin interpolates:
+    /// on a small grid of arbitrary (non-smooth) values, so that a wrong
+    /// index, stride, wrap or weight shows, and on the MERL grid.
+    #[test]
+    fn tabulated_reference_matches_the_plugin() {
+        use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
+        let n = 2000;
+        let wi: Vec<Vec3> = (0..n)
+            .map(|k| spherical_direction(1.55 * (k as f32 * 0.618_034).fract(), 0.37 * k as f32))
+            .collect();
+        let wo: Vec<Vec3> = (0..n)
+            .map(|k| spherical_direction(1.55 * (k as f32 * 0.754_877_7).fract(), 2.1 + 1.3 * k as f32))
+            .collect();
+        for dims in [[9usize, 7, 18], [90, 90, 180]] {
+            let grid = RusinkiewiczGrid::new(dims[0], dims[1], dims[2]).unwrap();
+            let values: Vec<f32> = (0..grid.len())
+                .map(|k| 0.5 + ((k as u64 * 2_654_435_761) % 1000) as f32 * 1e-3)
+                .collect();
+            let plugin = Tabulated::new(grid, &values[..]).unwrap();
+            let mut a = vec![0.0f32; n];
+            tabulated_scalar(
+                Table {
+                    values: &values,
+                    dims,
+                },
+                &wi,
+                &wo,
+                &mut a,
+            );
+            let mut worst = 0.0f32;
+            for k in 0..n {
+                let want = plugin.eval(wi[k], wo[k]);
+                // `acos` of a cosine near 1 is the textbook route's weak spot
+                // (θh off by ~ε/θh rad); the plugin's atan2 form is not
+                // compared there.
+                if RusinkiewiczGrid::half_diff(wi[k], wo[k]).0 >= 0.01 {
+                    worst = worst.max((a[k] - want).abs());
+                }
+            }
+            // Values jump by up to 1 between neighbours, so this bounds the
+            // difference of the continuous indices by about 10⁻³ cells.
+            assert!(worst <= 1e-3, "{dims:?}: {worst:e}");
         }
     }
 
