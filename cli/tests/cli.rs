@@ -134,6 +134,17 @@ fn albedo_json_keys_and_closed_forms() {
     );
     assert_eq!(j["integrator"], "adaptive");
 
+    // The same closed form with the defaults (integrator, budget): the
+    // default integrator resolves it to 10⁻⁶ within 4096 evaluations.
+    let o = run(&["albedo", "ggx(alpha=1)", "--theta-o", "0", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["integrator"], "adaptive-warped", "{j}");
+    assert!(j["evaluations"].as_u64().unwrap() <= 4096, "{j}");
+    let v = j["value"].as_f64().unwrap();
+    assert!((v - exact).abs() < 1e-6, "{v} vs {exact}");
+    assert!((v - exact).abs() <= j["error"].as_f64().unwrap(), "{j}");
+
     // A Phong lobe of exponent 10⁶ between the nodes of a 64-evaluation
     // product rule: the estimate is reported, but flagged.
     let o = run(&[

@@ -144,10 +144,10 @@ impl Brdf {
 
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi at ``theta_o_deg``
     /// ∈ [0, 90] with the named integrator (``radiometry.integrators()``; the
-    /// default here is ``adaptive-warped``, which carries an a-posteriori error
-    /// estimate and resolves both smooth and peaked lobes at the default
-    /// budget — the CLI's default ``gauss-legendre-warped`` is 2.7e-4 off
-    /// 1 − ln 2 for GGX α = 1 at 0° with 4096 evaluations), either one run with ``budget`` evaluations (default 4096) or, with
+    /// default, as in the CLI, is ``adaptive-warped``, which carries an
+    /// a-posteriori error estimate and resolves both smooth and peaked lobes at
+    /// the default budget — ``gauss-legendre-warped`` is 2.7e-4 off 1 − ln 2
+    /// for GGX α = 1 at 0° with 4096 evaluations), either one run with ``budget`` evaluations (default 4096) or, with
     /// ``tol``, budgets doubled from 64 until the error estimate is ≤ tol (up to
     /// 2^22). Returns a dict like ``radiometry albedo --format json``:
     /// value, error, evaluations, seconds, integrator, budget,
