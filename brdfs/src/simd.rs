@@ -571,6 +571,21 @@ pub(crate) fn check_values(check: &dyn Fn(&[f32; LANES]), values: &[f32]) {
     }
 }
 
+/// Test support: appends, for each of `bits`, the `f32`s within ±2 ulp of
+/// it (by bit pattern), and their negatives too when `both_signs`.
+#[cfg(test)]
+pub(crate) fn push_near(values: &mut impl Extend<f32>, bits: &[u32], both_signs: bool) {
+    for &b in bits {
+        for d in -2i32..=2 {
+            let v = f32::from_bits(b.wrapping_add_signed(d));
+            values.extend([v]);
+            if both_signs {
+                values.extend([-v]);
+            }
+        }
+    }
+}
+
 /// Test support: calls `check` on every 7th `f32` from 0 to `end` with the
 /// given sign bit, for each `(sign, end)`.
 #[cfg(test)]

@@ -113,20 +113,18 @@ mod tests {
             -1e-45,
             -0.25,
         ];
-        for bits in [
-            0x3300_0000u32,
-            0x3eb1_7218,
-            0x3f85_1592,
-            0x4195_b844,
-            0x42b1_7217,
-            0x0080_0000,
-        ] {
-            for d in -2i32..=2 {
-                let v = f32::from_bits(bits.wrapping_add_signed(d));
-                specials.push(v);
-                specials.push(-v);
-            }
-        }
+        crate::simd::push_near(
+            &mut specials,
+            &[
+                0x3300_0000u32,
+                0x3eb1_7218,
+                0x3f85_1592,
+                0x4195_b844,
+                0x42b1_7217,
+                0x0080_0000,
+            ],
+            true,
+        );
         crate::simd::check_values(&check, &specials);
         let sweep =
             |sign: u32, end: f32, stride: u32| crate::simd::sweep_stride(&check, &[(sign, end)], stride);

@@ -2,6 +2,7 @@
 
 use super::Vf;
 use super::bits::*;
+use super::logf::{LN2_HI, LN2_LO, log_kernel};
 
 /// `libm::log1pf` lane-wise, **bit for bit** (a port of its algorithm,
 /// FreeBSD `s_log1pf.c`, same operations in the same order; no FMA):
@@ -11,7 +12,7 @@ use super::bits::*;
 /// * otherwise `u = 1 + x` is split as `2^k (1 + f)` with `1 + f ∈ [√2/2, √2)`
 ///   by integer operations on its bits, and `c` is the rounding error of
 ///   `1 + x` divided by `u` (0 for `k ≥ 25`);
-/// * `s = f/(2 + f)`, the Remez polynomial `R(s²)` (`LG1…LG4`) and
+/// * `s = f/(2 + f)`, the Remez polynomial `R(s²)` (`LG1…LG4`, shared with `logf`: `log_kernel`) and
 ///   `log1p = s (f²/2 + R) + (k ln2_lo + c) − f²/2 + f + k ln2_hi`.
 ///
 /// The `brdfs` unit test `log1pf_is_libm_bit_for_bit` compares it with
@@ -19,12 +20,6 @@ use super::bits::*;
 /// values.
 #[inline(always)]
 pub(crate) fn log1pf(x: Vf) -> Vf {
-    const LN2_HI: f32 = f32::from_bits(0x3f31_7180); // 6.9313812256e-01
-    const LN2_LO: f32 = f32::from_bits(0x3717_f7d1); // 9.0580006145e-06
-    const LG1: f32 = f32::from_bits(0x3f2a_aaaa); // 0.66666662693
-    const LG2: f32 = f32::from_bits(0x3ecc_ce13); // 0.40000972152
-    const LG3: f32 = f32::from_bits(0x3e91_e9ee); // 0.28498786688
-    const LG4: f32 = f32::from_bits(0x3e78_9e26); // 0.24279078841
     let (zero, one) = (Vf::ZERO, Vf::ONE);
     // √2/2 ≤ 1 + x < √2: no reduction.
     let k0 =
@@ -40,14 +35,8 @@ pub(crate) fn log1pf(x: Vf) -> Vf {
     let f = k0.select(x, m - one);
     let c = k0.select(zero, c);
     let dk = k0.select(zero, k);
-    let s = f / (Vf::splat(2.0) + f);
-    let z = s * s;
-    let w = z * z;
-    let t1 = w * (Vf::splat(LG2) + w * Vf::splat(LG4));
-    let t2 = z * (Vf::splat(LG1) + w * Vf::splat(LG3));
-    let r = t2 + t1;
-    let hfsq = Vf::splat(0.5) * f * f;
-    let v = s * (hfsq + r) + (dk * Vf::splat(LN2_LO) + c) - hfsq + f + dk * Vf::splat(LN2_HI);
+    let (sr, hfsq) = log_kernel(f);
+    let v = sr + (dk * Vf::splat(LN2_LO) + c) - hfsq + f + dk * Vf::splat(LN2_HI);
     // Special cases, in the scalar order of precedence.
     let v = x
         .abs()
@@ -88,20 +77,18 @@ mod tests {
             f32::MIN_POSITIVE,
             -f32::MIN_POSITIVE,
         ];
-        for bits in [
-            0x3380_0000u32,
-            0x3ed4_13d0,
-            0xbe95_f619,
-            0x3f80_0000,
-            0x4b80_0000,
-            0x4c00_0000,
-        ] {
-            for d in [-2i32, -1, 0, 1, 2] {
-                let v = f32::from_bits(bits.wrapping_add_signed(d));
-                specials.push(v);
-                specials.push(-v);
-            }
-        }
+        crate::simd::push_near(
+            &mut specials,
+            &[
+                0x3380_0000u32,
+                0x3ed4_13d0,
+                0xbe95_f619,
+                0x3f80_0000,
+                0x4b80_0000,
+                0x4c00_0000,
+            ],
+            true,
+        );
         let check = |xs: &[f32; LANES]| assert_lanes_match("log1pf", log1pf, libm::log1pf, xs);
         check_values(&check, &specials);
         sweep(&check, &[(0, f32::MAX), (0x8000_0000, 1.0)]);

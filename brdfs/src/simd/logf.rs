@@ -2,6 +2,31 @@
 
 use super::{Vf, Vi, fmask, from_bits, int_to_float, to_bits};
 
+// libm's constants of `logf`/`log1pf`, by their bits.
+pub(super) const LN2_HI: f32 = f32::from_bits(0x3f31_7180); // 6.9313812256e-01
+pub(super) const LN2_LO: f32 = f32::from_bits(0x3717_f7d1); // 9.0580006145e-06
+const LG1: f32 = f32::from_bits(0x3f2a_aaaa); // 0.66666662693
+const LG2: f32 = f32::from_bits(0x3ecc_ce13); // 0.40000972152
+const LG3: f32 = f32::from_bits(0x3e91_e9ee); // 0.28498786688
+const LG4: f32 = f32::from_bits(0x3e78_9e26); // 0.24279078841
+
+/// The reduced-argument core shared by [`logf`] and
+/// [`log1pf`](super::log1pf::log1pf): for `f = m − 1`, `s = f/(2 + f)` and the
+/// Remez polynomial `R = s²(Lg1 + s⁴Lg3) + s⁴(Lg2 + s⁴Lg4)`, returns
+/// `(s (f²/2 + R), f²/2)` in libm's operation order (each caller adds its
+/// own `k ln2` and correction terms around them).
+#[inline(always)]
+pub(super) fn log_kernel(f: Vf) -> (Vf, Vf) {
+    let s = f / (Vf::splat(2.0) + f);
+    let z = s * s;
+    let w = z * z;
+    let t1 = w * (Vf::splat(LG2) + w * Vf::splat(LG4));
+    let t2 = z * (Vf::splat(LG1) + w * Vf::splat(LG3));
+    let r = t2 + t1;
+    let hfsq = Vf::splat(0.5) * f * f;
+    (s * (hfsq + r), hfsq)
+}
+
 /// `libm::logf` lane-wise, **bit for bit** (a port of its algorithm,
 /// FreeBSD `e_logf.c`, the same operations in the same order; no FMA):
 ///
@@ -20,13 +45,6 @@ use super::{Vf, Vi, fmask, from_bits, int_to_float, to_bits};
 /// special values.
 #[inline(always)]
 pub(crate) fn logf(x: Vf) -> Vf {
-    // libm's constants, by their bits.
-    const LN2_HI: f32 = f32::from_bits(0x3f31_7180); // 6.9313812256e-01
-    const LN2_LO: f32 = f32::from_bits(0x3717_f7d1); // 9.0580006145e-06
-    const LG1: f32 = f32::from_bits(0x3f2a_aaaa); // 0.66666662693
-    const LG2: f32 = f32::from_bits(0x3ecc_ce13); // 0.40000972152
-    const LG3: f32 = f32::from_bits(0x3e91_e9ee); // 0.28498786688
-    const LG4: f32 = f32::from_bits(0x3e78_9e26); // 0.24279078841
     let si = |v: i32| Vi::splat(v);
     let zero = Vf::ZERO;
     let one = Vf::ONE;
@@ -38,15 +56,9 @@ pub(crate) fn logf(x: Vf) -> Vf {
     let k = ((ix >> 23_u32) - si(0x7f)) + sub.select(si(-25), si(0));
     let m = from_bits((ix & si(0x007f_ffff)) + si(0x3f35_04f3));
     let f = m - one;
-    let s = f / (Vf::splat(2.0) + f);
-    let z = s * s;
-    let w = z * z;
-    let t1 = w * (Vf::splat(LG2) + w * Vf::splat(LG4));
-    let t2 = z * (Vf::splat(LG1) + w * Vf::splat(LG3));
-    let r = t2 + t1;
-    let hfsq = Vf::splat(0.5) * f * f;
+    let (sr, hfsq) = log_kernel(f);
     let dk = int_to_float(k);
-    let v = s * (hfsq + r) + dk * Vf::splat(LN2_LO) - hfsq + f + dk * Vf::splat(LN2_HI);
+    let v = sr + dk * Vf::splat(LN2_LO) - hfsq + f + dk * Vf::splat(LN2_HI);
     // Special cases, in the scalar order of precedence.
     let v = x.simd_eq(one).select(zero, v);
     let v = fmask(ix0.simd_ge(si(0x7f80_0000))).select(x, v);
@@ -82,11 +94,11 @@ mod tests {
             2.0,
             0.5,
         ];
-        for bits in [0x3f80_0000u32, 0x3f35_04f3, 0x3fb5_04f3, 0x0080_0000, 0x7f80_0000] {
-            for d in -2i32..=2 {
-                specials.push(f32::from_bits(bits.wrapping_add_signed(d)));
-            }
-        }
+        crate::simd::push_near(
+            &mut specials,
+            &[0x3f80_0000u32, 0x3f35_04f3, 0x3fb5_04f3, 0x0080_0000, 0x7f80_0000],
+            false,
+        );
         crate::simd::check_values(&check, &specials);
         // [0, f32::MAX] by 7, then the negatives from −0 to −∞ by 7919.
         crate::simd::sweep_stride(&check, &[(0, f32::MAX)], 7);
