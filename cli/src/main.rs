@@ -369,6 +369,7 @@ fn main() -> ExitCode {
                 progress: !no_progress,
                 cases,
                 integrators,
+                external: Vec::new(),
             }) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {

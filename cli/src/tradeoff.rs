@@ -37,6 +37,44 @@ pub struct Options {
     pub cases: Vec<String>,
     /// Keep only integrators whose name contains one of these (all when empty).
     pub integrators: Vec<String>,
+    /// Rows measured outside this crate (user integrators run by the Python
+    /// harness), merged into the tables, CSVs and summary by case name.
+    pub external: Vec<ExternalRow>,
+}
+
+/// A row measured outside this crate: a user integrator (Python
+/// `radiometry.tradeoff(integrators=...)`) run on a case of the suites. The
+/// harness counts `evaluations` itself; the report adds the reference and the
+/// true error. `budget` is set for a fixed-budget row (the budget ladder),
+/// `tol` for a to-tolerance row (the absolute tolerance the integrator was
+/// asked for); exactly one of them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExternalRow {
+    /// Case name, as in [`suite`] or [`product::suite`].
+    pub case: String,
+    /// Integrator name (must not clash with a built-in one).
+    pub integrator: String,
+    /// Deterministic quadrature (else Monte Carlo).
+    pub deterministic: bool,
+    /// The budget given (fixed-budget rows).
+    pub budget: Option<u32>,
+    /// The absolute tolerance asked for (to-tolerance rows).
+    pub tol: Option<f64>,
+    /// Integrand evaluations the harness counted (all runs).
+    pub evaluations: u64,
+    /// The integrator's value.
+    pub estimate: f64,
+    /// The integrator's claimed error.
+    pub error_estimate: f64,
+    /// Whether the integrator stands behind its error (default true).
+    pub resolved: bool,
+    /// Why not (free text, no commas); empty when resolved.
+    pub status_reason: String,
+    /// To-tolerance rows: `tolerance reached`, `max budget reached`, … as
+    /// the integrator reports it (empty for fixed-budget rows).
+    pub stopped: String,
+    /// Wall time in seconds (harness-measured).
+    pub seconds: f64,
 }
 
 /// Whether `name` passes a substring filter (an empty filter passes all).

@@ -44,6 +44,7 @@ pub fn tradeoff<'py>(
         progress,
         cases: cases.unwrap_or_default(),
         integrators: integrators.unwrap_or_default(),
+        external: Vec::new(),
     };
     py.detach(|| report::run(&opt)).map_err(PyRuntimeError::new_err)?;
     let path = out.join("tradeoff.csv");
