@@ -21,9 +21,7 @@ use radiometry_cli::{model, spec, tradeoff};
 use clap::{Parser, Subcommand, ValueEnum};
 use radiometry::Brdf;
 use radiometry::glam::Vec3;
-use radiometry::integrator::{
-    DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, StopReason, integrate_to_tolerance,
-};
+use radiometry::integrator::{DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, integrate_to_tolerance};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -77,6 +75,11 @@ enum Command {
         /// Only the integrators whose name contains one of these comma-separated substrings (e.g. `gauss,adaptive`).
         #[arg(long, value_delimiter = ',')]
         integrators: Vec<String>,
+        /// Rows of outside integrators (a CSV with the header of `radiometry::tradeoff::external`, as the Python
+        /// `radiometry.tradeoff(integrators=..., peers_csv=...)` writes it) to merge into the tables, the CSVs and the
+        /// summary (e.g. SciPy's nquad for the to-tolerance comparison).
+        #[arg(long)]
+        peers: Option<std::path::PathBuf>,
     },
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi of a BRDF.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
@@ -86,17 +89,22 @@ enum Command {
         /// Outgoing polar angle θo in degrees, in [0, 90].
         #[arg(long = "theta-o", allow_negative_numbers = true)]
         theta_o: f64,
-        /// Integrator name (list: `radiometry integrators`). The default, `adaptive-warped`, needs the fewest
-        /// evaluations of the report's integrators for 10⁻⁴ on its worst GGX, Phong and conductor cases (`radiometry
-        /// tradeoff`, summary.md) and carries an a-posteriori error estimate.
-        #[arg(long, default_value = "adaptive-warped")]
+        /// Integrator name (list: `radiometry integrators`). The default, `auto`, picks the parameterisation from
+        /// the integrand (a nested Clenshaw–Curtis × trapezoid grid for broad lobes, the warped adaptive rule for
+        /// narrow ones) and needs the fewest evaluations of the report's integrators to a tolerance (`radiometry
+        /// tradeoff`, summary.md, section "To a tolerance").
+        #[arg(long, default_value = "auto")]
         integrator: String,
         /// Evaluation budget of a single run (default 4096).
         #[arg(long, conflicts_with = "tol")]
         budget: Option<u32>,
-        /// Absolute error tolerance: the budget is doubled from 64 until the integrator's error estimate is ≤ X,
-        /// up to a maximum budget of 4194304 (2^22) evaluations for the last run; the output says which
-        /// happened ("stopped": "tolerance reached" | "max budget reached" | "integrator cap reached").
+        /// Absolute error tolerance. Refines until the estimate is resolved, its error estimate is ≤ X and it is
+        /// confirmed beyond one run: the budget is doubled from 64 until two successive runs agree within X (the
+        /// adaptive rules and `auto` instead refine their own work and confirm against a coarser stage), with at
+        /// most 4194304 (2^22) evaluations in the last run. The output says what happened ("stopped": "tolerance
+        /// reached" | "max budget reached" | "integrator cap reached" | "out of reach": Monte Carlo whose N^-1/2
+        /// projection needs more than 4 × the maximum budget), and "confirmation": how far the answer moved from
+        /// the run that confirmed it.
         #[arg(long)]
         tol: Option<f64>,
         /// Seed of Monte Carlo integrators.
@@ -252,14 +260,7 @@ fn main() -> ExitCode {
             let t0 = Instant::now();
             let (est, used_budget, stopped, total) = if let Some(t) = tol {
                 match integrate_to_tolerance(&integ, &g, t, 64, DEFAULT_MAX_BUDGET) {
-                    Ok(o) => {
-                        let s = match o.stop {
-                            StopReason::ToleranceReached => "tolerance reached",
-                            StopReason::MaxBudget => "max budget reached",
-                            StopReason::IntegratorCap => "integrator cap reached",
-                        };
-                        (o.estimate, o.budget, Some(s), o.total_evaluations)
-                    }
+                    Ok(o) => (o.estimate, o.budget, Some(o), o.total_evaluations),
                     Err(e) => {
                         eprintln!("error: {}: {e}", integ.name());
                         return ExitCode::from(1);
@@ -287,8 +288,11 @@ fn main() -> ExitCode {
                         integ.name(),
                         used_budget
                     );
-                    if let Some(s) = stopped {
-                        print!(", stopped: {s}");
+                    if let Some(o) = stopped {
+                        print!(", stopped: {}", o.stop.as_str());
+                        if let Some(c) = o.confirmation {
+                            print!(" (confirmed: moved {c:.3e} from the previous run)");
+                        }
                     }
                     if !est.status.is_resolved() {
                         print!(", {}", est.status);
@@ -307,8 +311,12 @@ fn main() -> ExitCode {
                         "status": est.status.as_str(),
                         "status_reason": est.status.reason(),
                     });
-                    if let Some(s) = stopped {
-                        j["stopped"] = serde_json::Value::String(s.into());
+                    if let Some(o) = stopped {
+                        j["stopped"] = serde_json::Value::String(o.stop.as_str().into());
+                        j["runs"] = serde_json::Value::from(o.runs);
+                        if let Some(c) = o.confirmation {
+                            j["confirmation"] = json_num(c);
+                        }
                         j["tol"] = json_num(tol.unwrap_or(0.0));
                         j["max_budget"] = serde_json::Value::from(DEFAULT_MAX_BUDGET);
                     }
@@ -357,7 +365,19 @@ fn main() -> ExitCode {
             no_progress,
             cases,
             integrators,
+            peers,
         } => {
+            let external = match peers {
+                None => Vec::new(),
+                Some(p) => match std::fs::read_to_string(&p)
+                    .map_err(|e| format!("cannot read {}: {e}", p.display()))
+                    .and_then(|t| {
+                        tradeoff::external::from_csv(&t).map_err(|e| format!("{}: {e}", p.display()))
+                    }) {
+                    Ok(r) => r,
+                    Err(e) => return usage_error(&e),
+                },
+            };
             let threads = threads
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
                 .max(1);
@@ -369,7 +389,7 @@ fn main() -> ExitCode {
                 progress: !no_progress,
                 cases,
                 integrators,
-                external: Vec::new(),
+                external,
             }) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {

@@ -12,8 +12,8 @@ use radiometry::Brdf;
 use radiometry::BrdfSample;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
-    Adaptive, Estimate, GaussLegendre, Heuristic, Integrand, IntegrateError, Integrator, MonteCarlo,
-    PointSet, Strategy, WarpedGaussLegendre, WideOf,
+    Adaptive, Auto, Estimate, GaussLegendre, Heuristic, Integrand, IntegrateError, Integrator, MonteCarlo,
+    PointSet, Strategy, ToleranceOutcome, WarpedGaussLegendre, WideOf,
 };
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty,
@@ -228,6 +228,8 @@ pub enum AnyIntegrator {
     Adaptive(Adaptive),
     /// Monte Carlo / randomized QMC.
     MonteCarlo(MonteCarlo),
+    /// The integrator that picks its own parameterisation.
+    Auto(Auto),
 }
 
 impl Integrator for AnyIntegrator {
@@ -237,6 +239,40 @@ impl Integrator for AnyIntegrator {
             AnyIntegrator::Warped(i) => i.integrate(g, budget),
             AnyIntegrator::Adaptive(i) => i.integrate(g, budget),
             AnyIntegrator::MonteCarlo(i) => i.integrate(g, budget),
+            AnyIntegrator::Auto(i) => i.integrate(g, budget),
+        }
+    }
+    fn max_evaluations(&self) -> Option<u64> {
+        match self {
+            AnyIntegrator::GaussLegendre(i) => i.max_evaluations(),
+            AnyIntegrator::Warped(i) => i.max_evaluations(),
+            AnyIntegrator::Adaptive(i) => i.max_evaluations(),
+            AnyIntegrator::MonteCarlo(i) => i.max_evaluations(),
+            AnyIntegrator::Auto(i) => i.max_evaluations(),
+        }
+    }
+    fn error_decay(&self) -> Option<f64> {
+        match self {
+            AnyIntegrator::GaussLegendre(i) => i.error_decay(),
+            AnyIntegrator::Warped(i) => i.error_decay(),
+            AnyIntegrator::Adaptive(i) => i.error_decay(),
+            AnyIntegrator::MonteCarlo(i) => i.error_decay(),
+            AnyIntegrator::Auto(i) => i.error_decay(),
+        }
+    }
+    fn to_tolerance<I: Integrand>(
+        &self,
+        g: &I,
+        tol: f64,
+        start_budget: u32,
+        max_budget: u32,
+    ) -> Result<ToleranceOutcome<WideOf<I>>, IntegrateError> {
+        match self {
+            AnyIntegrator::GaussLegendre(i) => i.to_tolerance(g, tol, start_budget, max_budget),
+            AnyIntegrator::Warped(i) => i.to_tolerance(g, tol, start_budget, max_budget),
+            AnyIntegrator::Adaptive(i) => i.to_tolerance(g, tol, start_budget, max_budget),
+            AnyIntegrator::MonteCarlo(i) => i.to_tolerance(g, tol, start_budget, max_budget),
+            AnyIntegrator::Auto(i) => i.to_tolerance(g, tol, start_budget, max_budget),
         }
     }
     fn name(&self) -> &'static str {
@@ -245,6 +281,7 @@ impl Integrator for AnyIntegrator {
             AnyIntegrator::Warped(i) => i.name(),
             AnyIntegrator::Adaptive(i) => i.name(),
             AnyIntegrator::MonteCarlo(i) => i.name(),
+            AnyIntegrator::Auto(i) => i.name(),
         }
     }
 }
@@ -269,6 +306,7 @@ pub fn all_integrators(seed: u64, abs_tol: f64) -> Vec<AnyIntegrator> {
         AnyIntegrator::Warped(WarpedGaussLegendre::horizon_split()),
         AnyIntegrator::Adaptive(adaptive),
         AnyIntegrator::Adaptive(adaptive.warped()),
+        AnyIntegrator::Auto(Auto::new()),
     ];
     for s in [
         Strategy::Uniform,

@@ -400,6 +400,12 @@ impl Slots {
     }
 }
 
+/// The run-time BRDF of a spec (errors as text).
+pub(crate) fn build(spec: &str) -> Result<AnyBrdf, String> {
+    let parsed = parse_brdf(spec).map_err(|e| e.to_string())?;
+    build_brdf(spec, &parsed).map_err(|e| e.to_string())
+}
+
 /// Runs the report: the directional-albedo suite, then the product
 /// integrals (a GGX lobe under the sun and a lamp, [`product`]).
 pub fn run(opt: &Options) -> Result<(), String> {
@@ -425,10 +431,6 @@ pub fn run(opt: &Options) -> Result<(), String> {
     if cases.is_empty() && pcases.is_empty() {
         return Err("the --cases / --integrators filters leave nothing to run".into());
     }
-    let build = |spec: &str| -> Result<_, String> {
-        let parsed = parse_brdf(spec).map_err(|e| e.to_string())?;
-        build_brdf(spec, &parsed).map_err(|e| e.to_string())
-    };
     let brdfs = cases
         .iter()
         .map(|c| build(&c.spec))
@@ -437,7 +439,7 @@ pub fn run(opt: &Options) -> Result<(), String> {
         .iter()
         .map(|c| build(&c.spec))
         .collect::<Result<Vec<_>, _>>()?;
-    let total = cases.len() * (1 + integs.len()) + pcases.len() * (2 + pmethods.len());
+    let total = cases.len() * (1 + 2 * integs.len()) + pcases.len() * (2 + 2 * pmethods.len());
     let progress = Progress::new(opt.progress, total);
 
     // One queue of jobs on `threads` workers: first the references
@@ -492,10 +494,58 @@ pub fn run(opt: &Options) -> Result<(), String> {
             progress.tick(&format!("{} {}", pcases[ci].name, pmethods[ii].name()));
         }
     });
-    progress.finish();
     let ref_seconds = ref_nanos.into_inner() as f64 * 1e-9;
-    let (refs, rows, refused) = albedo.finish();
-    let (prefs, prows, prefused) = product.finish();
+    let (refs, mut rows, refused) = albedo.finish();
+    let (prefs, mut prows, prefused) = product.finish();
+
+    // The to-tolerance section: every (case, integrator) refined to each of
+    // TOL_TARGETS, once the references are known.
+    let tol_rows: Mutex<Vec<tolerance::TolRow>> = Mutex::new(Vec::new());
+    let (nt, npt) = (cases.len() * integs.len(), pcases.len() * pmethods.len());
+    parallel_for(opt.threads, nt + npt, |k| {
+        let r = if k < nt {
+            let (ci, ii) = (k / integs.len(), k % integs.len());
+            progress.tick(&format!("to tolerance {} {}", cases[ci].name, integs[ii].name()));
+            tolerance::albedo_rows(&brdfs[ci], &cases[ci], refs[ci].value, &integs[ii])
+        } else {
+            let k = k - nt;
+            let (ci, ii) = (k / pmethods.len(), k % pmethods.len());
+            progress.tick(&format!(
+                "to tolerance {} {}",
+                pcases[ci].name,
+                pmethods[ii].name()
+            ));
+            tolerance::product_rows(&pbrdfs[ci], &pcases[ci], prefs[ci].value, &pmethods[ii])
+        };
+        tol_rows.lock().expect("no poison").extend(r);
+    });
+    progress.finish();
+    let mut tol_rows = tol_rows.into_inner().expect("no poison");
+    // Outside integrators' rows, merged by case name.
+    let named_refs: Vec<(String, Reference)> = cases
+        .iter()
+        .map(|c| c.name.clone())
+        .zip(refs.iter().cloned())
+        .chain(pcases.iter().map(|c| c.name.clone()).zip(prefs.iter().cloned()))
+        .collect();
+    let mut ext_tol = tolerance::external_rows(opt, &named_refs)?;
+    tolerance::snap_rel_tol(&mut ext_tol);
+    tol_rows.extend(ext_tol);
+    let order = |n: &str| named_refs.iter().position(|(c, _)| c == n).unwrap_or(usize::MAX);
+    tol_rows.sort_by(|a, b| {
+        (
+            order(&a.case),
+            !a.builtin,
+            a.integrator.as_str(),
+            a.rel_tol.to_bits(),
+        )
+            .cmp(&(
+                order(&b.case),
+                !b.builtin,
+                b.integrator.as_str(),
+                b.rel_tol.to_bits(),
+            ))
+    });
     let prefs_f32: Vec<Reference> = product_f32
         .into_iter()
         .map(|m| m.into_inner().expect("no poison").expect("computed"))
@@ -508,13 +558,56 @@ pub fn run(opt: &Options) -> Result<(), String> {
         .map(|(a, b)| (b.value - a.value).abs() / a.value.abs().max(f64::MIN_POSITIVE))
         .collect();
 
-    let infos: Vec<MethodInfo> = integs
+    let mut infos: Vec<MethodInfo> = integs
         .iter()
         .map(|i| MethodInfo {
             name: i.name().to_string(),
             deterministic: i.is_deterministic(),
         })
         .collect();
+    let mut pinfos = product::method_infos(&pmethods);
+    // Outside integrators' fixed-budget rows.
+    for e in opt.external.iter() {
+        let Some(budget) = e.budget else { continue };
+        let (ci, infos, rows) = if let Some(ci) = cases.iter().position(|c| c.name == e.case) {
+            (ci, &mut infos, &mut rows)
+        } else if let Some(ci) = pcases.iter().position(|c| c.name == e.case) {
+            (ci, &mut pinfos, &mut prows)
+        } else if tolerance::case_exists(&e.case) {
+            continue; // a case the --cases filter left out
+        } else {
+            return Err(format!(
+                "external row of `{}` names the unknown case `{}`",
+                e.integrator, e.case
+            ));
+        };
+        let ii = match infos.iter().position(|m| m.name == e.integrator) {
+            Some(i) => i,
+            None => {
+                infos.push(MethodInfo {
+                    name: e.integrator.clone(),
+                    deterministic: e.deterministic,
+                });
+                infos.len() - 1
+            }
+        };
+        rows.push(Row {
+            case: ci,
+            integ: ii,
+            budget,
+            evaluations: e.evaluations,
+            estimate: e.estimate,
+            error_estimate: e.error_estimate,
+            seconds: e.seconds,
+            status: if e.resolved {
+                Status::Resolved
+            } else {
+                Status::Unresolved(radiometry::integrator::Unresolved::External)
+            },
+        });
+    }
+    rows.sort_by_key(|r| (r.case, r.integ, r.budget));
+    prows.sort_by_key(|r| (r.case, r.integ, r.budget));
     let report = Report {
         cases: &cases,
         refs: &refs,
@@ -535,7 +628,6 @@ pub fn run(opt: &Options) -> Result<(), String> {
             theta_o: c.wo[2].clamp(-1.0, 1.0).acos().to_degrees(),
         })
         .collect();
-    let pinfos = product::method_infos(&pmethods);
     let preport = Report {
         cases: &pcases_as,
         refs: &prefs,
@@ -561,20 +653,35 @@ pub fn run(opt: &Options) -> Result<(), String> {
         md.push_str(&m);
         md.push('\n');
     }
+    std::fs::write(opt.out.join("tolerance.csv"), tolerance::csv(&tol_rows))
+        .map_err(|e| format!("cannot write tolerance.csv: {e}"))?;
+    if !tol_rows.is_empty() {
+        let families: Vec<(String, String)> = cases
+            .iter()
+            .map(|c| (c.name.clone(), c.family.to_string()))
+            .chain(pcases.iter().map(|c| (c.name.clone(), c.family.to_string())))
+            .collect();
+        let (t, m) = tolerance::summary(&tol_rows, &families);
+        text.push_str(&t);
+        md.push_str(&m);
+    }
     print!("{text}");
     std::fs::write(opt.out.join("summary.md"), md).map_err(|e| format!("cannot write summary.md: {e}"))?;
     println!(
-        "\nWrote {}/tradeoff.csv, references.csv, summary.md and SVG plots ({:.1} s).",
+        "\nWrote {}/tradeoff.csv, tolerance.csv, references.csv, summary.md and SVG plots ({:.1} s).",
         opt.out.display(),
         elapsed
     );
     Ok(())
 }
 
+pub mod external;
 pub mod plot;
 pub mod product;
 mod progress;
+pub mod tolerance;
 pub(crate) use progress::Progress;
+pub use tolerance::{TOL_CSV_HEADER, TOL_TARGETS, case_reference, tolerance_for};
 mod report;
 use report::write_csv;
 pub use report::{Report, SuiteKind};

@@ -139,7 +139,7 @@ fn albedo_json_keys_and_closed_forms() {
     let o = run(&["albedo", "ggx(alpha=1)", "--theta-o", "0", "--format", "json"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let j = json(&o);
-    assert_eq!(j["integrator"], "adaptive-warped", "{j}");
+    assert_eq!(j["integrator"], "auto", "{j}");
     assert!(j["evaluations"].as_u64().unwrap() <= 4096, "{j}");
     let v = j["value"].as_f64().unwrap();
     assert!((v - exact).abs() < 1e-6, "{v} vs {exact}");
@@ -165,6 +165,38 @@ fn albedo_json_keys_and_closed_forms() {
     assert!(!j["status_reason"].as_str().unwrap().is_empty(), "{j}");
 }
 
+/// The first thing a benchmark user types, on a narrow lobe: GGX α = 0.01
+/// at normal incidence to 10⁻⁶. Reference 0.9998985564059782: the f64
+/// nested Gauss–Kronrod reference of the report (cli/src/reference.rs,
+/// bound 2.5·10⁻¹²), independent of the integrators. The warped adaptive
+/// rule once stopped here at its first run, 1.0·10⁻⁴ off with a claimed
+/// 1.7·10⁻⁷.
+#[test]
+fn albedo_tol_answers_a_narrow_lobe_within_the_tolerance() {
+    let exact = 0.999_898_556_405_978_2;
+    for integrator in ["auto", "adaptive-warped", "adaptive"] {
+        let o = run(&[
+            "albedo",
+            "ggx(alpha=0.01)",
+            "--theta-o",
+            "0",
+            "--tol",
+            "1e-6",
+            "--integrator",
+            integrator,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let j = json(&o);
+        assert_eq!(j["stopped"], "tolerance reached", "{integrator}: {j}");
+        assert_eq!(j["status"], "resolved", "{integrator}: {j}");
+        let v = j["value"].as_f64().unwrap();
+        assert!((v - exact).abs() <= 1e-6, "{integrator}: {v} vs {exact}: {j}");
+        assert!(j["confirmation"].as_f64().unwrap() <= 1e-6, "{j}");
+    }
+}
+
 #[test]
 fn albedo_tol_reports_why_it_stopped() {
     let o = run(&[
@@ -183,7 +215,8 @@ fn albedo_tol_reports_why_it_stopped() {
     assert!(j["error"].as_f64().unwrap() <= 1e-6);
     assert!((j["value"].as_f64().unwrap() - 1.0).abs() < 1e-5, "{j}");
 
-    // An unreachable tolerance for Monte Carlo stops at the maximum budget.
+    // An unreachable tolerance for Monte Carlo stops as soon as two runs
+    // project it beyond 4 × the maximum budget.
     let o = run(&[
         "albedo",
         "ggx(alpha=0.3)",
@@ -198,11 +231,8 @@ fn albedo_tol_reports_why_it_stopped() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let j = json(&o);
-    let stopped = j["stopped"].as_str().unwrap();
-    assert!(
-        stopped == "max budget reached" || stopped == "integrator cap reached",
-        "{j}"
-    );
+    assert_eq!(j["stopped"], "out of reach", "{j}");
+    assert!(j["evaluations"].as_u64().unwrap() < 100_000, "{j}");
 
     // Text output says it too.
     let o = run(&["albedo", "lambertian", "--theta-o", "10", "--tol", "1e-3"]);

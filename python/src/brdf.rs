@@ -9,7 +9,7 @@ use pyo3::types::PyDict;
 use radiometry::Brdf as _;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
-    DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, StopReason, integrate_to_tolerance,
+    DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, integrate_to_tolerance,
 };
 use radiometry_cli::model::{self, AnyBrdf};
 use radiometry_spec as spec;
@@ -144,17 +144,20 @@ impl Brdf {
 
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi at ``theta_o_deg``
     /// ∈ [0, 90] with the named integrator (``radiometry.integrators()``; the
-    /// default, as in the CLI, is ``adaptive-warped``, which carries an
-    /// a-posteriori error estimate and resolves both smooth and peaked lobes at
-    /// the default budget — ``gauss-legendre-warped`` is 2.7e-4 off 1 − ln 2
-    /// for GGX α = 1 at 0° with 4096 evaluations), either one run with ``budget`` evaluations (default 4096) or, with
-    /// ``tol``, budgets doubled from 64 until the error estimate is ≤ tol (up to
-    /// 2^22). Returns a dict like ``radiometry albedo --format json``:
+    /// default, as in the CLI, is ``auto``, which picks the parameterisation
+    /// from the integrand and carries an a-posteriori error estimate), either
+    /// one run with ``budget`` evaluations (default 4096) or, with ``tol``,
+    /// refined until the estimate is resolved, its error ≤ tol and confirmed
+    /// beyond one run (``integrate_to_tolerance``; at most 2^22 evaluations in
+    /// the last run). Returns a dict like ``radiometry albedo --format json``:
     /// value, error, evaluations, seconds, integrator, budget,
     /// final_run_evaluations, status (``"resolved"`` or ``"unresolved"``: the
     /// estimate cannot be trusted) and status_reason (empty when resolved), and
-    /// stopped, tol, max_budget with ``tol``.
-    #[pyo3(signature = (theta_o_deg, integrator = "adaptive-warped", budget = None, tol = None, seed = model::DEFAULT_SEED))]
+    /// with ``tol``: stopped (``"tolerance reached"``, ``"max budget
+    /// reached"``, ``"integrator cap reached"``, ``"out of reach"``), runs,
+    /// confirmation (how far the answer moved from the run that confirmed it;
+    /// ``None`` unless the tolerance was reached), tol, max_budget.
+    #[pyo3(signature = (theta_o_deg, integrator = "auto", budget = None, tol = None, seed = model::DEFAULT_SEED))]
     fn albedo<'py>(
         &self,
         py: Python<'py>,
@@ -197,14 +200,8 @@ impl Brdf {
         let run = py.detach(|| {
             let t0 = Instant::now();
             let r = match tol {
-                Some(t) => integrate_to_tolerance(&integ, &g, t, 64, DEFAULT_MAX_BUDGET).map(|o| {
-                    let s = match o.stop {
-                        StopReason::ToleranceReached => "tolerance reached",
-                        StopReason::MaxBudget => "max budget reached",
-                        StopReason::IntegratorCap => "integrator cap reached",
-                    };
-                    (o.estimate, o.budget, Some(s), o.total_evaluations)
-                }),
+                Some(t) => integrate_to_tolerance(&integ, &g, t, 64, DEFAULT_MAX_BUDGET)
+                    .map(|o| (o.estimate, o.budget, Some(o), o.total_evaluations)),
                 None => {
                     let b = budget.unwrap_or(4096);
                     integ.integrate(&g, b).map(|e| (e, b, None, e.evaluations))
@@ -226,8 +223,10 @@ impl Brdf {
         d.set_item("final_run_evaluations", est.evaluations)?;
         d.set_item("status", est.status.as_str())?;
         d.set_item("status_reason", est.status.reason())?;
-        if let Some(s) = stopped {
-            d.set_item("stopped", s)?;
+        if let Some(o) = stopped {
+            d.set_item("stopped", o.stop.as_str())?;
+            d.set_item("runs", o.runs)?;
+            d.set_item("confirmation", o.confirmation)?;
             d.set_item("tol", tol.unwrap_or(0.0))?;
             d.set_item("max_budget", DEFAULT_MAX_BUDGET)?;
         }

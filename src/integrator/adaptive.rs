@@ -3,7 +3,11 @@
 
 use super::acc::{self, F32_FLOOR, WideSum, nonzero};
 use super::chunk::{self, BatchFn};
-use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf, probe};
+use super::tolerance::check_tolerance_args;
+use super::{
+    Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome, Unresolved,
+    WideOf, probe,
+};
 use crate::spectrum::WideSpectrum;
 
 /// Most live regions kept on the stack. When the table is full, the
@@ -25,6 +29,17 @@ const PHI_OFFSET: f64 = 0.618_033_988_749_894_9;
 
 /// Position of the first cut of `[0,1]` on both axes (`(√5 − 1)/2`).
 const FIRST_CUT: f64 = 0.618_033_988_749_894_9;
+
+/// Staged mode: the first checkpoint is taken when `Σ errors ≤ STAGE_K ·
+/// tol` — the regions' `|I₇ − I₅|` estimates the error of the embedded
+/// degree-5 rule, which once the rule converges is many times the
+/// degree-7 value's — and the confirming refinement must move the value by
+/// `≤ tol` (see [`Adaptive::run`]).
+const STAGE_K: f64 = 8.0;
+
+/// An estimate and, in the staged mode, the difference to the checkpoint
+/// that confirmed it.
+type Staged<W> = (Estimate<W>, Option<W>);
 
 /// Points of the 2-D Genz–Malik rule.
 const GM_POINTS: usize = 17;
@@ -555,8 +570,24 @@ pub struct Adaptive {
 }
 
 impl Adaptive {
-    /// Smallest accepted budget (4 regions × 17 points).
+    /// Smallest accepted budget of the plain rule (4 regions × 17 points).
     pub const MIN_BUDGET: u32 = 4 * GM_POINTS as u32;
+
+    /// Smallest accepted budget of the warped rule: the plain minimum plus
+    /// the edge-gap checks of the four initial regions (a run without them
+    /// cannot see a support step in the margins at the square's edges, and
+    /// would report a lobe's tail it never saw as resolved).
+    pub const MIN_BUDGET_WARPED: u32 = Self::MIN_BUDGET + 4 * EDGE_POINTS as u32;
+
+    /// Smallest budget this configuration accepts ([`Self::MIN_BUDGET`] or
+    /// [`Self::MIN_BUDGET_WARPED`]).
+    pub const fn min_budget(&self) -> u32 {
+        if self.warped {
+            Self::MIN_BUDGET_WARPED
+        } else {
+            Self::MIN_BUDGET
+        }
+    }
 
     /// Adaptive cubature over the hemisphere stopping at relative
     /// tolerance `rel_tol` or absolute tolerance `abs_tol`, whichever is
@@ -598,20 +629,31 @@ impl Adaptive {
     /// through the integrand's sampling map; the estimate is
     /// [`Unresolved::UnseenPeak`] when the leaf region holding one of them
     /// saw no value within [`probe::PEAK_RATIO`] of it at its nodes.
+    ///
+    /// `confirm = Some(tol)`: the staged mode of
+    /// [`Integrator::to_tolerance`] — the configured tolerances are ignored;
+    /// refinement goes on until `Σ errors ≤ tol`, the value there is kept as
+    /// a checkpoint, and refinement continues until the evaluations have
+    /// doubled; the run stops when the new value is within `tol` of the
+    /// checkpoint (every channel), `Σ errors ≤ tol` still holds and the
+    /// status is resolved, and returns that difference; otherwise the new
+    /// value becomes the checkpoint and refinement continues (up to the
+    /// budget). The regions are refined once, never recomputed.
     fn run<W: WideSpectrum>(
         &self,
         budget: u32,
         probe: &[([f64; 2], f64)],
         mut f: impl BatchFn<W>,
-    ) -> Result<Estimate<W>, IntegrateError> {
+        confirm: Option<f64>,
+    ) -> Result<Staged<W>, IntegrateError> {
         // Edge-gap checks on the warped square (see `edge_gaps`), on every
-        // new region on the boundary (when the budget pays for those of the
-        // initial regions too).
-        let edge = self.warped && budget >= Self::MIN_BUDGET + 4 * EDGE_POINTS as u32;
+        // new region on the boundary, from the initial regions on: the
+        // warped rule's minimum budget pays for them.
+        let edge = self.warped;
         let edge_cost = if edge { EDGE_POINTS } else { 0 };
-        if budget < Self::MIN_BUDGET {
+        if budget < self.min_budget() {
             return Err(IntegrateError::BudgetTooSmall {
-                minimum: Self::MIN_BUDGET,
+                minimum: self.min_budget(),
             });
         }
         let budget = budget.min(MAX_ADAPTIVE_EVALUATIONS) as u64;
@@ -660,6 +702,10 @@ impl Adaptive {
             }
         }
         let mut splits = 0u64;
+        // Staged mode: the checkpoint `(value, evaluations)` and, once
+        // confirmed, the difference to it.
+        let mut checkpoint: Option<(W, u64)> = None;
+        let mut confirmed: Option<W> = None;
         loop {
             // Totals and the worst region.
             let mut worst = 0usize;
@@ -685,8 +731,31 @@ impl Adaptive {
                     (largest, la, lk) = (k, ra, r.key);
                 }
             }
-            let target = self.abs_tol.max(self.rel_tol * acc::max_abs(val.value()));
-            let converged = target > 0.0 && err_sum <= target;
+            let converged = if let Some(tol) = confirm {
+                let v = val.value();
+                match checkpoint {
+                    None if err_sum <= STAGE_K * tol => {
+                        checkpoint = Some((v, evals));
+                        false
+                    }
+                    Some((v0, e0)) if evals >= 2 * e0 => {
+                        let d = acc::abs_diff(v, v0);
+                        let agree = acc::max_abs(d) <= tol
+                            && err_sum <= STAGE_K * tol
+                            && status_of(regions.get(..live).unwrap_or_default(), probe).is_resolved();
+                        if agree {
+                            confirmed = Some(d);
+                        } else {
+                            checkpoint = Some((v, evals));
+                        }
+                        agree
+                    }
+                    _ => false,
+                }
+            } else {
+                let target = self.abs_tol.max(self.rel_tol * acc::max_abs(val.value()));
+                target > 0.0 && err_sum <= target
+            };
             if converged || evals + 2 * (GM_POINTS as u64 + edge_cost) > budget {
                 break;
             }
@@ -766,61 +835,61 @@ impl Adaptive {
             }
         }
         let (mut val, mut err, mut abs) = (WideSum::<W>::new(), WideSum::<W>::new(), WideSum::<W>::new());
-        let mut sq = WideSum::<W>::new();
         for r in regions.iter().take(live) {
             val.add(r.value);
             err.add(r.error);
             abs.add(r.abs);
-            sq.add(r.abs.map(|a| a * a));
         }
         let abs = abs.value();
-        // No node of any region saw the support: `0 ± 0` says nothing.
-        // The support seen by a handful of regions only (effective region
-        // count `(Σ|Q_r|)²/Σ|Q_r|²` below 4): a lobe met by the tails of
-        // a few regions' rules, not resolved by refinement.
-        // A probe value in a leaf region whose nodes saw nothing near it:
-        // a peak (or part of a lobe) between the nodes that refinement never
-        // reached (see `probe`).
-        let unseen = probe.iter().any(|&(p, v)| {
-            regions
-                .iter()
-                .take(live)
-                .find(|r| (p[0] - r.c[0]).abs() <= r.h[0] && (p[1] - r.c[1]).abs() <= r.h[1])
-                .is_some_and(|r| v > probe::PEAK_RATIO * r.peak)
-        });
-        let status = if acc::max_abs(abs) <= 0.0 {
-            Status::Unresolved(Unresolved::NoSupportSeen)
-        } else if live >= 8 && super::gauss_legendre::effective_nodes(abs, sq.value()) < 4.0 {
-            Status::Unresolved(Unresolved::FewNodes)
-        } else if unseen {
-            Status::Unresolved(Unresolved::UnseenPeak)
-        } else {
-            Status::Resolved
+        let status = status_of(regions.get(..live).unwrap_or_default(), probe);
+        // Confirmed in the staged mode: the rule's own estimate (of the
+        // embedded degree-5 rule's error) deflated by STAGE_K, or the
+        // observed change under doubling, whichever is larger.
+        let err = match confirmed {
+            Some(d) => err.value().zip(d, |e, d| (e / STAGE_K).max(d)),
+            None => err.value(),
         };
-        Ok(Estimate {
-            value: val.value(),
-            error: acc::add(err.value(), abs.map(|a| a * F32_FLOOR)),
-            evaluations: evals,
-            status,
-        })
+        Ok((
+            Estimate {
+                value: val.value(),
+                error: acc::add(err, abs.map(|a| a * F32_FLOOR)),
+                evaluations: evals,
+                status,
+            },
+            confirmed,
+        ))
     }
-}
 
-impl Integrator for Adaptive {
-    fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
+    /// [`Integrator::integrate`], and in the staged mode (`confirm`) the
+    /// difference to the confirming checkpoint (see [`Adaptive::run`]).
+    fn integrate_impl<I: Integrand>(
+        &self,
+        g: &I,
+        budget: u32,
+        confirm: Option<f64>,
+    ) -> Result<Staged<WideOf<I>>, IntegrateError> {
         if self.warped {
             if !g.has_sampling_map() {
                 return Err(IntegrateError::NoSamplingMap);
             }
-            self.run(budget, &[], |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
-                chunk::warped_values(g, p, out)
-            })
+            self.run(
+                budget,
+                &[],
+                |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::warped_values(g, p, out),
+                confirm,
+            )
         } else {
             let turn = |b: f64| {
                 let s = b + PHI_OFFSET;
                 if s >= 1.0 { s - 1.0 } else { s }
             };
-            let check = probe::mean_check_points(g, budget);
+            // In the staged mode the rule's size is not known in advance:
+            // the mean check is sized by the evaluations the rule spent.
+            let check = if confirm.is_some() {
+                0
+            } else {
+                probe::mean_check_points(g, budget)
+            };
             let (rule_budget, probing) = probe::split_budget(g, budget - check, Self::MIN_BUDGET);
             // The probe's points in the square's coordinates `(μ, b)` with
             // `φ = 2π turn(b)`, values on the scale of `2π g`.
@@ -837,21 +906,98 @@ impl Integrator for Adaptive {
                     }
                 }
             }
-            let mut e = self.run(
+            let (mut e, confirmed) = self.run(
                 rule_budget,
                 pts.get(..n).unwrap_or_default(),
                 |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, turn, out),
+                confirm,
             )?;
             if probing {
                 e.evaluations += probe::PROBE_POINTS as u64;
             }
+            let check = if confirm.is_some() {
+                probe::mean_check_points(g, u32::try_from(e.evaluations).unwrap_or(u32::MAX))
+            } else {
+                check
+            };
             if check > 0 {
                 let m = probe::MeanCheck::take(g, check)?;
                 e.status = m.judge(e.status, e.value, e.error);
                 e.evaluations += check as u64;
             }
-            Ok(e)
+            Ok((e, confirmed))
         }
+    }
+}
+
+/// The status of an estimate made of the leaf regions `regions`, with the
+/// peak probe `probe` (see [`Adaptive::run`]):
+/// * no node of any region saw the support: `0 ± 0` says nothing;
+/// * the support seen by a handful of regions only (effective region
+///   count `(Σ|Q_r|)²/Σ|Q_r|²` below 4, with ≥ 8 regions): a lobe met by the
+///   tails of a few regions' rules, not resolved by refinement;
+/// * a probe value in a leaf region whose nodes saw nothing near it: a peak
+///   (or part of a lobe) between the nodes that refinement never reached
+///   (see [`probe`]).
+fn status_of<W: WideSpectrum>(regions: &[Region<W>], probe: &[([f64; 2], f64)]) -> Status {
+    let (mut abs, mut sq) = (WideSum::<W>::new(), WideSum::<W>::new());
+    for r in regions {
+        abs.add(r.abs);
+        sq.add(r.abs.map(|a| a * a));
+    }
+    let abs = abs.value();
+    let unseen = probe.iter().any(|&(p, v)| {
+        regions
+            .iter()
+            .find(|r| (p[0] - r.c[0]).abs() <= r.h[0] && (p[1] - r.c[1]).abs() <= r.h[1])
+            .is_some_and(|r| v > probe::PEAK_RATIO * r.peak)
+    });
+    if acc::max_abs(abs) <= 0.0 {
+        Status::Unresolved(Unresolved::NoSupportSeen)
+    } else if regions.len() >= 8 && super::gauss_legendre::effective_nodes(abs, sq.value()) < 4.0 {
+        Status::Unresolved(Unresolved::FewNodes)
+    } else if unseen {
+        Status::Unresolved(Unresolved::UnseenPeak)
+    } else {
+        Status::Resolved
+    }
+}
+
+impl Integrator for Adaptive {
+    fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
+        self.integrate_impl(g, budget, None).map(|(e, _)| e)
+    }
+
+    /// One staged run (see [`Adaptive::run`]) with the budget
+    /// `min(max_budget, MAX_ADAPTIVE_EVALUATIONS)`: the rule refines until its
+    /// error estimate is `≤ tol`, then goes on until the evaluations have
+    /// doubled and stops when the value moved by `≤ tol` (the estimate
+    /// confirmed by a refinement of itself, not by a second run from
+    /// scratch). `start_budget` is not used (the staged run starts at the
+    /// rule's minimum); the configured tolerances are ignored.
+    fn to_tolerance<I: Integrand>(
+        &self,
+        g: &I,
+        tol: f64,
+        start_budget: u32,
+        max_budget: u32,
+    ) -> Result<ToleranceOutcome<WideOf<I>>, IntegrateError> {
+        check_tolerance_args(tol, start_budget, max_budget)?;
+        let budget = max_budget.min(MAX_ADAPTIVE_EVALUATIONS);
+        let (e, confirmed) = self.integrate_impl(g, budget, Some(tol))?;
+        let stop = match confirmed {
+            Some(_) if e.is_resolved() => StopReason::ToleranceReached,
+            _ if budget < max_budget => StopReason::IntegratorCap,
+            _ => StopReason::MaxBudget,
+        };
+        Ok(ToleranceOutcome {
+            estimate: e,
+            budget,
+            stop,
+            total_evaluations: e.evaluations,
+            confirmation: confirmed.filter(|_| stop == StopReason::ToleranceReached),
+            runs: 1,
+        })
     }
 
     fn name(&self) -> &'static str {

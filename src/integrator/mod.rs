@@ -21,7 +21,12 @@
 //!   cubature, to a tolerance;
 //! * [`MonteCarlo`] (`"mc-{uniform,cosine,integrand}-{prng,stratified,sobol,fibonacci}"`,
 //!   `"mis-{balance,power}-…"`): Monte Carlo and randomized QMC;
-//! * [`integrate_to_tolerance`]: budget doubling for any of them.
+//! * [`Auto`] (`"auto"`): picks a parameterisation from what the integrand
+//!   offers (a nested Clenshaw–Curtis × trapezoid grid on the plain
+//!   hemisphere for broad lobes, the staged warped [`Adaptive`] rule for
+//!   narrow ones) and reuses its work between refinements;
+//! * [`integrate_to_tolerance`]: refinement to a tolerance for any of them,
+//!   stopping only on a confirmed estimate.
 //!
 //! [`DirectionalAlbedo`] adapts a [`Brdf`] and an outgoing direction into
 //! the integrand `g(ωi) = f_r(ωi, ωo) cos θi`, whose integral is the
@@ -212,6 +217,43 @@ pub trait Integrator {
 
     /// A short, stable name for reports (`"gauss-legendre"`, `"mc-cosine"`, …).
     fn name(&self) -> &'static str;
+
+    /// The slowest rate `r` at which this integrator's error estimate falls
+    /// with the evaluations `N` (`∝ N^-r`) once its status is resolved, if
+    /// one is guaranteed: `0.5` for Monte Carlo (the standard error), `None`
+    /// (the default) for quadrature, whose error can stall and then drop.
+    /// [`by_doubling`] uses it to stop early when a tolerance is out of reach.
+    fn error_decay(&self) -> Option<f64> {
+        None
+    }
+
+    /// The most evaluations any run of this integrator spends, whatever
+    /// its budget, if it has such a cap (Monte Carlo: 2²⁰). [`by_doubling`]
+    /// stops at the cap instead of repeating the capped run. Default: `None`.
+    fn max_evaluations(&self) -> Option<u64> {
+        None
+    }
+
+    /// Refines to the absolute tolerance `tol` (largest channel), spending
+    /// at most `max_budget` evaluations in the last run; called by
+    /// [`integrate_to_tolerance`] (which checks the arguments first). The
+    /// default is the confirming budget-doubling driver [`by_doubling`]; an
+    /// integrator that can refine its own work (as [`Adaptive`] does)
+    /// overrides it. An override must keep the contract of
+    /// [`StopReason::ToleranceReached`]: a resolved estimate with error
+    /// `≤ tol`, confirmed beyond one run.
+    fn to_tolerance<I: Integrand>(
+        &self,
+        g: &I,
+        tol: f64,
+        start_budget: u32,
+        max_budget: u32,
+    ) -> Result<ToleranceOutcome<WideOf<I>>, IntegrateError>
+    where
+        Self: Sized,
+    {
+        by_doubling(self, g, tol, start_budget, max_budget)
+    }
 }
 
 /// The integrand `g(ωi) = f_r(ωi, ωo) cos θi` whose integral over the
@@ -308,6 +350,8 @@ pub use points::PointSet;
 pub mod adaptive;
 
 pub use adaptive::Adaptive;
+pub mod auto;
+pub use auto::Auto;
 pub use chunk::CHUNK;
 pub mod probe;
 mod status;
@@ -315,4 +359,7 @@ mod tolerance;
 
 pub use status::{MIN_EFFECTIVE_SAMPLES, MIN_HITS, Status, Unresolved};
 
-pub use tolerance::{DEFAULT_MAX_BUDGET, StopReason, ToleranceOutcome, integrate_to_tolerance};
+pub use tolerance::{
+    DEFAULT_MAX_BUDGET, OUT_OF_REACH_FACTOR, StopReason, ToleranceOutcome, by_doubling, check_tolerance_args,
+    integrate_to_tolerance,
+};

@@ -395,6 +395,17 @@ impl<'g, I: Integrand> Draws<'g, I> {
 }
 
 impl Integrator for MonteCarlo {
+    /// `0.5`: the standard error of `N` draws falls like `N^-½` (randomized
+    /// QMC may do better, never worse in expectation).
+    fn error_decay(&self) -> Option<f64> {
+        Some(0.5)
+    }
+
+    /// [`MAX_MC_EVALUATIONS`].
+    fn max_evaluations(&self) -> Option<u64> {
+        Some(MAX_MC_EVALUATIONS as u64)
+    }
+
     fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
         if matches!(self.strategy, Strategy::Integrand | Strategy::Mis(_)) && !g.has_sampling_map() {
             return Err(IntegrateError::NoSamplingMap);

@@ -90,7 +90,7 @@ pub(crate) struct Probe {
 
 /// Point `k` of the `n`-point rank-1 lattice-like set of the probes:
 /// `((k + ½)/n, frac((k + ½)/φ))`, `φ` the golden ratio.
-fn lattice_point(k: usize, n: usize) -> [f32; 2] {
+pub(crate) fn lattice_point(k: usize, n: usize) -> [f32; 2] {
     const INV_GOLDEN: f64 = 0.618_033_988_749_894_8;
     let t = k as f64 + 0.5;
     let b = t * INV_GOLDEN;

@@ -70,6 +70,9 @@ pub enum Unresolved {
     /// errors allow — part of the integral lies where the rule's nodes do
     /// not reach (see [`probe`](super::probe)).
     ProbeDisagrees,
+    /// An integrator outside this crate (a user integrator in a report)
+    /// declared its estimate unresolved.
+    External,
 }
 
 /// Fewest non-zero Monte Carlo samples for a [`Status::Resolved`] estimate.
@@ -127,6 +130,7 @@ impl Unresolved {
             Unresolved::HeavyTail => "heavy-tail",
             Unresolved::UnseenPeak => "unseen-peak",
             Unresolved::ProbeDisagrees => "probe-disagrees",
+            Unresolved::External => "external",
         }
     }
 }

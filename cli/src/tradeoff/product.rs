@@ -9,7 +9,8 @@ use crate::model::AnyBrdf;
 use crate::reference::{self, RefModel, Reference};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
-    Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet, Strategy,
+    Adaptive, DEFAULT_MAX_BUDGET, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet,
+    Strategy, ToleranceOutcome, integrate_to_tolerance,
 };
 use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
 
@@ -131,6 +132,43 @@ impl Method {
             Method::CapAdaptive(a) => a.integrate(&CapIntegrand::new(brdf, wo, cap), budget),
             Method::Sampled(s, p, seed) => MonteCarlo::new(Strategy::Integrand, p, seed)
                 .integrate(&CapSampled::new(brdf, wo, cap, s), budget),
+        }
+    }
+}
+
+impl Method {
+    /// Refines the method on a case to the absolute tolerance `tol` through
+    /// [`integrate_to_tolerance`] (start budget 64, at most
+    /// [`DEFAULT_MAX_BUDGET`]), as `radiometry albedo --tol` does.
+    pub fn to_tolerance(
+        &self,
+        brdf: &AnyBrdf,
+        case: &ProductCase,
+        tol: f64,
+    ) -> Result<ToleranceOutcome<f64>, IntegrateError> {
+        let (wo, cap) = (v3(case.wo), cap_of(case));
+        match *self {
+            Method::CapGaussLegendre => integrate_to_tolerance(
+                &GaussLegendre::new(),
+                &CapIntegrand::new(brdf, wo, &cap),
+                tol,
+                64,
+                DEFAULT_MAX_BUDGET,
+            ),
+            Method::CapAdaptive(a) => integrate_to_tolerance(
+                &a,
+                &CapIntegrand::new(brdf, wo, &cap),
+                tol,
+                64,
+                DEFAULT_MAX_BUDGET,
+            ),
+            Method::Sampled(s, p, seed) => integrate_to_tolerance(
+                &MonteCarlo::new(Strategy::Integrand, p, seed),
+                &CapSampled::new(brdf, wo, &cap, s),
+                tol,
+                64,
+                DEFAULT_MAX_BUDGET,
+            ),
         }
     }
 }

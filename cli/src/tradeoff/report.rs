@@ -359,6 +359,9 @@ impl Report<'_> {
         );
         let _ = writeln!(md, "\n{honesty}.");
         let _ = writeln!(text, "{honesty}.");
+        let (fa_md, fa_text) = self.false_alarms();
+        md.push_str(&fa_md);
+        text.push_str(&fa_text);
         if !offenders.is_empty() {
             // Worst 4 per integrator, then by ratio.
             offenders.sort_by(|a, b| a.1.integ.cmp(&b.1.integ).then(b.0.total_cmp(&a.0)));
@@ -413,6 +416,90 @@ impl Report<'_> {
             opt.out.display()
         );
         (text, md)
+    }
+}
+
+impl Report<'_> {
+    /// False alarms of the unresolved flags, per reason: deterministic rows
+    /// (budget ≥ 64) flagged unresolved whose true error is within 3× their
+    /// claimed error anyway, and Monte Carlo rows (≥ 256 evaluations)
+    /// flagged whose true error is within 3σ. Rows whose true error is below
+    /// 10× the reference bound are not counted (as in the honesty table).
+    fn false_alarms(&self) -> (String, String) {
+        // reason -> (deterministic flagged, fine, MC flagged, fine)
+        let mut by: Vec<(&'static str, [usize; 4])> = Vec::new();
+        for r in self.rows {
+            if r.status.is_resolved() {
+                continue;
+            }
+            let Some(integ) = self.integs.get(r.integ) else {
+                continue;
+            };
+            let abs = (r.estimate - self.refs[r.case].value).abs();
+            if abs <= 10.0 * self.refs[r.case].bound {
+                continue;
+            }
+            let det = integ.is_deterministic();
+            if (det && r.budget < 64) || (!det && r.evaluations < 256) {
+                continue;
+            }
+            let fine = abs <= 3.0 * r.error_estimate;
+            let reason = r.status.reason();
+            let slot = match by.iter().position(|(n, _)| *n == reason) {
+                Some(i) => i,
+                None => {
+                    by.push((reason, [0; 4]));
+                    by.len() - 1
+                }
+            };
+            let c = &mut by[slot].1;
+            let k = if det { 0 } else { 2 };
+            c[k] += 1;
+            c[k + 1] += usize::from(fine);
+        }
+        let pct = |a: usize, b: usize| if b > 0 { a as f64 / b as f64 * 100.0 } else { 0.0 };
+        let mut md = String::from(
+            "\n#### False alarms of the unresolved flags\n\nA flag is a false alarm when the flagged row's true error \
+             is within 3× its claimed error anyway (Monte Carlo: within 3σ). Deterministic rows with budget ≥ 64, \
+             Monte Carlo rows with ≥ 256 evaluations.\n\n| reason | deterministic flagged | false alarms | Monte Carlo \
+             flagged | false alarms |\n|---|---|---|---|---|\n",
+        );
+        let mut tot = [0usize; 4];
+        for (reason, c) in &by {
+            let _ = writeln!(
+                md,
+                "| `{reason}` | {} | {} ({:.0} %) | {} | {} ({:.0} %) |",
+                c[0],
+                c[1],
+                pct(c[1], c[0]),
+                c[2],
+                c[3],
+                pct(c[3], c[2])
+            );
+            for (t, x) in tot.iter_mut().zip(c) {
+                *t += x;
+            }
+        }
+        let line = format!(
+            "False alarms: deterministic {} of {} flagged rows ({:.0} %; target ≤ 40 %), Monte Carlo {} of {} ({:.0} %)",
+            tot[1],
+            tot[0],
+            pct(tot[1], tot[0]),
+            tot[3],
+            tot[2],
+            pct(tot[3], tot[2])
+        );
+        let _ = writeln!(
+            md,
+            "| all | {} | {} ({:.0} %) | {} | {} ({:.0} %) |\n\n{line}.",
+            tot[0],
+            tot[1],
+            pct(tot[1], tot[0]),
+            tot[2],
+            tot[3],
+            pct(tot[3], tot[2])
+        );
+        (md, format!("{line}.\n"))
     }
 }
 
