@@ -29,9 +29,9 @@ pub enum StopReason {
     /// The tolerance is out of reach: for an integrator whose error falls
     /// no faster than a known rate ([`Integrator::error_decay`], `N^-½` for
     /// Monte Carlo), two resolved runs project more than
-    /// [`OUT_OF_REACH_FACTOR`]` × min(max_budget, the integrator's cap)`
-    /// evaluations to reach it, so the driver stops instead of spending the
-    /// maximum on a run that cannot.
+    /// [`OUT_OF_REACH_FACTOR`]` × max_budget` evaluations to reach it, so
+    /// the driver stops instead of spending the maximum on a run that
+    /// cannot.
     OutOfReach,
 }
 
@@ -201,11 +201,12 @@ pub fn by_doubling<T: Integrator + ?Sized, I: Integrand>(
         if stalled || (capped && budget < max_budget) {
             return Ok(done(StopReason::IntegratorCap, None));
         }
-        let reach = integrator.max_evaluations().map_or(max_budget, |c| {
-            max_budget.min(u32::try_from(c).unwrap_or(u32::MAX))
-        });
+        // The projection is measured against `max_budget`, not the
+        // integrator's cap: randomized QMC can beat the N^-½ rate the
+        // projection assumes, and a tighter threshold stopped runs that
+        // would have reached the tolerance at the cap.
         if let (Some(p), Some(rate)) = (last, integrator.error_decay())
-            && out_of_reach(&p, &e, rate, tol, reach)
+            && out_of_reach(&p, &e, rate, tol, max_budget)
         {
             return Ok(done(StopReason::OutOfReach, None));
         }
