@@ -109,6 +109,18 @@ def test_float64_input_is_rounded_to_float32_and_strided_input_works():
     assert b.eval(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.float32)).shape == (0,)
 
 
+def test_fortran_ordered_arrays_are_read_by_rows():
+    # A column-major (N, 3) array is contiguous too, but its memory is not
+    # [x0, y0, z0, x1, ...]: it must be read by rows like any other layout.
+    b = radiometry.Brdf("ggx(alpha=0.2)")
+    wi, wo = directions(64, 11), directions(64, 12)
+    ref = b.eval(wi, wo)
+    assert np.array_equal(bits(b.eval(np.asfortranarray(wi), np.asfortranarray(wo))), bits(ref))
+    assert np.array_equal(bits(b.eval(np.asfortranarray(wi.astype(np.float64)), wo)), bits(ref))
+    u = np.random.default_rng(13).random((64, 2), dtype=np.float32)
+    assert np.array_equal(bits(b.sample(wo, np.asfortranarray(u))[2]), bits(b.sample(wo, u)[2]))
+
+
 @pytest.mark.parametrize("spec", SPECS)
 def test_sampling_is_consistent_with_pdf_eval_and_albedo(spec):
     b = radiometry.Brdf(spec)
