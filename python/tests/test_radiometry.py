@@ -180,6 +180,26 @@ def test_albedo_equals_the_cli_json(spec, theta, integrator):
         assert got[k] == want[k], (k, got[k], want[k])
 
 
+def test_albedo_to_tolerance_equals_the_cli_json():
+    # The defect of issue 24: GGX alpha = 0.01 at normal incidence, --tol 1e-6,
+    # through the default integrator; the answer is judged by the report's f64
+    # reference of the same case.
+    import json
+
+    spec = radiometry.CaseIntegrand("ggx-a0.01-to0").spec
+    out = subprocess.run(
+        [cli(), "albedo", spec, "--theta-o", "0", "--tol", "1e-6", "--format", "json"],
+        capture_output=True, text=True, check=True,
+    )
+    want = json.loads(out.stdout)
+    got = radiometry.Brdf(spec).albedo(0.0, tol=1e-6)
+    for k in ["value", "error", "evaluations", "budget", "final_run_evaluations", "status", "stopped", "runs",
+              "confirmation", "integrator", "tol", "max_budget"]:
+        assert got[k] == want[k], (k, got[k], want[k])
+    ref = radiometry.CaseIntegrand("ggx-a0.01-to0").reference()[0]
+    assert got["stopped"] == "tolerance reached" and abs(got["value"] - ref) <= 1e-6, (got, ref)
+
+
 def test_integrators_and_irradiance():
     names = radiometry.integrators()
     assert names[0] == "gauss-legendre"
