@@ -79,16 +79,18 @@ impl<'py> Input<'py> {
                 .collect()
         }
         match self {
-            Input::F32(a) => match a.as_slice() {
-                Ok(s) => Cow::Borrowed(bytemuck::cast_slice(s)),
-                Err(_) => {
+            // `as_slice` also accepts Fortran-ordered arrays (column-major
+            // memory), so C order is checked first.
+            Input::F32(a) => match a.as_slice().ok().filter(|_| a.is_c_contiguous()) {
+                Some(s) => Cow::Borrowed(bytemuck::cast_slice(s)),
+                None => {
                     let v: Vec<f32> = a.as_array().iter().copied().collect();
                     Cow::Owned(convert(&v, |x| x, make))
                 }
             },
-            Input::F64(a) => match a.as_slice() {
-                Ok(s) => Cow::Owned(convert(s, |x| x as f32, make)),
-                Err(_) => {
+            Input::F64(a) => match a.as_slice().ok().filter(|_| a.is_c_contiguous()) {
+                Some(s) => Cow::Owned(convert(s, |x| x as f32, make)),
+                None => {
                     let v: Vec<f64> = a.as_array().iter().copied().collect();
                     Cow::Owned(convert(&v, |x| x as f32, make))
                 }
