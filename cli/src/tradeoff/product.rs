@@ -192,6 +192,7 @@ pub fn method_infos(methods: &[Method]) -> Vec<MethodInfo> {
         .map(|m| MethodInfo {
             name: m.name(),
             deterministic: m.is_deterministic(),
+            external: false,
         })
         .collect()
 }

@@ -307,7 +307,9 @@ impl Report<'_> {
                 } else {
                     unres += 1;
                 }
-                if integ.is_deterministic() {
+                if integ.external {
+                    // Listed in the table, not counted in the crate's targets.
+                } else if integ.is_deterministic() {
                     if r.budget >= 64 {
                         det_n += 1;
                         det_ok += usize::from(!resolved || ratio <= 10.0);
@@ -432,7 +434,7 @@ impl Report<'_> {
             if r.status.is_resolved() {
                 continue;
             }
-            let Some(integ) = self.integs.get(r.integ) else {
+            let Some(integ) = self.integs.get(r.integ).filter(|i| !i.external) else {
                 continue;
             };
             let abs = (r.estimate - self.refs[r.case].value).abs();
@@ -575,6 +577,7 @@ mod tests {
             .map(|i| MethodInfo {
                 name: i.name().to_string(),
                 deterministic: i.is_deterministic(),
+                external: false,
             })
             .collect();
         let mk = |budget, est| Row {
