@@ -968,7 +968,7 @@ impl Integrator for Adaptive {
         self.integrate_impl(g, budget, None).map(|(e, _)| e)
     }
 
-    /// One staged run (see [`Adaptive::run`]) with the budget
+    /// One staged run with the budget
     /// `min(max_budget, MAX_ADAPTIVE_EVALUATIONS)`: the rule refines until its
     /// error estimate is `≤ tol`, then goes on until the evaluations have
     /// doubled and stops when the value moved by `≤ tol` (the estimate

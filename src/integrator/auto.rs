@@ -58,7 +58,8 @@ pub const NARROW_PEAKINESS: f64 = 300.0;
 ///    dimension with the larger one is refined (dimension-adaptive, after
 ///    Gerstner & Griebel 2003). Where a dimension's last two indicators
 ///    show geometric convergence, its indicator is deflated to the next
-///    term of that sequence ([`deflate`]). Error estimate: the two
+///    term of that sequence (at least ×4 per level, divisor capped at 1,000; with
+///    a fixed budget two successive ratios must show it). Error estimate: the two
 ///    (deflated) indicators plus the `f32` floor `2⁻²³ Σ|w g|`. The grid is
 ///    abandoned when two refinements in a row do not halve their
 ///    indicator (from 1,024 evaluations on; a lobe hugging the horizon,
