@@ -63,7 +63,7 @@ pub const NARROW_PEAKINESS: f64 = 300.0;
 ///    (deflated) indicators plus the `f32` floor `2⁻²³ Σ|w g|`. The grid is
 ///    abandoned when two refinements in a row do not halve their
 ///    indicator (from 1,024 evaluations on; a lobe hugging the horizon,
-///    whose azimuthal width shrinks with `μ`) or at 16,384 evaluations.
+///    whose azimuthal width shrinks with `μ`) or at 8,192 evaluations.
 /// 3. **Narrow lobes**, or a broad-lobe grid that cannot converge within its
 ///    finest levels (129 × 1024 nodes) or is not resolved (a probe value
 ///    more than [`probe::PEAK_RATIO`] × the largest node value: a peak
