@@ -973,11 +973,14 @@ impl Integrator for Adaptive {
 
     /// One staged run with the budget
     /// `min(max_budget, MAX_ADAPTIVE_EVALUATIONS)`: the rule refines until its
-    /// error estimate is `≤ tol`, then goes on until the evaluations have
-    /// doubled and stops when the value moved by `≤ tol` (the estimate
-    /// confirmed by a refinement of itself, not by a second run from
-    /// scratch). `start_budget` is not used (the staged run starts at the
-    /// rule's minimum); the configured tolerances are ignored.
+    /// error estimate is `≤ 8 tol` (its `|I₇ − I₅|` overstates the degree-7
+    /// value's error), then goes on until the evaluations have doubled and
+    /// proposes the value if it moved by `≤ tol`. The candidate stands only
+    /// if a run from scratch at twice its evaluations agrees within `tol`
+    /// and an importance-sampled mean check does not contradict it;
+    /// otherwise budget doubling from scratch takes over. `start_budget` is
+    /// not used (the staged run starts at the rule's minimum); the
+    /// configured tolerances are ignored.
     fn to_tolerance<I: Integrand>(
         &self,
         g: &I,
