@@ -8,7 +8,7 @@
 //! `f32` (renderers, firmware); reference computations and integrators
 //! accumulate in `f64`.
 //!
-//! Conventions (see `DESIGN.md`): every BRDF works in a local frame whose
+//! Conventions: every BRDF works in a local frame whose
 //! normal is `+Z`; directions are unit vectors pointing *away* from the
 //! surface, `wi` toward the light and `wo` toward the viewer.
 //!
@@ -54,3 +54,18 @@ pub use spectrum::{SampledSpectrum, Spectrum, WideSpectrum};
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The Rust examples of `docs/rust.md`, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/rust.md")]
+pub struct DocsRustDoctests;
+
+/// The Rust examples of `docs/firmware.md`, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/firmware.md")]
+pub struct DocsFirmwareDoctests;
+
+/// The Rust examples of `docs/measured.md`, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/measured.md")]
+pub struct DocsMeasuredDoctests;
