@@ -9,7 +9,7 @@ use pyo3::types::PyDict;
 use radiometry::Brdf as _;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, integrate_to_tolerance};
-use radiometry_cli::model::{self, AnyBrdf};
+use radiometry_tools::model::{self, AnyBrdf};
 use radiometry_spec as spec;
 use std::time::Instant;
 

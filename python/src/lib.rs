@@ -31,7 +31,7 @@ mod report;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use radiometry::Integrator as _;
-use radiometry_cli::model;
+use radiometry_tools::model;
 use radiometry_spec as spec;
 
 /// The integrator names accepted by ``Brdf.albedo(..., integrator=...)``,
@@ -49,7 +49,7 @@ fn integrators() -> Vec<&'static str> {
 /// integrator may not take one of these names.
 #[pyfunction]
 fn report_methods() -> Vec<String> {
-    use radiometry_cli::tradeoff::product;
+    use radiometry_tools::tradeoff::product;
     integrators()
         .into_iter()
         .map(String::from)
@@ -69,7 +69,7 @@ fn irradiance(light_spec: &str) -> PyResult<f64> {
 #[pymodule]
 #[pyo3(name = "_native")]
 fn radiometry_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    use radiometry_cli::tradeoff as t;
+    use radiometry_tools::tradeoff as t;
     m.add_class::<brdf::Brdf>()?;
     m.add_class::<cases::CaseIntegrand>()?;
     m.add_class::<cases::CountingIntegrand>()?;

@@ -6,8 +6,8 @@
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use radiometry_cli::model;
-use radiometry_cli::tradeoff::{self as report, ExternalRow};
+use radiometry_tools::model;
+use radiometry_tools::tradeoff::{self as report, ExternalRow};
 use std::path::{Path, PathBuf};
 
 /// The absolute tolerance the to-tolerance suite asks for, for a case

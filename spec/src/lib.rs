@@ -18,8 +18,10 @@
 //! error carries the byte span of the offending token so that
 //! [`SpecError`]'s `Display` can underline it with carets.
 //!
-//! Shared by the `radiometry` command-line tool, the Python module and the C-facing tools:
-//! one grammar, one set of error messages.
+//! Shared by the `radiometry` command-line tool and the Python module: one
+//! grammar, one set of error messages, and one run-time BRDF
+//! ([`AnyBrdf`], from [`build_brdf`]) and integrator ([`AnyIntegrator`],
+//! from [`integrator_by_name`]) for every plugin and configuration.
 //!
 //! ```
 //! use radiometry_spec::{BrdfSpec, parse_brdf};
@@ -43,6 +45,9 @@ mod lex;
 mod light;
 mod tabulated;
 
+pub mod merl;
+pub mod model;
+
 pub use angles::parse_angles;
 pub use brdf::{
     BRDF_SPEC_HELP, BrdfSpec, Distribution, FresnelSpec, G2Kind, MAX_ALPHA, MAX_EXPONENT, MIN_ALPHA,
@@ -51,3 +56,9 @@ pub use brdf::{
 pub use call::{Arg, Call, Value, parse_call, parse_sum};
 pub use error::SpecError;
 pub use light::{LIGHT_SPEC_HELP, LightSpec, parse_lights};
+pub use model::{AnyBrdf, AnyIntegrator, DynBrdf, all_integrators, build_brdf, integrator_by_name};
+
+/// The crate README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

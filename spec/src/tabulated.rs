@@ -9,7 +9,7 @@
 //! quotes. [`BrdfSpec::Tabulated`](crate::BrdfSpec::Tabulated) stores the
 //! byte span of the path in the spec text (so the spec stays `Copy`);
 //! [`BrdfSpec::file`](crate::BrdfSpec::file) returns it. Reading the file
-//! is the caller's job (the CLI's `merl` module).
+//! is [`merl::load_tabulated`](crate::merl::load_tabulated)'s job.
 
 use crate::{BrdfSpec, SpecError};
 

@@ -1,16 +1,20 @@
 //! Progress of the report on stderr: an `indicatif` bar (position, percentage,
-//! elapsed time, ETA, current job) when stderr is a terminal; one plain line
-//! per 10 % otherwise (CI logs), since a bar redrawn in place is unreadable
-//! there.
+//! elapsed time, ETA, current job) when stderr is a terminal and the
+//! `progress-bar` feature is on; one plain line per 10 % otherwise (CI logs),
+//! since a bar redrawn in place is unreadable there.
 
+#[cfg(feature = "progress-bar")]
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+#[cfg(feature = "progress-bar")]
+use std::io::IsTerminal;
+use std::io::Write;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// Thread-safe progress over `total` jobs.
 pub struct Progress {
     enabled: bool,
+    #[cfg(feature = "progress-bar")]
     bar: Option<ProgressBar>,
     total: usize,
     done: AtomicUsize,
@@ -21,6 +25,7 @@ pub struct Progress {
 impl Progress {
     /// Progress over `total` jobs; `enabled = false` shows nothing.
     pub fn new(enabled: bool, total: usize) -> Self {
+        #[cfg(feature = "progress-bar")]
         let bar = (enabled && std::io::stderr().is_terminal()).then(|| {
             let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
             let style = ProgressStyle::with_template(
@@ -33,6 +38,7 @@ impl Progress {
         });
         Progress {
             enabled,
+            #[cfg(feature = "progress-bar")]
             bar,
             total,
             done: AtomicUsize::new(0),
@@ -47,6 +53,7 @@ impl Progress {
         if !self.enabled {
             return;
         }
+        #[cfg(feature = "progress-bar")]
         if let Some(bar) = &self.bar {
             bar.set_message(what.to_string());
             bar.inc(1);
@@ -70,6 +77,7 @@ impl Progress {
 
     /// Clears the bar.
     pub fn finish(&self) {
+        #[cfg(feature = "progress-bar")]
         if let Some(bar) = &self.bar {
             bar.finish_and_clear();
         }

@@ -644,8 +644,11 @@ pub fn run(opt: &Options) -> Result<(), String> {
         input_shift: Some(&input_shift),
     };
     write_csv(opt, &[&report, &preport])?;
-    crate::tradeoff::plot::write_plots(&opt.out, &report)?;
-    crate::tradeoff::plot::write_plots(&opt.out, &preport)?;
+    #[cfg(feature = "plot")]
+    {
+        crate::tradeoff::plot::write_plots(&opt.out, &report)?;
+        crate::tradeoff::plot::write_plots(&opt.out, &preport)?;
+    }
     let elapsed = wall.elapsed().as_secs_f64();
     let mut text = String::new();
     let mut md = String::new();
@@ -673,14 +676,20 @@ pub fn run(opt: &Options) -> Result<(), String> {
     print!("{text}");
     std::fs::write(opt.out.join("summary.md"), md).map_err(|e| format!("cannot write summary.md: {e}"))?;
     println!(
-        "\nWrote {}/tradeoff.csv, tolerance.csv, references.csv, summary.md and SVG plots ({:.1} s).",
+        "\nWrote {}/tradeoff.csv, tolerance.csv, references.csv, summary.md{} ({:.1} s).",
         opt.out.display(),
+        if cfg!(feature = "plot") {
+            " and SVG plots"
+        } else {
+            ""
+        },
         elapsed
     );
     Ok(())
 }
 
 pub mod external;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod product;
 mod progress;

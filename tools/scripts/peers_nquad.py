@@ -5,7 +5,7 @@ f32 integrands, evaluations counted by the harness), and writes the rows as a
 peers file for ``radiometry tradeoff --peers FILE``:
 
     pip install ./python scipy
-    python tools/peers_nquad.py cli/results/peers-scipy-nquad.csv
+    python tools/scripts/peers_nquad.py cli/results/peers-scipy-nquad.csv
     cargo run --release -p radiometry-cli -- tradeoff --peers cli/results/peers-scipy-nquad.csv
 
 The summary's "auto vs scipy-nquad" table compares, per GGX case at relative

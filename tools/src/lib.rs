@@ -1,0 +1,26 @@
+//! The `std` tools of the radiometry crates, shared by the `radiometry`
+//! command-line tool and the Python module:
+//!
+//! | module | what it does |
+//! |---|---|
+//! | [`tradeoff`] | the accuracy-vs-time report: every integrator over a ladder of budgets and to a tolerance, on a suite of directional albedos and product integrals, against independent references (CSV, `summary.md`, SVG plots with the `plot` feature) |
+//! | [`reference`] | independent `f64` references: the BRDF models re-implemented from their papers, integrated by nested adaptive Gauss–Kronrod quadrature |
+//! | [`fit`] | fitting a microfacet model (+ Fresnel, + diffuse) to a tabulated BRDF |
+//! | [`merl`], [`model`], [`spec`] | re-exported from `radiometry-spec`: MERL I/O, the run-time BRDF and integrator, the spec grammar |
+//!
+//! ```
+//! use radiometry_tools::reference::{RefModel, albedo};
+//!
+//! // The directional albedo of a Lambertian surface is its albedo.
+//! let r = albedo(&RefModel::Lambertian { albedo: 0.5 }, 0.3);
+//! assert!((r.value - 0.5).abs() <= r.bound + 1e-12);
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod fit;
+pub mod reference;
+pub mod tradeoff;
+
+pub use radiometry_spec as spec;
+pub use radiometry_spec::{merl, model};
