@@ -28,7 +28,7 @@
 //! ```
 //! use radiometry_brdfs::{Ggx, HeightCorrelated, Microfacet, NoFresnel};
 //! use radiometry_brdfs::tabulated::RusinkiewiczGrid;
-//! use radiometry_cli::merl;
+//! use radiometry_spec::merl;
 //!
 //! let ggx = Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(0.3)?, NoFresnel);
 //! let grid = RusinkiewiczGrid::new(16, 16, 8)?;

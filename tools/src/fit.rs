@@ -53,9 +53,9 @@
 //! ```
 //! use radiometry::Brdf;
 //! use radiometry::glam::Vec3;
-//! use radiometry_cli::fit::{FitOptions, Sample, fit};
-//! use radiometry_cli::model::build_brdf;
-//! use radiometry_cli::spec::{Distribution, parse_brdf};
+//! use radiometry_tools::fit::{FitOptions, Sample, fit};
+//! use radiometry_tools::model::build_brdf;
+//! use radiometry_tools::spec::{Distribution, parse_brdf};
 //!
 //! // A table from GGX α = 0.4 with Schlick F0 = 0.5 in every channel.
 //! let text = "ggx(alpha=0.4, fresnel=schlick(f0=0.5))";
@@ -75,7 +75,7 @@
 //! let f = fit(&samples, &FitOptions::new(Distribution::Ggx)).unwrap();
 //! assert!((f.alpha / 0.4 - 1.0).abs() < 1e-3, "{}", f.alpha);
 //! assert!(f.specs()[0].starts_with("ggx(alpha=0.4"), "{}", f.specs()[0]);
-//! # Ok::<(), radiometry_cli::spec::SpecError>(())
+//! # Ok::<(), radiometry_tools::spec::SpecError>(())
 //! ```
 
 mod brent;

@@ -16,15 +16,15 @@ use radiometry_brdfs::Lambertian;
 /// ```
 /// use radiometry::Brdf;
 /// use radiometry::glam::Vec3;
-/// use radiometry_cli::model::build_brdf;
-/// use radiometry_cli::spec::parse_brdf;
+/// use radiometry_spec::model::build_brdf;
+/// use radiometry_spec::parse_brdf;
 /// let text = "ggx(alpha=0.3, kd=0.5)";
 /// let sum = build_brdf(text, &parse_brdf(text)?)?;
 /// let spec = build_brdf("ggx(alpha=0.3)", &parse_brdf("ggx(alpha=0.3)")?)?;
 /// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, 0.6, 0.8));
 /// let want = 0.5 / std::f32::consts::PI + spec.eval(wi, wo);
 /// assert!((sum.eval(wi, wo) - want).abs() <= 1e-6 * want);
-/// # Ok::<(), radiometry_cli::spec::SpecError>(())
+/// # Ok::<(), radiometry_spec::SpecError>(())
 /// ```
 pub(crate) struct WithDiffuse<B> {
     diffuse: Lambertian,
