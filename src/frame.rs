@@ -263,6 +263,30 @@ impl Frame {
         Some(Frame { s, t, n })
     }
 
+    /// Builds the frame of a renderer's shading normal `n` and tangent `t`
+    /// (both normalised here): `s` is `t` made orthogonal to `n`
+    /// (Gram–Schmidt: `s = (t − (t·n) n)/|…|`) and the second tangent is
+    /// `n × s`, so the frame is right-handed (`s × t = n`). Returns `None` if
+    /// either vector is zero or not finite, or if `t` is parallel to `n`
+    /// (no tangent direction left).
+    ///
+    /// ```
+    /// use radiometry::{Frame, glam::Vec3};
+    /// let f = Frame::from_normal_tangent(Vec3::Z, Vec3::new(1.0, 0.0, 0.2)).unwrap();
+    /// assert!((f.s - Vec3::X).length() < 1e-6 && (f.t - Vec3::Y).length() < 1e-6);
+    /// assert!(Frame::from_normal_tangent(Vec3::Z, Vec3::Z * 2.0).is_none());
+    /// ```
+    pub fn from_normal_tangent(n: Vec3, t: Vec3) -> Option<Frame> {
+        let n = try_normalize(n)?;
+        let t = try_normalize(t)?;
+        let s = try_normalize(t - t.dot(n) * n)?;
+        // Parallel input leaves only rounding noise: demand a real tangent.
+        if (t - t.dot(n) * n).length_squared() < 1e-12 {
+            return None;
+        }
+        Some(Frame { s, t: n.cross(s), n })
+    }
+
     /// World → local: `(w·s, w·t, w·n)`.
     #[inline]
     pub fn to_local(&self, w: Vec3) -> Vec3 {
@@ -311,6 +335,43 @@ mod tests {
         // Grazing pair below the horizon still gives an upper-hemisphere h.
         let h = half_vector(Vec3::new(1.0, 0.0, -0.1), Vec3::new(0.0, 1.0, -0.1)).unwrap();
         assert!(h.z > 0.0);
+    }
+
+    #[test]
+    fn frame_from_normal_and_tangent() {
+        let ns = [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::new(0.3, -0.8, 0.2),
+            Vec3::new(1e-8, 0.0, 1.0),
+        ];
+        let ts = [Vec3::X, Vec3::new(0.2, 0.9, -0.4), Vec3::new(-5.0, 1.0, 1.0)];
+        for n in ns {
+            for t in ts {
+                let f = Frame::from_normal_tangent(n, t).unwrap();
+                let nn = n.normalize();
+                assert!((f.n - nn).length() < 1e-6);
+                for v in [f.s, f.t, f.n] {
+                    assert!((v.length() - 1.0).abs() < 1e-5);
+                }
+                assert!(f.s.dot(f.t).abs() < 1e-5 && f.s.dot(f.n).abs() < 1e-5 && f.t.dot(f.n).abs() < 1e-5);
+                assert!((f.s.cross(f.t) - f.n).length() < 1e-5, "right-handed");
+                // s lies in the plane of n and t, on t's side.
+                assert!(f.s.dot(t) > 0.0 && f.s.dot(nn.cross(t)).abs() < 1e-5);
+                let w = Vec3::new(0.3, -0.2, 0.9).normalize();
+                assert!((f.to_world(f.to_local(w)) - w).length() < 1e-5);
+            }
+        }
+        for (n, t) in [
+            (Vec3::Z, Vec3::Z),
+            (Vec3::Z, -3.0 * Vec3::Z),
+            (Vec3::ZERO, Vec3::X),
+            (Vec3::Z, Vec3::ZERO),
+            (Vec3::new(f32::NAN, 0.0, 1.0), Vec3::X),
+            (Vec3::Z, Vec3::new(f32::INFINITY, 0.0, 0.0)),
+        ] {
+            assert!(Frame::from_normal_tangent(n, t).is_none(), "{n:?} {t:?}");
+        }
     }
 
     #[test]

@@ -139,6 +139,54 @@ pub trait Integrand {
     }
 }
 
+/// A reference to an integrand is an integrand, so `&dyn Integrand` (chosen
+/// at run time) goes through every integrator's generic entry point:
+///
+/// ```
+/// use radiometry::integrator::{GaussLegendre, Integrand, Integrator};
+/// use radiometry::glam::Vec3;
+/// struct Cos;
+/// impl Integrand for Cos {
+///     type Spectrum = f32;
+///     fn eval(&self, w: Vec3) -> f32 { w.z }
+/// }
+/// let g: &dyn Integrand<Spectrum = f32> = &Cos;
+/// let e = GaussLegendre::new().integrate(&g, 256).unwrap();
+/// // ∫_H cos θ dω = π.
+/// assert!((e.value - core::f64::consts::PI).abs() < 1e-6);
+/// ```
+impl<T: Integrand + ?Sized> Integrand for &T {
+    type Spectrum = T::Spectrum;
+    #[inline]
+    fn eval(&self, w: Vec3) -> Self::Spectrum {
+        (**self).eval(w)
+    }
+    #[inline]
+    fn has_sampling_map(&self) -> bool {
+        (**self).has_sampling_map()
+    }
+    #[inline]
+    fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<Self::Spectrum>> {
+        (**self).sample(u)
+    }
+    #[inline]
+    fn pdf(&self, w: Vec3) -> f32 {
+        (**self).pdf(w)
+    }
+    #[inline]
+    fn eval_batch(&self, w: &[Vec3], out: &mut [Self::Spectrum]) {
+        (**self).eval_batch(w, out)
+    }
+    #[inline]
+    fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<Self::Spectrum>>]) {
+        (**self).sample_batch(u, out)
+    }
+    #[inline]
+    fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        (**self).pdf_batch(w, out)
+    }
+}
+
 /// The result of an integration.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Estimate<W> {
