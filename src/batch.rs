@@ -19,6 +19,40 @@
 
 use glam::Vec3;
 
+/// The length rule of every batch method in these crates
+/// ([`Brdf::eval_batch`](crate::Brdf::eval_batch), `pdf_batch`,
+/// `sample_batch`, `eval_batch_soa`, and the [`Integrand`](crate::Integrand)
+/// batch methods): with inputs and output of different lengths, the first
+/// `n = min(lengths)` outputs are computed and **every output past `n` is
+/// set to zero** (`None` for samples) — a mismatched call never panics and
+/// never leaves a stale value from an earlier call in `out`. This function
+/// applies the second half of the rule; plugin authors who override a batch
+/// method call it with the `n` they computed.
+///
+/// ```
+/// use radiometry::Brdf;
+/// use radiometry::batch::zero_tail;
+/// use radiometry::glam::Vec3;
+/// struct Half;
+/// impl Brdf for Half {
+///     type Spectrum = f32;
+///     fn eval(&self, _wi: Vec3, _wo: Vec3) -> f32 { 0.5 }
+/// }
+/// // Two directions, three outputs: the third is zeroed, not left at 9.
+/// let mut out = [9.0f32; 3];
+/// Half.eval_batch(&[Vec3::Z; 2], &[Vec3::Z; 2], &mut out);
+/// assert_eq!(out, [0.5, 0.5, 0.0]);
+/// let mut out = [9.0f32; 4];
+/// zero_tail(&mut out, 1);
+/// assert_eq!(out, [9.0, 0.0, 0.0, 0.0]);
+/// ```
+#[inline]
+pub fn zero_tail<T: Default>(out: &mut [T], n: usize) {
+    for o in out.iter_mut().skip(n) {
+        *o = T::default();
+    }
+}
+
 /// Borrowed structure-of-arrays directions: direction `k` is
 /// `(x[k], y[k], z[k])`.
 ///

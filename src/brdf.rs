@@ -77,8 +77,10 @@ pub trait Brdf {
         cosine_hemisphere_pdf(wi)
     }
 
-    /// Evaluates `out[k] = eval(wi[k], wo[k])` for `k < min(len)`; extra
-    /// elements of the longer slices are left untouched.
+    /// Evaluates `out[k] = eval(wi[k], wo[k])` for `k < n = min(len)`;
+    /// elements of `out` past `n` are set to zero (the
+    /// [batch length rule](crate::batch::zero_tail): a mismatched call
+    /// neither panics nor leaves stale output).
     ///
     /// The default loops over [`Brdf::eval`]; plugins may override it with a
     /// vectorised kernel (see the `simd` feature).
@@ -86,11 +88,12 @@ pub trait Brdf {
         for ((o, &a), &b) in out.iter_mut().zip(wi).zip(wo) {
             *o = self.eval(a, b);
         }
+        crate::batch::zero_tail(out, wi.len().min(wo.len()));
     }
 
     /// Structure-of-arrays form of [`Brdf::eval_batch`]:
     /// `out[k] = eval(wi.get(k), wo.get(k))` for `k < min(wi.len(), wo.len(),
-    /// out.len())`; extra elements are left untouched.
+    /// out.len())`; elements of `out` past `n` are set to zero ([batch length rule](crate::batch::zero_tail)).
     ///
     /// The default loops over [`Brdf::eval`]; plugins with vector kernels
     /// override it (loads of 8 consecutive `x`, `y`, `z` need no shuffles).
@@ -116,22 +119,25 @@ pub trait Brdf {
         for ((o, ((&ax, &ay), &az)), ((&bx, &by), &bz)) in out.iter_mut().zip(wi_xyz).zip(wo_xyz) {
             *o = self.eval(Vec3::new(ax, ay, az), Vec3::new(bx, by, bz));
         }
+        crate::batch::zero_tail(out, wi.len().min(wo.len()));
     }
 
-    /// `out[k] = pdf(wi[k], wo[k])` for `k < min(len)`; extra elements are
-    /// left untouched. The default loops over [`Brdf::pdf`].
+    /// `out[k] = pdf(wi[k], wo[k])` for `k < min(len)`; elements of `out` past `n` are
+    /// set to zero ([batch length rule](crate::batch::zero_tail)). The default loops over [`Brdf::pdf`].
     fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
         for ((o, &a), &b) in out.iter_mut().zip(wi).zip(wo) {
             *o = self.pdf(a, b);
         }
+        crate::batch::zero_tail(out, wi.len().min(wo.len()));
     }
 
-    /// `out[k] = sample(wo[k], u[k])` for `k < min(len)`; extra elements
-    /// are left untouched. The default loops over [`Brdf::sample`].
+    /// `out[k] = sample(wo[k], u[k])` for `k < min(len)`; elements of `out`
+    /// past `n` are set to `None` ([batch length rule](crate::batch::zero_tail)). The default loops over [`Brdf::sample`].
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<Self::Spectrum>>]) {
         for ((o, &w), &v) in out.iter_mut().zip(wo).zip(u) {
             *o = self.sample(w, v);
         }
+        crate::batch::zero_tail(out, wo.len().min(u.len()));
     }
 }
 

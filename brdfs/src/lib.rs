@@ -77,6 +77,9 @@ pub mod simd;
 pub mod tabulated;
 mod vec4;
 
+#[cfg(test)]
+mod batch_rule;
+
 pub use error::BrdfError;
 // -- re-exports: Lambertian / Phong family (keep this block for those modules)
 pub use blinn_phong::BlinnPhong;

@@ -493,13 +493,16 @@ pub(crate) enum Batch<'a, O> {
     Soa(Vec3Soa<'a>, Vec3Soa<'a>, &'a mut [O]),
 }
 
-impl<O> Batch<'_, O> {
-    /// Runs `k` over whole chunks of [`LANES`] and `k.one` over the tail.
+impl<O: Default> Batch<'_, O> {
+    /// Runs `k` over whole chunks of [`LANES`] and `k.one` over the tail;
+    /// outputs past the shortest input are set to zero (the batch length
+    /// rule, [`radiometry::batch::zero_tail`]).
     #[inline(always)]
     pub(crate) fn run<K: Kernel<Out = O>>(self, k: &K) {
         match self {
             Batch::Aos(wi, wo, out) => {
                 let n = wi.len().min(wo.len()).min(out.len());
+                radiometry::batch::zero_tail(out, n);
                 let (wi, wo, out) = (&wi[..n], &wo[..n], &mut out[..n]);
                 let (ci, ti) = wi.as_chunks::<LANES>();
                 let (co, to) = wo.as_chunks::<LANES>();
@@ -516,6 +519,7 @@ impl<O> Batch<'_, O> {
             }
             Batch::Soa(wi, wo, out) => {
                 let n = wi.len().min(wo.len()).min(out.len());
+                radiometry::batch::zero_tail(out, n);
                 let (wi, wo, out) = (wi.truncate(n), wo.truncate(n), &mut out[..n]);
                 let (ix, _) = wi.x.as_chunks::<LANES>();
                 let (iy, _) = wi.y.as_chunks::<LANES>();
@@ -542,7 +546,8 @@ impl<O> Batch<'_, O> {
         }
     }
 
-    /// The plain loop `out[k] = f(ωi[k], ωo[k])` (no kernel).
+    /// The plain loop `out[k] = f(ωi[k], ωo[k])` (no kernel), with the same
+    /// length rule as [`run`](Self::run).
     #[inline(always)]
     pub(crate) fn scalar(self, mut f: impl FnMut(Vec3, Vec3) -> O) {
         match self {
@@ -550,11 +555,13 @@ impl<O> Batch<'_, O> {
                 for ((o, &a), &c) in out.iter_mut().zip(wi).zip(wo) {
                     *o = f(a, c);
                 }
+                radiometry::batch::zero_tail(out, wi.len().min(wo.len()));
             }
             Batch::Soa(wi, wo, out) => {
                 for ((o, a), c) in out.iter_mut().zip(wi.iter()).zip(wo.iter()) {
                     *o = f(a, c);
                 }
+                radiometry::batch::zero_tail(out, wi.len().min(wo.len()));
             }
         }
     }

@@ -147,6 +147,7 @@ pub(crate) fn brdf_eval_where<B: Brdf>(brdf: &B, wo: Vec3, wi: &[Option<Vec3>], 
 /// `out[k] = pdf(w[k], wo)` for `k < min(w.len(), out.len())` with `wo`
 /// broadcast: one [`Brdf::pdf_batch`] per [`CHUNK`].
 pub(crate) fn brdf_pdf_batch<B: Brdf>(brdf: &B, wo: Vec3, w: &[Vec3], out: &mut [f32]) {
+    crate::batch::zero_tail(out, w.len());
     let wos = [wo; CHUNK];
     for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         let n = w.len().min(out.len());
@@ -166,6 +167,7 @@ pub(crate) fn brdf_sample_batch<B: Brdf>(
     out: &mut [Option<IntegrandSample<B::Spectrum>>],
     value: impl Fn(&BrdfSample<B::Spectrum>) -> B::Spectrum,
 ) {
+    crate::batch::zero_tail(out, u.len());
     let wos = [wo; CHUNK];
     let mut s = [None; CHUNK];
     for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {

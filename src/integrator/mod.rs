@@ -91,8 +91,9 @@ pub trait Integrand {
         0.0
     }
 
-    /// `out[k] = g(w[k])` for `k < min(w.len(), out.len())`; extra elements
-    /// of the longer slice are left untouched.
+    /// `out[k] = g(w[k])` for `k < min(w.len(), out.len())`; elements of
+    /// `out` past `w.len()` are set to zero (the
+    /// [batch length rule](crate::batch::zero_tail)).
     ///
     /// The integrators evaluate through this method, [`CHUNK`] points at a
     /// time, so an integrand wrapping a vectorised kernel (such as
@@ -111,31 +112,34 @@ pub trait Integrand {
     /// }
     /// let mut out = [9.0f32; 3];
     /// Cos.eval_batch(&[Vec3::Z, Vec3::X], &mut out);
-    /// assert_eq!(out, [1.0, 0.0, 9.0]);
+    /// assert_eq!(out, [1.0, 0.0, 0.0]);
     /// ```
     fn eval_batch(&self, w: &[Vec3], out: &mut [Self::Spectrum]) {
         for (o, &v) in out.iter_mut().zip(w) {
             *o = self.eval(v);
         }
+        crate::batch::zero_tail(out, w.len());
     }
 
-    /// `out[k] = sample(u[k])` for `k < min(u.len(), out.len())`; extra
-    /// elements are left untouched. Same contract as
+    /// `out[k] = sample(u[k])` for `k < min(u.len(), out.len())`; elements
+    /// of `out` past `u.len()` are set to `None`. Same contract as
     /// [`Integrand::eval_batch`] (agree with [`Integrand::sample`] at every
     /// point). The default loops over [`Integrand::sample`].
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<Self::Spectrum>>]) {
         for (o, &v) in out.iter_mut().zip(u) {
             *o = self.sample(v);
         }
+        crate::batch::zero_tail(out, u.len());
     }
 
-    /// `out[k] = pdf(w[k])` [sr⁻¹] for `k < min(w.len(), out.len())`; extra
-    /// elements are left untouched. Same contract as
+    /// `out[k] = pdf(w[k])` [sr⁻¹] for `k < min(w.len(), out.len())`; elements
+    /// of `out` past `w.len()` are set to zero. Same contract as
     /// [`Integrand::eval_batch`]. The default loops over [`Integrand::pdf`].
     fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
         for (o, &v) in out.iter_mut().zip(w) {
             *o = self.pdf(v);
         }
+        crate::batch::zero_tail(out, w.len());
     }
 }
 
@@ -350,6 +354,7 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
     /// [`Brdf::eval_batch`] with `wo` broadcast, then `· cos θi` (zero at
     /// and below the horizon), as [`Integrand::eval`] does.
     fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        crate::batch::zero_tail(out, w.len());
         let wo = [self.wo; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = w.len().min(out.len());

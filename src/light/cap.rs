@@ -555,6 +555,7 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
     /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per chunk over
     /// the points inside the visible cap.
     fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        crate::batch::zero_tail(out, w.len());
         let mut p = [CapPoint { w: None, dy: 0.0 }; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = w.len().min(out.len());
@@ -567,6 +568,7 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
 
     /// As [`Integrand::sample`], with one [`Brdf::eval_batch`] per chunk.
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        crate::batch::zero_tail(out, u.len());
         let mut p = [CapPoint { w: None, dy: 0.0 }; CHUNK];
         let mut v = [B::Spectrum::zero(); CHUNK];
         for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {

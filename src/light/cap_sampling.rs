@@ -235,6 +235,7 @@ impl<B: Brdf> Integrand for CapSampled<B> {
     /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per chunk over
     /// the points inside the cap and above the horizon.
     fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        crate::batch::zero_tail(out, w.len());
         let mut dirs = [None; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = w.len().min(out.len());
@@ -249,6 +250,7 @@ impl<B: Brdf> Integrand for CapSampled<B> {
     /// [`Brdf::sample_batch`], [`Brdf::pdf_batch`] and [`Brdf::eval_batch`]
     /// once per chunk.
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        crate::batch::zero_tail(out, u.len());
         let wos = [self.wo; CHUNK];
         for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = u.len().min(out.len());
@@ -344,6 +346,7 @@ impl<B: Brdf> Integrand for CapSampled<B> {
     /// As [`Integrand::pdf`], with one [`Brdf::pdf_batch`] per chunk where
     /// the BRDF's density is needed.
     fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        crate::batch::zero_tail(out, w.len());
         let wos = [self.wo; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = w.len().min(out.len());

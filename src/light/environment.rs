@@ -206,6 +206,7 @@ impl<B: Brdf, L: Light<Spectrum = B::Spectrum> + ?Sized> Integrand for Environme
     /// [`Brdf::eval_batch`] per chunk over the points above the horizon
     /// with non-black radiance.
     fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
+        crate::batch::zero_tail(out, w.len());
         let mut l = [B::Spectrum::zero(); CHUNK];
         let mut wi = [None; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
@@ -233,6 +234,7 @@ impl<B: Brdf, L: Light<Spectrum = B::Spectrum> + ?Sized> Integrand for Environme
     /// [`Brdf::sample_batch`] with `wo` broadcast, then the radiance at each
     /// sampled direction, as [`Integrand::sample`].
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
+        crate::batch::zero_tail(out, u.len());
         brdf_sample_batch(&self.brdf, self.wo, u, out, |s| {
             s.weight * s.pdf * self.light.radiance(s.wi)
         });
@@ -240,6 +242,7 @@ impl<B: Brdf, L: Light<Spectrum = B::Spectrum> + ?Sized> Integrand for Environme
 
     /// [`Brdf::pdf_batch`] with `wo` broadcast.
     fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+        crate::batch::zero_tail(out, w.len());
         brdf_pdf_batch(&self.brdf, self.wo, w, out);
     }
 }

@@ -477,6 +477,7 @@ pub(crate) fn sample<D, G, F>(
             for ((o, &w), &v) in out.iter_mut().zip(wo).zip(u) {
                 *o = b.sample(w, v);
             }
+            radiometry::batch::zero_tail(out, wo.len().min(u.len()));
         }
     }
 }

@@ -37,10 +37,15 @@ fn fix_cold<K: SampleKernel>(
 
 /// `out[k] = sample(wo[k], u[k])` for `k < min(len)`: whole chunks of
 /// [`LANES`] through `k.lanes`, the tail through `k.one`; elements past the
-/// shortest slice are left untouched.
+/// shortest input are set to `None` (the batch length rule,
+/// [`radiometry::batch::zero_tail`]).
 #[inline(always)]
-pub(crate) fn run_samples<K: SampleKernel>(k: &K, wo: &[Vec3], u: &[[f32; 2]], out: &mut [K::Out]) {
+pub(crate) fn run_samples<K: SampleKernel>(k: &K, wo: &[Vec3], u: &[[f32; 2]], out: &mut [K::Out])
+where
+    K::Out: Default,
+{
     let n = wo.len().min(u.len()).min(out.len());
+    radiometry::batch::zero_tail(out, n);
     let (wo, u, out) = (&wo[..n], &u[..n], &mut out[..n]);
     let (cw, tw) = wo.as_chunks::<LANES>();
     let (cu, tu) = u.as_chunks::<LANES>();
