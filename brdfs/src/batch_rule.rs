@@ -17,7 +17,7 @@ use std::vec::Vec;
 
 fn dir(k: usize, salt: f32) -> Vec3 {
     let t = (k as f32 * 0.618_034 + salt).fract() * 1.5;
-    let p = (k as f32 * 0.414_213_5 + salt).fract() * 6.28;
+    let p = (k as f32 * 0.414_213_5 + salt).fract() * core::f32::consts::TAU;
     Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
 }
 
