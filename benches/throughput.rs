@@ -123,7 +123,8 @@ fn plugins(c: &mut Criterion) {
 /// the `MonteCarlo` path; one dimension pair), PCG32 and the shifted
 /// Fibonacci lattice.
 fn point_sets(c: &mut Criterion) {
-    use radiometry::integrator::points::{Pcg32, fibonacci_point, sobol_point, sobol_point_pairs};
+    use radiometry::integrator::points::{fibonacci_point, sobol_point, sobol_point_pairs};
+    use radiometry::rng::Pcg32;
     let mut g = c.benchmark_group("points");
     g.throughput(Throughput::Elements(N as u64));
     g.bench_function("sobol_point_pairs", |b| {
@@ -148,7 +149,7 @@ fn point_sets(c: &mut Criterion) {
     });
     g.bench_function("pcg32_pairs", |b| {
         b.iter(|| {
-            let mut rng = Pcg32::new(black_box(7), 0);
+            let mut rng = Pcg32::with_stream(black_box(7), 0);
             let mut acc = 0.0f32;
             for _ in 0..N {
                 acc += rng.next_f32() + rng.next_f32();

@@ -32,6 +32,9 @@
 #![warn(missing_docs)]
 
 pub use glam;
+/// The RNG interface of [`rng::Pcg32`] and of the sensor noise models
+/// (`rand_core` 0.10), re-exported so callers name the same version.
+pub use rand_core;
 
 pub mod batch;
 pub mod brdf;
@@ -39,7 +42,9 @@ pub mod frame;
 pub mod integrator;
 pub mod light;
 pub mod math;
+pub mod prelude;
 pub mod radiometric;
+pub mod rng;
 pub mod sensor;
 pub mod spectral;
 pub mod spectrum;

@@ -60,6 +60,7 @@ pub const MAX_RADIANCE: f32 = 1e30;
 
 /// Why a light could not be constructed.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum LightError {
     /// A radiance / irradiance channel is NaN or infinite.
     NonFiniteRadiance,

@@ -6,6 +6,7 @@ use core::fmt;
 /// constructor in this crate; `Display` names the parameter, the value and
 /// the accepted range.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum BrdfError {
     /// A parameter is NaN or infinite.
     NotFinite {

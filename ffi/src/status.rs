@@ -48,6 +48,9 @@ impl From<BrdfError> for RadStatus {
             BrdfError::NotFinite { .. } => RadStatus::NotFinite,
             BrdfError::OutOfRange { .. } => RadStatus::OutOfRange,
             BrdfError::Constraint { .. } => RadStatus::Constraint,
+            // The Rust error enums are #[non_exhaustive]: a variant added
+            // later maps to the generic out-of-range status.
+            _ => RadStatus::OutOfRange,
         }
     }
 }
@@ -60,6 +63,7 @@ impl From<SensorError> for RadStatus {
             SensorError::NotMonotonic => RadStatus::Constraint,
             SensorError::BadBuffer => RadStatus::OutOfRange,
             SensorError::Singular => RadStatus::Singular,
+            _ => RadStatus::OutOfRange,
         }
     }
 }
@@ -69,6 +73,7 @@ impl From<AlsError> for RadStatus {
         match e {
             AlsError::Saturated => RadStatus::Saturated,
             AlsError::BadSetting => RadStatus::BadSetting,
+            _ => RadStatus::OutOfRange,
         }
     }
 }
@@ -90,6 +95,7 @@ impl From<LightError> for RadStatus {
             | LightError::RadianceTooLarge
             | LightError::HalfAngleOutOfRange(_)
             | LightError::InvalidDirection => RadStatus::OutOfRange,
+            _ => RadStatus::OutOfRange,
         }
     }
 }

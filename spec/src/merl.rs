@@ -67,6 +67,7 @@ pub struct MerlTable {
 
 /// Why a MERL file cannot be read or written.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum MerlError {
     /// Reading or writing the file failed.
     Io {

@@ -179,7 +179,7 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
     r.map_err(|e| {
         let name = match e {
             BrdfError::NotFinite { name } | BrdfError::OutOfRange { name, .. } => Some(name),
-            BrdfError::Constraint { .. } => None,
+            _ => None,
         };
         let (start, end) = name.and_then(|n| find_param(text, n)).unwrap_or((0, text.len()));
         SpecError {

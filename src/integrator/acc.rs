@@ -301,7 +301,7 @@ pub(crate) const F32_FLOOR: f64 = f32::EPSILON as f64;
 mod tests {
     extern crate std;
     use super::*;
-    use crate::integrator::points::Pcg32;
+    use crate::rng::Pcg32;
 
     /// `push_chunk` over chunks of 64 gives the moments and diagnostics of
     /// `push` one by one, to the plain-sum error it documents (here a
@@ -309,7 +309,7 @@ mod tests {
     /// the shifted-data sums).
     #[test]
     fn push_chunk_matches_push() {
-        let mut rng = Pcg32::new(7, 11);
+        let mut rng = Pcg32::with_stream(7, 11);
         let xs: std::vec::Vec<f64> = (0..10_000)
             .map(|k| {
                 let u = rng.next_f64();

@@ -215,6 +215,7 @@ impl<W> Estimate<W> {
 
 /// Why an integration could not produce an estimate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum IntegrateError {
     /// The budget is too small for this integrator (e.g. zero); `minimum`
     /// is the smallest budget it accepts.

@@ -435,7 +435,7 @@ impl Integrator for MonteCarlo {
         let mut batch = Draws::new(g, self.strategy, polar);
 
         if self.points == PointSet::Prng {
-            let mut rng = Pcg32::new(self.seed, 0x5851_f42d);
+            let mut rng = Pcg32::with_stream(self.seed, 0x5851_f42d);
             let mut m = Moments::<WideOf<I>>::new();
             for _ in 0..draws {
                 let u1 = [rng.next_f32(), rng.next_f32()];
@@ -465,7 +465,7 @@ impl Integrator for MonteCarlo {
         let mut spent = 0u64;
         for r in 0..k {
             let rseed = mix_seed(self.seed, r as u64);
-            let mut rng = Pcg32::new(rseed, 0xda3e_39cb);
+            let mut rng = Pcg32::with_stream(rseed, 0xda3e_39cb);
             let mut m = Moments::<WideOf<I>>::new();
             match self.points {
                 PointSet::Stratified => {

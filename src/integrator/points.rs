@@ -1,85 +1,21 @@
 //! Point sets on the unit square for Monte Carlo and randomized quasi-Monte
-//! Carlo: a seeded PRNG ([`Pcg32`]), jittered (stratified) grids,
+//! Carlo: jittered (stratified) grids (the seeded PRNG is
+//! [`crate::rng::Pcg32`]),
 //! Owen-scrambled Sobol points (computed here, see [`sobol_value`]), and the Fibonacci
 //! lattice behind spherical Fibonacci point sets.
 //!
 //! Everything is deterministic for a given seed and allocation-free.
 //!
 //! ```
-//! use radiometry::integrator::points::{Pcg32, fibonacci_point};
-//! let mut rng = Pcg32::new(42, 0);
-//! let u = rng.next_f32();
-//! assert!((0.0..1.0).contains(&u));
+//! use radiometry::integrator::points::fibonacci_point;
 //! let p = fibonacci_point(3, 8, [0.0, 0.0]);
 //! assert!((p[0] - 3.5 / 8.0).abs() < 1e-6);
 //! ```
 
 pub use super::sobol::{SOBOL_DIMENSIONS, SOBOL_MAX_POINTS, sobol_point, sobol_point_pairs, sobol_value};
 use crate::math::ONE_MINUS_EPSILON;
+pub(crate) use crate::rng::Pcg32;
 use glam::Vec3;
-
-/// PCG32 (XSH-RR variant): 64-bit LCG state, 32-bit output with an
-/// xorshift-high + random-rotate permutation.
-///
-/// O'Neill, M. E. (2014), "PCG: A Family of Simple Fast Space-Efficient
-/// Statistically Good Algorithms for Random Number Generation",
-/// HMC-CS-2014-0905, §6.3.1. Multiplier `6364136223846793005`
-/// (Knuth, TAOCP vol. 2, §3.3.4). Period `2⁶⁴` per stream; `2⁶³` streams.
-///
-/// ```
-/// use radiometry::integrator::points::Pcg32;
-/// let (mut a, mut b) = (Pcg32::new(7, 1), Pcg32::new(7, 1));
-/// assert_eq!(a.next_u32(), b.next_u32()); // deterministic
-/// let mut c = Pcg32::new(7, 2);
-/// assert_ne!(Pcg32::new(7, 1).next_u32(), c.next_u32()); // streams differ
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Pcg32 {
-    state: u64,
-    inc: u64,
-}
-
-const PCG_MULT: u64 = 6_364_136_223_846_793_005;
-
-impl Pcg32 {
-    /// Seeds the generator with an initial state and a stream selector
-    /// (O'Neill's `pcg32_srandom_r`).
-    pub fn new(seed: u64, stream: u64) -> Self {
-        let mut r = Pcg32 {
-            state: 0,
-            inc: (stream << 1) | 1,
-        };
-        r.next_u32();
-        r.state = r.state.wrapping_add(seed);
-        r.next_u32();
-        r
-    }
-
-    /// The next 32 uniformly distributed bits.
-    #[inline]
-    pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(PCG_MULT).wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        let rot = (old >> 59) as u32;
-        xorshifted.rotate_right(rot)
-    }
-
-    /// A uniform `f32` in `[0, 1)`: the top 24 bits times `2⁻²⁴` (every
-    /// value is exact; the largest is `1 − 2⁻²⁴`).
-    #[inline]
-    pub fn next_f32(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
-    }
-
-    /// A uniform `f64` in `[0, 1)` from 53 random bits.
-    #[inline]
-    pub fn next_f64(&mut self) -> f64 {
-        let hi = (self.next_u32() >> 5) as u64; // 27 bits
-        let lo = (self.next_u32() >> 6) as u64; // 26 bits
-        ((hi << 26) | lo) as f64 * (1.0 / 9_007_199_254_740_992.0)
-    }
-}
 
 /// Which point set a Monte Carlo integrator draws its unit-square points
 /// from.
@@ -238,7 +174,7 @@ mod tests {
     /// `[0, 9·10¹⁵)`, and the libm path takes over beyond.
     #[test]
     fn frac_is_x_minus_floor() {
-        let mut rng = Pcg32::new(3, 5);
+        let mut rng = Pcg32::with_stream(3, 5);
         for k in 0..200_000 {
             let scale = [1.0, 7.0, 1e3, 1e9, 4.5e15, 8.999e15, 2e16][k % 7];
             let x = rng.next_f64() * scale;
@@ -268,25 +204,8 @@ mod tests {
     }
 
     #[test]
-    fn pcg32_reference_stream() {
-        // O'Neill's pcg32-demo: srandom(42, 54) prints these first outputs.
-        let mut r = Pcg32::new(42, 54);
-        let expect = [
-            0xa15c02b7u32,
-            0x7b47f409,
-            0xba1d3330,
-            0x83d2f293,
-            0xbfa4784b,
-            0xcbed606e,
-        ];
-        for e in expect {
-            assert_eq!(r.next_u32(), e);
-        }
-    }
-
-    #[test]
     fn unit_ranges() {
-        let mut r = Pcg32::new(1, 1);
+        let mut r = Pcg32::with_stream(1, 1);
         for _ in 0..10_000 {
             let (a, b) = (r.next_f32(), r.next_f64());
             assert!((0.0..1.0).contains(&a) && (0.0..1.0).contains(&b));

@@ -31,6 +31,7 @@ use core::fmt;
 
 /// Why a reading could not be converted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum AlsError {
     /// The raw count is at the ADC maximum: the true illuminance is
     /// unknown (≥ the returned bound); lower the gain or integration time.

@@ -49,6 +49,7 @@ pub use response::Response;
 
 /// Why a sensor computation was rejected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum SensorError {
     /// A parameter or input value was NaN or infinite.
     NotFinite,

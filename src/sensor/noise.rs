@@ -12,81 +12,10 @@
 //! assert!(k >= 0.0 && k == k.floor());
 //! ```
 
-use core::convert::Infallible;
-use rand_core::{Rng, TryRng};
+use rand_core::Rng;
 
-/// PCG32 (PCG-XSH-RR 64/32; O'Neill 2014, "PCG: A family of simple fast
-/// space-efficient statistically good algorithms for random number
-/// generation", HMC-CS-2014-0905, §6.3.1). Small, seedable, `no_std`.
-/// Implements `rand_core::TryRng<Error = Infallible>`, hence
-/// `rand_core::Rng`.
-///
-/// ```
-/// use radiometry::sensor::Pcg32;
-/// use rand_core::Rng;
-/// let (mut a, mut b) = (Pcg32::new(7), Pcg32::new(7));
-/// assert_eq!(a.next_u32(), b.next_u32());
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Pcg32 {
-    state: u64,
-    inc: u64,
-}
-
-impl Pcg32 {
-    const MUL: u64 = 6_364_136_223_846_793_005;
-
-    /// Seeds the generator (stream fixed); equal seeds give equal
-    /// sequences.
-    pub fn new(seed: u64) -> Self {
-        Self::with_stream(seed, 0xda3e_39cb_94b9_5bdb)
-    }
-
-    /// Seeds the generator on one of 2⁶³ independent streams.
-    pub fn with_stream(seed: u64, stream: u64) -> Self {
-        let mut r = Self {
-            state: 0,
-            inc: (stream << 1) | 1,
-        };
-        r.step();
-        r.state = r.state.wrapping_add(seed);
-        r.step();
-        r
-    }
-
-    #[inline]
-    fn step(&mut self) {
-        self.state = self.state.wrapping_mul(Self::MUL).wrapping_add(self.inc);
-    }
-
-    #[inline]
-    fn output(&mut self) -> u32 {
-        let old = self.state;
-        self.step();
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        let rot = (old >> 59) as u32;
-        xorshifted.rotate_right(rot)
-    }
-}
-
-impl TryRng for Pcg32 {
-    type Error = Infallible;
-    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
-        Ok(self.output())
-    }
-    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
-        let lo = self.output() as u64;
-        let hi = self.output() as u64;
-        Ok(lo | (hi << 32))
-    }
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
-        for chunk in dst.chunks_mut(4) {
-            let b = self.output().to_le_bytes();
-            chunk.copy_from_slice(&b[..chunk.len()]);
-        }
-        Ok(())
-    }
-}
+/// The crate's one generator, re-exported here for the noise models.
+pub use crate::rng::Pcg32;
 
 /// Uniform on `[0, 1)` with 24 random bits.
 #[inline]

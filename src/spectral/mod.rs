@@ -37,6 +37,7 @@ pub use photometry::{
 
 /// Why a spectral table or a wavelength was rejected.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum SpectralError {
     /// A wavelength or table entry was NaN or infinite.
     NotFinite,

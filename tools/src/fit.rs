@@ -290,6 +290,7 @@ fn spec_string(s: &BrdfSpec) -> String {
 
 /// Why a fit could not be made.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum FitError {
     /// No samples at all.
     Empty,

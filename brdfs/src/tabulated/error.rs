@@ -12,6 +12,7 @@ use core::fmt;
 /// assert_eq!(e.to_string(), "table has 10 values per channel, the grid needs 1458000");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum TabulatedError {
     /// Grid dimensions out of range (an axis with 0 or more than
     /// [`MAX_AXIS`](super::grid::MAX_AXIS) nodes, or more than
