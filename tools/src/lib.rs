@@ -4,7 +4,7 @@
 //! | module | what it does |
 //! |---|---|
 //! | [`tradeoff`] | the accuracy-vs-time report: every integrator over a ladder of budgets and to a tolerance, on a suite of directional albedos and product integrals, against independent references (CSV, `summary.md`, SVG plots with the `plot` feature) |
-//! | [`reference`] | independent `f64` references: the BRDF models re-implemented from their papers, integrated by nested adaptive Gauss–Kronrod quadrature |
+//! | [`reference`](mod@reference) | independent `f64` references: the BRDF models re-implemented from their papers, integrated by nested adaptive Gauss–Kronrod quadrature |
 //! | [`fit`] | fitting a microfacet model (+ Fresnel, + diffuse) to a tabulated BRDF |
 //! | [`merl`], [`model`], [`spec`] | re-exported from `radiometry-spec`: MERL I/O, the run-time BRDF and integrator, the spec grammar |
 //!
