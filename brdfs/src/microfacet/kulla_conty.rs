@@ -63,7 +63,7 @@ const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 ///
 /// Sampling: a mixture of the single-scattering lobe and a sampler of the
 /// added lobe's own profile `(1 − E(μi)) cos θi` (piecewise `∝ cos θi` on
-/// the table's cells, see [`lobe_sampler`]), chosen with probability
+/// the table's cells, cells carry `M_j ∝ max(1 − E) (μ_{j+1}² − μ_j²)`), chosen with probability
 /// `w(μo) = 1 − E(μo)` (the fraction of energy the lobe carries when
 /// `F = 1`); the density is exactly
 /// `pdf = (1 − w) pdf_ss(ωi, ωo) + w μi v_j / (π T)`. (A cosine lobe in its
@@ -409,8 +409,8 @@ where
         Some(BrdfSample { wi, pdf, weight })
     }
 
-    /// `(1 − w) pdf_ss(ωi, ωo) + w μi v_j / (π T)` (the added lobe's sampler,
-    /// [`lobe_sampler`]) with `w = 1 − E(μo)`; 0 when
+    /// `(1 − w) pdf_ss(ωi, ωo) + w μi v_j / (π T)` (the added lobe's sampler: `v_j` the
+    /// height of the table cell of `μi`, `T` the total mass) with `w = 1 − E(μo)`; 0 when
     /// either direction is at or below the horizon.
     #[inline]
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
