@@ -95,7 +95,7 @@ impl fmt::Display for LightError {
 impl core::error::Error for LightError {}
 
 /// Checks that every channel is finite, non-negative and ≤ [`MAX_RADIANCE`].
-pub fn check_radiance<S: Spectrum>(s: S) -> Result<S, LightError> {
+pub(crate) fn check_radiance<S: Spectrum>(s: S) -> Result<S, LightError> {
     for i in 0..S::CHANNELS {
         let v = s.channel(i);
         if !v.is_finite() {
@@ -132,7 +132,7 @@ fn zero_estimate<S: Spectrum>() -> WideEstimate<S> {
 /// holds whether the errors are quadrature bounds or standard errors),
 /// evaluations add (saturating).
 #[inline]
-pub fn add_estimates<W: WideSpectrum>(a: Estimate<W>, b: Estimate<W>) -> Estimate<W> {
+pub(crate) fn add_estimates<W: WideSpectrum>(a: Estimate<W>, b: Estimate<W>) -> Estimate<W> {
     Estimate {
         value: a.value.zip(b.value, |x, y| x + y),
         error: a.error.zip(b.error, |x, y| x + y),

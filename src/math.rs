@@ -11,12 +11,6 @@ pub fn safe_sqrt(x: f32) -> f32 {
     libm::sqrtf(x.max(0.0))
 }
 
-/// `f64` version of [`safe_sqrt`].
-#[inline]
-pub fn safe_sqrt_f64(x: f64) -> f64 {
-    libm::sqrt(x.max(0.0))
-}
-
 /// `acos` with its argument clamped to `[-1, 1]`.
 #[inline]
 pub fn safe_acos(x: f32) -> f32 {
@@ -47,7 +41,7 @@ pub fn clamp01(u: f32) -> f32 {
 
 /// `x²`.
 #[inline]
-pub fn sqr(x: f32) -> f32 {
+pub(crate) fn sqr(x: f32) -> f32 {
     x * x
 }
 
@@ -55,12 +49,6 @@ pub fn sqr(x: f32) -> f32 {
 ///
 /// Sample coordinates `u` live in `[0, ONE_MINUS_EPSILON]`.
 pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
-
-/// Returns `x` if it is finite, otherwise `fallback`.
-#[inline]
-pub fn finite_or(x: f32, fallback: f32) -> f32 {
-    if x.is_finite() { x } else { fallback }
-}
 
 /// `(sin 2πt, cos 2πt)`: the sine and cosine of `t` full turns, the
 /// azimuth `φ = 2π u` of every sampler, without forming `2π u` (whose

@@ -381,7 +381,7 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
 
 /// Checks that every channel of `v` is finite.
 #[inline]
-pub fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
+pub(crate) fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
     if v.is_finite() {
         Ok(v)
     } else {

@@ -86,12 +86,8 @@ pub fn fibonacci_point(i: u32, n: u32, shift: [f64; 2]) -> [f32; 2] {
 
 /// Point `cell` of a jittered `nx × ny` grid: cell `(cell mod nx,
 /// cell div nx)` plus the jitter `j ∈ [0,1)²`. Output in `[0, 1 − 2⁻²⁴]²`.
-///
-/// ```
-/// use radiometry::integrator::points::jittered_point;
-/// assert_eq!(jittered_point(5, 4, 2, [0.5, 0.5]), [0.375, 0.75]);
-/// ```
-pub fn jittered_point(cell: u32, nx: u32, ny: u32, j: [f32; 2]) -> [f32; 2] {
+/// (`jittered_point(5, 4, 2, [0.5, 0.5]) = [0.375, 0.75]`, a unit test.)
+pub(crate) fn jittered_point(cell: u32, nx: u32, ny: u32, j: [f32; 2]) -> [f32; 2] {
     let (nx, ny) = (nx.max(1), ny.max(1));
     let cx = (cell % nx) as f64;
     let cy = ((cell / nx) % ny) as f64;
@@ -103,7 +99,7 @@ pub fn jittered_point(cell: u32, nx: u32, ny: u32, j: [f32; 2]) -> [f32; 2] {
 
 /// The grid `nx × ny` used for `n` jittered points: `nx = ⌊√n⌋`,
 /// `ny = ⌊n/nx⌋` (so `nx·ny ≤ n`, and `nx·ny > n − 2√n`).
-pub fn jitter_grid(n: u32) -> (u32, u32) {
+pub(crate) fn jitter_grid(n: u32) -> (u32, u32) {
     let n = n.max(1);
     let mut nx = libm::sqrt(n as f64) as u32;
     while (nx as u64 + 1) * (nx as u64 + 1) <= n as u64 {
@@ -121,14 +117,8 @@ pub fn jitter_grid(n: u32) -> (u32, u32) {
 /// `cos θ / π` (PBRT 4th ed. §A.5.3 with the polar disk map). This is the
 /// map under which the Fibonacci lattice becomes the cosine-weighted
 /// spherical Fibonacci set (Marques et al. 2013, §4). Domain `u ∈ [0,1]²`.
-///
-/// ```
-/// use radiometry::integrator::points::square_to_cosine_hemisphere_polar;
-/// let w = square_to_cosine_hemisphere_polar([0.0, 0.3]);
-/// assert_eq!(w.z, 1.0);
-/// ```
 #[inline]
-pub fn square_to_cosine_hemisphere_polar(u: [f32; 2]) -> Vec3 {
+pub(crate) fn square_to_cosine_hemisphere_polar(u: [f32; 2]) -> Vec3 {
     let u0 = u[0].clamp(0.0, 1.0);
     let r = libm::sqrtf(u0);
     let (s, c) = crate::math::sincos_turn(u[1].clamp(0.0, 1.0));
@@ -156,7 +146,7 @@ fn unit_f32(x: f64) -> f32 {
 /// Lea & Flood 2014, "Fast splittable pseudorandom number generators",
 /// OOPSLA), used to derive per-replicate seeds.
 #[inline]
-pub fn mix_seed(seed: u64, index: u64) -> u64 {
+pub(crate) fn mix_seed(seed: u64, index: u64) -> u64 {
     let mut z = seed
         ^ index
             .wrapping_mul(0x9E37_79B9_7F4A_7C15)
@@ -201,6 +191,12 @@ mod tests {
                 assert_eq!(b.map(f32::to_bits), eb.map(f32::to_bits), "i={i} seed={seed}");
             }
         }
+    }
+
+    #[test]
+    fn jittered_cells_and_the_polar_map() {
+        assert_eq!(jittered_point(5, 4, 2, [0.5, 0.5]), [0.375, 0.75]);
+        assert_eq!(square_to_cosine_hemisphere_polar([0.0, 0.3]).z, 1.0);
     }
 
     #[test]
