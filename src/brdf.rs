@@ -83,7 +83,8 @@ pub trait Brdf {
     /// neither panics nor leaves stale output).
     ///
     /// The default loops over [`Brdf::eval`]; plugins may override it with a
-    /// vectorised kernel (see the `simd` feature).
+    /// vectorised kernel (the plugins of `radiometry-brdfs` do, with its `simd`
+    /// feature).
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [Self::Spectrum]) {
         for ((o, &a), &b) in out.iter_mut().zip(wi).zip(wo) {
             *o = self.eval(a, b);

@@ -1,4 +1,4 @@
-//! MERL `.binary` files and the `Tabulated` plugin built from them (issue 9): file round trip,
+//! MERL `.binary` files and the `Tabulated` plugin built from them: file round trip,
 //! malformed files, and the directional albedo of a table of GGX α = 0.3 (F = 1, height-correlated)
 //! on the MERL grid against the independent f64 reference of `radiometry_cli::reference` (GGX
 //! re-implemented in f64 from Walter et al. 2007 / Heitz 2014, nested Gauss–Kronrod), plus the

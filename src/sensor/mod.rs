@@ -2,7 +2,7 @@
 //! back.
 //!
 //! A pixel reads `I = R(∫_t ∫_λ ∫_x ∫_y E(x,y,λ,t) s(x,y) q(λ))`
-//! (CSE 252A radiometry lecture; `DESIGN.md`). Here
+//! (CSE 252A radiometry lecture on radiometry and reflectance). Here
 //!
 //! * `E` is an [`IrradianceField`] that *declares* how it varies: over the
 //!   pixel area ([`IrradianceField::VARIES_IN_SPACE`]), over time

@@ -9,7 +9,7 @@
 //!   (module [`sampling`]).
 //!
 //! Reading and writing MERL `.binary` files is std-side work (the
-//! `radiometry-cli` library, module `merl`).
+//! `radiometry-spec` crate, module `merl`).
 
 #[cfg(feature = "simd")]
 mod batch;

@@ -46,15 +46,13 @@ use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 /// `radiometry bench` (AMD EPYC, Zen 4, 2 shared cores, n = 4096 random
 /// pairs over the hemisphere, table of 5.8 MB), scalar `eval`: 28.3 M/s
 /// (0.23 × the in-run straight-line GGX reference) with default release
-/// flags, 30.8 M/s (0.25 ×) with `-C target-cpu=native`, against 22.8 /
-/// 25.1 M/s (0.18 / 0.20 ×) before the coordinates were rewritten; the
-/// batch paths with feature `simd` gained more (default flags 40 → 57 M/s,
-/// native 61 → 77 M/s for `eval_batch_soa`). The scalar path is
-/// latency-bound: a chain of about 120 dependent cycles (the sums, one
-/// division and square root, the arctangent polynomial, the θh square-root
-/// mapping, the index arithmetic, a table read that usually misses L1, the
-/// trilinear sum) of which the out-of-order core overlaps little more than
-/// one evaluation with the next.
+/// flags, 30.8 M/s (0.25 ×) with `-C target-cpu=native`; `eval_batch_soa`
+/// with feature `simd`: 57 M/s with default flags, 77 M/s native. The
+/// scalar path is latency-bound: a chain of about 120 dependent cycles (the
+/// sums, one division and square root, the arctangent polynomial, the θh
+/// square-root mapping, the index arithmetic, a table read that usually
+/// misses L1, the trilinear sum) of which the out-of-order core overlaps
+/// little more than one evaluation with the next.
 ///
 /// # Sampling
 ///
