@@ -24,3 +24,8 @@ pub mod tradeoff;
 
 pub use radiometry_spec as spec;
 pub use radiometry_spec::{merl, model};
+
+/// The crate README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
