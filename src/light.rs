@@ -153,7 +153,7 @@ pub trait Light {
     /// Incident radiance `L(ω)` arriving from direction `ω` (pointing away
     /// from the surface toward the light), for any finite `ω`; directions
     /// need not be unit. Delta lights have no finite radiance and return
-    /// zero here (their contribution is in [`Light::reflected_radiance`] and
+    /// zero here (their contribution is in [`LightIntegrals::reflected_radiance`] and
     /// the irradiance methods). Below-horizon directions return the light's
     /// radiance there (it does not reach the surface: integrals are over
     /// the upper hemisphere only).
@@ -169,24 +169,107 @@ pub trait Light {
     /// one exists (every light except [`Environment`]); `None` otherwise.
     fn closed_form_irradiance(&self) -> Option<Self::Spectrum>;
 
+    /// Calls `f` once for each component light, as one of the kinds the
+    /// crate knows how to integrate exactly ([`LightPart`]); a sum visits
+    /// its terms in order. This is what makes [`Light`] object-safe: the
+    /// integrations of [`LightIntegrals`] are generic over the BRDF and the
+    /// integrator, and run over the parts, so they work the same for a
+    /// concrete light, a sum and a `&dyn Light`. A light of a new kind
+    /// reports itself as [`LightPart::Environment`] (its
+    /// [`Light::radiance`] integrated over the hemisphere).
+    fn for_each_part(
+        &self,
+        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError>;
+}
+
+/// One component of a light, as [`Light::for_each_part`] reports it: the
+/// kind decides the exact method of the reflection equation (module table).
+#[derive(Clone, Copy)]
+#[non_exhaustive]
+pub enum LightPart<'a, S: Spectrum> {
+    /// A delta light: one BRDF evaluation.
+    Directional(&'a Directional<S>),
+    /// A uniform sky: `L · ρ(ωo)`, one albedo integration.
+    Sky(&'a UniformSky<S>),
+    /// A uniform cap: an integration over the visible cap only.
+    Cap(&'a Cap<S>),
+    /// Any radiance function: a full-hemisphere integration of
+    /// [`Light::radiance`] ([`EnvironmentIntegrand`]).
+    Environment(&'a dyn Light<Spectrum = S>),
+}
+
+impl<S: Spectrum> fmt::Debug for LightPart<'_, S> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LightPart::Directional(d) => f.debug_tuple("Directional").field(d).finish(),
+            LightPart::Sky(s) => f.debug_tuple("Sky").field(s).finish(),
+            LightPart::Cap(c) => f.debug_tuple("Cap").field(c).finish(),
+            LightPart::Environment(_) => f.write_str("Environment(..)"),
+        }
+    }
+}
+
+/// The integrals of any [`Light`] (also `dyn Light`, slices and sums):
+/// irradiance and reflected radiance, per [part](Light::for_each_part) by
+/// the cheapest exact method, summed (values and errors add; evaluations
+/// add). Implemented for every light; bring it into scope (it is in the
+/// [prelude](crate::prelude)) to call the methods.
+///
+/// ```
+/// use radiometry::light::{Directional, Light, LightIntegrals, UniformSky};
+/// use radiometry::integrator::GaussLegendre;
+/// use radiometry::{Brdf, glam::Vec3};
+/// struct Lambert;
+/// impl Brdf for Lambert {
+///     type Spectrum = f32;
+///     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+///         if wi.z > 0.0 && wo.z > 0.0 { 0.5 / core::f32::consts::PI } else { 0.0 }
+///     }
+/// }
+/// // Lights chosen at run time, behind `&dyn Light`.
+/// let sky = UniformSky::new(2.0f32)?;
+/// let sun = Directional::new(Vec3::Z, 3.0f32)?;
+/// let lights: [&dyn Light<Spectrum = f32>; 2] = [&sky, &sun];
+/// let e = lights.irradiance_estimate(&GaussLegendre::new(), 100)?;
+/// assert!((e.value - (2.0 * core::f64::consts::PI + 3.0)).abs() < 1e-5);
+/// let lr = lights.reflected_radiance(&Lambert, Vec3::Z, &GaussLegendre::new(), 400)?;
+/// assert!((lr.value - 0.5 * e.value / core::f64::consts::PI).abs() < 1e-5);
+/// # Ok::<(), Box<dyn core::error::Error>>(())
+/// ```
+pub trait LightIntegrals: Light {
     /// Irradiance as an [`Estimate`]: the closed form (zero error, zero
     /// evaluations) where one exists, otherwise an integration of
     /// `L(ω) cos θ` over the hemisphere with `integrator` and `budget`
-    /// evaluations (per light that needs integration).
+    /// evaluations (per part that needs integration).
     fn irradiance_estimate<I: Integrator>(
         &self,
         integrator: &I,
         budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError>;
+    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError> {
+        let mut acc = zero_estimate::<Self::Spectrum>();
+        self.for_each_part(&mut |part| {
+            let e = match part {
+                LightPart::Directional(d) => exact(d.irradiance(), 0),
+                LightPart::Sky(s) => exact(s.irradiance(), 0),
+                LightPart::Cap(c) => exact(c.irradiance(), 0),
+                LightPart::Environment(l) => {
+                    integrator.integrate(&environment::EnvironmentIrradiance { light: l }, budget)?
+                }
+            };
+            acc = add_estimates(acc, e);
+            Ok(())
+        })?;
+        Ok(acc)
+    }
 
     /// Reflected radiance `L_r(ωo) = ∫_H f_r(ωi, ωo) L(ωi) cos θi dωi` of
-    /// this light off `brdf`, by the cheapest exact method for the light
-    /// type (see the [module docs](self)). `wo` is the outgoing direction
-    /// in the local frame (normalised here; zero or below the horizon gives
-    /// an exact zero). `budget` is the evaluation budget of *each*
-    /// integration a light needs; [`Estimate::evaluations`] counts all BRDF
-    /// / integrand evaluations spent, and the error is the sum of the
-    /// per-light errors.
+    /// this light off `brdf`, by the cheapest exact method per part (see the
+    /// [module docs](self)). `wo` is the outgoing direction in the local
+    /// frame (normalised here; zero or below the horizon gives an exact
+    /// zero). `budget` is the evaluation budget of *each* integration a part
+    /// needs; [`Estimate::evaluations`] counts all BRDF / integrand
+    /// evaluations spent, and the error is the sum of the per-part errors.
     fn reflected_radiance<B, I>(
         &self,
         brdf: &B,
@@ -196,12 +279,31 @@ pub trait Light {
     ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError>
     where
         B: Brdf<Spectrum = Self::Spectrum>,
-        I: Integrator;
+        I: Integrator,
+    {
+        let mut acc = zero_estimate::<Self::Spectrum>();
+        self.for_each_part(&mut |part| {
+            let e = match part {
+                LightPart::Directional(d) => d.reflect(brdf, wo, integrator, budget)?,
+                LightPart::Sky(s) => s.reflect(brdf, wo, integrator, budget)?,
+                LightPart::Cap(c) => c.reflect(brdf, wo, integrator, budget)?,
+                LightPart::Environment(l) => match visible_wo(wo) {
+                    Some(wo) => integrator.integrate(&EnvironmentIntegrand { brdf, wo, light: l }, budget)?,
+                    None => zero_estimate::<Self::Spectrum>(),
+                },
+            };
+            acc = add_estimates(acc, e);
+            Ok(())
+        })?;
+        Ok(acc)
+    }
 }
+
+impl<L: Light + ?Sized> LightIntegrals for L {}
 
 /// Reflected radiance `L_r(ωo)` of `brdf` under `lights` (any [`Light`],
 /// including sums), by the cheapest exact method per light:
-/// [`Light::reflected_radiance`]. Reflection equation: Nicodemus et al.
+/// [`LightIntegrals::reflected_radiance`]. Reflection equation: Nicodemus et al.
 /// 1977; PBR 4th ed. §4.3.1, eq. 4.14.
 ///
 /// Domain: `wo` any finite vector (normalised; zero or `wo.z ≤ 0` gives
@@ -220,12 +322,12 @@ where
     L: Light<Spectrum = B::Spectrum> + ?Sized,
     I: Integrator,
 {
-    lights.reflected_radiance(brdf, wo, integrator, budget)
+    LightIntegrals::reflected_radiance(lights, brdf, wo, integrator, budget)
 }
 
 /// Irradiance on the surface from `lights`: closed forms where they exist,
 /// integration (with `integrator`, `budget` per light) otherwise
-/// ([`Light::irradiance_estimate`]).
+/// ([`LightIntegrals::irradiance_estimate`]).
 #[inline]
 pub fn irradiance<L, I>(
     lights: &L,
@@ -236,7 +338,7 @@ where
     L: Light + ?Sized,
     I: Integrator,
 {
-    lights.irradiance_estimate(integrator, budget)
+    LightIntegrals::irradiance_estimate(lights, integrator, budget)
 }
 
 /// Normalises `wo`; `None` when it is zero, non-finite or at/below the

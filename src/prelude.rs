@@ -23,7 +23,7 @@
 //! | [`Integrand`], [`Integrator`], [`Estimate`], [`IntegrateError`], [`Status`] | hemisphere integration |
 //! | [`Adaptive`], [`Auto`], [`GaussLegendre`], [`WarpedGaussLegendre`], [`MonteCarlo`] | the integrators |
 //! | [`DirectionalAlbedo`], [`integrate_to_tolerance`] | the albedo integrand and the tolerance driver |
-//! | [`Light`], [`reflected_radiance`] | lights and the reflection equation |
+//! | [`Light`], [`LightIntegrals`], [`reflected_radiance`] | lights (also as `&dyn Light`) and the reflection equation |
 //! | [`Pcg32`] | the crate's random number generator |
 
 pub use crate::brdf::{Brdf, BrdfSample, IsotropicBrdf};
@@ -32,7 +32,7 @@ pub use crate::integrator::{
     Adaptive, Auto, DirectionalAlbedo, Estimate, GaussLegendre, Integrand, IntegrateError, Integrator,
     MonteCarlo, Status, WarpedGaussLegendre, integrate_to_tolerance,
 };
-pub use crate::light::{Light, reflected_radiance};
+pub use crate::light::{Light, LightIntegrals, reflected_radiance};
 pub use crate::rng::Pcg32;
 pub use crate::spectrum::{SampledSpectrum, Spectrum};
 pub use glam::Vec3;

@@ -16,7 +16,7 @@ use radiometry::integrator::{
 };
 use radiometry::light::{
     Cap, CapIntegrand, CapSampled, CapStrategy, Directional, Environment, EnvironmentIntegrand, Light,
-    LightError, MAX_RADIANCE, UniformSky, reflected_radiance,
+    LightError, LightIntegrals, MAX_RADIANCE, UniformSky, reflected_radiance,
 };
 use radiometry::radiometric::{
     cap_irradiance, cap_projected_solid_angle, cap_solid_angle, directional_irradiance, sky_irradiance,

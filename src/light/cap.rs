@@ -1,7 +1,7 @@
 //! Uniform spherical caps (sun, spherical lamp) and the integrand of the reflection equation over a cap.
 
 use super::{
-    Light, LightError, MAX_RADIANCE, WideEstimate, check_radiance, exact, visible_wo, zero_estimate,
+    Light, LightError, LightPart, MAX_RADIANCE, WideEstimate, check_radiance, visible_wo, zero_estimate,
 };
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
@@ -155,14 +155,19 @@ impl<S: Spectrum> Light for Cap<S> {
         Some(self.irradiance())
     }
 
-    fn irradiance_estimate<I: Integrator>(&self, _: &I, _: u32) -> Result<WideEstimate<S>, IntegrateError> {
-        Ok(exact(self.irradiance(), 0))
+    fn for_each_part(
+        &self,
+        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
+        f(LightPart::Cap(self))
     }
+}
 
+impl<S: Spectrum> Cap<S> {
     /// Integrates `f_r L cos θi` over the visible part of the cap only
     /// ([`CapIntegrand`]). A cap entirely below the horizon, or black,
     /// costs nothing.
-    fn reflected_radiance<B, I>(
+    pub(crate) fn reflect<B, I>(
         &self,
         brdf: &B,
         wo: Vec3,

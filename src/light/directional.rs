@@ -1,6 +1,6 @@
 //! Directional (delta) lights.
 
-use super::{Light, LightError, WideEstimate, check_radiance, exact, visible_wo, zero_estimate};
+use super::{Light, LightError, LightPart, WideEstimate, check_radiance, visible_wo, zero_estimate};
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
 use crate::integrator::{Estimate, IntegrateError, Integrator, Status};
@@ -72,13 +72,18 @@ impl<S: Spectrum> Light for Directional<S> {
         Some(self.irradiance())
     }
 
-    fn irradiance_estimate<I: Integrator>(&self, _: &I, _: u32) -> Result<WideEstimate<S>, IntegrateError> {
-        Ok(exact(self.irradiance(), 0))
+    fn for_each_part(
+        &self,
+        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
+        f(LightPart::Directional(self))
     }
+}
 
+impl<S: Spectrum> Directional<S> {
     /// One BRDF evaluation: `f_r(ωl, ωo) E⊥ cos θl`, exact up to the `f32`
     /// rounding of that evaluation (reported error 0).
-    fn reflected_radiance<B, I>(
+    pub(crate) fn reflect<B, I>(
         &self,
         brdf: &B,
         wo: Vec3,

@@ -1,10 +1,10 @@
 //! General environment lights and their integrands.
 
-use super::{Light, WideEstimate, visible_wo, zero_estimate};
+use super::{Light, LightPart};
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
 use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
-use crate::integrator::{CHUNK, Integrand, IntegrandSample, IntegrateError, Integrator};
+use crate::integrator::{CHUNK, Integrand, IntegrandSample, IntegrateError};
 use crate::spectrum::Spectrum;
 use crate::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use glam::Vec3;
@@ -19,7 +19,7 @@ use glam::Vec3;
 /// [`IntegrateError::NonFiniteIntegrand`] from the integrator).
 ///
 /// ```
-/// use radiometry::light::{Environment, Light};
+/// use radiometry::light::{Environment, LightIntegrals};
 /// use radiometry::integrator::GaussLegendre;
 /// use radiometry::glam::Vec3;
 /// // A sky brighter toward the zenith: L = 1 + cos θ, E = π + 2π/3.
@@ -58,55 +58,27 @@ impl<S: Spectrum, F: Fn(Vec3) -> S> Light for Environment<F> {
         None
     }
 
-    /// `∫_H L(ω) cos θ dω` by `integrator`; the integrand's sampling map is
-    /// cosine-weighted.
-    fn irradiance_estimate<I: Integrator>(
+    fn for_each_part(
         &self,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<S>, IntegrateError> {
-        integrator.integrate(&EnvironmentIrradiance { f: &self.f }, budget)
-    }
-
-    /// Full-hemisphere integration of `f_r L cos θi` ([`EnvironmentIntegrand`]).
-    fn reflected_radiance<B, I>(
-        &self,
-        brdf: &B,
-        wo: Vec3,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<S>, IntegrateError>
-    where
-        B: Brdf<Spectrum = S>,
-        I: Integrator,
-    {
-        let Some(wo) = visible_wo(wo) else {
-            return Ok(zero_estimate::<S>());
-        };
-        integrator.integrate(
-            &EnvironmentIntegrand {
-                brdf,
-                wo,
-                light: self,
-            },
-            budget,
-        )
+        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
+        f(LightPart::Environment(self))
     }
 }
 
-/// `g(ω) = L(ω) cos θ` of an environment function, sampled cosine-weighted.
-struct EnvironmentIrradiance<'a, F> {
-    f: &'a F,
+/// `g(ω) = L(ω) cos θ` of a light's radiance, sampled cosine-weighted.
+pub(crate) struct EnvironmentIrradiance<'a, L: ?Sized> {
+    pub(crate) light: &'a L,
 }
 
-impl<S: Spectrum, F: Fn(Vec3) -> S> Integrand for EnvironmentIrradiance<'_, F> {
+impl<S: Spectrum, L: Light<Spectrum = S> + ?Sized> Integrand for EnvironmentIrradiance<'_, L> {
     type Spectrum = S;
 
     fn eval(&self, w: Vec3) -> S {
         if w.z <= 0.0 {
             return S::zero();
         }
-        (self.f)(w) * w.z
+        self.light.radiance(w) * w.z
     }
 
     fn has_sampling_map(&self) -> bool {
@@ -137,7 +109,7 @@ impl<S: Spectrum, F: Fn(Vec3) -> S> Integrand for EnvironmentIrradiance<'_, F> {
 /// ([`Brdf::sample`]), as for [`DirectionalAlbedo`](crate::integrator::DirectionalAlbedo).
 ///
 /// This is what [`Environment`] integrates; for other lights it is the
-/// *brute-force* path that the shortcuts of [`Light::reflected_radiance`]
+/// *brute-force* path that the shortcuts of [`LightIntegrals::reflected_radiance`](super::LightIntegrals::reflected_radiance)
 /// agree with (exactly for smooth radiance; the hard cap edge makes
 /// hemisphere quadrature of it converge slowly).
 ///

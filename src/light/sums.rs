@@ -1,8 +1,7 @@
 //! Sums of lights: references, slices, arrays and tuples, all without allocation.
 
-use super::{Light, WideEstimate, add_estimates, zero_estimate};
-use crate::brdf::Brdf;
-use crate::integrator::{IntegrateError, Integrator};
+use super::{Light, LightPart};
+use crate::integrator::IntegrateError;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
@@ -17,25 +16,11 @@ impl<L: Light + ?Sized> Light for &L {
     fn closed_form_irradiance(&self) -> Option<Self::Spectrum> {
         (**self).closed_form_irradiance()
     }
-    fn irradiance_estimate<I: Integrator>(
+    fn for_each_part(
         &self,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError> {
-        (**self).irradiance_estimate(integrator, budget)
-    }
-    fn reflected_radiance<B, I>(
-        &self,
-        brdf: &B,
-        wo: Vec3,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError>
-    where
-        B: Brdf<Spectrum = Self::Spectrum>,
-        I: Integrator,
-    {
-        (**self).reflected_radiance(brdf, wo, integrator, budget)
+        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
+        (**self).for_each_part(f)
     }
 }
 
@@ -54,33 +39,14 @@ impl<L: Light> Light for [L] {
             Some(acc + l.closed_form_irradiance()?)
         })
     }
-    fn irradiance_estimate<I: Integrator>(
+    fn for_each_part(
         &self,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError> {
-        let mut acc = zero_estimate::<L::Spectrum>();
+        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
         for l in self {
-            acc = add_estimates(acc, l.irradiance_estimate(integrator, budget)?);
+            l.for_each_part(f)?;
         }
-        Ok(acc)
-    }
-    fn reflected_radiance<B, I>(
-        &self,
-        brdf: &B,
-        wo: Vec3,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError>
-    where
-        B: Brdf<Spectrum = Self::Spectrum>,
-        I: Integrator,
-    {
-        let mut acc = zero_estimate::<L::Spectrum>();
-        for l in self {
-            acc = add_estimates(acc, l.reflected_radiance(brdf, wo, integrator, budget)?);
-        }
-        Ok(acc)
+        Ok(())
     }
 }
 
@@ -95,25 +61,11 @@ impl<L: Light, const N: usize> Light for [L; N] {
     fn closed_form_irradiance(&self) -> Option<Self::Spectrum> {
         self.as_slice().closed_form_irradiance()
     }
-    fn irradiance_estimate<I: Integrator>(
+    fn for_each_part(
         &self,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError> {
-        self.as_slice().irradiance_estimate(integrator, budget)
-    }
-    fn reflected_radiance<B, I>(
-        &self,
-        brdf: &B,
-        wo: Vec3,
-        integrator: &I,
-        budget: u32,
-    ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError>
-    where
-        B: Brdf<Spectrum = Self::Spectrum>,
-        I: Integrator,
-    {
-        self.as_slice().reflected_radiance(brdf, wo, integrator, budget)
+        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
+        self.as_slice().for_each_part(f)
     }
 }
 
@@ -138,32 +90,14 @@ macro_rules! tuple_light {
                 Some($first.closed_form_irradiance()? $(+ $rest.closed_form_irradiance()?)*)
             }
             #[allow(non_snake_case)]
-            fn irradiance_estimate<I: Integrator>(
+            fn for_each_part(
                 &self,
-                integrator: &I,
-                budget: u32,
-            ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError> {
+                f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
+            ) -> Result<(), IntegrateError> {
                 let ($first, $($rest,)*) = self;
-                let acc = $first.irradiance_estimate(integrator, budget)?;
-                $(let acc = add_estimates(acc, $rest.irradiance_estimate(integrator, budget)?);)*
-                Ok(acc)
-            }
-            #[allow(non_snake_case)]
-            fn reflected_radiance<Br, I>(
-                &self,
-                brdf: &Br,
-                wo: Vec3,
-                integrator: &I,
-                budget: u32,
-            ) -> Result<WideEstimate<Self::Spectrum>, IntegrateError>
-            where
-                Br: Brdf<Spectrum = Self::Spectrum>,
-                I: Integrator,
-            {
-                let ($first, $($rest,)*) = self;
-                let acc = $first.reflected_radiance(brdf, wo, integrator, budget)?;
-                $(let acc = add_estimates(acc, $rest.reflected_radiance(brdf, wo, integrator, budget)?);)*
-                Ok(acc)
+                $first.for_each_part(f)?;
+                $($rest.for_each_part(f)?;)*
+                Ok(())
             }
         }
     };

@@ -1,6 +1,8 @@
 //! The uniform sky.
 
-use super::{Light, LightError, WideEstimate, check_radiance, exact, scale_wide, visible_wo, zero_estimate};
+use super::{
+    Light, LightError, LightPart, WideEstimate, check_radiance, scale_wide, visible_wo, zero_estimate,
+};
 use crate::brdf::Brdf;
 use crate::integrator::{DirectionalAlbedo, Estimate, IntegrateError, Integrator};
 use crate::radiometric;
@@ -54,13 +56,18 @@ impl<S: Spectrum> Light for UniformSky<S> {
         Some(self.irradiance())
     }
 
-    fn irradiance_estimate<I: Integrator>(&self, _: &I, _: u32) -> Result<WideEstimate<S>, IntegrateError> {
-        Ok(exact(self.irradiance(), 0))
+    fn for_each_part(
+        &self,
+        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
+    ) -> Result<(), IntegrateError> {
+        f(LightPart::Sky(self))
     }
+}
 
+impl<S: Spectrum> UniformSky<S> {
     /// `L · ρ(ωo)` with `ρ` from `integrator` on [`DirectionalAlbedo`];
     /// error `L · err(ρ)` channel-wise. A black sky costs nothing.
-    fn reflected_radiance<B, I>(
+    pub(crate) fn reflect<B, I>(
         &self,
         brdf: &B,
         wo: Vec3,
