@@ -177,11 +177,12 @@ pub trait Light {
     /// concrete light, a sum and a `&dyn Light`. A light of a new kind
     /// reports itself as [`LightPart::Environment`] (its
     /// [`Light::radiance`] integrated over the hemisphere).
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError>;
+    fn for_each_part(&self, f: &mut PartVisitor<'_, Self::Spectrum>) -> Result<(), IntegrateError>;
 }
+
+/// The callback of [`Light::for_each_part`]: called once per part; an
+/// error stops the visit and is returned.
+pub type PartVisitor<'v, S> = dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError> + 'v;
 
 /// One component of a light, as [`Light::for_each_part`] reports it: the
 /// kind decides the exact method of the reflection equation (module table).

@@ -1,7 +1,8 @@
 //! Uniform spherical caps (sun, spherical lamp) and the integrand of the reflection equation over a cap.
 
 use super::{
-    Light, LightError, LightPart, MAX_RADIANCE, WideEstimate, check_radiance, visible_wo, zero_estimate,
+    Light, LightError, LightPart, MAX_RADIANCE, PartVisitor, WideEstimate, check_radiance, visible_wo,
+    zero_estimate,
 };
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
@@ -155,10 +156,7 @@ impl<S: Spectrum> Light for Cap<S> {
         Some(self.irradiance())
     }
 
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, S>) -> Result<(), IntegrateError> {
         f(LightPart::Cap(self))
     }
 }

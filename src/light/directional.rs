@@ -1,6 +1,8 @@
 //! Directional (delta) lights.
 
-use super::{Light, LightError, LightPart, WideEstimate, check_radiance, visible_wo, zero_estimate};
+use super::{
+    Light, LightError, LightPart, PartVisitor, WideEstimate, check_radiance, visible_wo, zero_estimate,
+};
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
 use crate::integrator::{Estimate, IntegrateError, Integrator, Status};
@@ -72,10 +74,7 @@ impl<S: Spectrum> Light for Directional<S> {
         Some(self.irradiance())
     }
 
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, S>) -> Result<(), IntegrateError> {
         f(LightPart::Directional(self))
     }
 }

@@ -1,6 +1,6 @@
 //! General environment lights and their integrands.
 
-use super::{Light, LightPart};
+use super::{Light, LightPart, PartVisitor};
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
 use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
@@ -58,10 +58,7 @@ impl<S: Spectrum, F: Fn(Vec3) -> S> Light for Environment<F> {
         None
     }
 
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, S>) -> Result<(), IntegrateError> {
         f(LightPart::Environment(self))
     }
 }

@@ -1,6 +1,6 @@
 //! Sums of lights: references, slices, arrays and tuples, all without allocation.
 
-use super::{Light, LightPart};
+use super::{Light, PartVisitor};
 use crate::integrator::IntegrateError;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -16,10 +16,7 @@ impl<L: Light + ?Sized> Light for &L {
     fn closed_form_irradiance(&self) -> Option<Self::Spectrum> {
         (**self).closed_form_irradiance()
     }
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, Self::Spectrum>) -> Result<(), IntegrateError> {
         (**self).for_each_part(f)
     }
 }
@@ -39,10 +36,7 @@ impl<L: Light> Light for [L] {
             Some(acc + l.closed_form_irradiance()?)
         })
     }
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, Self::Spectrum>) -> Result<(), IntegrateError> {
         for l in self {
             l.for_each_part(f)?;
         }
@@ -61,10 +55,7 @@ impl<L: Light, const N: usize> Light for [L; N] {
     fn closed_form_irradiance(&self) -> Option<Self::Spectrum> {
         self.as_slice().closed_form_irradiance()
     }
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, Self::Spectrum>) -> Result<(), IntegrateError> {
         self.as_slice().for_each_part(f)
     }
 }
@@ -92,7 +83,7 @@ macro_rules! tuple_light {
             #[allow(non_snake_case)]
             fn for_each_part(
                 &self,
-                f: &mut dyn FnMut(LightPart<'_, Self::Spectrum>) -> Result<(), IntegrateError>,
+                f: &mut PartVisitor<'_, Self::Spectrum>,
             ) -> Result<(), IntegrateError> {
                 let ($first, $($rest,)*) = self;
                 $first.for_each_part(f)?;

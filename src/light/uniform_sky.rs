@@ -1,7 +1,8 @@
 //! The uniform sky.
 
 use super::{
-    Light, LightError, LightPart, WideEstimate, check_radiance, scale_wide, visible_wo, zero_estimate,
+    Light, LightError, LightPart, PartVisitor, WideEstimate, check_radiance, scale_wide, visible_wo,
+    zero_estimate,
 };
 use crate::brdf::Brdf;
 use crate::integrator::{DirectionalAlbedo, Estimate, IntegrateError, Integrator};
@@ -56,10 +57,7 @@ impl<S: Spectrum> Light for UniformSky<S> {
         Some(self.irradiance())
     }
 
-    fn for_each_part(
-        &self,
-        f: &mut dyn FnMut(LightPart<'_, S>) -> Result<(), IntegrateError>,
-    ) -> Result<(), IntegrateError> {
+    fn for_each_part(&self, f: &mut PartVisitor<'_, S>) -> Result<(), IntegrateError> {
         f(LightPart::Sky(self))
     }
 }
