@@ -4,7 +4,7 @@
 //! come from closed forms or from the f64 quadrature of [`common::quad`],
 //! written separately from the integrators.
 
-mod common;
+use crate::common;
 
 use common::plugins::{Dist, Fres, Kind, Params, Shadow, build};
 use common::quad::{Adaptive as RefQuad, Tol};

@@ -1086,7 +1086,15 @@ mod props {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(300))]
+        #![proptest_config(ProptestConfig {
+            cases: 300,
+            // Failures are saved to, and replayed from, `illumination.proptest-regressions` next to this
+            // file (named explicitly: the default location depends on the name of the harness file).
+            failure_persistence: Some(Box::new(
+                proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+            )),
+            ..ProptestConfig::default()
+        })]
 
         /// Any valid cap, any ωo: finite non-negative results, and the
         /// Lambertian identity L_r = ρE/π with E from the closed form.
@@ -1183,8 +1191,7 @@ fn cap_membership_resolves_tiny_caps() {
     assert!(!cap.contains(Vec3::ZERO) && !cap.contains(-Vec3::Z));
 }
 
-#[path = "common/batch.rs"]
-mod batch;
+use crate::common::batch;
 
 /// The batch overrides of the light integrands (one `Brdf::eval_batch` over
 /// the points that need the BRDF) agree with their scalar methods bit for

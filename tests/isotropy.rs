@@ -11,7 +11,7 @@
 //! * `eval_isotropic(θi, θo, Δφ)` against `eval` at directions built in `f64` from the same `f32` angles
 //!   (ωi at φ = 0, ωo at φ = Δφ), with the same sensitivity tolerance.
 
-mod common;
+use crate::common;
 
 use common::plugins::{all_kinds, build, params};
 use common::strategies::{dir_pair, to_f32, to_f64};

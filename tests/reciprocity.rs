@@ -9,7 +9,7 @@
 //! (`n = 1e7`, `α = 1e-4`) that effect is far above 1e-5 relative (d ln f / d cos α = n). `1e-30`: values
 //! below it are in the range where products of the factors lose relative precision to underflow.
 
-mod common;
+use crate::common;
 
 use common::plugins::{all_kinds, build, params};
 use common::strategies::dir_pair;

@@ -3,7 +3,7 @@
 //! returned pdf`, χ² goodness of fit at several roughnesses/exponents and incidence angles, and the
 //! integral of the pdf (1, or the documented mass of visible-normal sampling).
 
-mod common;
+use crate::common;
 
 use common::chi2::{ChiSquare, chi_square};
 use common::quad::{Adaptive, GaussLegendre, Tol, integrate_hemisphere};

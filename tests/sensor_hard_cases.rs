@@ -29,7 +29,15 @@ fn any_f32() -> impl Strategy<Value = f32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(ProptestConfig {
+        cases: 2000,
+        // Failures are saved to, and replayed from, `sensor_hard_cases.proptest-regressions` next to this
+        // file (named explicitly: the default location depends on the name of the harness file).
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn spectral_curves_are_total(l in any_f32(), t in any_f32(), e in any_f32()) {

@@ -4,7 +4,7 @@
 //! `> 0`, and nothing panics. Invalid parameters are rejected at construction with a typed error whose
 //! `Display` names the parameter.
 
-mod common;
+use crate::common;
 
 use common::plugins::{Dyn, Kind, Params, all_kinds, build};
 use radiometry::glam::Vec3;

@@ -3,8 +3,8 @@
 //! with the default loops alike:
 //!
 //! ```text
-//! cargo test -p radiometry-brdfs --test batch -- --nocapture
-//! cargo test -p radiometry-brdfs --test batch --features simd -- --nocapture
+//! cargo test -p radiometry-brdfs --test integration batch:: -- --nocapture
+//! cargo test -p radiometry-brdfs --test integration batch:: --features simd -- --nocapture
 //! ```
 //!
 //! Every configuration is checked three ways: `eval_batch` (`&[Vec3]`) and
@@ -319,7 +319,15 @@ fn pair() -> impl Strategy<Value = (Vec3, Vec3)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1000))]
+    #![proptest_config(ProptestConfig {
+        cases: 1000,
+        // Failures are saved to, and replayed from, `batch.proptest-regressions` next to this
+        // file (named explicitly: the default location depends on the name of the harness file).
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
+        ..ProptestConfig::default()
+    })]
 
     /// Batches of 0..40 pairs (so every tail length and every lane position
     /// of an edge case occur) for every configuration.

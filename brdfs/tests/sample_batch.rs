@@ -5,8 +5,8 @@
 //! including `kd = 0`, `ks = 0` and both; Lambertian) and with the default loop:
 //!
 //! ```text
-//! cargo test -p radiometry-brdfs --test sample_batch -- --nocapture
-//! cargo test -p radiometry-brdfs --test sample_batch --features simd -- --nocapture
+//! cargo test -p radiometry-brdfs --test integration sample_batch:: -- --nocapture
+//! cargo test -p radiometry-brdfs --test integration sample_batch:: --features simd -- --nocapture
 //! ```
 //!
 //! Tolerance: **0 ulp** in `wi` (each component), `pdf` and every channel
@@ -418,7 +418,15 @@ fn coordinate() -> impl Strategy<Value = f32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(500))]
+    #![proptest_config(ProptestConfig {
+        cases: 500,
+        // Failures are saved to, and replayed from, `sample_batch.proptest-regressions` next to this
+        // file (named explicitly: the default location depends on the name of the harness file).
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
+        ..ProptestConfig::default()
+    })]
 
     /// Batches of 0..40 samples: every tail length and lane position.
     #[test]

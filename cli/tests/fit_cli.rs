@@ -1,10 +1,10 @@
 //! End to end: `radiometry fit` on MERL `.binary` files written from analytic
-//! BRDFs (through `radiometry_cli::merl`, the same reader the command uses),
-//! and the printed specs fed back to `radiometry albedo` / `eval`.
+//! BRDFs (by the independent `f64` writer of [`crate::analytic`]; the bad-file
+//! cases use `radiometry_cli::merl`'s writer), and the printed specs fed back
+//! to `radiometry albedo` / `eval`.
 
-use radiometry::glam::Vec3;
+use crate::analytic::Analytic;
 use radiometry_brdfs::tabulated::RusinkiewiczGrid;
-use radiometry_brdfs::{Ggx, HeightCorrelated, Microfacet, Schlick};
 use radiometry_cli::merl;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -29,33 +29,27 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 /// The MERL-layout bytes of GGX α = 0.3 with Schlick F0 = (0.9, 0.6, 0.3),
-/// with the nodes below the horizon stored as missing (−1, as in MERL data)
-/// and every 50th node above it missing in the green channel.
+/// written by the independent [`crate::analytic`] (not by the crate's model
+/// code or the CLI's MERL writer), with the nodes below the horizon stored as
+/// missing (−1, as in MERL data) and every 50th node above it missing in the
+/// green channel.
 fn ggx_bytes() -> (Vec<u8>, usize) {
-    let brdf = Microfacet::<_, HeightCorrelated, _>::new(
-        Ggx::new(0.3).unwrap(),
-        Schlick::new(Vec3::new(0.9, 0.6, 0.3)).unwrap(),
-    );
     let g = RusinkiewiczGrid::MERL;
-    let mut bytes = merl::to_bytes(&merl::tabulate(&brdf, g).unwrap());
+    let rgb = [0.9, 0.6, 0.3].map(|f0| Analytic::ggx(0.3, f0));
+    let mut bytes = crate::analytic::merl_bytes(&rgb, &g);
     let n = g.len();
     let mut missing = 0;
-    let mut put = |c: usize, index: usize, bytes: &mut Vec<u8>| {
-        let at = merl::HEADER_BYTES + 8 * (c * n + index);
-        bytes[at..at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
-        missing += 1;
-    };
     for i in 0..90 {
         for j in 0..90 {
             for k in 0..180 {
                 let (wi, wo) = g.node_directions(i, j, k);
                 let index = g.index(i, j, k);
                 if wi.z <= 0.0 || wo.z <= 0.0 {
-                    for c in 0..3 {
-                        put(c, index, &mut bytes);
-                    }
+                    missing += 3;
                 } else if index.is_multiple_of(50) {
-                    put(1, index, &mut bytes);
+                    let at = merl::HEADER_BYTES + 8 * (n + index);
+                    bytes[at..at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
+                    missing += 1;
                 }
             }
         }

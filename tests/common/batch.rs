@@ -1,6 +1,6 @@
 //! The batch methods of an [`Integrand`] against its scalar methods, bit
-//! for bit, over ragged lengths (included by `integrators.rs` and
-//! `illumination.rs` with `#[path]`).
+//! for bit, over ragged lengths (used by `integrators.rs` and
+//! `illumination.rs`).
 
 use radiometry::Spectrum;
 use radiometry::glam::Vec3;

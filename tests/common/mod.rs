@@ -9,9 +9,10 @@
 //! * [`strategies`]: proptest strategies that deliberately hit the edges of the parameter domains;
 //! * [`plugins`]: the list of every plugin configuration of `radiometry-brdfs`, built behind one trait object.
 //!
-//! Each test file includes it with `mod common;` and uses only a part of it.
+//! A module of the one integration-test binary (`tests/integration.rs`); each test module uses a part of it.
 #![allow(dead_code)]
 
+pub mod batch;
 pub mod chi2;
 pub mod plugins;
 pub mod quad;

@@ -85,6 +85,21 @@ pub struct Integral {
     pub evals: u64,
 }
 
+impl Integral {
+    /// Asserts that this reference converged — finite, with an error estimate of at most `bound` — and
+    /// returns it. A comparison that uses `err` as slack (`|value − exact| ≤ err + …`) calls this first:
+    /// an unconverged reference (say `err = 0.3`) would otherwise widen the tolerance until the
+    /// comparison cannot fail. `bound` is fixed by the test, well below the effect it must detect.
+    #[track_caller]
+    pub fn converged(self, bound: f64, what: impl core::fmt::Display) -> Self {
+        assert!(
+            self.value.is_finite() && self.err.is_finite() && self.err <= bound,
+            "reference did not converge ({what}): {self:?}, required error <= {bound:e}"
+        );
+        self
+    }
+}
+
 impl core::ops::Add for Integral {
     type Output = Integral;
     fn add(self, o: Integral) -> Integral {

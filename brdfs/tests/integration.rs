@@ -1,0 +1,10 @@
+//! The integration tests of `radiometry-brdfs`: one test binary, each suite a module.
+//! Run one suite with `cargo test -p radiometry-brdfs --test integration batch::`
+//! (add `--features simd` for the vector kernels).
+//!
+//! `Cargo.toml` sets `autotests = false` and names this file as the only test target.
+
+mod batch;
+mod kulla_conty;
+mod sample_batch;
+mod tabulated;
