@@ -72,7 +72,7 @@ pub fn albedo_quad(b: &dyn IsotropicBrdf<Spectrum = f32>, wo: Vec3, w: f64, tol:
 /// vector kernels.
 pub fn albedo_is(b: &dyn IsotropicBrdf<Spectrum = f32>, wo: Vec3, m: u32, seed: u64) -> (f64, f64) {
     const ROW: usize = 64;
-    assert!(m % 2 == 0 && (m as usize <= ROW || (m as usize).is_multiple_of(ROW)));
+    assert!(m.is_multiple_of(2) && (m as usize <= ROW || (m as usize).is_multiple_of(ROW)));
     let mut rng = common::rng::Rng::new(seed);
     let (mut s1, mut pairs2) = (0.0f64, 0.0f64);
     let n = (m * m) as f64;
@@ -308,7 +308,7 @@ fn energy_check_sees_a_one_percent_gain() {
                 }
                 let c = (1.01 / a.albedo) as f32;
                 let gained = Gain(b.as_ref(), c);
-                match energy_check(&gained, wo, w, seed ^ 0x5DEE_CE66_D) {
+                match energy_check(&gained, wo, w, seed ^ 0x0005_DEEC_E66D) {
                     // Passing is allowed only where the check reports that it cannot see 1 % (a
                     // heavy-tailed case whose error estimate at these sample points is above
                     // `SE_ONE_PERCENT`; counted in the 3 % of `directional_albedo_at_most_one_every_plugin`).
