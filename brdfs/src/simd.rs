@@ -41,7 +41,7 @@
 //! of this project: [`radiometry::math::sincos_turn`] (the samplers' azimuths);
 //! with integer operations on the
 //! bits through `wide`'s integer vectors, checked against the scalar functions by this
-//! module's unit tests (one file per function under `simd/`, with its test) on every 7th `f32` of their ranges (`powf`: for
+//! module's unit tests (one file per function under `simd/`, with its test) on every 7th `f32` of their ranges (with `RADIOMETRY_FULL_SWEEP=1`, as CI runs them; every 61st in a plain `cargo test`) (`powf`: for
 //! `y = 30`; sparser grids for other exponents). Each lane is therefore bit-identical to
 //! `eval` / `pdf` of the same pair, on every target: `brdfs/tests/batch.rs`
 //! asserts 0 ulp for every such kernel, array-of-structures and
@@ -593,11 +593,27 @@ pub(crate) fn push_near(values: &mut impl Extend<f32>, bits: &[u32], both_signs:
     }
 }
 
-/// Test support: calls `check` on every 7th `f32` from 0 to `end` with the
-/// given sign bit, for each `(sign, end)`.
+/// Test support: calls `check` on every [`dense_stride`]-th `f32` from 0 to
+/// `end` with the given sign bit, for each `(sign, end)`.
 #[cfg(test)]
 pub(crate) fn sweep(check: &dyn Fn(&[f32; LANES]), ranges: &[(u32, f32)]) {
-    sweep_stride(check, ranges, 7)
+    sweep_stride(check, ranges, dense_stride())
+}
+
+/// Test support: the stride of the dense sweeps of the bit-exact ports —
+/// every 7th `f32` when the environment variable `RADIOMETRY_FULL_SWEEP` is
+/// set (CI sets it: about 1.5 × 10⁸ values per unit-exponent range), every
+/// 61st (a prime, so every residue of the mantissa bits is still visited;
+/// 1.7 × 10⁷ values per range) in a plain `cargo test`, where these sweeps
+/// were half of the test run's time. Same assertions either way.
+#[cfg(test)]
+pub(crate) fn dense_stride() -> u32 {
+    extern crate std;
+    if std::env::var_os("RADIOMETRY_FULL_SWEEP").is_some() {
+        7
+    } else {
+        61
+    }
 }
 
 /// [`sweep`] with another stride (a chunk not yet full when a range ends

@@ -128,8 +128,8 @@ mod tests {
         crate::simd::check_values(&check, &specials);
         let sweep =
             |sign: u32, end: f32, stride: u32| crate::simd::sweep_stride(&check, &[(sign, end)], stride);
-        sweep(0, 89.0, 7);
-        sweep(0x8000_0000, 104.0, 7);
+        sweep(0, 89.0, crate::simd::dense_stride());
+        sweep(0x8000_0000, 104.0, crate::simd::dense_stride());
         sweep(0, f32::MAX, 7919);
         sweep(0x8000_0000, f32::MAX, 7919);
     }

@@ -101,7 +101,7 @@ mod tests {
         );
         crate::simd::check_values(&check, &specials);
         // [0, f32::MAX] by 7, then the negatives from −0 to −∞ by 7919.
-        crate::simd::sweep_stride(&check, &[(0, f32::MAX)], 7);
+        crate::simd::sweep_stride(&check, &[(0, f32::MAX)], crate::simd::dense_stride());
         crate::simd::sweep_stride(&check, &[(0x8000_0000, f32::INFINITY)], 7919);
     }
 }
