@@ -80,8 +80,8 @@ fn compare<B: Brdf>(b: &B, name: &str, wo: &[Vec3], u: &[[f32; 2]]) -> Result<us
     }
     for (k, o) in out.iter().enumerate().skip(n) {
         prop_assert!(
-            bits(o) == bits(&marker),
-            "{name}: sample_batch wrote element {k} past the inputs"
+            o.is_none(),
+            "{name}: sample_batch left a stale element {k} past the inputs"
         );
     }
     // The pdf of each returned direction, batched and scalar.
@@ -103,7 +103,7 @@ fn compare<B: Brdf>(b: &B, name: &str, wo: &[Vec3], u: &[[f32; 2]]) -> Result<us
     if n > 0 {
         let mut short = vec![marker; n];
         b.sample_batch(wo, &u[..n - 1], &mut short);
-        prop_assert!(bits(&short[n - 1]) == bits(&marker), "{name}: past a short u");
+        prop_assert!(short[n - 1].is_none(), "{name}: past a short u");
     }
     Ok(some)
 }
