@@ -9,8 +9,8 @@ use pyo3::types::PyDict;
 use radiometry::Brdf as _;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, integrate_to_tolerance};
-use radiometry_tools::model::{self, AnyBrdf};
 use radiometry_spec as spec;
+use radiometry_tools::model::{self, AnyBrdf};
 use std::time::Instant;
 
 /// A BRDF from a spec such as ``ggx(alpha=0.1, fresnel=schlick(f0=0.04))``

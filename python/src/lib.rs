@@ -31,8 +31,8 @@ mod report;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use radiometry::Integrator as _;
-use radiometry_tools::model;
 use radiometry_spec as spec;
+use radiometry_tools::model;
 
 /// The integrator names accepted by ``Brdf.albedo(..., integrator=...)``,
 /// deterministic rules first (as ``radiometry integrators``).
