@@ -4,7 +4,7 @@
 mod common;
 use common::Floats;
 use libfuzzer_sys::fuzz_target;
-use radiometry::light::{Cap, Light, LightIntegrals};
+use radiometry::light::{Cap, Light};
 use radiometry::radiometric::{cap_irradiance, cap_projected_solid_angle, cap_solid_angle};
 
 fuzz_target!(|data: &[u8]| {
