@@ -1,21 +1,20 @@
 //! Throughput of BRDF evaluation and sampling (criterion), and of the Monte
 //! Carlo point sets.
 //!
-//! `cargo bench --bench throughput` — reports time per batch of 4096
+//! `cargo bench -p radiometry-benches --bench throughput` — reports time per batch of 4096
 //! evaluations / samples for each plugin, scalar `eval` vs `eval_batch`, and
 //! per 4096 points for the Sobol, PCG32 and Fibonacci point sets (`points/`).
 //!
 //! With the vector `eval_batch` kernels of `radiometry-brdfs` (feature
 //! `simd`; GGX and Beckmann with either Smith `G2` and any Fresnel,
 //! Lambertian, modified Phong, Blinn–Phong; see `radiometry_brdfs::simd`),
-//! enable the feature on the dev-dependency from the command line (the root
-//! crate's own `simd` feature does not reach its dev-dependency):
+//! enable this package's `simd` feature:
 //!
 //! ```text
-//! cargo bench -p radiometry --bench throughput --features radiometry-brdfs/simd
+//! cargo bench -p radiometry-benches --bench throughput --features simd
 //! # only the eval / eval_batch groups, AVX where the CPU has it:
-//! RUSTFLAGS="-C target-cpu=native" cargo bench -p radiometry --bench throughput \
-//!     --features radiometry-brdfs/simd -- 'brdf/eval'
+//! RUSTFLAGS="-C target-cpu=native" cargo bench -p radiometry-benches --bench throughput \
+//!     --features simd -- 'brdf/eval'
 //! ```
 //!
 //! Without `target-cpu` flags the kernels' `wide::f32x8` runs as two SSE2

@@ -140,6 +140,18 @@ pub trait Brdf {
         }
         crate::batch::zero_tail(out, wo.len().min(u.len()));
     }
+
+    /// Whether `f_r(ωi, ωo) cos θi` is a smooth (analytic) function of `ωi`
+    /// on the open upper hemisphere for every fixed `ωo` — no kinks, steps
+    /// or table cells. A promise the [`Auto`](crate::integrator::Auto)
+    /// integrator relies on: it then integrates peaked lobes on charts whose
+    /// error estimates assume the exponential convergence of a smooth
+    /// integrand. Default `false` (the safe answer); closed-form lobes
+    /// (Lambertian, microfacet single scattering) say `true`, tabulated data
+    /// and interpolated compensation lobes do not.
+    fn is_smooth(&self) -> bool {
+        false
+    }
 }
 
 /// A BRDF invariant under rotation about the normal: `f_r` depends only on
@@ -197,6 +209,10 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     #[inline]
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<Self::Spectrum>>]) {
         (**self).sample_batch(wo, u, out)
+    }
+    #[inline]
+    fn is_smooth(&self) -> bool {
+        (**self).is_smooth()
     }
 }
 

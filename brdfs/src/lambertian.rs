@@ -88,6 +88,11 @@ impl<S: Spectrum> Lambertian<S> {
 impl<S: Spectrum> Brdf for Lambertian<S> {
     type Spectrum = S;
 
+    /// Constant on the hemisphere: `f_r cos θi = ρ cos θi / π` is smooth.
+    fn is_smooth(&self) -> bool {
+        true
+    }
+
     /// `ρ/π` when both `cos θ > 0`, else 0.
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {

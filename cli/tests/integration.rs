@@ -4,6 +4,7 @@
 //! `Cargo.toml` sets `autotests = false` and names this file as the only test target.
 
 mod analytic;
+mod auto_vs_quadpack;
 mod bench;
 mod cli;
 mod fit;

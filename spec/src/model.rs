@@ -37,6 +37,8 @@ pub trait DynBrdf: Send + Sync {
     fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]);
     /// See [`Brdf::sample_batch`].
     fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]);
+    /// See [`Brdf::is_smooth`].
+    fn is_smooth_dyn(&self) -> bool;
 }
 
 impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
@@ -57,6 +59,9 @@ impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
     }
     fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
         self.sample_batch(wo, u, out)
+    }
+    fn is_smooth_dyn(&self) -> bool {
+        self.is_smooth()
     }
 }
 
@@ -88,6 +93,9 @@ impl Brdf for AnyBrdf {
     #[inline]
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
         self.0.sample_batch_dyn(wo, u, out)
+    }
+    fn is_smooth(&self) -> bool {
+        self.0.is_smooth_dyn()
     }
 }
 

@@ -77,6 +77,14 @@ pub trait Integrand {
         false
     }
 
+    /// Whether `g` is a smooth (analytic) function of `ω` on the open upper
+    /// hemisphere (see [`Brdf::is_smooth`](crate::Brdf::is_smooth)): then
+    /// [`Auto`] may integrate a peaked `g` on a chart centred on its peak.
+    /// Default `false`.
+    fn is_smooth(&self) -> bool {
+        false
+    }
+
     /// Maps `u ∈ [0,1)²` to a direction with its density and the integrand
     /// value there, or `None` where the map produces no valid direction
     /// (a zero-contribution sample). Default: `None`.
@@ -168,6 +176,10 @@ impl<T: Integrand + ?Sized> Integrand for &T {
     #[inline]
     fn has_sampling_map(&self) -> bool {
         (**self).has_sampling_map()
+    }
+    #[inline]
+    fn is_smooth(&self) -> bool {
+        (**self).is_smooth()
     }
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<Self::Spectrum>> {
@@ -337,6 +349,11 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
         true
     }
 
+    /// `f_r cos θi` is as smooth as the BRDF says.
+    fn is_smooth(&self) -> bool {
+        self.brdf.is_smooth()
+    }
+
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<B::Spectrum>> {
         let s = self.brdf.sample(self.wo, u)?;
@@ -406,6 +423,7 @@ pub mod adaptive;
 pub use adaptive::Adaptive;
 pub mod auto;
 pub use auto::Auto;
+mod chart;
 pub use chunk::CHUNK;
 pub mod probe;
 mod status;

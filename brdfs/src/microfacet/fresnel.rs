@@ -36,6 +36,13 @@ pub trait Fresnel {
     /// `F(cos θd)` per channel.
     fn eval(&self, cos_theta_d: f32) -> Self::Spectrum;
 
+    /// Whether `F` is smooth (analytic) in `cos θd ∈ (0, 1]` (no total
+    /// internal reflection kink); see `radiometry::Brdf::is_smooth`.
+    /// Default `false`.
+    fn is_smooth(&self) -> bool {
+        false
+    }
+
     /// Hidden hook of the `simd` feature (not a stable API): the last factor
     /// of the microfacet BRDF for one vector of lanes,
     /// `out[k] = F(cos θd[k]) · scale[k]`, and exactly `0` where
@@ -84,6 +91,9 @@ pub struct NoFresnel;
 
 impl Fresnel for NoFresnel {
     type Spectrum = f32;
+    fn is_smooth(&self) -> bool {
+        true
+    }
     #[inline(always)]
     fn eval(&self, _cos_theta_d: f32) -> f32 {
         1.0
@@ -130,6 +140,9 @@ impl<S: Spectrum> Schlick<S> {
 
 impl<S: Spectrum> Fresnel for Schlick<S> {
     type Spectrum = S;
+    fn is_smooth(&self) -> bool {
+        true
+    }
     #[inline]
     fn eval(&self, cos_theta_d: f32) -> S {
         let m = 1.0 - clamp_cos(cos_theta_d);
@@ -192,6 +205,10 @@ impl Dielectric {
 
 impl Fresnel for Dielectric {
     type Spectrum = f32;
+    fn is_smooth(&self) -> bool {
+        // Total internal reflection (η < 1) has a kink at the critical angle.
+        self.eta >= 1.0
+    }
     #[inline]
     fn eval(&self, cos_theta_d: f32) -> f32 {
         let ci = clamp_cos(cos_theta_d);
@@ -486,6 +503,9 @@ fn clamp01_4(x: Vec4) -> Vec4 {
 
 impl<S: Spectrum> Fresnel for Conductor<S> {
     type Spectrum = S;
+    fn is_smooth(&self) -> bool {
+        true
+    }
     /// The complex Fresnel formula per channel; with the `simd` feature and
     /// more than one channel, four channels at a time in vector lanes (the
     /// same bits).

@@ -585,6 +585,12 @@ where
 {
     type Spectrum = F::Spectrum;
 
+    /// `D` and `G2` (Smith's `Λ` in closed form) are analytic in `ωi` above
+    /// the horizon; so is the BRDF when its Fresnel term is.
+    fn is_smooth(&self) -> bool {
+        self.fresnel.is_smooth()
+    }
+
     /// `D(h) G2(ωi, ωo) F(ωi·h) / (4 cos θi cos θo)` (Walter et al. 2007, eq. 20).
     ///
     /// Hot path: one squared-length test per direction, then straight-line

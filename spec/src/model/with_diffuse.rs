@@ -60,6 +60,11 @@ impl<B: Brdf<Spectrum = f32>> Brdf for WithDiffuse<B> {
         self.diffuse.eval(wi, wo) + self.specular.eval(wi, wo)
     }
 
+    /// As smooth as the specular lobe (the diffuse term is constant).
+    fn is_smooth(&self) -> bool {
+        self.specular.is_smooth()
+    }
+
     /// Picks a strategy with `u[0]` (rescaled to `[0, 1)` for the chosen one),
     /// then returns the mixture density and `f_r cos θi / pdf`.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {

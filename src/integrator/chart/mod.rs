@@ -1,0 +1,59 @@
+//! Charts of the hemisphere for the nested grid of [`Auto`](super::Auto):
+//! maps `(x, t) ∈ [0, 1]² ↦ (ω, J = dω/(dx dt))` that make a peaked lobe
+//! smooth, so that Clenshaw–Curtis in `x` times the trapezoid rule in the
+//! periodic `t` converge exponentially on it.
+//!
+//! | file | chart | for |
+//! |---|---|---|
+//! | [`peak`] | polar coordinates about the lobe's peak, logarithmic radius clipped at the horizon, stretched by the lobe's aspect | lobes whose peak is well above the horizon |
+//! | [`product`] | the plain `(μ, φ)` hemisphere with a sinh warp of `μ` and a periodised sinh warp of `φ` about the peak | lobes squeezed against the horizon (grazing views) |
+//!
+//! In both, the grid's last `μ` row (`μ_i = 1`) is a single direction —
+//! the peak chart's pole, the product chart's zenith — which the grid
+//! evaluates once and weights by each node's Jacobian.
+
+pub(crate) mod peak;
+pub(crate) mod product;
+
+pub(crate) use peak::PeakChart;
+pub(crate) use product::ProductChart;
+
+use glam::Vec3;
+
+/// A chart the grid can use instead of the plain hemisphere.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Chart {
+    /// See [`PeakChart`].
+    Peak(PeakChart),
+    /// See [`ProductChart`].
+    Product(ProductChart),
+}
+
+impl Chart {
+    /// `(ω, J)` at the grid's node `(μ_i, t)`: `μ_i = 1` is the row the grid
+    /// evaluates once ([`Chart::pole`]).
+    pub(crate) fn map(&self, mu: f64, t: f64) -> (Vec3, f64) {
+        match self {
+            // The peak chart's radius `x = 1 − μ_i`: the pole at `μ_i = 1`.
+            Chart::Peak(c) => c.map(1.0 - mu, t),
+            Chart::Product(c) => c.map(mu, t),
+        }
+    }
+
+    /// The direction of the row `μ_i = 1` (the same for every `t`).
+    pub(crate) fn pole(&self) -> Vec3 {
+        match self {
+            Chart::Peak(c) => c.pole(),
+            Chart::Product(_) => Vec3::Z,
+        }
+    }
+
+    /// The typical relative change of the integrand when a node's direction
+    /// is rounded to `f32` (see each chart).
+    pub(crate) fn rounding(&self) -> f64 {
+        match self {
+            Chart::Peak(c) => c.rounding(),
+            Chart::Product(c) => c.rounding(),
+        }
+    }
+}
