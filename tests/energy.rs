@@ -27,7 +27,7 @@ use proptest::test_runner::TestCaseError;
 use radiometry::IsotropicBrdf;
 use radiometry::glam::{DVec3, Vec3};
 
-const CASES: u32 = 1000;
+const CASES: u32 = 500;
 static WORST_ALBEDO: Worst = Worst::new();
 static WORST_SE: Worst = Worst::new();
 static WORST_QUAD: Worst = Worst::new();
@@ -257,7 +257,8 @@ fn directional_albedo_at_most_one_every_plugin() {
         "energy (IS): {} plugin evaluations fell back to quadrature (s.e. > {SE_MAX:e}); {seen} of {total} checks would see a 1 % gain (s.e. <= {SE_ONE_PERCENT:e})",
         FALLBACKS.load(std::sync::atomic::Ordering::Relaxed)
     );
-    // 24,399 of 25,000 (97.6 %) with these seeds.
+    // 12,271 of 12,500 (98.2 %) with these seeds (500 random configurations; the
+    // statistical power of each check is what the assertion is about).
     assert!(
         100 * seen >= 97 * total,
         "only {seen} of {total} checks see a 1 % gain"
