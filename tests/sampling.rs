@@ -478,25 +478,36 @@ fn chi_square_beckmann() {
 /// `1 − E(μo)`): GGX with F = 1 at two roughnesses × 4 angles, Beckmann with a conductor at 2 angles.
 #[test]
 fn chi_square_kulla_conty() {
-    let mut fails = Vec::new();
-    for (j, &alpha) in [0.3f32, 1.0].iter().enumerate() {
+    // The three groups in parallel (the compensated pdf makes these the slowest χ² tests, ~70 s in one
+    // thread); each keeps its own seeds, so the outcome does not depend on the threads.
+    let ggx = |j: usize, alpha: f32| {
+        move || {
+            let p = Params {
+                alpha,
+                ..Params::typical()
+            };
+            let k = Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::None);
+            chi2_plugin(k, &p, &THETAS_DEG, 90 + j as u64)
+        }
+    };
+    let beckmann = || {
         let p = Params {
-            alpha,
+            alpha: 0.5,
             ..Params::typical()
         };
-        let k = Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::None);
-        fails.extend(chi2_plugin(k, &p, &THETAS_DEG, 90 + j as u64));
-    }
-    let p = Params {
-        alpha: 0.5,
-        ..Params::typical()
+        chi2_plugin(
+            Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::Conductor),
+            &p,
+            &[0.0, 70.0],
+            95,
+        )
     };
-    fails.extend(chi2_plugin(
-        Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::Conductor),
-        &p,
-        &[0.0, 70.0],
-        95,
-    ));
+    let fails: Vec<_> = std::thread::scope(|s| {
+        let a = s.spawn(ggx(0, 0.3));
+        let b = s.spawn(ggx(1, 1.0));
+        let c = s.spawn(beckmann);
+        [a, b, c].into_iter().flat_map(|h| h.join().unwrap()).collect()
+    });
     assert!(fails.is_empty(), "{fails:#?}");
 }
 
