@@ -78,7 +78,7 @@ pub trait Integrand {
     }
 
     /// Whether `g` is a smooth (analytic) function of `ω` on the open upper
-    /// hemisphere (see [`Brdf::is_smooth`](crate::Brdf::is_smooth)): then
+    /// hemisphere (see [`Brdf::is_smooth`]): then
     /// [`Auto`] may integrate a peaked `g` on a chart centred on its peak.
     /// Default `false`.
     fn is_smooth(&self) -> bool {
