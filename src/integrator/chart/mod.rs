@@ -57,3 +57,31 @@ impl Chart {
         }
     }
 }
+
+/// `∫∫ f(ω) J dx dt` for a chart `map(x, t) = (ω, J)` (tests): composite
+/// Simpson in `x` (the Jacobians are smooth) times the trapezoid rule in the
+/// periodic `t`; `nx` even.
+#[cfg(test)]
+pub(crate) fn simpson_trapezoid(
+    map: impl Fn(f64, f64) -> (Vec3, f64),
+    f: impl Fn(Vec3) -> f64,
+    nx: usize,
+    nt: usize,
+) -> f64 {
+    let mut s = 0.0;
+    for i in 0..=nx {
+        let x = i as f64 / nx as f64;
+        let wx = if i == 0 || i == nx {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        for k in 0..nt {
+            let (w, j) = map(x, k as f64 / nt as f64);
+            s += wx * f(w) * j;
+        }
+    }
+    s / (3.0 * nx as f64 * nt as f64)
+}

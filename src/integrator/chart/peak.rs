@@ -163,26 +163,11 @@ impl PeakChart {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrator::chart::simpson_trapezoid;
 
-    /// Composite Simpson in `x` (the Jacobian is smooth) times the
-    /// trapezoid rule in `t` (periodic); `nx` even.
+    /// `∫∫ f(ω) J dx dt` on this chart.
     fn integrate(c: &PeakChart, f: impl Fn(Vec3) -> f64, nx: usize, nt: usize) -> f64 {
-        let mut s = 0.0;
-        for i in 0..=nx {
-            let x = i as f64 / nx as f64;
-            let wx = if i == 0 || i == nx {
-                1.0
-            } else if i % 2 == 1 {
-                4.0
-            } else {
-                2.0
-            };
-            for k in 0..nt {
-                let (w, j) = c.map(x, k as f64 / nt as f64);
-                s += wx * f(w) * j;
-            }
-        }
-        s / (3.0 * nx as f64 * nt as f64)
+        simpson_trapezoid(|x, t| c.map(x, t), f, nx, nt)
     }
 
     #[test]
