@@ -26,6 +26,43 @@ pub struct BrdfSample<S> {
     pub weight: S,
 }
 
+/// A directional albedo `E(ωo) = ∫_H f_r(ωi, ωo) cos θi dωi` with its
+/// stated error, as [`Brdf::directional_albedo`] reports it.
+///
+/// `E(ωo)` is the fraction of light arriving from `ωo` that the surface
+/// reflects (by reciprocity, also the reflectance under a uniform sky seen
+/// from `ωo`); lobe combinators pick lobes in proportion to it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Albedo<S> {
+    /// The albedo per channel, finite and `≥ 0`.
+    pub value: S,
+    /// Its error, absolute, for every channel: a bound (`is_bound`) for
+    /// closed forms and tables, an estimated standard error otherwise.
+    /// Finite and `≥ 0`.
+    pub error: f32,
+    /// Whether `error` bounds `|value − E(ωo)|` (closed forms and tables) or
+    /// only estimates it (the default sampling rule).
+    pub is_bound: bool,
+}
+
+impl<S: Spectrum> Albedo<S> {
+    /// An albedo known to within `error` (a bound).
+    #[inline]
+    pub fn bounded(value: S, error: f32) -> Self {
+        Self {
+            value,
+            error,
+            is_bound: true,
+        }
+    }
+
+    /// The albedo of a direction at or below the horizon: exactly zero.
+    #[inline]
+    pub fn zero() -> Self {
+        Self::bounded(S::zero(), 0.0)
+    }
+}
+
 /// A bidirectional reflectance distribution function in the local shading
 /// frame (normal `+Z`).
 ///
@@ -152,6 +189,35 @@ pub trait Brdf {
     fn is_smooth(&self) -> bool {
         false
     }
+
+    /// The directional albedo `E(ωo) = ∫_H f_r(ωi, ωo) cos θi dωi`, cheaply,
+    /// with its stated error; zero (exactly) when `ωo` is at or below the
+    /// horizon.
+    ///
+    /// Plugins override it with a closed form or a table (Lambertian: `ρ`,
+    /// error 0). The default is a small fixed rule over the plugin's own
+    /// sampler: the mean of the 16 weights `f cos θi / pdf` at the stratified
+    /// points `u = ((i + ½)/4, (j + ½)/4)`, with their standard error as the
+    /// (estimated, not bounded) error — 16 calls of [`Brdf::sample`].
+    /// Deterministic: the same `ωo` gives the same bits, which the lobe
+    /// combinators of [`compose`](crate::compose) rely on.
+    ///
+    /// ```
+    /// use radiometry::{Brdf, glam::Vec3};
+    /// struct Flat; // f = 0.2/π: albedo 0.2 at every ωo
+    /// impl Brdf for Flat {
+    ///     type Spectrum = f32;
+    ///     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    ///         if wi.z > 0.0 && wo.z > 0.0 { 0.2 * core::f32::consts::FRAC_1_PI } else { 0.0 }
+    ///     }
+    /// }
+    /// let e = Flat.directional_albedo(Vec3::new(0.0, 0.6, 0.8));
+    /// assert!((e.value - 0.2).abs() < 1e-6 && !e.is_bound);
+    /// assert_eq!(Flat.directional_albedo(-Vec3::Z).value, 0.0);
+    /// ```
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<Self::Spectrum> {
+        crate::compose::albedo_by_sampling(self, wo)
+    }
 }
 
 /// A BRDF invariant under rotation about the normal: `f_r` depends only on
@@ -213,6 +279,10 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     #[inline]
     fn is_smooth(&self) -> bool {
         (**self).is_smooth()
+    }
+    #[inline]
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<Self::Spectrum> {
+        (**self).directional_albedo(wo)
     }
 }
 

@@ -38,6 +38,7 @@ pub use rand_core;
 
 pub mod batch;
 pub mod brdf;
+pub mod compose;
 pub mod frame;
 pub mod integrator;
 pub mod light;
@@ -50,7 +51,7 @@ pub mod spectral;
 pub mod spectrum;
 pub mod warp;
 
-pub use brdf::{Brdf, BrdfSample, IsotropicBrdf};
+pub use brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 pub use frame::Frame;
 pub use integrator::{Estimate, Integrand, IntegrateError, Integrator};
 pub use spectrum::{SampledSpectrum, Spectrum, WideSpectrum};

@@ -48,7 +48,7 @@ use radiometry::batch::Vec3Soa;
 use radiometry::frame::try_normalize;
 use radiometry::glam::Vec3;
 use radiometry::warp::square_to_cosine_hemisphere;
-use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
+use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
 /// The Lambertian BRDF `f_r = ρ/π`; see the [module documentation](self).
 ///
@@ -91,6 +91,16 @@ impl<S: Spectrum> Brdf for Lambertian<S> {
     /// Constant on the hemisphere: `f_r cos θi = ρ cos θi / π` is smooth.
     fn is_smooth(&self) -> bool {
         true
+    }
+
+    /// `E(ωo) = ∫ (ρ/π) cos θi dωi = ρ` for `ωo` above the horizon (exact;
+    /// the stated error `2⁻²³ ρ` covers the rounding of `ρ/π` in `eval`).
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
+        if wo.z > 0.0 && wo.is_finite() {
+            Albedo::bounded(self.albedo, self.albedo.max_channel() * f32::EPSILON)
+        } else {
+            Albedo::zero()
+        }
     }
 
     /// `ρ/π` when both `cos θ > 0`, else 0.

@@ -9,13 +9,13 @@
 mod with_diffuse;
 
 use crate::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
-use radiometry::Brdf;
 use radiometry::BrdfSample;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
     Adaptive, Auto, Estimate, GaussLegendre, Heuristic, Integrand, IntegrateError, Integrator, MonteCarlo,
     PointSet, Strategy, ToleranceOutcome, WarpedGaussLegendre, WideOf,
 };
+use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty,
     Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, Schlick, Separable,
@@ -39,6 +39,8 @@ pub trait DynBrdf: Send + Sync {
     fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]);
     /// See [`Brdf::is_smooth`].
     fn is_smooth_dyn(&self) -> bool;
+    /// See [`Brdf::directional_albedo`].
+    fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<f32>;
 }
 
 impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
@@ -62,6 +64,9 @@ impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
     }
     fn is_smooth_dyn(&self) -> bool {
         self.is_smooth()
+    }
+    fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<f32> {
+        self.directional_albedo(wo)
     }
 }
 
@@ -96,6 +101,9 @@ impl Brdf for AnyBrdf {
     }
     fn is_smooth(&self) -> bool {
         self.0.is_smooth_dyn()
+    }
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
+        self.0.directional_albedo_dyn(wo)
     }
 }
 

@@ -1,0 +1,134 @@
+//! [`Mix`]: a weighted blend of two lobes.
+
+use super::{ComposeError, finish_sample, mixture_pdf, pick_and_sample, pick_first};
+use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
+use crate::spectrum::Spectrum;
+use glam::Vec3;
+
+/// A weighted blend of two lobes (OpenPBR's `mix`: patches of two materials
+/// in proportion `w`),
+///
+/// ```text
+/// f(ωi, ωo) = w f_A(ωi, ωo) + (1 − w) f_B(ωi, ωo),   w ∈ [0, 1],
+/// E(ωo)     = w E_A(ωo) + (1 − w) E_B(ωo)  ≤ max(E_A, E_B),
+/// ```
+///
+/// sampled by picking lobe `A` with probability
+/// `p_A = w Ē_A / (w Ē_A + (1 − w) Ē_B)` (albedo-proportional, as
+/// [`Sum`](super::Sum)) and the mixture density `p_A pdf_A + (1 − p_A) pdf_B`.
+/// A mix of energy-conserving lobes conserves energy.
+///
+/// ```
+/// use radiometry::compose::Mix;
+/// use radiometry::{Brdf, glam::Vec3};
+/// # struct Flat(f32);
+/// # impl Brdf for Flat {
+/// #     type Spectrum = f32;
+/// #     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+/// #         if wi.z > 0.0 && wo.z > 0.0 { self.0 * core::f32::consts::FRAC_1_PI } else { 0.0 }
+/// #     }
+/// # }
+/// let m = Mix::new(0.25, Flat(1.0), Flat(0.2))?;
+/// assert!((m.directional_albedo(Vec3::Z).value - (0.25 + 0.75 * 0.2)).abs() < 1e-6);
+/// assert!(Mix::new(1.5, Flat(1.0), Flat(0.2)).is_err());
+/// # Ok::<(), radiometry::compose::ComposeError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mix<A, B> {
+    w: f32,
+    a: A,
+    b: B,
+}
+
+impl<A, B> Mix<A, B> {
+    /// `w f_A + (1 − w) f_B`; `w` must lie in `[0, 1]`.
+    pub fn new(w: f32, a: A, b: B) -> Result<Self, ComposeError> {
+        if !(0.0..=1.0).contains(&w) {
+            return Err(ComposeError::Weight(w));
+        }
+        Ok(Self { w, a, b })
+    }
+
+    /// The weight `w` of lobe `A`.
+    pub fn weight(&self) -> f32 {
+        self.w
+    }
+
+    /// Lobe `A` (weight `w`).
+    pub fn first(&self) -> &A {
+        &self.a
+    }
+
+    /// Lobe `B` (weight `1 − w`).
+    pub fn second(&self) -> &B {
+        &self.b
+    }
+}
+
+impl<A, B, S> Mix<A, B>
+where
+    A: Brdf<Spectrum = S>,
+    B: Brdf<Spectrum = S>,
+    S: Spectrum,
+{
+    /// The probability that [`Brdf::sample`] draws from lobe `A` at `wo`.
+    pub fn pick_probability(&self, wo: Vec3) -> f32 {
+        if self.w == 0.0 {
+            return 0.0;
+        }
+        if self.w == 1.0 {
+            return 1.0;
+        }
+        pick_first(
+            self.w * self.a.directional_albedo(wo).value.average(),
+            (1.0 - self.w) * self.b.directional_albedo(wo).value.average(),
+        )
+    }
+}
+
+impl<A, B, S> Brdf for Mix<A, B>
+where
+    A: Brdf<Spectrum = S>,
+    B: Brdf<Spectrum = S>,
+    S: Spectrum,
+{
+    type Spectrum = S;
+
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        self.a.eval(wi, wo) * self.w + self.b.eval(wi, wo) * (1.0 - self.w)
+    }
+
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        let p = self.pick_probability(wo);
+        let wi = pick_and_sample(p, u, |v| self.a.sample(wo, v), |v| self.b.sample(wo, v))?;
+        let pdf = mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo));
+        finish_sample(wi, self.eval(wi, wo), pdf)
+    }
+
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        let p = self.pick_probability(wo);
+        mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+    }
+
+    fn is_smooth(&self) -> bool {
+        self.a.is_smooth() && self.b.is_smooth()
+    }
+
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
+        let (ea, eb) = (self.a.directional_albedo(wo), self.b.directional_albedo(wo));
+        Albedo {
+            value: ea.value * self.w + eb.value * (1.0 - self.w),
+            error: ea.error * self.w + eb.error * (1.0 - self.w),
+            is_bound: ea.is_bound && eb.is_bound,
+        }
+    }
+}
+
+impl<A, B, S> IsotropicBrdf for Mix<A, B>
+where
+    A: IsotropicBrdf<Spectrum = S>,
+    B: IsotropicBrdf<Spectrum = S>,
+    S: Spectrum,
+{
+}

@@ -1,0 +1,111 @@
+//! [`Sum`]: two lobes added.
+
+use super::{add_albedo, finish_sample, mixture_pdf, pick_and_sample, pick_first};
+use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
+use crate::spectrum::Spectrum;
+use glam::Vec3;
+
+/// The sum of two lobes,
+///
+/// ```text
+/// f(ωi, ωo) = f_A(ωi, ωo) + f_B(ωi, ωo),      E(ωo) = E_A(ωo) + E_B(ωo),
+/// ```
+///
+/// sampled by picking lobe `A` with probability `p_A = Ē_A / (Ē_A + Ē_B)`
+/// (`Ē`: the channel average of the [directional
+/// albedo](Brdf::directional_albedo) at `ωo`; `½` if both are 0), with the
+/// mixture density `pdf = p_A pdf_A + (1 − p_A) pdf_B` — so the estimator
+/// `f cos θi / pdf` stays unbiased whichever lobe drew `ωi`, and the light
+/// each lobe reflects gets its share of the samples. A plastic is
+/// `Sum::new(diffuse, specular)`; three or more lobes nest,
+/// `Sum::new(Sum::new(a, b), c)`.
+///
+/// Energy: `E ≤ 1` only if `E_A + E_B ≤ 1` — a sum of lobes that each
+/// conserve energy need not (use [`Coated`](super::Coated) to put one over
+/// the other, or [`Mix`](super::Mix) to blend).
+///
+/// ```
+/// use radiometry::compose::Sum;
+/// use radiometry::{Brdf, glam::Vec3};
+/// # struct Flat(f32);
+/// # impl Brdf for Flat {
+/// #     type Spectrum = f32;
+/// #     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+/// #         if wi.z > 0.0 && wo.z > 0.0 { self.0 * core::f32::consts::FRAC_1_PI } else { 0.0 }
+/// #     }
+/// # }
+/// let b = Sum::new(Flat(0.25), Flat(0.5));
+/// let wo = Vec3::Z;
+/// assert!((b.directional_albedo(wo).value - 0.75).abs() < 1e-6);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sum<A, B> {
+    /// The first lobe.
+    pub a: A,
+    /// The second lobe.
+    pub b: B,
+}
+
+impl<A, B> Sum<A, B> {
+    /// `f_A + f_B`.
+    pub const fn new(a: A, b: B) -> Self {
+        Self { a, b }
+    }
+}
+
+impl<A, B, S> Sum<A, B>
+where
+    A: Brdf<Spectrum = S>,
+    B: Brdf<Spectrum = S>,
+    S: Spectrum,
+{
+    /// The probability that [`Brdf::sample`] draws from lobe `A` at `wo`.
+    pub fn pick_probability(&self, wo: Vec3) -> f32 {
+        pick_first(
+            self.a.directional_albedo(wo).value.average(),
+            self.b.directional_albedo(wo).value.average(),
+        )
+    }
+}
+
+impl<A, B, S> Brdf for Sum<A, B>
+where
+    A: Brdf<Spectrum = S>,
+    B: Brdf<Spectrum = S>,
+    S: Spectrum,
+{
+    type Spectrum = S;
+
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        self.a.eval(wi, wo) + self.b.eval(wi, wo)
+    }
+
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        let p = self.pick_probability(wo);
+        let wi = pick_and_sample(p, u, |v| self.a.sample(wo, v), |v| self.b.sample(wo, v))?;
+        let pdf = mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo));
+        finish_sample(wi, self.eval(wi, wo), pdf)
+    }
+
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        let p = self.pick_probability(wo);
+        mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+    }
+
+    fn is_smooth(&self) -> bool {
+        self.a.is_smooth() && self.b.is_smooth()
+    }
+
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
+        add_albedo(self.a.directional_albedo(wo), self.b.directional_albedo(wo))
+    }
+}
+
+impl<A, B, S> IsotropicBrdf for Sum<A, B>
+where
+    A: IsotropicBrdf<Spectrum = S>,
+    B: IsotropicBrdf<Spectrum = S>,
+    S: Spectrum,
+{
+}
