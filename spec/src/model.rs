@@ -10,6 +10,7 @@ mod with_diffuse;
 
 use crate::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
 use radiometry::BrdfSample;
+use radiometry::compose::{Coated, Mix, Sum};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
     Adaptive, Auto, Estimate, GaussLegendre, Heuristic, Integrand, IntegrateError, Integrator, MonteCarlo,
@@ -154,7 +155,38 @@ where
 /// is reported as a [`SpecError`] pointing at the parameter it names (or at
 /// the whole spec).
 pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
+    let whole = |message: String| SpecError {
+        spec: text.to_string(),
+        start: 0,
+        end: text.len(),
+        message,
+    };
     let r = match *spec {
+        BrdfSpec::Sum(ref parts) => {
+            let mut lobes = parts.iter().map(|p| build_brdf(text, p));
+            let first = lobes.next().ok_or_else(|| whole("an empty sum".to_string()))??;
+            return lobes.try_fold(first, |acc, b| Ok(boxed(Sum::new(acc, b?))));
+        }
+        BrdfSpec::Mix { weight, ref a, ref b } => {
+            let (a, b) = (build_brdf(text, a)?, build_brdf(text, b)?);
+            return Mix::new(weight as f32, a, b)
+                .map(boxed)
+                .map_err(|e| whole(e.to_string()));
+        }
+        BrdfSpec::Coated {
+            ref top,
+            ref base,
+            coat_color,
+            coat_ior,
+        } => {
+            let (top, base) = (build_brdf(text, top)?, build_brdf(text, base)?);
+            if coat_color >= 1.0 {
+                return Ok(boxed(Coated::new(top, base)));
+            }
+            return Coated::with_absorption(top, base, coat_color as f32, coat_ior as f32)
+                .map(boxed)
+                .map_err(|e| whole(e.to_string()));
+        }
         BrdfSpec::Tabulated { file: (start, end) } => {
             return crate::merl::load_tabulated(text.get(start..end).unwrap_or(""))
                 .map(boxed)

