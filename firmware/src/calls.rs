@@ -331,7 +331,7 @@ pub fn lights(r: &mut dyn Runner) {
     });
     if let Ok(d) = Ggx::new(black_box(0.3)) {
         let b = Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel);
-        r.case("sum.reflected_radiance(ggx, gauss-legendre, 256)", &mut || {
+        r.case("sum.reflected_radiance.ggx.gl256", &mut || {
             est(lights.reflected_radiance(&b, wo(), &GaussLegendre::new(), black_box(256)))
         });
     }
