@@ -118,7 +118,8 @@ pub fn sincos_turn(t: f32) -> (f32, f32) {
 /// ```
 #[inline]
 pub fn sincos(x: f32) -> (f32, f32) {
-    if !(x.abs() <= SINCOS_REDUCTION_MAX) {
+    // NaN fails the comparison and takes the cold path too.
+    if x.abs() > SINCOS_REDUCTION_MAX || x.is_nan() {
         return sincos_large(x);
     }
     let y = x * core::f32::consts::FRAC_2_PI;
@@ -146,8 +147,8 @@ pub fn cos(x: f32) -> f32 {
 const SINCOS_REDUCTION_MAX: f32 = 8192.0;
 /// `π/2 = PIO2_1 + PIO2_2 + PIO2_3 + O(2·10⁻¹⁵)` (Cephes `sinf`'s `DP1..3`, doubled).
 const PIO2_1: f32 = 1.570_312_5;
-const PIO2_2: f32 = 4.837_512_969_970_703e-4;
-const PIO2_3: f32 = 7.549_790e-8;
+const PIO2_2: f32 = f32::from_bits(0x39FD_A000); // 4.837_512_969_970_703e-4, 11 significant bits
+const PIO2_3: f32 = f32::from_bits(0x33A22169); // 7.549_79e-8
 
 /// [`sincos`] beyond `|x| > 8192`, and NaN / `±∞`: reduced in turns.
 #[cold]
