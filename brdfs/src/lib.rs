@@ -72,6 +72,7 @@ pub mod error;
 pub mod lambertian;
 pub mod microfacet;
 pub mod phong;
+pub mod rough_diffuse;
 #[cfg(feature = "simd")]
 pub mod simd;
 pub mod tabulated;
@@ -92,6 +93,9 @@ pub use microfacet::{
     MicrofacetDistribution, NoFresnel, Schlick, Separable, ShadowingMasking,
 };
 // -- end microfacet
+// -- re-exports: rough diffuse (keep this block for that module)
+pub use rough_diffuse::{Eon, Fon, OrenNayar};
+// -- end rough diffuse
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]
