@@ -350,6 +350,7 @@ fn albedo_by_quadrature_hard_cases() {
                 eta_d: 0.5,
                 eta_c: 0.05,
                 k_c: 5.0,
+                sigma: 1.0,
             };
             for &ct in &[1.0f64, 0.5, 1e-3, 1e-6] {
                 if !grazing && ct < 0.1 {

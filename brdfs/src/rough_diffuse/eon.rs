@@ -148,7 +148,9 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
         let s = s_term(wi, wo);
         let s_over_t = if s > 0.0 { s / t_term(wi, wo) } else { s };
         let ms = fon_deficit(wi.z) * fon_deficit(wo.z);
-        self.k_ss * (1.0 + self.sigma * s_over_t) + self.k_ms * ms
+        // `1 + σ s ≥ 1 − σ ≥ 0` for unit vectors; the `max` keeps rounding (|s| a few ulp above 1
+        // for opposite grazing directions) from making it negative.
+        self.k_ss * (1.0 + self.sigma * s_over_t).max(0.0) + self.k_ms * ms
     }
 
     #[inline(always)]

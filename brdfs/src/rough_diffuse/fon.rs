@@ -35,7 +35,9 @@
 //! * Directions: any finite vectors (normalised first when not unit). `s/t`
 //!   grows as `1/cos θ` when both directions graze (the model's own
 //!   singularity, `f_r cos θi` stays bounded); `t` is bounded below by
-//!   `f32::MIN_POSITIVE`, so `eval` is finite for every finite input.
+//!   `f32::MIN_POSITIVE`, so `eval` is finite for every finite input; and
+//!   `1 + σ s/t` (exactly `≥ 1 − σ ≥ 0`) is clamped at 0, since for opposite
+//!   grazing directions the rounded `s` can fall a few ulp below −1.
 //!
 //! # Smoothness
 //!
@@ -118,7 +120,9 @@ impl<S: Spectrum> RoughLobe for Fon<S> {
     fn eval_unit(&self, wi: Vec3, wo: Vec3) -> S {
         let s = s_term(wi, wo);
         let s_over_t = if s > 0.0 { s / t_term(wi, wo) } else { s };
-        self.k * (1.0 + self.sigma * s_over_t)
+        // `1 + σ s ≥ 1 − σ ≥ 0` for unit vectors; the `max` keeps rounding (|s| a few ulp above 1
+        // for opposite grazing directions) from making it negative.
+        self.k * (1.0 + self.sigma * s_over_t).max(0.0)
     }
 
     #[inline(always)]

@@ -429,6 +429,10 @@ fn stable_at_hard_inputs() {
         Vec3::new(0.0, f32::INFINITY, 1.0),
         Vec3::new(0.6, 0.0, 0.8),
         Vec3::new(-0.6, 0.0, 0.8),
+        // Opposite azimuths at grazing, rounded so that `s` is a few ulp below −1 (1 + σs < 0 at σ = 1
+        // unless clamped; found by tests/stability.rs).
+        Vec3::new(0.9553365, 0.29552022, 1e-7),
+        Vec3::new(-0.9553365, -0.29552022, 1e-7),
     ];
     for b in plugins {
         for &wi in &specials {
