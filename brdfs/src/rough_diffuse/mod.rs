@@ -272,7 +272,7 @@ pub(crate) fn sample<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<BrdfS
         return None;
     }
     let pdf = pdf(l, wi, wo);
-    if !(pdf > 0.0) {
+    if pdf.is_nan() || pdf <= 0.0 {
         return None;
     }
     let weight = eval(l, wi, wo) * (wi_unit.z / pdf);

@@ -304,7 +304,10 @@ fn pairs() -> Vec<(Vec3, Vec3)> {
         let b = (k as f64 * 0.754_877_666_246_693).fract();
         let c = (k as f64 * 0.569_840_290_998_053).fract();
         let d = (k as f64 * 0.438_796_353_876_284).fract();
-        v.push((dir(a.max(1e-6), 6.283 * b), dir(c.max(1e-6), 6.283 * d)));
+        v.push((
+            dir(a.max(1e-6), core::f64::consts::TAU * b),
+            dir(c.max(1e-6), core::f64::consts::TAU * d),
+        ));
     }
     for &c in &[1e-6, 1e-3, 0.05, 0.5, 0.999_999] {
         for &phi in &[0.0, 0.7, 1.5, 1.6, 3.0] {
