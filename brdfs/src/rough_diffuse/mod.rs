@@ -139,7 +139,7 @@ pub(crate) fn fon_deficit(mu: f32) -> f32 {
 
 /// The exact directional albedo of FON at `ρ = 1`,
 /// `E_FON(μ) = A (1 + σ G(μ)/π)` with `A = 1/(1 + c₁σ)` (Portsmouth, Kutz &
-/// Hill 2025, Listing 1, `E_FON_exact`; [`g_over_pi`] for `G`), for
+/// Hill 2025, Listing 1, `E_FON_exact`; `G` as in the [`Fon`] docs), for
 /// `μ = cos θo` (clamped to `[0, 1]`) and `σ ∈ [0, 1]` (clamped). It lies in
 /// `[1/(1 + c₁σ), 1]`, equal to 1 at grazing view. Accuracy: within
 /// `2·10⁻⁶` of the exact value (f32 rounding; measured ≤ 3·10⁻⁷ against
