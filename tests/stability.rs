@@ -1,5 +1,5 @@
 //! Stability suite (issue 2): one named test per hard case. Each checks every plugin configuration
-//! (25) under several parameter sets (typical, sharpest, roughest, extreme Fresnel): `eval`, `pdf`,
+//! (28) under several parameter sets (typical, sharpest, roughest, extreme Fresnel): `eval`, `pdf`,
 //! `eval_isotropic` and `sample` (weight, pdf, direction) are finite and non-negative, `sample`'s pdf is
 //! `> 0`, and nothing panics. Invalid parameters are rejected at construction with a typed error whose
 //! `Display` names the parameter.
