@@ -1,10 +1,12 @@
 //! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`,
-//! `fon(...)`, `eon(...)`, `oren-nayar(...)`.
+//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, and their compositions `A + B`, `mix(W, A, B)` and
+//! `coated(TOP, BASE)`.
 
 use crate::SpecError;
 use crate::args::Args;
-use crate::call::{Call, parse_call};
+use crate::call::{Call, Parser};
 use crate::error::err_span;
+use crate::lex::Tok;
 
 /// Microfacet normal distribution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,7 +60,8 @@ pub enum FresnelSpec {
 }
 
 /// A validated BRDF description (parameters as given; angles none).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum BrdfSpec {
     /// `lambertian(albedo=1)`.
     Lambertian {
@@ -132,6 +135,31 @@ pub enum BrdfSpec {
         /// [`parse_brdf`]; [`BrdfSpec::file`] slices it.
         file: (usize, usize),
     },
+    /// `A + B + …`: the sum of the lobes (`radiometry::compose::Sum`, lobes picked in proportion to
+    /// their albedos).
+    Sum(Vec<BrdfSpec>),
+    /// `mix(W, A, B)`: `W f_A + (1 − W) f_B`, `W ∈ [0, 1]` (`radiometry::compose::Mix`).
+    Mix {
+        /// The weight `W` of `A`.
+        weight: f64,
+        /// Lobe `A`.
+        a: Box<BrdfSpec>,
+        /// Lobe `B`.
+        b: Box<BrdfSpec>,
+    },
+    /// `coated(TOP, BASE, coat_color=1, coat_ior=1.5)`: `TOP` over `BASE` by albedo scaling
+    /// (`radiometry::compose::Coated`); `coat_color < 1` absorbs in the coat (OpenPBR's `coat_color`,
+    /// through a coat of index `coat_ior`).
+    Coated {
+        /// The top lobe.
+        top: Box<BrdfSpec>,
+        /// The base lobe.
+        base: Box<BrdfSpec>,
+        /// `coat_color ∈ [0, 1]` (1: no absorption).
+        coat_color: f64,
+        /// The coat's index of refraction `≥ 1` (for the path length of absorption).
+        coat_ior: f64,
+    },
 }
 
 impl BrdfSpec {
@@ -159,7 +187,9 @@ pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `pho
 fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
-`oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3). Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
+`oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3); \
+compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5)` \
+(TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
 exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1; eon/fon take sigma ∈ [0, 1] (dimensionless), \
 oren-nayar takes sigma_rad ∈ [0, π/2] in radians and rho ≤ 1/(A + B/2) (its albedo exceeds 1 above).";
@@ -169,16 +199,125 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
     if let Some(r) = crate::tabulated::parse(spec) {
         return r;
     }
-    let call = parse_call(spec)?;
+    let mut p = Parser::new(spec)?;
+    let b = expr(spec, &mut p, 0)?;
+    p.finish()?;
+    Ok(b)
+}
+
+/// `expr := term ('+' term)*`.
+fn expr(spec: &str, p: &mut Parser<'_>, depth: usize) -> Result<BrdfSpec, SpecError> {
+    let mut parts = vec![term(spec, p, depth)?];
+    while p.peek().tok == Tok::Plus {
+        p.bump();
+        parts.push(term(spec, p, depth)?);
+    }
+    Ok(if parts.len() == 1 {
+        parts.pop().expect("one part")
+    } else {
+        BrdfSpec::Sum(parts)
+    })
+}
+
+/// `term := mix(NUM, expr, expr) | coated(expr, expr [, key=NUM]*) | call`.
+fn term(spec: &str, p: &mut Parser<'_>, depth: usize) -> Result<BrdfSpec, SpecError> {
+    if depth > 8 {
+        return Err(p.expected("a shallower nesting of compositions"));
+    }
+    let is = |p: &Parser<'_>, name: &str| matches!(&p.peek().tok, Tok::Ident(n) if n == name);
+    if is(p, "mix") || is(p, "coated") {
+        let mix = is(p, "mix");
+        p.bump();
+        expect(p, Tok::LParen, "`(`")?;
+        if mix {
+            let t = p.peek().clone();
+            let Tok::Num(w) = t.tok else {
+                return Err(p.expected("the mix weight (a number in [0, 1])"));
+            };
+            if !(0.0..=1.0).contains(&w) {
+                return Err(p.err_at(&t, format!("mix weight {w} must lie in [0, 1]")));
+            }
+            p.bump();
+            expect(p, Tok::Comma, "`,`")?;
+            let a = expr(spec, p, depth + 1)?;
+            expect(p, Tok::Comma, "`,`")?;
+            let b = expr(spec, p, depth + 1)?;
+            expect(p, Tok::RParen, "`)`")?;
+            return Ok(BrdfSpec::Mix {
+                weight: w,
+                a: Box::new(a),
+                b: Box::new(b),
+            });
+        }
+        let top = expr(spec, p, depth + 1)?;
+        expect(p, Tok::Comma, "`,`")?;
+        let base = expr(spec, p, depth + 1)?;
+        let (mut coat_color, mut coat_ior) = (1.0, 1.5);
+        while p.peek().tok == Tok::Comma {
+            p.bump();
+            let kt = p.peek().clone();
+            let key = match &kt.tok {
+                Tok::Ident(k) if k == "coat_color" || k == "coat_ior" => k.clone(),
+                _ => return Err(p.expected("`coat_color=` or `coat_ior=`")),
+            };
+            p.bump();
+            expect(p, Tok::Eq, "`=`")?;
+            let vt = p.peek().clone();
+            let Tok::Num(v) = vt.tok else {
+                return Err(p.expected(&format!("a number for `{key}`")));
+            };
+            let ok = if key == "coat_color" {
+                (0.0..=1.0).contains(&v)
+            } else {
+                (1.0..=1e3).contains(&v)
+            };
+            if !ok {
+                let range = if key == "coat_color" {
+                    "[0, 1]"
+                } else {
+                    "[1, 1000]"
+                };
+                return Err(p.err_at(&vt, format!("{key} = {v} must lie in {range}")));
+            }
+            p.bump();
+            if key == "coat_color" {
+                coat_color = v;
+            } else {
+                coat_ior = v;
+            }
+        }
+        expect(p, Tok::RParen, "`)`")?;
+        return Ok(BrdfSpec::Coated {
+            top: Box::new(top),
+            base: Box::new(base),
+            coat_color,
+            coat_ior,
+        });
+    }
+    let call = p.call(0)?;
+    plugin(spec, &call)
+}
+
+fn expect(p: &mut Parser<'_>, tok: Tok, what: &str) -> Result<(), SpecError> {
+    if p.peek().tok == tok {
+        p.bump();
+        Ok(())
+    } else {
+        Err(p.expected(what))
+    }
+}
+
+/// One plugin call, validated.
+fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
     let name = call.name.as_str();
     match name {
         "lambertian" | "lambert" => {
-            let mut a = Args::new(spec, &call, &["albedo"])?;
+            let mut a = Args::new(spec, call, &["albedo"])?;
             let albedo = a.num("albedo", Some(1.0), 0.0, 1.0, false)?;
             Ok(BrdfSpec::Lambertian { albedo })
         }
         "phong" | "blinn-phong" => {
-            let mut a = Args::new(spec, &call, &["exponent", "ks", "kd"])?;
+            let mut a = Args::new(spec, call, &["exponent", "ks", "kd"])?;
             let exponent = a.num("exponent", None, 0.0, MAX_EXPONENT, false)?;
             let ks = a.num("ks", Some(1.0), 0.0, 1.0, false)?;
             let kd = a.num("kd", Some(0.0), 0.0, 1.0, false)?;
@@ -198,7 +337,7 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
             })
         }
         "ggx" | "beckmann" => {
-            let mut a = Args::new(spec, &call, &["alpha", "g", "fresnel", "ms", "kd"])?;
+            let mut a = Args::new(spec, call, &["alpha", "g", "fresnel", "ms", "kd"])?;
             let alpha = a.num("alpha", None, MIN_ALPHA, MAX_ALPHA, false)?;
             let kd = a.num("kd", Some(0.0), 0.0, 1.0, false)?;
             let g = match a.call_value("g")? {
@@ -293,7 +432,7 @@ pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar or tabulated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, tabulated, mix or coated)"
             ),
         )),
     }
@@ -338,6 +477,53 @@ mod tests {
 
     fn caret_of(e: &SpecError) -> &str {
         &e.spec[e.start..e.end]
+    }
+
+    #[test]
+    fn compositions_parse_with_carets_on_errors() {
+        let l = |albedo| BrdfSpec::Lambertian { albedo };
+        assert_eq!(
+            parse_brdf("lambertian(albedo=0.2) + lambertian(albedo=0.3)+lambertian").unwrap(),
+            BrdfSpec::Sum(vec![l(0.2), l(0.3), l(1.0)])
+        );
+        assert_eq!(
+            parse_brdf("mix(0.25, lambertian, lambertian(albedo=0.5) + lambertian(albedo=0.1))").unwrap(),
+            BrdfSpec::Mix {
+                weight: 0.25,
+                a: Box::new(l(1.0)),
+                b: Box::new(BrdfSpec::Sum(vec![l(0.5), l(0.1)])),
+            }
+        );
+        assert_eq!(
+            parse_brdf(
+                "coated(lambertian(albedo=0.1), mix(1, lambertian, lambertian), coat_ior=1.6, coat_color=0.5)"
+            )
+            .unwrap(),
+            BrdfSpec::Coated {
+                top: Box::new(l(0.1)),
+                base: Box::new(BrdfSpec::Mix {
+                    weight: 1.0,
+                    a: Box::new(l(1.0)),
+                    b: Box::new(l(1.0))
+                }),
+                coat_color: 0.5,
+                coat_ior: 1.6,
+            }
+        );
+        for (t, bad) in [
+            ("mix(2, lambertian, lambertian)", "2"),
+            ("mix(lambertian, lambertian)", "lambertian"),
+            ("mix(0.5, lambertian)", ")"),
+            ("coated(lambertian, lambertian, coat_color=1.5)", "1.5"),
+            ("coated(lambertian, lambertian, coat_ior=0.5)", "0.5"),
+            ("coated(lambertian, lambertian, thickness=1)", "thickness"),
+            ("lambertian + nope", "nope"),
+            ("lambertian +", ""),
+            ("coated(lambertian, lambertian(albedo=2))", "2"),
+        ] {
+            let e = parse_brdf(t).expect_err(t);
+            assert_eq!(caret_of(&e), bad, "{t}: {e}");
+        }
     }
 
     #[test]

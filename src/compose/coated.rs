@@ -21,11 +21,12 @@ const MIN_ALBEDO_MARGIN: f32 = 1e-3;
 ///
 /// ```text
 /// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) ⊙ f_B(ωi, ωo)
-/// τ(ωi, ωo) = A(μi, μo) ⊙ (1 − E_T(ωi)) ⊙ (1 − E_T(ωo)) / (1 − E_min)
+/// τ(ωi, ωo) = A(μi, μo) ⊙ (1 − Ê_T(ωi)) ⊙ (1 − Ê_T(ωo)) / (1 − E_min)
 /// A(μi, μo) = C^{(1/μᵗi + 1/μᵗo)/2},   μᵗ = √(1 − (1 − μ²)/η²)
 /// ```
 ///
-/// `E_T` is the top's [directional albedo](Brdf::directional_albedo): light
+/// `E_T` is the top's [directional albedo](Brdf::directional_albedo) and
+/// `Ê_T` its upper end (value plus stated error, at most 1): light
 /// the top reflects never reaches the base, once on the way in and once on
 /// the way out — a product, so `τ` is symmetric and the layer stays
 /// **reciprocal** (OpenPBR's `(1 − E_T(ωo))` alone is not). `E_min` is the
@@ -172,13 +173,13 @@ where
         }
     }
 
-    /// `1 − E_T(ω)`, clamped to `[0, 1]` per channel.
+    /// `1 − E_T(ω)` with `E_T` at the upper end of its stated error, clamped
+    /// to `[0, 1]` per channel (so that a bounded albedo can never let more
+    /// light through than the top transmits).
     #[inline]
     fn through(&self, w: Vec3) -> S {
-        self.top
-            .directional_albedo(w)
-            .value
-            .map(|e| (1.0 - e).clamp(0.0, 1.0))
+        let e = self.top.directional_albedo(w);
+        e.value.map(|v| (1.0 - (v + e.error)).clamp(0.0, 1.0))
     }
 
     /// The probability of drawing from the top at `wo`.
@@ -251,8 +252,11 @@ where
         mixture_pdf(p, self.top.pdf(wi, wo), self.base.pdf(wi, wo))
     }
 
+    /// `false`: `τ` reads the top's albedo at `ωi`, which the plugins take
+    /// from interpolated tables (and the default rule from samples that may
+    /// fall below the horizon) — not an analytic function of `ωi`.
     fn is_smooth(&self) -> bool {
-        self.top.is_smooth() && self.base.is_smooth()
+        false
     }
 
     /// `E = E_T(ωo) + (1 − E_T(ωo)) g X`, `X = ∫(1 − E_T(ωi)) A f_B cos θi dωi`,
@@ -265,7 +269,7 @@ where
         }
         let et = self.top.directional_albedo(wo);
         let eb = self.base.directional_albedo(wo);
-        let through = et.value.map(|e| (1.0 - e).clamp(0.0, 1.0));
+        let through = et.value.map(|e| (1.0 - (e + et.error)).clamp(0.0, 1.0));
         let upper = through * eb.value; // g · X ≤ E_B
         let est = upper * self.absorption(mu, mu) * (self.gain * (1.0 - self.average));
         let spread = (upper - est).max_channel().max(est.max_channel());

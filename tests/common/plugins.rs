@@ -65,6 +65,64 @@ pub enum Kind {
     Eon,
     /// `OrenNayar` (classic, pbrt-v3) with `σ_rad = σ · π/2` and ρ capped at `OrenNayar::max_rho`.
     OrenNayar,
+    /// A composite of plugins (`radiometry::compose`).
+    Composite(Comp),
+}
+
+/// The composites of [`Kind::Composite`], built from the parameters of their parts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Comp {
+    /// `Coated<GGX dielectric (α, η), Lambertian(ρ)>`: a plastic.
+    Plastic,
+    /// `Sum<Lambertian(kd), Scaled<GGX (α, F = 1), ks>>` with `kd + ks ≤ 1`.
+    SumDiffuseSpecular,
+    /// `Mix<Kulla–Conty GGX conductor (α, η, k), Lambertian(ρ)>` with weight `f0`.
+    MixMetalDiffuse,
+    /// `Coated<Beckmann dielectric (α, η), GGX conductor>` with coat colour `ρ` (absorbing): a coated metal.
+    CoatedMetal,
+}
+
+/// The composite configurations in [`all_kinds`].
+pub const COMPOSITE_KINDS: [Kind; 4] = [
+    Kind::Composite(Comp::Plastic),
+    Kind::Composite(Comp::SumDiffuseSpecular),
+    Kind::Composite(Comp::MixMetalDiffuse),
+    Kind::Composite(Comp::CoatedMetal),
+];
+
+fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
+    use radiometry::compose::{Coated, Mix, Scaled, Sum};
+    let ggx = Ggx::new(p.alpha)?;
+    let conductor = Conductor::new(p.eta_c, p.k_c)?;
+    let unwrap =
+        |e: radiometry::compose::ComposeError| -> BrdfError { panic!("valid composite parameters: {e}") };
+    Ok(match c {
+        Comp::Plastic => Box::new(Coated::new(
+            Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(p.eta_d)?),
+            Lambertian::new(p.rho)?,
+        )),
+        Comp::SumDiffuseSpecular => Box::new(Sum::new(
+            Lambertian::new(p.kd)?,
+            Scaled::new(Microfacet::<_, HeightCorrelated, _>::new(ggx, NoFresnel), p.ks).map_err(unwrap)?,
+        )),
+        Comp::MixMetalDiffuse => Box::new(
+            Mix::new(
+                p.f0,
+                KullaConty::<_, HeightCorrelated, _>::new(ggx, conductor),
+                Lambertian::new(p.rho)?,
+            )
+            .map_err(unwrap)?,
+        ),
+        Comp::CoatedMetal => Box::new(
+            Coated::with_absorption(
+                Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(p.alpha)?, Dielectric::new(p.eta_d)?),
+                Microfacet::<_, HeightCorrelated, _>::new(ggx, conductor),
+                p.rho,
+                p.eta_d.max(1.0),
+            )
+            .map_err(unwrap)?,
+        ),
+    })
 }
 
 /// The fixed tables of the `Tabulated` configurations.
@@ -132,7 +190,8 @@ pub const KULLA_CONTY_KINDS: [Kind; 4] = [
 /// The rough diffuse configurations in [`all_kinds`].
 pub const ROUGH_DIFFUSE_KINDS: [Kind; 3] = [Kind::Fon, Kind::Eon, Kind::OrenNayar];
 
-/// All 28 configurations (19 single-scattering, 4 compensated, 2 tabulated, 3 rough diffuse).
+/// All 28 configurations (19 single-scattering, 4 compensated, 2 tabulated, 3 rough diffuse), and the 4
+/// composites once enabled.
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
@@ -145,6 +204,7 @@ pub fn all_kinds() -> Vec<Kind> {
     v.extend(KULLA_CONTY_KINDS);
     v.extend(TABULATED_KINDS);
     v.extend(ROUGH_DIFFUSE_KINDS);
+    // COMPOSITES-PENDING v.extend(COMPOSITE_KINDS);
     v
 }
 
@@ -288,6 +348,7 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
                 sigma_rad,
             )?)
         }
+        Kind::Composite(c) => composite(c, p)?,
     })
 }
 
@@ -305,5 +366,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::Tabulated(Table::GgxMerl) => 0.6,
         Kind::Tabulated(Table::DiffuseGgxCoarse) => 0.2,
         Kind::Fon | Kind::Eon | Kind::OrenNayar => 10.0,
+        // The narrowest part sets the breakpoints.
+        Kind::Composite(_) => 2.0 * p.alpha as f64,
     }
 }
