@@ -397,7 +397,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             })
         }
         "fon" | "eon" => {
-            let mut a = Args::new(spec, &call, &["rho", "sigma"])?;
+            let mut a = Args::new(spec, call, &["rho", "sigma"])?;
             let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
             let sigma = a.num("sigma", None, 0.0, 1.0, false)?;
             Ok(if name == "fon" {
@@ -407,7 +407,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             })
         }
         "oren-nayar" => {
-            let mut a = Args::new(spec, &call, &["rho", "sigma_rad"])?;
+            let mut a = Args::new(spec, call, &["rho", "sigma_rad"])?;
             let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
             let sigma_rad = a.num("sigma_rad", None, 0.0, core::f64::consts::FRAC_PI_2, false)?;
             let max = radiometry_brdfs::OrenNayar::max_rho(sigma_rad as f32) as f64;
