@@ -20,6 +20,9 @@
 //! | [`BlinnPhong<S>`](BlinnPhong) | Blinn 1977, exactly normalised | — | — | — | any | mixture of cosine and half-vector lobe | `eval`, `pdf`, `sample` |
 //! | [`Microfacet<D, G, F>`](Microfacet) | Walter et al. 2007 with `D` = [`Ggx`] or [`Beckmann`], `α ∈ [10⁻⁴, 1]` | `F` = [`NoFresnel`], [`Schlick`], [`Dielectric`], [`Conductor`] (complex index, per channel) | `G` = [`HeightCorrelated`] (pbrt-v4), [`Separable`] (Mitsuba 3) | — | that of `F` (`f32`, RGB, …) | visible normals (Heitz & d'Eon 2014) | `eval`, `pdf`, `sample` |
 //! | [`KullaConty<D, G, F>`](KullaConty) | `Microfacet<D, G, F>` + the lobe of Kulla & Conty 2017 from tabulated albedos | as `Microfacet` (coloured `F_ms`) | as `Microfacet` | energy compensation: the furnace albedo is `1 − 6·10⁻⁴` | that of `F` | mixture of visible normals and cosine, exact pdf | scalar loops |
+//! | [`Fon<S>`](Fon) | Fujii's improved Oren–Nayar `(ρ/π) A (1 + σ s/t)` (Portsmouth, Kutz & Hill 2025), `σ ∈ [0, 1]` dimensionless | — | — | — (albedo `ρ E_FON(μo)`, exact closed form) | any | mixture of cosine and uniform, exact pdf | scalar loops |
+//! | [`Eon<S>`](Eon) | FON + the closed-form multiple-scattering lobe of Portsmouth, Kutz & Hill 2025 ("EON"), `σ ∈ [0, 1]` | — | — | energy-preserving: albedo 1 at `ρ = 1` for every `θo` (exact FON albedo) | any | mixture of cosine and uniform, exact pdf | scalar loops |
+//! | [`OrenNayar<S>`](OrenNayar) | the classic qualitative Oren–Nayar as pbrt-v3 has it, `σ ∈ [0, π/2]` **radians**; `ρ ≤ 1/(A + B/2)` (it gains energy above) | — | — | — | any | mixture of cosine and uniform, exact pdf | scalar loops |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
 //!
 //! Common to all: `eval` is zero below the horizon and never NaN, ∞ or a
@@ -72,6 +75,7 @@ pub mod error;
 pub mod lambertian;
 pub mod microfacet;
 pub mod phong;
+pub mod rough_diffuse;
 #[cfg(feature = "simd")]
 pub mod simd;
 pub mod tabulated;
@@ -92,6 +96,9 @@ pub use microfacet::{
     MicrofacetDistribution, NoFresnel, Schlick, Separable, ShadowingMasking,
 };
 // -- end microfacet
+// -- re-exports: rough diffuse (keep this block for that module)
+pub use rough_diffuse::{Eon, Fon, OrenNayar};
+// -- end rough diffuse
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]

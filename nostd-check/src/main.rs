@@ -101,6 +101,18 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             exercise(&KullaConty::<_, Separable, _>::new(d, f), &mut acc);
         }
     }
+    // Rough diffuse: FON, EON (with its closed-form albedo) and the classic Oren–Nayar.
+    if let Ok(b) = Fon::new(black_box(0.8f32), 0.5) {
+        exercise(&b, &mut acc);
+    }
+    if let Ok(b) = Eon::new(black_box(Vec3::new(0.9, 0.5, 0.2)), 1.0) {
+        exercise(&b, &mut acc);
+        acc += b.directional_albedo(black_box(Vec3::new(0.6, 0.0, 0.8))).value.average();
+    }
+    if let Ok(b) = OrenNayar::new(black_box(0.5f32), 0.35) {
+        exercise(&b, &mut acc);
+        acc += b.directional_albedo(black_box(Vec3::new(0.6, 0.0, 0.8))).value;
+    }
     // Tabulated: a small table and sampling buffer on the stack.
     {
         use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};

@@ -1,5 +1,6 @@
-//! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`, and their
-//! compositions `A + B`, `mix(W, A, B)` and `coated(TOP, BASE)`.
+//! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`,
+//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, and their compositions `A + B`, `mix(W, A, B)` and
+//! `coated(TOP, BASE)`.
 
 use crate::SpecError;
 use crate::args::Args;
@@ -103,6 +104,31 @@ pub enum BrdfSpec {
         /// reflect more than 1 when `kd` and the specular albedo are both large).
         kd: f64,
     },
+    /// `fon(rho=R, sigma=S)`: Fujii's improved Oren–Nayar (the EON paper's
+    /// FON), σ ∈ [0, 1] dimensionless.
+    Fon {
+        /// Albedo colour ρ ∈ [0, 1] (default 1).
+        rho: f64,
+        /// Roughness σ ∈ [0, 1] (dimensionless; required).
+        sigma: f64,
+    },
+    /// `eon(rho=R, sigma=S)`: the energy-preserving Oren–Nayar (Portsmouth,
+    /// Kutz & Hill 2025), σ ∈ [0, 1] dimensionless.
+    Eon {
+        /// Albedo colour ρ ∈ [0, 1] (default 1).
+        rho: f64,
+        /// Roughness σ ∈ [0, 1] (dimensionless; required).
+        sigma: f64,
+    },
+    /// `oren-nayar(rho=R, sigma_rad=S)`: the classic qualitative Oren–Nayar
+    /// as pbrt-v3 has it, σ in **radians**; ρ at most
+    /// `OrenNayar::max_rho(σ)` (it gains energy above).
+    OrenNayar {
+        /// Albedo colour ρ (default 1).
+        rho: f64,
+        /// Roughness σ ∈ [0, π/2] in radians (required).
+        sigma_rad: f64,
+    },
     /// `tabulated(file=PATH)`: a MERL `.binary` file, read by the caller.
     Tabulated {
         /// Byte span `(start, end)` of the path in the spec text given to
@@ -159,11 +185,14 @@ pub const MAX_ALPHA: f64 = 1.0;
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
 fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
-`beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`); \
+`beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
+`eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
+`oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3); \
 compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5)` \
-(TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
+(TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
-exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
+exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1; eon/fon take sigma ∈ [0, 1] (dimensionless), \
+oren-nayar takes sigma_rad ∈ [0, π/2] in radians and rho ≤ 1/(A + B/2) (its albedo exceeds 1 above).";
 
 /// Parses and validates a BRDF spec.
 pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
@@ -367,11 +396,43 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
                 kd,
             })
         }
+        "fon" | "eon" => {
+            let mut a = Args::new(spec, call, &["rho", "sigma"])?;
+            let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
+            let sigma = a.num("sigma", None, 0.0, 1.0, false)?;
+            Ok(if name == "fon" {
+                BrdfSpec::Fon { rho, sigma }
+            } else {
+                BrdfSpec::Eon { rho, sigma }
+            })
+        }
+        "oren-nayar" => {
+            let mut a = Args::new(spec, call, &["rho", "sigma_rad"])?;
+            let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
+            let sigma_rad = a.num("sigma_rad", None, 0.0, core::f64::consts::FRAC_PI_2, false)?;
+            let max = radiometry_brdfs::OrenNayar::max_rho(sigma_rad as f32) as f64;
+            if rho as f32 as f64 > max {
+                let span = call
+                    .args
+                    .iter()
+                    .find(|x| x.key == "rho")
+                    .map_or(call.name_span, |x| x.value.span());
+                return Err(err_span(
+                    spec,
+                    span,
+                    format!(
+                        "`rho` = {rho} makes the classic Oren–Nayar reflect more than it receives at grazing view \
+                         (energy gain); at sigma_rad = {sigma_rad} it must be ≤ {max} (or use eon)"
+                    ),
+                ));
+            }
+            Ok(BrdfSpec::OrenNayar { rho, sigma_rad })
+        }
         other => Err(err_span(
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, tabulated, mix or coated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, tabulated, mix or coated)"
             ),
         )),
     }
@@ -624,6 +685,59 @@ mod tests {
             let e = parse_brdf(spec).expect_err(spec);
             assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
         }
+    }
+
+    /// The rough diffuse plugins: names and parameters as scripts call them,
+    /// the two roughness conventions kept apart, caret errors for bad values.
+    #[test]
+    fn rough_diffuse_specs() {
+        assert_eq!(
+            parse_brdf("eon(rho=0.8, sigma=0.5)").unwrap(),
+            BrdfSpec::Eon { rho: 0.8, sigma: 0.5 }
+        );
+        assert_eq!(
+            parse_brdf("fon(sigma=1)").unwrap(),
+            BrdfSpec::Fon { rho: 1.0, sigma: 1.0 }
+        );
+        assert_eq!(
+            parse_brdf("oren-nayar(rho=0.9, sigma_rad=0.35)").unwrap(),
+            BrdfSpec::OrenNayar {
+                rho: 0.9,
+                sigma_rad: 0.35
+            }
+        );
+        assert_eq!(
+            parse_brdf("oren-nayar(sigma_rad=1.2)").unwrap(),
+            BrdfSpec::OrenNayar {
+                rho: 1.0,
+                sigma_rad: 1.2
+            }
+        );
+        for (spec, bad) in [
+            ("eon(rho=0.5, sigma=1.5)", "1.5"),
+            ("eon(rho=1.2, sigma=0.5)", "1.2"),
+            ("fon(rho=0.5, sigma=-0.1)", "-0.1"),
+            ("eon(rho=0.5)", "eon"),
+            ("eon(rho=0.5, sigma_rad=0.3)", "sigma_rad"),
+            ("fon(rho=0.5, sigma=nan)", "nan"),
+            ("oren-nayar(rho=0.5, sigma=0.3)", "sigma"),
+            ("oren-nayar(rho=0.5, sigma_rad=2)", "2"),
+            ("oren-nayar(rho=1, sigma_rad=0.2)", "1"),
+            ("oren-nayar(sigma_rad=0.2)", "oren-nayar"),
+            ("oren_nayar(sigma_rad=0.2)", "oren_nayar"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
+            assert!(e.to_string().contains('^'), "{e}");
+        }
+        let e = parse_brdf("oren-nayar(rho=1, sigma_rad=0.2)").unwrap_err();
+        assert!(
+            e.message.contains("energy gain") && e.message.contains("0.985"),
+            "{e}"
+        );
+        // At the bound it is accepted.
+        let max = radiometry_brdfs::OrenNayar::max_rho(0.2);
+        assert!(parse_brdf(&format!("oren-nayar(rho={max}, sigma_rad=0.2)")).is_ok());
     }
 
     #[test]

@@ -6,8 +6,8 @@ use super::strategies::{alpha, exponent, kd_ks, log_uniform};
 use proptest::prelude::*;
 use radiometry::IsotropicBrdf;
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Ggx, HeightCorrelated, KullaConty, Lambertian,
-    Microfacet, ModifiedPhong, NoFresnel, Schlick, Separable,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, Fon, Ggx, HeightCorrelated, KullaConty,
+    Lambertian, Microfacet, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable,
 };
 
 /// A plugin behind a trait object.
@@ -59,6 +59,12 @@ pub enum Kind {
     KullaConty(Dist, Shadow, Fres),
     /// `Tabulated` over a fixed table (parameters unused).
     Tabulated(Table),
+    /// `Fon` (Fujii's Oren–Nayar, σ ∈ [0, 1]).
+    Fon,
+    /// `Eon` (energy-preserving Oren–Nayar, σ ∈ [0, 1]).
+    Eon,
+    /// `OrenNayar` (classic, pbrt-v3) with `σ_rad = σ · π/2` and ρ capped at `OrenNayar::max_rho`.
+    OrenNayar,
     /// A composite of plugins (`radiometry::compose`).
     Composite(Comp),
 }
@@ -181,7 +187,11 @@ pub const KULLA_CONTY_KINDS: [Kind; 4] = [
     Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
 ];
 
-/// All 29 configurations (19 single-scattering, 4 compensated, 2 tabulated, 4 composites).
+/// The rough diffuse configurations in [`all_kinds`].
+pub const ROUGH_DIFFUSE_KINDS: [Kind; 3] = [Kind::Fon, Kind::Eon, Kind::OrenNayar];
+
+/// All 28 configurations (19 single-scattering, 4 compensated, 2 tabulated, 3 rough diffuse), and the 4
+/// composites once enabled.
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
@@ -193,6 +203,7 @@ pub fn all_kinds() -> Vec<Kind> {
     }
     v.extend(KULLA_CONTY_KINDS);
     v.extend(TABULATED_KINDS);
+    v.extend(ROUGH_DIFFUSE_KINDS);
     // COMPOSITES-PENDING v.extend(COMPOSITE_KINDS);
     v
 }
@@ -218,6 +229,8 @@ pub struct Params {
     pub eta_c: f32,
     /// Conductor k.
     pub k_c: f32,
+    /// Rough diffuse roughness σ ∈ [0, 1] (FON/EON as is; the classic Oren–Nayar takes `σ · π/2` radians).
+    pub sigma: f32,
 }
 
 impl Params {
@@ -233,12 +246,16 @@ impl Params {
             eta_d: 1.5,
             eta_c: 0.2,
             k_c: 3.0,
+            sigma: 0.5,
         }
     }
 }
 
 /// Valid parameters, hitting the edges (α down to 1e-4, n up to 1e7, kd + ks = 1, ρ = 1, f0 ∈ {0, 1},
-/// η < 1 for the dielectric (total internal reflection)).
+/// η < 1 for the dielectric (total internal reflection), σ ∈ {0, 1}).
+///
+/// σ takes the value drawn for `f0` (same distribution, `[0, 1]` with both edges; no plugin uses both):
+/// an extra draw would change every existing random case of the suites.
 pub fn params() -> impl Strategy<Value = Params> + Clone {
     (
         prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
@@ -260,6 +277,7 @@ pub fn params() -> impl Strategy<Value = Params> + Clone {
             eta_d: eta_d as f32,
             eta_c: eta_c as f32,
             k_c: k_c as f32,
+            sigma: f0,
         })
 }
 
@@ -321,6 +339,15 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
             compensated::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
         }
         Kind::Tabulated(t) => Box::new(tabulated(t)),
+        Kind::Fon => Box::new(Fon::new(p.rho, p.sigma)?),
+        Kind::Eon => Box::new(Eon::new(p.rho, p.sigma)?),
+        Kind::OrenNayar => {
+            let sigma_rad = p.sigma * std::f32::consts::FRAC_PI_2;
+            Box::new(OrenNayar::new(
+                p.rho.min(OrenNayar::max_rho(sigma_rad)),
+                sigma_rad,
+            )?)
+        }
         Kind::Composite(c) => composite(c, p)?,
     })
 }
@@ -338,6 +365,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::KullaConty(..) => 2.0 * p.alpha as f64,
         Kind::Tabulated(Table::GgxMerl) => 0.6,
         Kind::Tabulated(Table::DiffuseGgxCoarse) => 0.2,
+        Kind::Fon | Kind::Eon | Kind::OrenNayar => 10.0,
         // The narrowest part sets the breakpoints.
         Kind::Composite(_) => 2.0 * p.alpha as f64,
     }
