@@ -20,6 +20,7 @@
 //! | [`BlinnPhong<S>`](BlinnPhong) | Blinn 1977, exactly normalised | — | — | — | any | mixture of cosine and half-vector lobe | `eval`, `pdf`, `sample` |
 //! | [`Microfacet<D, G, F>`](Microfacet) | Walter et al. 2007 with `D` = [`Ggx`] or [`Beckmann`], `α ∈ [10⁻⁴, 1]` | `F` = [`NoFresnel`], [`Schlick`], [`Dielectric`], [`Conductor`] (complex index, per channel) | `G` = [`HeightCorrelated`] (pbrt-v4), [`Separable`] (Mitsuba 3) | — | that of `F` (`f32`, RGB, …) | visible normals (Heitz & d'Eon 2014) | `eval`, `pdf`, `sample` |
 //! | [`KullaConty<D, G, F>`](KullaConty) | `Microfacet<D, G, F>` + the lobe of Kulla & Conty 2017 from tabulated albedos | as `Microfacet` (coloured `F_ms`) | as `Microfacet` | energy compensation: the furnace albedo is `1 − 6·10⁻⁴` | that of `F` | mixture of visible normals and cosine, exact pdf | scalar loops |
+//! | [`Sheen<S>`](Sheen) | Estevez & Kulla 2017 cloth sheen: "Charlie" `D`, fitted Smith `Λ`, `r ∈ [0.07, 1]` | — (`F = 1`, scaled by `color`) | height-correlated, fitted `Λ` | — | any | uniform hemisphere, exact pdf `1/(2π)` | scalar loops |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
 //!
 //! Common to all: `eval` is zero below the horizon and never NaN, ∞ or a
@@ -72,6 +73,7 @@ pub mod error;
 pub mod lambertian;
 pub mod microfacet;
 pub mod phong;
+pub mod sheen;
 #[cfg(feature = "simd")]
 pub mod simd;
 pub mod tabulated;
@@ -85,6 +87,7 @@ pub use error::BrdfError;
 pub use blinn_phong::BlinnPhong;
 pub use lambertian::Lambertian;
 pub use phong::ModifiedPhong;
+pub use sheen::Sheen;
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 pub use microfacet::{

@@ -19,7 +19,7 @@ use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty,
     Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, Schlick, Separable,
-    ShadowingMasking, microfacet::EnergyTable,
+    ShadowingMasking, Sheen, microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -166,6 +166,7 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
                 });
         }
         BrdfSpec::Lambertian { albedo } => Lambertian::new(albedo as f32).map(boxed),
+        BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::Phong { exponent, ks, kd } => {
             ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)
         }

@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use radiometry::IsotropicBrdf;
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Ggx, HeightCorrelated, KullaConty, Lambertian,
-    Microfacet, ModifiedPhong, NoFresnel, Schlick, Separable,
+    Microfacet, ModifiedPhong, NoFresnel, Schlick, Separable, Sheen,
 };
 
 /// A plugin behind a trait object.
@@ -59,6 +59,9 @@ pub enum Kind {
     KullaConty(Dist, Shadow, Fres),
     /// `Tabulated` over a fixed table (parameters unused).
     Tabulated(Table),
+    /// `Sheen` (Estevez & Kulla 2017): colour `rho`, roughness `r = r_min + (1 − r_min) α` (so the
+    /// strategy's `α ∈ [10⁻⁴, 1]` reaches both ends of `[r_min, 1]`).
+    Sheen,
 }
 
 /// The fixed tables of the `Tabulated` configurations.
@@ -123,7 +126,7 @@ pub const KULLA_CONTY_KINDS: [Kind; 4] = [
     Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
 ];
 
-/// All 25 configurations (19 single-scattering, 4 compensated, 2 tabulated).
+/// All 26 configurations (19 single-scattering, 4 compensated, 2 tabulated, sheen).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
@@ -135,7 +138,14 @@ pub fn all_kinds() -> Vec<Kind> {
     }
     v.extend(KULLA_CONTY_KINDS);
     v.extend(TABULATED_KINDS);
+    v.push(Kind::Sheen);
     v
+}
+
+/// The sheen roughness of the parameter set `p`: `r_min + (1 − r_min) α`.
+pub fn sheen_roughness(p: &Params) -> f32 {
+    use radiometry_brdfs::sheen::MIN_SHEEN_ROUGHNESS;
+    (MIN_SHEEN_ROUGHNESS + (1.0 - MIN_SHEEN_ROUGHNESS) * p.alpha).min(1.0)
 }
 
 /// Parameters for every plugin (each uses its own subset).
@@ -262,6 +272,7 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
             compensated::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
         }
         Kind::Tabulated(t) => Box::new(tabulated(t)),
+        Kind::Sheen => Box::new(Sheen::new(p.rho, sheen_roughness(p))?),
     })
 }
 
@@ -278,5 +289,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::KullaConty(..) => 2.0 * p.alpha as f64,
         Kind::Tabulated(Table::GgxMerl) => 0.6,
         Kind::Tabulated(Table::DiffuseGgxCoarse) => 0.2,
+        // A broad lobe (D of width ~√r in cos θh), zero at the mirror direction.
+        Kind::Sheen => 1.0,
     }
 }
