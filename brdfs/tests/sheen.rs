@@ -16,7 +16,9 @@ use core::f64::consts::PI;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, IsotropicBrdf};
 use radiometry_brdfs::Sheen;
-use radiometry_brdfs::sheen::{MIN_SHEEN_ROUGHNESS, N_MU, N_R, SheenAlbedoTable, sheen_mu_node, sheen_r_node};
+use radiometry_brdfs::sheen::{
+    MIN_SHEEN_ROUGHNESS, N_MU, N_R, SheenAlbedoTable, sheen_mu_node, sheen_r_node,
+};
 
 /// Table 1 of Estevez & Kulla 2017: `[a, b, c, d, e]` at `r = 0` and `r = 1`.
 const P0: [f64; 5] = [25.3245, 3.32435, 0.16801, -1.27393, -4.85967];
@@ -194,7 +196,10 @@ fn eval_matches_the_formulas() {
         let m = Reference::new(r as f64);
         for &mu in &[1e-7f64, 1e-5, 1e-4, 0.01, 0.3, 0.49, 0.51, 0.9, 0.999, 1.0] {
             let (got, want) = (c.lambda(mu as f32) as f64, m.lambda(mu));
-            assert!((got - want).abs() <= 2e-5 * want, "Λ r = {r}, μ = {mu}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= 2e-5 * want,
+                "Λ r = {r}, μ = {mu}: {got} vs {want}"
+            );
         }
         assert!((c.mu_star() as f64 - m.mu_star).abs() < 1e-5 * m.mu_star);
         assert!((c.d_sin2(1.0) as f64 - m.d(1.0)).abs() < 1e-6 * m.d(1.0));
@@ -242,13 +247,21 @@ fn directional_albedo_is_within_its_stated_bound() {
             let a = s.directional_albedo(wo);
             let (e, err) = albedo_ref_err(r as f32 as f64, wo.z as f64);
             let d = (a.value as f64 - e).abs();
-            assert!(a.is_bound && d <= a.error as f64 + err, "r = {r}, μ = {mu}: {} vs {e} (± {})", a.value, a.error);
+            assert!(
+                a.is_bound && d <= a.error as f64 + err,
+                "r = {r}, μ = {mu}: {} vs {e} (± {})",
+                a.value,
+                a.error
+            );
             worst = worst.max(d);
             worst_ratio = worst_ratio.max(d / a.error as f64);
             n += 1;
         }
     }
-    println!("directional_albedo: {n} off-node points; largest |E − f64 quadrature| = {worst:.2e} ({:.0} % of the stated bound)", 100.0 * worst_ratio);
+    println!(
+        "directional_albedo: {n} off-node points; largest |E − f64 quadrature| = {worst:.2e} ({:.0} % of the stated bound)",
+        100.0 * worst_ratio
+    );
 }
 
 #[test]
@@ -260,7 +273,12 @@ fn albedo_at_most_one() {
         for j in 0..=400 {
             let mu = 10f32.powf(-9.0 + 9.0 * j as f32 / 400.0);
             let a = s.directional_albedo(Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu));
-            assert!(a.value + a.error <= 1.0, "r = {r}, μ = {mu}: {} + {}", a.value, a.error);
+            assert!(
+                a.value + a.error <= 1.0,
+                "r = {r}, μ = {mu}: {} + {}",
+                a.value,
+                a.error
+            );
             if a.value > max.0 {
                 max = (a.value, r, mu);
             }
@@ -323,7 +341,9 @@ fn uniform_sampling_beats_cosine() {
     for row in &rows {
         println!("{row}");
     }
-    println!("summed relative variance: uniform {sum_u:.3}, cosine {sum_c:.3}; uniform worse in {worse} of 20 cases");
+    println!(
+        "summed relative variance: uniform {sum_u:.3}, cosine {sum_c:.3}; uniform worse in {worse} of 20 cases"
+    );
     assert!(sum_u < sum_c);
 }
 
@@ -331,7 +351,12 @@ fn uniform_sampling_beats_cosine() {
 fn sampling_pdf_is_bit_identical_and_weights_match() {
     for &r in &[MIN_SHEEN_ROUGHNESS, 0.3, 1.0] {
         let s = Sheen::new(Vec3::new(0.9, 0.5, 0.1), r).unwrap();
-        for &wo in &[Vec3::Z, Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, 0.9999, 0.01414), Vec3::new(3.0, 0.0, 1.0)] {
+        for &wo in &[
+            Vec3::Z,
+            Vec3::new(0.6, 0.0, 0.8),
+            Vec3::new(0.0, 0.9999, 0.01414),
+            Vec3::new(3.0, 0.0, 1.0),
+        ] {
             for i in 0..16 {
                 for j in 0..16 {
                     let u = [(i as f32 + 0.5) / 16.0, (j as f32 + 0.5) / 16.0];

@@ -176,7 +176,11 @@ mod tests {
         for k in [0usize, 1, 7, 30, 31] {
             for j in [1usize, 5, 40, 63] {
                 let e = t.albedo(sheen_mu_node(j), sheen_r_node(k));
-                assert!((e - t.values[k][j]).abs() < 2e-6, "{k} {j}: {e} vs {}", t.values[k][j]);
+                assert!(
+                    (e - t.values[k][j]).abs() < 2e-6,
+                    "{k} {j}: {e} vs {}",
+                    t.values[k][j]
+                );
             }
         }
     }

@@ -31,8 +31,9 @@ const UNIFORM_PDF: f32 = 0.5 * FRAC_1_PI;
 /// # Parameters and domain
 /// * `color`: a spectrum with every channel in `[0, 1]`; it scales `f_r`
 ///   (the paper's sheen colour). With `color = 1` the albedo is the
-///   tabulated `E(μo, r)`, at most `0.72` measured over `θo ≤ 89°` (see
-///   [`SheenAlbedoTable`](super::SheenAlbedoTable) for the grazing limit).
+///   tabulated `E(μo, r)`: largest `0.9885`, at `r = 0.07`, `θo ≈ 89.7°`
+///   (it falls with `r` and towards normal incidence; `0.16` at `r = 1`,
+///   `θo = 0`), so `color ≤ 1` keeps it below 1 with its error.
 /// * `roughness` `r ∈ [`[`MIN_SHEEN_ROUGHNESS`](super::MIN_SHEEN_ROUGHNESS)`, 1]`.
 /// * Directions: any finite vectors (normalised; zero below the horizon,
 ///   at `ωi = −ωo` and for degenerate input). Where both cosines are so
