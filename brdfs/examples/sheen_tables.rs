@@ -58,9 +58,9 @@ fn main() {
     let mut rows = vec![vec![0.0f64; N_MU]; N_R];
     let mut worst_int = (0.0f64, 0.0f32, 0.0f32);
     let mut max_e = (0.0f64, 0.0f32, 0.0f32);
-    for k in 0..N_R {
+    for (k, (row, out)) in rows.iter_mut().zip(table.values.iter_mut()).enumerate() {
         let r = sheen_r_node(k);
-        for j in 0..N_MU {
+        for (j, (v, o)) in row.iter_mut().zip(out.iter_mut()).enumerate() {
             let mu = mu_of(j);
             let fine = albedo(r, mu, 4 * BUDGET);
             let coarse = albedo(r, mu, BUDGET);
@@ -70,12 +70,12 @@ fn main() {
             if fine > max_e.0 {
                 max_e = (fine, r, mu);
             }
-            rows[k][j] = fine;
-            table.values[k][j] = fine as f32;
+            *v = fine;
+            *o = fine as f32;
         }
         eprintln!("row {k} (r = {r}) done, {:?}", t0.elapsed());
     }
-    // Interpolation error at the centres of the cells (in the node coordinates μ^¼ and √t).
+    // Interpolation error at the centres of the cells (in the node coordinates of μ and r).
     let mu_mid = |j: usize| {
         let x = (j as f64 + 0.5) / (N_MU - 1) as f64;
         let mu0 = MU_0 as f64;

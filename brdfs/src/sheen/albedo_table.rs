@@ -29,7 +29,7 @@ pub fn sheen_mu_coord(mu: f32) -> f32 {
 }
 
 /// `ln(1 + 1/μ₀)`.
-const LN_1P_INV_MU0: f32 = 9.210_440_4;
+const LN_1P_INV_MU0: f32 = 9.210_441;
 
 /// The node `μ_j = μ₀ ((1 + 1/μ₀)^(j/95) − 1)` of column `j` (the inverse
 /// of [`sheen_mu_coord`] at `j/95`; exactly 0 and 1 at the ends).

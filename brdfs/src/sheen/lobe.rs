@@ -122,9 +122,9 @@ impl<S: Spectrum> Sheen<S> {
         let h = wi + wo;
         let hxy2 = h.x * h.x + h.y * h.y;
         let len2 = hxy2 + h.z * h.z;
-        // (False for NaN.) |h|² > 0 whenever both z > 0; the floor keeps the
-        // quotient meaningful.
-        if !(len2 > 1e-30) {
+        // |h|² > 0 whenever both z > 0; the floor keeps the quotient
+        // meaningful (and NaN fails it).
+        if len2.is_nan() || len2 <= 1e-30 {
             return 0.0;
         }
         let d = self.charlie.d_sin2(hxy2 / len2);
