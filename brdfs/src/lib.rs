@@ -23,6 +23,7 @@
 //! | [`Fon<S>`](Fon) | Fujii's improved Oren–Nayar `(ρ/π) A (1 + σ s/t)` (Portsmouth, Kutz & Hill 2025), `σ ∈ [0, 1]` dimensionless | — | — | — (albedo `ρ E_FON(μo)`, exact closed form) | any | mixture of cosine and uniform, exact pdf | scalar loops |
 //! | [`Eon<S>`](Eon) | FON + the closed-form multiple-scattering lobe of Portsmouth, Kutz & Hill 2025 ("EON"), `σ ∈ [0, 1]` | — | — | energy-preserving: albedo 1 at `ρ = 1` for every `θo` (exact FON albedo) | any | mixture of cosine and uniform, exact pdf | scalar loops |
 //! | [`OrenNayar<S>`](OrenNayar) | the classic qualitative Oren–Nayar as pbrt-v3 has it, `σ ∈ [0, π/2]` **radians**; `ρ ≤ 1/(A + B/2)` (it gains energy above) | — | — | — | any | mixture of cosine and uniform, exact pdf | scalar loops |
+//! | [`Sheen<S>`](Sheen) | Estevez & Kulla 2017 cloth sheen: "Charlie" `D`, fitted Smith `Λ`, `r ∈ [0.07, 1]` | — (`F = 1`, scaled by `color`) | height-correlated, fitted `Λ` | — | any | uniform hemisphere, exact pdf `1/(2π)` | scalar loops |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
 //!
 //! Common to all: `eval` is zero below the horizon and never NaN, ∞ or a
@@ -76,6 +77,7 @@ pub mod lambertian;
 pub mod microfacet;
 pub mod phong;
 pub mod rough_diffuse;
+pub mod sheen;
 #[cfg(feature = "simd")]
 pub mod simd;
 pub mod tabulated;
@@ -89,6 +91,7 @@ pub use error::BrdfError;
 pub use blinn_phong::BlinnPhong;
 pub use lambertian::Lambertian;
 pub use phong::ModifiedPhong;
+pub use sheen::Sheen;
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 pub use microfacet::{

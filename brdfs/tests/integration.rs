@@ -7,4 +7,5 @@
 mod batch;
 mod kulla_conty;
 mod sample_batch;
+mod sheen;
 mod tabulated;

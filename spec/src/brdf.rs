@@ -1,5 +1,5 @@
 //! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`,
-//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, and their compositions `A + B`, `mix(W, A, B)` and
+//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, `sheen(...)`, and their compositions `A + B`, `mix(W, A, B)` and
 //! `coated(TOP, BASE)`.
 
 use crate::SpecError;
@@ -129,6 +129,14 @@ pub enum BrdfSpec {
         /// Roughness σ ∈ [0, π/2] in radians (required).
         sigma_rad: f64,
     },
+    /// `sheen(color=1, roughness=R)`: the microfacet sheen of Estevez &
+    /// Kulla 2017 (Charlie distribution, fitted `Λ`).
+    Sheen {
+        /// Colour (one number: the run-time BRDF is monochrome), in `[0, 1]`.
+        color: f64,
+        /// Roughness `r ∈ [MIN_SHEEN_ROUGHNESS, 1]`.
+        roughness: f64,
+    },
     /// `tabulated(file=PATH)`: a MERL `.binary` file, read by the caller.
     Tabulated {
         /// Byte span `(start, end)` of the path in the spec text given to
@@ -180,6 +188,10 @@ pub const MAX_EXPONENT: f64 = 1e7;
 pub const MIN_ALPHA: f64 = 1e-4;
 /// Largest accepted microfacet roughness (the plugins' `MAX_ALPHA`).
 pub const MAX_ALPHA: f64 = 1.0;
+/// Smallest accepted sheen roughness (the plugin's `MIN_SHEEN_ROUGHNESS`,
+/// below which the paper's fitted `Λ` lets the lobe reflect more than it
+/// receives).
+pub const MIN_SHEEN_ROUGHNESS: f64 = 0.07;
 
 /// Help text describing the BRDF spec language (used by `--help`).
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
@@ -187,7 +199,8 @@ pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `pho
 fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
-`oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3); \
+`oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
+cloth sheen; roughness ∈ [0.07, 1] is required); \
 compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5)` \
 (TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
@@ -428,11 +441,17 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             }
             Ok(BrdfSpec::OrenNayar { rho, sigma_rad })
         }
+        "sheen" => {
+            let mut a = Args::new(spec, call, &["color", "roughness"])?;
+            let color = a.num("color", Some(1.0), 0.0, 1.0, false)?;
+            let roughness = a.num("roughness", None, MIN_SHEEN_ROUGHNESS, 1.0, false)?;
+            Ok(BrdfSpec::Sheen { color, roughness })
+        }
         other => Err(err_span(
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, tabulated, mix or coated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, tabulated, mix or coated)"
             ),
         )),
     }
@@ -647,6 +666,35 @@ mod tests {
             let shown = e.to_string();
             assert!(shown.contains('^'), "{shown}");
             assert!(shown.contains(spec.trim_end()) || spec.is_empty(), "{shown}");
+        }
+    }
+
+    #[test]
+    fn sheen_spec() {
+        assert_eq!(
+            parse_brdf("sheen(color=1, roughness=0.5)").unwrap(),
+            BrdfSpec::Sheen {
+                color: 1.0,
+                roughness: 0.5
+            }
+        );
+        assert_eq!(
+            parse_brdf("sheen(roughness=1)").unwrap(),
+            BrdfSpec::Sheen {
+                color: 1.0,
+                roughness: 1.0
+            }
+        );
+        for (spec, bad) in [
+            ("sheen(color=1)", "sheen"),
+            ("sheen(roughness=0.01)", "0.01"),
+            ("sheen(roughness=0)", "0"),
+            ("sheen(color=1.5, roughness=0.5)", "1.5"),
+            ("sheen(colour=1, roughness=0.5)", "colour"),
+            ("sheen(roughness=0.5, alpha=0.1)", "alpha"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
         }
     }
 

@@ -20,7 +20,7 @@ use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, Fon, Fresnel, Ggx, HeightCorrelated,
     KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, OrenNayar, Schlick,
-    Separable, ShadowingMasking, microfacet::EnergyTable,
+    Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -201,6 +201,7 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
         BrdfSpec::Fon { rho, sigma } => Fon::new(rho as f32, sigma as f32).map(boxed),
         BrdfSpec::Eon { rho, sigma } => Eon::new(rho as f32, sigma as f32).map(boxed),
         BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(rho as f32, sigma_rad as f32).map(boxed),
+        BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::Phong { exponent, ks, kd } => {
             ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)
         }

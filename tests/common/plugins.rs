@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use radiometry::IsotropicBrdf;
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, Fon, Ggx, HeightCorrelated, KullaConty,
-    Lambertian, Microfacet, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable,
+    Lambertian, Microfacet, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable, Sheen,
 };
 
 /// A plugin behind a trait object.
@@ -65,6 +65,9 @@ pub enum Kind {
     Eon,
     /// `OrenNayar` (classic, pbrt-v3) with `σ_rad = σ · π/2` and ρ capped at `OrenNayar::max_rho`.
     OrenNayar,
+    /// `Sheen` (Estevez & Kulla 2017): colour `rho`, roughness `r = r_min + (1 − r_min) α` (so the
+    /// strategy's `α ∈ [10⁻⁴, 1]` reaches both ends of `[r_min, 1]`).
+    Sheen,
     /// A composite of plugins (`radiometry::compose`).
     Composite(Comp),
 }
@@ -190,7 +193,7 @@ pub const KULLA_CONTY_KINDS: [Kind; 4] = [
 /// The rough diffuse configurations in [`all_kinds`].
 pub const ROUGH_DIFFUSE_KINDS: [Kind; 3] = [Kind::Fon, Kind::Eon, Kind::OrenNayar];
 
-/// All 28 configurations (19 single-scattering, 4 compensated, 2 tabulated, 3 rough diffuse), and the 4
+/// All 29 configurations (19 single-scattering, 4 compensated, 2 tabulated, 3 rough diffuse, sheen), and the 4
 /// composites once enabled.
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
@@ -204,8 +207,15 @@ pub fn all_kinds() -> Vec<Kind> {
     v.extend(KULLA_CONTY_KINDS);
     v.extend(TABULATED_KINDS);
     v.extend(ROUGH_DIFFUSE_KINDS);
+    v.push(Kind::Sheen);
     // COMPOSITES-PENDING v.extend(COMPOSITE_KINDS);
     v
+}
+
+/// The sheen roughness of the parameter set `p`: `r_min + (1 − r_min) α`.
+pub fn sheen_roughness(p: &Params) -> f32 {
+    use radiometry_brdfs::sheen::MIN_SHEEN_ROUGHNESS;
+    (MIN_SHEEN_ROUGHNESS + (1.0 - MIN_SHEEN_ROUGHNESS) * p.alpha).min(1.0)
 }
 
 /// Parameters for every plugin (each uses its own subset).
@@ -349,6 +359,7 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
             )?)
         }
         Kind::Composite(c) => composite(c, p)?,
+        Kind::Sheen => Box::new(Sheen::new(p.rho, sheen_roughness(p))?),
     })
 }
 
@@ -368,5 +379,7 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::Fon | Kind::Eon | Kind::OrenNayar => 10.0,
         // The narrowest part sets the breakpoints.
         Kind::Composite(_) => 2.0 * p.alpha as f64,
+        // A broad lobe (D of width ~√r in cos θh), zero at the mirror direction.
+        Kind::Sheen => 1.0,
     }
 }
