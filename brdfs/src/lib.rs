@@ -88,7 +88,7 @@ pub use phong::ModifiedPhong;
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 pub use microfacet::{
-    Beckmann, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty, Microfacet,
+    Beckmann, Conductor, Dielectric, F82Tint, Fresnel, Ggx, HeightCorrelated, KullaConty, Microfacet,
     MicrofacetDistribution, NoFresnel, Schlick, Separable, ShadowingMasking,
 };
 // -- end microfacet

@@ -13,8 +13,9 @@
 //! * `D` — [`Ggx`] or [`Beckmann`], implementing [`MicrofacetDistribution`];
 //! * `G2` — [`HeightCorrelated`] (default; pbrt-v4) or [`Separable`]
 //!   (Mitsuba 3), implementing [`ShadowingMasking`];
-//! * `F` — [`NoFresnel`] (default, `F = 1`), [`Schlick`], [`Dielectric`] or
-//!   [`Conductor`], implementing [`Fresnel`].
+//! * `F` — [`NoFresnel`] (default, `F = 1`), [`Schlick`], [`Dielectric`],
+//!   [`Conductor`] or the F82-tint metal term [`F82Tint`] (OpenPBR),
+//!   implementing [`Fresnel`].
 //!
 //! Zero-sized choices (`NoFresnel`, `HeightCorrelated`, `Separable`) cost
 //! nothing at run time: `NoFresnel::eval` is the constant `1.0` and inlines
@@ -48,6 +49,7 @@ mod beckmann_lanes;
 mod beckmann_slope;
 mod beckmann_slope_table;
 mod beckmann_tail;
+mod f82;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
@@ -64,6 +66,7 @@ pub use albedo_table::{ALPHA_REF, AlbedoTable, EnergyTable, N_ALPHA, N_MU, alpha
 #[doc(hidden)]
 pub use batch::{DistributionKind, G2Kind};
 pub use beckmann::Beckmann;
+pub use f82::{F82Tint, MU_BAR};
 pub use fresnel::{Conductor, Dielectric, Fresnel, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
 pub use ggx::Ggx;
 pub use kulla_conty::{KullaConty, LOSS_MARGIN};
