@@ -29,6 +29,16 @@ pub enum BrdfError {
         /// What is violated.
         what: &'static str,
     },
+    /// A wavelength outside the range of a tabulated spectrum (e.g. the
+    /// `η`, `k` table of a [`Metal`](crate::metals::Metal)).
+    WavelengthOutOfRange {
+        /// The requested wavelength, nm.
+        lambda_nm: f32,
+        /// Smallest tabulated wavelength, nm.
+        min_nm: f32,
+        /// Largest tabulated wavelength, nm.
+        max_nm: f32,
+    },
 }
 
 impl fmt::Display for BrdfError {
@@ -44,6 +54,14 @@ impl fmt::Display for BrdfError {
                 write!(f, "parameter `{name}` = {value} is outside [{min}, {max}]")
             }
             BrdfError::Constraint { what } => write!(f, "invalid parameters: {what}"),
+            BrdfError::WavelengthOutOfRange {
+                lambda_nm,
+                min_nm,
+                max_nm,
+            } => write!(
+                f,
+                "wavelength {lambda_nm} nm is outside the table's range [{min_nm}, {max_nm}] nm"
+            ),
         }
     }
 }

@@ -70,6 +70,7 @@
 pub mod blinn_phong;
 pub mod error;
 pub mod lambertian;
+pub mod metals;
 pub mod microfacet;
 pub mod phong;
 #[cfg(feature = "simd")]

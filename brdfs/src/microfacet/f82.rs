@@ -12,7 +12,7 @@ pub const MU_BAR: f32 = 1.0 / 7.0;
 const G_BAR: f32 = 46_656.0 / 823_543.0;
 
 /// `(1 − μ̄)⁵ = (6/7)⁵`, Schlick's weight at `μ̄`.
-const W_BAR: f32 = 7_776.0 / 16_807.0;
+pub(crate) const W_BAR: f32 = 7_776.0 / 16_807.0;
 
 /// The F82-tint Fresnel term for metals (Hoffman 2019, "Fresnel Equations
 /// Considered Harmful", EGSR Industry Track, eq. 9–10, in the tinted form of
@@ -64,6 +64,12 @@ impl<S: Spectrum> F82Tint<S> {
             check_range("f0", f0.channel(i), 0.0, 1.0)?;
             check_range("f82", f82_tint.channel(i), 0.0, 1.0)?;
         }
+        Ok(Self::from_valid(f0, f82_tint))
+    }
+
+    /// [`new`](Self::new) without the checks, for parameters known to be
+    /// in `[0, 1]`.
+    pub(crate) fn from_valid(f0: S, f82_tint: S) -> Self {
         let fs_bar = S::from_fn(|i| {
             let f = f0.channel(i);
             f + (1.0 - f) * W_BAR
@@ -71,12 +77,12 @@ impl<S: Spectrum> F82Tint<S> {
         let a = S::from_fn(|i| fs_bar.channel(i) * (1.0 - f82_tint.channel(i)) / G_BAR);
         let smooth =
             (0..S::CHANNELS).all(|i| f0.channel(i) >= (1.0 - f82_tint.channel(i)) * fs_bar.channel(i));
-        Ok(F82Tint {
+        F82Tint {
             f0,
             tint: f82_tint,
             a,
             smooth,
-        })
+        }
     }
 
     /// The normal-incidence reflectance `f0`.

@@ -92,12 +92,14 @@ pub(crate) fn numeric_bounds<S: Spectrum>(f: impl Fn(f32) -> S) -> (S, S) {
     let h = 1.0 / (NODES - 1) as f32;
     let mut lo = f(0.0);
     let mut hi = lo;
+    // Node of each channel's minimum (channels past 64 keep node 0 and are
+    // refined around it: their node minimum still bounds them).
     let mut arg = [0usize; 64];
     for j in 1..NODES {
         let v = f(j as f32 * h);
-        for c in 0..S::CHANNELS.min(64) {
+        for (c, a) in arg.iter_mut().enumerate().take(S::CHANNELS) {
             if v.channel(c) < lo.channel(c) {
-                arg[c] = j;
+                *a = j;
             }
         }
         lo = S::from_fn(|c| lo.channel(c).min(v.channel(c)));
@@ -353,13 +355,19 @@ impl<S: Spectrum> Conductor<S> {
             check_range("eta", eta.channel(i), MIN_ETA, MAX_ETA)?;
             check_range("k", k.channel(i), 0.0, MAX_K)?;
         }
+        Ok(Self::from_valid(eta, k))
+    }
+
+    /// [`new`](Self::new) without the checks, for parameters known to be in
+    /// the domain (the named metals).
+    pub(crate) fn from_valid(eta: S, k: S) -> Self {
         let inv = |i: usize| inv_eta2(eta.channel(i), k.channel(i));
-        Ok(Conductor {
+        Conductor {
             eta,
             k,
             inv_eta2_re: S::from_fn(|i| inv(i).re),
             inv_eta2_im: S::from_fn(|i| inv(i).im),
-        })
+        }
     }
 
     /// The real part `η` of the index.

@@ -49,7 +49,7 @@ mod beckmann_lanes;
 mod beckmann_slope;
 mod beckmann_slope_table;
 mod beckmann_tail;
-mod f82;
+pub(crate) mod f82;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
