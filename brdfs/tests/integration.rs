@@ -6,5 +6,6 @@
 
 mod batch;
 mod kulla_conty;
+mod microfacet_albedo;
 mod sample_batch;
 mod tabulated;
