@@ -563,7 +563,11 @@ where
             let wi = 2.0 * dot * m - wo;
             // (False for NaN.)
             let valid = dot > 0.0 && wi.z > 0.0;
-            let g = if valid { G::g2(&self.distribution, wi, wo) } else { 0.0 };
+            let g = if valid {
+                G::g2(&self.distribution, wi, wo)
+            } else {
+                0.0
+            };
             if g > 0.0 && g.is_finite() {
                 sum += self.fresnel.eval(dot) * g;
                 weight += g;
