@@ -18,9 +18,21 @@
 //! | [`Lambertian<S>`](Lambertian) | `ρ/π` | — | — | — | any [`Spectrum`](radiometry::Spectrum) | cosine-weighted | `eval`, `pdf`, `sample` |
 //! | [`ModifiedPhong<S>`](ModifiedPhong) | Lafortune & Willems 1994: diffuse `kd` + lobe `ks`, exponent `n ∈ [0, 10⁷]` | — | — | — | any | one-sample mixture of cosine and lobe | `eval`, `pdf`, `sample` |
 //! | [`BlinnPhong<S>`](BlinnPhong) | Blinn 1977, exactly normalised | — | — | — | any | mixture of cosine and half-vector lobe | `eval`, `pdf`, `sample` |
-//! | [`Microfacet<D, G, F>`](Microfacet) | Walter et al. 2007 with `D` = [`Ggx`] or [`Beckmann`], `α ∈ [10⁻⁴, 1]` | `F` = [`NoFresnel`], [`Schlick`], [`Dielectric`], [`Conductor`] (complex index, per channel) | `G` = [`HeightCorrelated`] (pbrt-v4), [`Separable`] (Mitsuba 3) | — | that of `F` (`f32`, RGB, …) | visible normals (Heitz & d'Eon 2014) | `eval`, `pdf`, `sample` |
+//! | [`Microfacet<D, G, F>`](Microfacet) | Walter et al. 2007 with `D` = [`Ggx`] or [`Beckmann`], `α ∈ [10⁻⁴, 1]` | `F` = [`NoFresnel`], [`Schlick`], [`Dielectric`], [`Conductor`] (complex index, per channel; or a named metal: [`metals`]), [`F82Tint`] (OpenPBR's metal) | `G` = [`HeightCorrelated`] (pbrt-v4), [`Separable`] (Mitsuba 3) | — | that of `F` (`f32`, RGB, sampled) | visible normals (Heitz & d'Eon 2014) | `eval`, `pdf`, `sample` |
 //! | [`KullaConty<D, G, F>`](KullaConty) | `Microfacet<D, G, F>` + the lobe of Kulla & Conty 2017 from tabulated albedos | as `Microfacet` (coloured `F_ms`) | as `Microfacet` | energy compensation: the furnace albedo is `1 − 6·10⁻⁴` | that of `F` | mixture of visible normals and cosine, exact pdf | scalar loops |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
+//!
+//! **Directional albedo** ([`Brdf::directional_albedo`](radiometry::Brdf::directional_albedo),
+//! what the lobe combinators of `radiometry::compose` pick lobes by): `Lambertian`
+//! exactly; `Microfacet` and `KullaConty` from the Kulla–Conty tables times a
+//! 16-point Fresnel average over the lobe, with a bound (the range of `F`
+//! plus the table's `10⁻³`, [`microfacet::ALBEDO_TABLE_ERROR`]); the others by
+//! the default 16-point sampling rule (an estimated error).
+//!
+//! **Metals** ([`metals`]): measured `η(λ) + i k(λ)` of Au, Ag, Cu, Al, Cr, Fe,
+//! Ni, Ti, Pt and brass, evaluated at a renderer's wavelengths
+//! ([`Conductor::metal_sampled`]) or reduced to RGB ([`Conductor::metal`],
+//! [`F82Tint::metal`], [`metals::Metal::reflectance_rgb`]).
 //!
 //! Common to all: `eval` is zero below the horizon and never NaN, ∞ or a
 //! panic for finite input (grazing angles, `ωi = −ωo`, `u = 1 − 2⁻²⁴`);

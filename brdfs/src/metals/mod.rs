@@ -23,7 +23,7 @@
 //! (the white point of sRGB), `XYZ = Σ R(λ) D65(λ) x̄ȳz̄(λ) / Σ D65(λ) ȳ(λ)`
 //! over `λ = 360, 365, …, 780 nm` (the range of the crate's D65 table; the
 //! CIE functions beyond 780 nm add < 10⁻⁴ of Y), then
-//! [`XYZ_TO_SRGB`](radiometry::spectral::photometry::XYZ_TO_SRGB) (IEC
+//! [`XYZ_TO_SRGB`] (IEC
 //! 61966-2-1), each channel clamped to `[0, 1]`. A perfect reflector gives
 //! white to `10⁻³`. Monochrome is the `Y` of the same sum (luminance).
 //! Those reductions give [`Metal::reflectance_rgb`] (the colour at normal
