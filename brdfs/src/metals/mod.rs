@@ -168,7 +168,10 @@ impl Metal {
     /// The tabulated wavelength range `(min, max)`, nm.
     pub fn range_nm(self) -> (f32, f32) {
         let l = self.table().lambda_nm;
-        (l[0], l[l.len() - 1])
+        (
+            l.first().copied().unwrap_or(0.0),
+            l.last().copied().unwrap_or(0.0),
+        )
     }
 
     /// `(η, k)` at `lambda_nm`, linear in `λ` between the table's rows
@@ -196,26 +199,38 @@ impl Metal {
     /// reads as the first row). Total: never fails, always finite.
     pub fn eta_k_clamped(self, lambda_nm: f32) -> (f32, f32) {
         let t = self.table();
-        let l = t.lambda_nm;
-        let x = if lambda_nm > l[0] {
-            lambda_nm.min(l[l.len() - 1])
+        // Slices and `get` throughout: no index can panic (the tables have
+        // equal lengths ≥ 2, tested; the code does not rely on it).
+        let n = t.lambda_nm.len().min(t.eta.len()).min(t.k.len());
+        let (l, eta, k) = (&t.lambda_nm[..n], &t.eta[..n], &t.k[..n]);
+        let row = |i: usize| {
+            (
+                eta.get(i).copied().unwrap_or(1.0),
+                k.get(i).copied().unwrap_or(0.0),
+            )
+        };
+        let (Some(&first), Some(&last)) = (l.first(), l.last()) else {
+            return (1.0, 0.0);
+        };
+        let x = if lambda_nm > first {
+            lambda_nm.min(last)
         } else {
-            l[0]
+            first
         };
-        // First row strictly above x, kept inside 1..len − 1.
-        let j = l.partition_point(|&v| v <= x).clamp(1, l.len() - 1);
-        let (l0, l1) = (l[j - 1], l[j]);
+        // First row strictly above x, kept inside 1..n − 1.
+        let j = l.partition_point(|&v| v <= x).min(n - 1).max(1);
+        let (Some(&l0), Some(&l1)) = (l.get(j - 1), l.get(j)) else {
+            return row(0);
+        };
         let s = ((x - l0) / (l1 - l0)).clamp(0.0, 1.0);
-        let lerp = |v: &[f32]| {
-            if s == 0.0 {
-                v[j - 1]
-            } else if s == 1.0 {
-                v[j]
-            } else {
-                v[j - 1] + s * (v[j] - v[j - 1])
-            }
-        };
-        (lerp(t.eta), lerp(t.k))
+        let (a, b) = (row(j - 1), row(j));
+        if s == 0.0 {
+            a
+        } else if s == 1.0 {
+            b
+        } else {
+            (a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1))
+        }
     }
 
     /// `(η, k)` at each of `N` wavelengths (hero-wavelength rendering), as
