@@ -280,7 +280,7 @@ static WORST_PDF: Worst = Worst::new();
 static WORST_WEIGHT: Worst = Worst::new();
 static UNDERFLOWED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
-/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 28
+/// `pdf(sampled ωi, ωo)` equals the returned pdf and `weight = f cos θi / pdf`, 1,000 cases × 38
 /// configurations, `u` including 0 and `1 − 2⁻²⁴`. Tolerance: `1e-4` relative plus the sensitivity of
 /// `pdf` (resp. `f cos/pdf`) to one-ulp changes of its inputs (the sampled `ωi` is rounded to `f32`
 /// before `pdf` sees it). The weight is compared only where `f` and `pdf` are ≥ 1e-30 (see below).

@@ -41,6 +41,16 @@ pub enum BrdfError {
         /// Largest accepted value for the other parameters given.
         max: f32,
     },
+    /// A wavelength outside the range of a tabulated spectrum (e.g. the
+    /// `η`, `k` table of a [`Metal`](crate::metals::Metal)).
+    WavelengthOutOfRange {
+        /// The requested wavelength, nm.
+        lambda_nm: f32,
+        /// Smallest tabulated wavelength, nm.
+        min_nm: f32,
+        /// Largest tabulated wavelength, nm.
+        max_nm: f32,
+    },
 }
 
 impl fmt::Display for BrdfError {
@@ -59,6 +69,14 @@ impl fmt::Display for BrdfError {
             BrdfError::EnergyGain { name, value, max } => write!(
                 f,
                 "parameter `{name}` = {value} makes the albedo exceed 1 (energy gain); at these parameters it must be ≤ {max}"
+            ),
+            BrdfError::WavelengthOutOfRange {
+                lambda_nm,
+                min_nm,
+                max_nm,
+            } => write!(
+                f,
+                "wavelength {lambda_nm} nm is outside the table's range [{min_nm}, {max_nm}] nm"
             ),
         }
     }

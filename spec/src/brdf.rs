@@ -7,6 +7,7 @@ use crate::args::Args;
 use crate::call::{Call, Parser};
 use crate::error::err_span;
 use crate::lex::Tok;
+use radiometry_brdfs::metals::Metal;
 
 /// Microfacet normal distribution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,6 +57,23 @@ pub enum FresnelSpec {
         eta: f64,
         /// Extinction coefficient.
         k: f64,
+    },
+    /// `conductor(metal=Au)`: the exact conductor Fresnel of a named metal's
+    /// measured `η(λ), k(λ)`, reduced to one channel (the run-time BRDF is
+    /// monochrome): the `η`, `k` whose Fresnel curve has the luminance of the
+    /// metal's reflectance at normal incidence and at 82°
+    /// (`Conductor::metal_luminance` of `radiometry-brdfs`).
+    Metal {
+        /// The metal (names case-insensitive).
+        metal: Metal,
+    },
+    /// `f82(f0=…, f82=…)`: the F82-tint metal Fresnel of OpenPBR
+    /// (Hoffman 2019), one channel.
+    F82 {
+        /// Reflectance at normal incidence, `[0, 1]`.
+        f0: f64,
+        /// Tint of the reflectance at 82°, `[0, 1]` (default 1: Schlick).
+        f82: f64,
     },
 }
 
@@ -196,7 +214,9 @@ pub const MIN_SHEEN_ROUGHNESS: f64 = 0.07;
 /// Help text describing the BRDF spec language (used by `--help`).
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
-fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
+fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9)|conductor(metal=Au)|f82(f0=0.9,f82=0.8), \
+ms=none|kulla-conty, kd=0)` (metals: Au, Ag, Cu, Al, Cr, Fe, Ni, Ti, Pt, Brass, reduced to their luminance; \
+colours are one number: the run-time BRDF is monochrome), \
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
 `oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
@@ -476,16 +496,49 @@ fn parse_fresnel(spec: &str, c: &Call) -> Result<FresnelSpec, SpecError> {
             })
         }
         "conductor" => {
-            let mut a = Args::new(spec, c, &["eta", "k"])?;
+            let mut a = Args::new(spec, c, &["eta", "k", "metal"])?;
+            if let Some(m) = a.call_value("metal")? {
+                if let Some(x) = c.args.iter().find(|x| x.key != "metal") {
+                    return Err(err_span(
+                        spec,
+                        x.key_span,
+                        format!(
+                            "`{}` cannot be given with `metal` (the metal's table sets η and k)",
+                            x.key
+                        ),
+                    ));
+                }
+                Args::new(spec, m, &[])?;
+                let metal = Metal::from_name(&m.name).ok_or_else(|| {
+                    let names: Vec<&str> = Metal::ALL.iter().map(|x| x.name()).collect();
+                    err_span(
+                        spec,
+                        m.name_span,
+                        format!(
+                            "unknown metal `{}` (expected one of: {})",
+                            m.name,
+                            names.join(", ")
+                        ),
+                    )
+                })?;
+                return Ok(FresnelSpec::Metal { metal });
+            }
             Ok(FresnelSpec::Conductor {
                 eta: a.num("eta", None, 0.0, 1e3, true)?,
                 k: a.num("k", None, 0.0, 1e3, false)?,
             })
         }
+        "f82" | "f82-tint" => {
+            let mut a = Args::new(spec, c, &["f0", "f82"])?;
+            Ok(FresnelSpec::F82 {
+                f0: a.num("f0", None, 0.0, 1.0, false)?,
+                f82: a.num("f82", Some(1.0), 0.0, 1.0, false)?,
+            })
+        }
         other => Err(err_span(
             spec,
             c.name_span,
-            format!("unknown fresnel `{other}` (expected none, schlick, dielectric or conductor)"),
+            format!("unknown fresnel `{other}` (expected none, schlick, dielectric, conductor or f82)"),
         )),
     }
 }
@@ -543,6 +596,41 @@ mod tests {
             let e = parse_brdf(t).expect_err(t);
             assert_eq!(caret_of(&e), bad, "{t}: {e}");
         }
+    }
+
+    #[test]
+    fn metal_and_f82_fresnel() {
+        let fresnel_of = |s: &str| match parse_brdf(s).unwrap() {
+            BrdfSpec::Microfacet { fresnel, .. } => fresnel,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(
+            fresnel_of("ggx(alpha=0.3, fresnel=conductor(metal=Au))"),
+            FresnelSpec::Metal { metal: Metal::Au }
+        );
+        for (name, m) in [
+            ("au", Metal::Au),
+            ("AG", Metal::Ag),
+            ("brass", Metal::Brass),
+            ("Pt", Metal::Pt),
+        ] {
+            let s = format!("beckmann(alpha=0.1, fresnel=conductor(metal={name}))");
+            assert_eq!(fresnel_of(&s), FresnelSpec::Metal { metal: m }, "{s}");
+        }
+        assert_eq!(
+            fresnel_of("ggx(alpha=0.3, fresnel=f82(f0=0.9, f82=0.7))"),
+            FresnelSpec::F82 { f0: 0.9, f82: 0.7 }
+        );
+        assert_eq!(
+            fresnel_of("ggx(alpha=0.3, fresnel=f82(f0=0.5))"),
+            FresnelSpec::F82 { f0: 0.5, f82: 1.0 }
+        );
+        let e = parse_brdf("ggx(alpha=0.1, fresnel=conductor(metal=steel))").unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("unknown metal `steel`") && msg.contains("Au, Ag, Cu"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -649,6 +737,15 @@ mod tests {
             ("ggx(alpha=0.1, fresnel=schlik(f0=0.04))", "schlik"),
             ("ggx(alpha=0.1, fresnel=schlick(f=0.04))", "f"),
             ("ggx(alpha=0.1, fresnel=conductor(eta=0.2))", "conductor"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=Steel))", "Steel"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=Au, k=3))", "k"),
+            ("ggx(alpha=0.1, fresnel=conductor(eta=1, metal=Au))", "eta"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=1))", "1"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=Au(x=1)))", "x"),
+            ("ggx(alpha=0.1, fresnel=f82(f82=0.5))", "f82"),
+            ("ggx(alpha=0.1, fresnel=f82(f0=1.2))", "1.2"),
+            ("ggx(alpha=0.1, fresnel=f82(f0=0.9, f82=-0.1))", "-0.1"),
+            ("ggx(alpha=0.1, fresnel=f82(f0=0.9, tint=1))", "tint"),
             ("ggx(alpha=0)", "0"),
             ("ggx(alpha=1x)", "1x"),
             ("ggx(alpha=0.1) junk", "junk"),

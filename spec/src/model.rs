@@ -18,9 +18,9 @@ use radiometry::integrator::{
 };
 use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, Fon, Fresnel, Ggx, HeightCorrelated,
-    KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, OrenNayar, Schlick,
-    Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx,
+    HeightCorrelated, KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel,
+    OrenNayar, Schlick, Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -133,6 +133,8 @@ where
         FresnelSpec::Schlick { f0 } => mk::<D, G, _>(d, Schlick::new(f0 as f32)?, ms),
         FresnelSpec::Dielectric { eta } => mk::<D, G, _>(d, Dielectric::new(eta as f32)?, ms),
         FresnelSpec::Conductor { eta, k } => mk::<D, G, _>(d, Conductor::new(eta as f32, k as f32)?, ms),
+        FresnelSpec::Metal { metal } => mk::<D, G, _>(d, Conductor::metal_luminance(metal), ms),
+        FresnelSpec::F82 { f0, f82 } => mk::<D, G, _>(d, F82Tint::new(f0 as f32, f82 as f32)?, ms),
     })
 }
 
@@ -427,6 +429,27 @@ mod tests {
         assert_eq!(names.len(), all.len());
         assert!(integrator_by_name("gauss-legendre-warped", 1, 0.0).is_some());
         assert!(integrator_by_name("nope", 1, 0.0).is_none());
+    }
+
+    #[test]
+    fn metal_and_f82_specs_build_the_plugins() {
+        let build = |t: &str| build_brdf(t, &parse_brdf(t).unwrap()).unwrap();
+        let (wi, wo) = (
+            Vec3::new(0.3, 0.1, 0.948_683_3),
+            Vec3::new(-0.5, 0.0, 0.866_025_4),
+        );
+        // A white tint is Schlick's approximation.
+        let f82 = build("ggx(alpha=0.3, fresnel=f82(f0=0.6, f82=1))").eval(wi, wo);
+        let schlick = build("ggx(alpha=0.3, fresnel=schlick(f0=0.6))").eval(wi, wo);
+        assert!((f82 - schlick).abs() <= 1e-6 * schlick, "{f82} vs {schlick}");
+        // Gold is the monochrome conductor fitted to the luminance of its reflectance.
+        let gold = build("ggx(alpha=0.3, fresnel=conductor(metal=au))");
+        let c = Conductor::metal_luminance(radiometry_brdfs::metals::Metal::Au);
+        let direct = Microfacet::<Ggx, HeightCorrelated, _>::new(Ggx::new(0.3).unwrap(), c);
+        assert_eq!(gold.eval(wi, wo), direct.eval(wi, wo));
+        assert!(
+            build("beckmann(alpha=0.5, fresnel=conductor(metal=Brass), ms=kulla-conty)").eval(wi, wo) > 0.0
+        );
     }
 
     #[test]

@@ -6,8 +6,8 @@ use super::strategies::{alpha, exponent, kd_ks, log_uniform};
 use proptest::prelude::*;
 use radiometry::IsotropicBrdf;
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, Fon, Ggx, HeightCorrelated, KullaConty,
-    Lambertian, Microfacet, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable, Sheen,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Ggx, HeightCorrelated,
+    KullaConty, Lambertian, Microfacet, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable, Sheen,
 };
 
 /// A plugin behind a trait object.
@@ -42,6 +42,8 @@ pub enum Fres {
     Dielectric,
     /// Exact conductor.
     Conductor,
+    /// F82-tint metal Fresnel (OpenPBR), `f0` and tint `f82` of [`Params`].
+    F82,
 }
 
 /// A plugin configuration.
@@ -181,25 +183,32 @@ fn tabulated(t: Table) -> radiometry_brdfs::tabulated::Tabulated<'static, f32> {
     }
 }
 
-/// The four compensated configurations in [`all_kinds`]: every `(D, G)` once, two with `F = 1` (where
-/// the compensation matters most) and two with a coloured conductor.
-pub const KULLA_CONTY_KINDS: [Kind; 4] = [
+/// The five compensated configurations in [`all_kinds`]: every `(D, G)` once, two with `F = 1` (where
+/// the compensation matters most) and two with a coloured conductor, plus GGX with the F82-tint metal
+/// Fresnel (OpenPBR's metal).
+pub const KULLA_CONTY_KINDS: [Kind; 5] = [
     Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::None),
     Kind::KullaConty(Dist::Ggx, Shadow::Separable, Fres::Conductor),
     Kind::KullaConty(Dist::Beckmann, Shadow::HeightCorrelated, Fres::Conductor),
     Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
+    Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::F82),
 ];
 
 /// The rough diffuse configurations in [`all_kinds`].
 pub const ROUGH_DIFFUSE_KINDS: [Kind; 3] = [Kind::Fon, Kind::Eon, Kind::OrenNayar];
 
-/// All 29 configurations (19 single-scattering, 4 compensated, 2 tabulated, 3 rough diffuse, sheen), and the 4
-/// composites once enabled.
+/// All 38 configurations (23 single-scattering, 5 compensated, 2 tabulated, 3 rough diffuse, sheen, 4 composites).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
         for g in [Shadow::HeightCorrelated, Shadow::Separable] {
-            for f in [Fres::None, Fres::Schlick, Fres::Dielectric, Fres::Conductor] {
+            for f in [
+                Fres::None,
+                Fres::Schlick,
+                Fres::Dielectric,
+                Fres::Conductor,
+                Fres::F82,
+            ] {
                 v.push(Kind::Micro(d, g, f));
             }
         }
@@ -208,7 +217,7 @@ pub fn all_kinds() -> Vec<Kind> {
     v.extend(TABULATED_KINDS);
     v.extend(ROUGH_DIFFUSE_KINDS);
     v.push(Kind::Sheen);
-    // COMPOSITES-PENDING v.extend(COMPOSITE_KINDS);
+    v.extend(COMPOSITE_KINDS);
     v
 }
 
@@ -241,6 +250,8 @@ pub struct Params {
     pub k_c: f32,
     /// Rough diffuse roughness σ ∈ [0, 1] (FON/EON as is; the classic Oren–Nayar takes `σ · π/2` radians).
     pub sigma: f32,
+    /// F82 tint (with `f0` as the F82-tint term's normal-incidence reflectance).
+    pub f82: f32,
 }
 
 impl Params {
@@ -257,15 +268,15 @@ impl Params {
             eta_c: 0.2,
             k_c: 3.0,
             sigma: 0.5,
+            f82: 0.8,
         }
     }
 }
 
 /// Valid parameters, hitting the edges (α down to 1e-4, n up to 1e7, kd + ks = 1, ρ = 1, f0 ∈ {0, 1},
-/// η < 1 for the dielectric (total internal reflection), σ ∈ {0, 1}).
+/// η < 1 for the dielectric (total internal reflection), F82 tint ∈ {0, 1}, σ ∈ {0, 1}).
 ///
-/// σ takes the value drawn for `f0` (same distribution, `[0, 1]` with both edges; no plugin uses both):
-/// an extra draw would change every existing random case of the suites.
+/// σ takes the value drawn for `f0` (same distribution, `[0, 1]` with both edges; no plugin uses both).
 pub fn params() -> impl Strategy<Value = Params> + Clone {
     (
         prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
@@ -276,8 +287,9 @@ pub fn params() -> impl Strategy<Value = Params> + Clone {
         log_uniform(0.2, 5.0),
         log_uniform(0.01, 10.0),
         prop_oneof![3 => 0.0f64..=10.0, 1 => Just(0.0)],
+        prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
     )
-        .prop_map(|(rho, (kd, ks), n, alpha, f0, eta_d, eta_c, k_c)| Params {
+        .prop_map(|(rho, (kd, ks), n, alpha, f0, eta_d, eta_c, k_c, f82)| Params {
             rho,
             kd,
             ks,
@@ -288,6 +300,7 @@ pub fn params() -> impl Strategy<Value = Params> + Clone {
             eta_c: eta_c as f32,
             k_c: k_c as f32,
             sigma: f0,
+            f82,
         })
 }
 
@@ -301,6 +314,7 @@ where
         Fres::Schlick => Box::new(Microfacet::<D, G, _>::new(d, Schlick::new(p.f0)?)),
         Fres::Dielectric => Box::new(Microfacet::<D, G, _>::new(d, Dielectric::new(p.eta_d)?)),
         Fres::Conductor => Box::new(Microfacet::<D, G, _>::new(d, Conductor::new(p.eta_c, p.k_c)?)),
+        Fres::F82 => Box::new(Microfacet::<D, G, _>::new(d, F82Tint::new(p.f0, p.f82)?)),
     })
 }
 
@@ -317,6 +331,7 @@ where
         Fres::Schlick => Box::new(KullaConty::<D, G, _>::new(d, Schlick::new(p.f0)?)),
         Fres::Dielectric => Box::new(KullaConty::<D, G, _>::new(d, Dielectric::new(p.eta_d)?)),
         Fres::Conductor => Box::new(KullaConty::<D, G, _>::new(d, Conductor::new(p.eta_c, p.k_c)?)),
+        Fres::F82 => Box::new(KullaConty::<D, G, _>::new(d, F82Tint::new(p.f0, p.f82)?)),
     })
 }
 
