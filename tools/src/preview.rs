@@ -127,8 +127,8 @@ impl Default for Options {
             sun_elevation: 40.0,
             sun_azimuth: -45.0,
             sun_radius: 2.0,
-            sun_irradiance: 3.0,
-            sky_radiance: 0.25,
+            sun_irradiance: 5.0,
+            sky_radiance: 0.15,
             seed: 1,
             threads: 0,
             progress: true,
@@ -189,6 +189,9 @@ pub struct Lighting {
     /// `1 − cos σ` without cancellation, and the cone density `1/(2π(1 − cos σ))`.
     v_sigma: f32,
     cone_pdf: f32,
+    /// `sin σ` and `E⊥ = π L sin²σ`.
+    sin_sigma: f32,
+    e_perp: f32,
 }
 
 impl Lighting {
@@ -222,6 +225,8 @@ impl Lighting {
             e2: f.t,
             v_sigma,
             cone_pdf: if cone_pdf.is_finite() { cone_pdf } else { 0.0 },
+            sin_sigma: sigma.sin(),
+            e_perp: sun.cap_radiance() * PI * sigma.sin() * sigma.sin(),
         })
     }
 
@@ -238,7 +243,11 @@ impl Lighting {
     /// Incident radiance from world direction `w`: the sky, plus the sun in
     /// its cap.
     pub fn radiance(&self, w: Vec3) -> f32 {
-        let sun = if self.sun.contains(w) { self.sun.cap_radiance() } else { 0.0 };
+        let sun = if self.sun.contains(w) {
+            self.sun.cap_radiance()
+        } else {
+            0.0
+        };
         self.sky.sky_radiance() + sun
     }
 
@@ -256,14 +265,23 @@ impl Lighting {
         if self.cone_pdf == 0.0 {
             return 0.0;
         }
-        let e_sun = radiometry::radiometric::cap_irradiance(
-            self.sun.cap_radiance(),
-            frame.n.dot(self.sun.axis()),
-            self.sun.half_angle(),
-        );
+        // The closed form of a cap wholly above the horizon, π L sin²σ cos θa,
+        // without the clipped formula's trigonometry; clipped caps call it.
+        let c = frame.n.dot(self.sun.axis());
+        let e_sun = if c >= self.sin_sigma {
+            self.e_perp * c
+        } else if c <= -self.sin_sigma {
+            0.0
+        } else {
+            radiometry::radiometric::cap_irradiance(self.sun.cap_radiance(), c, self.sun.half_angle())
+        };
         let e_sky = PI * self.sky.sky_radiance();
         let total = e_sun + e_sky;
-        if total > 0.0 && total.is_finite() { e_sun / total } else { 0.0 }
+        if total > 0.0 && total.is_finite() {
+            e_sun / total
+        } else {
+            0.0
+        }
     }
 
     /// The light technique's density at world direction `w` (local `wl`).
@@ -354,14 +372,25 @@ impl Lighting {
     }
 }
 
+/// `tan(FIELD_OF_VIEW_DEG / 2)`.
+fn half_fov_tan() -> f32 {
+    (0.5 * FIELD_OF_VIEW_DEG).to_radians().tan()
+}
+
 /// The pinhole camera ray through image point `(px, py)` (pixels, `y` down)
 /// of a `size × size` image: origin and unit direction.
 pub fn camera_ray(px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
-    let t = (0.5 * FIELD_OF_VIEW_DEG).to_radians().tan();
+    camera_ray_with(half_fov_tan(), px, py, size)
+}
+
+fn camera_ray_with(t: f32, px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
     let s = size as f32;
     let x = (2.0 * px / s - 1.0) * t;
     let y = (1.0 - 2.0 * py / s) * t;
-    (Vec3::new(0.0, 0.0, CAMERA_DISTANCE), Vec3::new(x, y, -1.0).normalize())
+    (
+        Vec3::new(0.0, 0.0, CAMERA_DISTANCE),
+        Vec3::new(x, y, -1.0).normalize(),
+    )
 }
 
 /// The first hit of the ray `o + t d` (unit `d`) with the unit ball at the
@@ -382,7 +411,10 @@ pub fn hit_ball(o: Vec3, d: Vec3) -> Option<Vec3> {
 
 /// Renders the ball with `brdf` (module docs): `opt.size²` pixels of linear
 /// radiance, each the mean of `opt.samples` jittered camera rays.
-pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(brdf: &B, opt: &Options) -> Result<Image, PreviewError> {
+pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(
+    brdf: &B,
+    opt: &Options,
+) -> Result<Image, PreviewError> {
     if opt.size == 0 || opt.size > MAX_SIZE {
         return Err(PreviewError::Size(opt.size));
     }
@@ -427,13 +459,20 @@ fn render_row<B: Brdf<Spectrum = f32> + ?Sized>(
     crow: &mut [f32],
 ) {
     let n = opt.size as usize;
+    let t = half_fov_tan();
     for (x, (l, c)) in lrow.iter_mut().zip(crow.iter_mut()).enumerate() {
         let mut rng = Pcg32::with_stream(opt.seed, (y * n + x) as u64);
         let (mut sum, mut hits) = (0.0f64, 0u32);
         for _ in 0..opt.samples {
             let (px, py) = (x as f32 + rng.next_f32(), y as f32 + rng.next_f32());
-            let (o, d) = camera_ray(px, py, opt.size);
-            let u = [rng.next_f32(), rng.next_f32(), rng.next_f32(), rng.next_f32(), rng.next_f32()];
+            let (o, d) = camera_ray_with(t, px, py, opt.size);
+            let u = [
+                rng.next_f32(),
+                rng.next_f32(),
+                rng.next_f32(),
+                rng.next_f32(),
+                rng.next_f32(),
+            ];
             sum += match hit_ball(o, d) {
                 Some(p) => {
                     hits += 1;

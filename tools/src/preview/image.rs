@@ -29,8 +29,16 @@ pub fn tone_map(l: f32, exposure: f32) -> u8 {
         return 0;
     }
     let w2 = WHITE_POINT * WHITE_POINT;
-    let t = if x >= WHITE_POINT { 1.0 } else { (x * (1.0 + x / w2) / (1.0 + x)).min(1.0) };
-    let e = if t <= 0.003_130_8 { 12.92 * t } else { 1.055 * t.powf(1.0 / 2.4) - 0.055 };
+    let t = if x >= WHITE_POINT {
+        1.0
+    } else {
+        (x * (1.0 + x / w2) / (1.0 + x)).min(1.0)
+    };
+    let e = if t <= 0.003_130_8 {
+        12.92 * t
+    } else {
+        1.055 * t.powf(1.0 / 2.4) - 0.055
+    };
     (e * 255.0 + 0.5).clamp(0.0, 255.0) as u8
 }
 
@@ -136,7 +144,13 @@ xlink:href=\"data:image/png;base64,{}\"/>\n</svg>\n",
     /// Writes the picture to `path` as `format` ([`Image::encode_png`] or
     /// [`Image::to_svg`]).
     #[cfg(feature = "plot")]
-    pub fn write(&self, path: &Path, format: Format, exposure: f32, description: &str) -> std::io::Result<()> {
+    pub fn write(
+        &self,
+        path: &Path,
+        format: Format,
+        exposure: f32,
+        description: &str,
+    ) -> std::io::Result<()> {
         match format {
             Format::Png => std::fs::write(path, self.encode_png(exposure, description)?),
             Format::Svg => std::fs::write(path, self.to_svg(exposure, description)?),

@@ -60,7 +60,10 @@ fn white_furnace_ball_disappears_into_the_sky() {
         // After tone mapping the ball is invisible: every byte equals the sky's.
         let g = img.to_gray8(1.0);
         let want = tone_map(sky, 1.0);
-        assert!(g.iter().all(|&b| b == want), "{spec}: ball visible in the 8-bit image");
+        assert!(
+            g.iter().all(|&b| b == want),
+            "{spec}: ball visible in the 8-bit image"
+        );
     }
     // The check has teeth: a ball that reflects half (ρ = 0.5) or 99.9 % fails it.
     for spec in ["lambertian(albedo=0.5)", "lambertian(albedo=0.999)"] {
@@ -130,14 +133,27 @@ fn shading_estimator_is_unbiased() {
             if frame.to_local(wo).z < 0.1 {
                 continue;
             }
-            let local_sun = Cap::new(frame.to_local(sun.axis()), sun.half_angle(), sun.cap_radiance()).unwrap();
-            let exact = reflected_radiance(&b, &(local_sun, *lighting.sky()), frame.to_local(wo), &Auto::new(), 1 << 16)
-                .unwrap();
+            let local_sun =
+                Cap::new(frame.to_local(sun.axis()), sun.half_angle(), sun.cap_radiance()).unwrap();
+            let exact = reflected_radiance(
+                &b,
+                &(local_sun, *lighting.sky()),
+                frame.to_local(wo),
+                &Auto::new(),
+                1 << 16,
+            )
+            .unwrap();
             let mut rng = Pcg32::with_stream(3, 1);
             let m = 40_000;
             let (mut s, mut s2) = (0.0f64, 0.0f64);
             for _ in 0..m {
-                let u = [rng.next_f32(), rng.next_f32(), rng.next_f32(), rng.next_f32(), rng.next_f32()];
+                let u = [
+                    rng.next_f32(),
+                    rng.next_f32(),
+                    rng.next_f32(),
+                    rng.next_f32(),
+                    rng.next_f32(),
+                ];
                 let v = lighting.shade(&b, n, wo, u) as f64;
                 s += v;
                 s2 += v * v;
@@ -158,10 +174,31 @@ fn shading_estimator_is_unbiased() {
 #[test]
 fn images_do_not_depend_on_the_thread_count() {
     let b = brdf("coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))");
-    let one = render(&b, &Options { threads: 1, ..quiet(9, 3) }).unwrap();
-    let two = render(&b, &Options { threads: 3, ..quiet(9, 3) }).unwrap();
+    let one = render(
+        &b,
+        &Options {
+            threads: 1,
+            ..quiet(9, 3)
+        },
+    )
+    .unwrap();
+    let two = render(
+        &b,
+        &Options {
+            threads: 3,
+            ..quiet(9, 3)
+        },
+    )
+    .unwrap();
     assert_eq!(one, two);
-    let other_seed = render(&b, &Options { seed: 2, ..quiet(9, 3) }).unwrap();
+    let other_seed = render(
+        &b,
+        &Options {
+            seed: 2,
+            ..quiet(9, 3)
+        },
+    )
+    .unwrap();
     assert_ne!(one, other_seed);
 }
 
@@ -171,15 +208,30 @@ fn bad_options_are_rejected() {
     assert!(matches!(render(&b, &quiet(0, 1)), Err(PreviewError::Size(0))));
     assert!(matches!(render(&b, &quiet(4, 0)), Err(PreviewError::Samples(0))));
     for o in [
-        Options { sun_radius: 0.0, ..quiet(4, 1) },
-        Options { sun_elevation: f32::NAN, ..quiet(4, 1) },
-        Options { sun_elevation: 91.0, ..quiet(4, 1) },
+        Options {
+            sun_radius: 0.0,
+            ..quiet(4, 1)
+        },
+        Options {
+            sun_elevation: f32::NAN,
+            ..quiet(4, 1)
+        },
+        Options {
+            sun_elevation: 91.0,
+            ..quiet(4, 1)
+        },
     ] {
         assert!(matches!(render(&b, &o), Err(PreviewError::Angle(..))), "{o:?}");
     }
     for o in [
-        Options { sky_radiance: -1.0, ..quiet(4, 1) },
-        Options { sun_irradiance: f32::INFINITY, ..quiet(4, 1) },
+        Options {
+            sky_radiance: -1.0,
+            ..quiet(4, 1)
+        },
+        Options {
+            sun_irradiance: f32::INFINITY,
+            ..quiet(4, 1)
+        },
     ] {
         assert!(matches!(render(&b, &o), Err(PreviewError::Light(_))), "{o:?}");
     }
@@ -200,4 +252,32 @@ fn png_and_svg_hold_the_picture() {
     let svg = img.to_svg(1.0, "lambertian & <co>").unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("data:image/png;base64,iVBORw0KGgo"));
     assert!(svg.contains("<title>lambertian &amp; &lt;co&gt;</title>"));
+}
+
+/// The sun's share `q` takes the unclipped closed form where the cap is above
+/// the horizon: it agrees with the clipped formula of the core crate.
+#[test]
+fn sun_share_matches_the_clipped_cap_irradiance() {
+    let l = Lighting::new(&Options {
+        sun_radius: 5.0,
+        ..quiet(1, 1)
+    })
+    .unwrap();
+    let sun = l.sun();
+    for k in 0..=400 {
+        let theta = (k as f32 / 400.0) * PI;
+        let n = Frame::from_normal(sun.axis())
+            .unwrap()
+            .to_world(Vec3::new(theta.sin(), 0.0, theta.cos()));
+        let f = Frame::from_normal(n).unwrap();
+        let e =
+            radiometry::radiometric::cap_irradiance(sun.cap_radiance(), n.dot(sun.axis()), sun.half_angle());
+        let sky = PI * l.sky().sky_radiance();
+        let want = if e + sky > 0.0 { e / (e + sky) } else { 0.0 };
+        assert!(
+            (l.sun_share(&f) - want).abs() <= 1e-5,
+            "θ = {theta}: {} vs {want}",
+            l.sun_share(&f)
+        );
+    }
 }
