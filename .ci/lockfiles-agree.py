@@ -3,7 +3,7 @@
 
 Usage: .ci/lockfiles-agree.py
 
-python/, ffi/, ffi/size-check/, nostd-check/ and fuzz/ are workspaces of their own (their profiles must differ),
+python/, ffi/, ffi/size-check/, nostd-check/, fuzz/ and firmware/ are workspaces of their own (their profiles must differ),
 so each has its own Cargo.lock, and a `cargo update` in one does not move the others. A registry package that
 the root Cargo.lock and a separate lock file both contain must be locked at the same version in both: what the
 tests and the CLI exercise is what the wheel, the C library, the no_std proofs and the fuzzers link. A package
@@ -18,7 +18,7 @@ import tomllib
 from collections import defaultdict
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-SEPARATE = ["python", "ffi", "ffi/size-check", "nostd-check", "fuzz"]
+SEPARATE = ["python", "ffi", "ffi/size-check", "nostd-check", "fuzz", "firmware"]
 
 
 def registry_versions(lock):

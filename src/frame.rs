@@ -89,8 +89,8 @@ pub fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
 /// `ω = (sin θ cos φ, sin θ sin φ, cos θ)`.
 #[inline]
 pub fn spherical_direction(theta: f32, phi: f32) -> Vec3 {
-    let (st, ct) = libm::sincosf(theta);
-    let (sp, cp) = libm::sincosf(phi);
+    let (st, ct) = crate::math::sincos(theta);
+    let (sp, cp) = crate::math::sincos(phi);
     Vec3::new(st * cp, st * sp, ct)
 }
 
@@ -98,7 +98,7 @@ pub fn spherical_direction(theta: f32, phi: f32) -> Vec3 {
 /// when the cosine is already known, and keeps precision near the pole).
 #[inline]
 pub fn spherical_direction_sc(sin_theta: f32, cos_theta: f32, phi: f32) -> Vec3 {
-    let (sp, cp) = libm::sincosf(phi);
+    let (sp, cp) = crate::math::sincos(phi);
     Vec3::new(
         sin_theta.clamp(-1.0, 1.0) * cp,
         sin_theta.clamp(-1.0, 1.0) * sp,

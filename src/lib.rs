@@ -71,6 +71,11 @@ pub struct DocsRustDoctests;
 #[doc = include_str!("../docs/firmware.md")]
 pub struct DocsFirmwareDoctests;
 
+/// The Rust examples of `docs/materials.md`, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/materials.md")]
+pub struct DocsMaterialsDoctests;
+
 /// The Rust examples of `docs/measured.md`, compiled and run as doctests.
 #[cfg(doctest)]
 #[doc = include_str!("../docs/measured.md")]

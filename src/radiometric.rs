@@ -41,7 +41,7 @@ use core::f32::consts::{FRAC_PI_2, PI};
 #[inline]
 pub fn cap_solid_angle(half_angle: f32) -> f32 {
     let t = clamp_or_zero(half_angle, 0.0, PI);
-    let s = libm::sinf(0.5 * t);
+    let s = crate::math::sin(0.5 * t);
     4.0 * PI * s * s
 }
 
@@ -114,7 +114,7 @@ pub fn directional_irradiance<S: Spectrum>(e_perp: S, cos_theta: f32) -> S {
 pub fn cap_projected_solid_angle(cos_axis: f32, half_angle: f32) -> f32 {
     let c = clamp_or_zero(cos_axis, -1.0, 1.0);
     let sigma = clamp_or_zero(half_angle, 0.0, FRAC_PI_2);
-    let (ss, cs) = libm::sincosf(sigma);
+    let (ss, cs) = crate::math::sincos(sigma);
     let ss = ss.clamp(0.0, 1.0);
     // f32 π/2 rounds above π/2, where cos is −4e-8: clamp.
     let cs = cs.clamp(0.0, 1.0);
@@ -134,9 +134,9 @@ pub fn cap_projected_solid_angle(cos_axis: f32, half_angle: f32) -> f32 {
     // two ratios bounded by 1 in magnitude (|c| < sin σ and cos σ ≤ s), so
     // nothing under/overflows.
     let (psi, q) = if c < 0.0 {
-        let one_minus_y = (libm::fmaf(s, ss, c * cs) / (s * ss)).clamp(0.0, 1.0);
-        let psi = 2.0 * libm::asinf(safe_sqrt(0.5 * one_minus_y).min(1.0));
-        (psi, libm::sinf(psi))
+        let one_minus_y = (mul_add_f32(s, ss, c * cs) / (s * ss)).clamp(0.0, 1.0);
+        let psi = 2.0 * asin_f32(safe_sqrt(0.5 * one_minus_y).min(1.0));
+        (psi, crate::math::sin(psi))
     } else {
         let y = (-(c / ss) * (cs / s)).clamp(-1.0, 1.0);
         (libm::acosf(y), safe_sqrt((1.0 - y) * (1.0 + y)))
@@ -206,7 +206,7 @@ fn thin_sliver(c: f32, s: f32, ss: f32, cs: f32, psi: f32) -> Option<(f32, f32)>
     }
     let p = p * w * w * psi;
     let k = s * ss / cs;
-    let sp = libm::sinf(psi);
+    let sp = crate::math::sin(psi);
     let x = k * sp;
     let t = ss / cs;
     let d = (c - ss) * c_plus_sin(c, ss, cs);
@@ -242,8 +242,8 @@ fn c_plus_sin(c: f32, ss: f32, cs: f32) -> f32 {
     if c > -0.5 || cs > 0.5 {
         return c + ss;
     }
-    let gamma = libm::asinf(cs.clamp(0.0, 1.0));
-    let h = libm::sinf(0.5 * gamma);
+    let gamma = asin_f32(cs.clamp(0.0, 1.0));
+    let h = crate::math::sin(0.5 * gamma);
     (1.0 + c) - 2.0 * h * h
 }
 
@@ -294,7 +294,7 @@ pub fn cap_irradiance<S: Spectrum>(radiance: S, cos_axis: f32, half_angle: f32) 
 /// `|L| < f32::MAX/π`.
 #[inline]
 pub fn cap_normal_irradiance<S: Spectrum>(radiance: S, half_angle: f32) -> S {
-    let s = libm::sinf(clamp_or_zero(half_angle, 0.0, FRAC_PI_2)).clamp(0.0, 1.0);
+    let s = crate::math::sin(clamp_or_zero(half_angle, 0.0, FRAC_PI_2)).clamp(0.0, 1.0);
     radiance * (PI * s * s)
 }
 
@@ -369,7 +369,7 @@ mod tests {
     #[test]
     fn cases_are_continuous() {
         let sigma = 0.2f32;
-        let s = libm::sinf(sigma);
+        let s = crate::math::sin(sigma);
         let above = cap_projected_solid_angle(s, sigma);
         let just = cap_projected_solid_angle(s * (1.0 - 1e-6), sigma);
         assert!((above - just).abs() < 1e-5 * above, "{above} {just}");
@@ -391,4 +391,31 @@ mod tests {
             assert!((v - PI * (1.0 + c) / 2.0).abs() < 2e-6, "c={c} v={v}");
         }
     }
+}
+
+/// `asin x` for `x ∈ [0, 1]` in `f32` arithmetic only, as `atan2(x, √((1 − x)(1 + x)))` (`libm::asinf` takes an
+/// `f64` square root, a soft-float helper on an FPU without double precision). `atan2f` is within 2 ulp, the
+/// square root of the exactly formed `(1 − x)(1 + x)` within 1 ulp, whose relative error moves the result by at
+/// most `x·√(1−x²)·ε ≤ ε/2` absolute: a few ulp of `asin x` over `[0, 1]`.
+#[inline]
+fn asin_f32(x: f32) -> f32 {
+    libm::atan2f(x, safe_sqrt((1.0 - x) * (1.0 + x)))
+}
+
+/// `a·b + c` with the product kept exact, in `f32` arithmetic only (`libm::fmaf` computes in `f64`, a
+/// soft-float helper on an FPU without double precision): Dekker's two-product (Veltkamp split by `2¹² + 1`;
+/// Dekker 1971, Numer. Math. 18) gives `a·b = p + e` exactly, then `(p + c) + e`. Where `p ≈ −c` (the
+/// cancellation the caller guards against) `p + c` is exact (Sterbenz) and the result is the correctly
+/// rounded `a·b + c`; elsewhere it is within 1 ulp of it. Domain: `|a·b| < 2¹¹⁴` (no overflow in the split).
+#[inline]
+fn mul_add_f32(a: f32, b: f32, c: f32) -> f32 {
+    let split = |x: f32| {
+        let t = 4097.0 * x;
+        let hi = t - (t - x);
+        (hi, x - hi)
+    };
+    let p = a * b;
+    let ((ah, al), (bh, bl)) = (split(a), split(b));
+    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    (p + c) + e
 }

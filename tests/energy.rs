@@ -3,7 +3,7 @@
 //! every Fresnel term used is ≤ 1, so the bound applies to all configurations.
 //!
 //! Two estimators:
-//! * `directional_albedo_at_most_one_every_plugin` (1,000 proptest cases × 25 configurations): importance
+//! * `directional_albedo_at_most_one_every_plugin` (1,000 proptest cases × 38 configurations): importance
 //!   sampling with the plugin's sampler, 4,096 jittered-stratified sample points each contributing
 //!   `f(ωi, ωo) cos θi / pdf(ωi, ωo)` recomputed with `eval` and `pdf` (a `None` sample contributes 0).
 //!   This is unbiased as long as the sampler draws from `pdf` — which `tests/sampling.rs` establishes
@@ -46,10 +46,29 @@ const LOOSE_TOL: Tol = Tol {
 };
 
 /// Directional albedo of `b` at `wo` by quadrature (lobe width `w`).
+///
+/// Peaked lobes (`w < π`) are integrated on rings around the mirror direction. Broad lobes (`w ≥ π`:
+/// Lambertian and the rough diffuse models, which have no peak to centre on) are integrated on rings
+/// around the normal, split at `θi = θo`: the rough diffuse models have a kink there (`s/max(cos θi,
+/// cos θo)`), and at grazing `ωo` it closes a band `cos θi < cos θo` at the horizon where `f cos θi`
+/// falls from `σA/π` to 0 — a feature no ring around the mirror direction resolves (FON, σ = 1,
+/// `cos θo = 1e-3`: 0.9999838 with an error estimate of 4e-11, for the exact 0.9997527; see
+/// `quadrature_resolves_the_rough_diffuse_band_at_grazing`).
 pub fn albedo_quad(b: &dyn IsotropicBrdf<Spectrum = f32>, wo: Vec3, w: f64, tol: Tol) -> Integral {
     let q = Adaptive::default();
-    let pole = DVec3::new(-wo.x as f64, -wo.y as f64, wo.z as f64);
-    integrate_hemisphere(&q, pole, &lobe_breaks(w), tol, &mut |wi| {
+    let (pole, breaks) = if w >= std::f64::consts::PI {
+        let wo64 = common::strategies::to_f64(wo).normalize();
+        let mut breaks = lobe_breaks(w);
+        breaks.push(wo64.z.clamp(-1.0, 1.0).acos());
+        breaks.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        (DVec3::Z, breaks)
+    } else {
+        (
+            DVec3::new(-wo.x as f64, -wo.y as f64, wo.z as f64),
+            lobe_breaks(w),
+        )
+    };
+    integrate_hemisphere(&q, pole, &breaks, tol, &mut |wi| {
         let v = b.eval(to_f32(wi), wo) as f64 * wi.z;
         if v.is_finite() { v } else { f64::NAN }
     })
@@ -257,7 +276,7 @@ fn directional_albedo_at_most_one_every_plugin() {
         "energy (IS): {} plugin evaluations fell back to quadrature (s.e. > {SE_MAX:e}); {seen} of {total} checks would see a 1 % gain (s.e. <= {SE_ONE_PERCENT:e})",
         FALLBACKS.load(std::sync::atomic::Ordering::Relaxed)
     );
-    // 12,271 of 12,500 (98.2 %) with these seeds (500 random configurations; the
+    // 13,771 of 14,000 (98.4 %) with these seeds (500 random configurations; the
     // statistical power of each check is what the assertion is about).
     assert!(
         100 * seen >= 97 * total,
@@ -350,6 +369,8 @@ fn albedo_by_quadrature_hard_cases() {
                 eta_d: 0.5,
                 eta_c: 0.05,
                 k_c: 5.0,
+                sigma: 1.0,
+                f82: 1.0,
             };
             for &ct in &[1.0f64, 0.5, 1e-3, 1e-6] {
                 if !grazing && ct < 0.1 {
@@ -419,6 +440,46 @@ fn phong_family_lobe_albedo_at_normal_incidence_at_most_one() {
             // 1e-6 (it is asked for 1e-7) before its error is used as slack.
             let a = a.converged(1e-6, format!("{k:?} n={n}"));
             assert!(a.value <= 1.0 + a.err + 1e-6, "{k:?} n={n}: {a:?}");
+        }
+    }
+}
+
+/// Regression for a finding of this suite: rings around the mirror direction do not resolve the band
+/// `cos θi < cos θo` at the horizon of the rough diffuse models at grazing `ωo` (the quadrature converged,
+/// error estimate 4e-11, to a value 2.3e-4 too high — an "energy gain" of EON that was not there).
+/// [`albedo_quad`] now integrates broad lobes around the normal with a break at `θo`; it must reproduce
+/// FON's exact albedo `E_FON(μo) = (1 + σ G(μo)/π)/(1 + c₁σ)` (Portsmouth, Kutz & Hill 2025; our own
+/// `f64` copy of the formula) at ρ = 1, σ = 1, and EON's 1.
+#[test]
+fn quadrature_resolves_the_rough_diffuse_band_at_grazing() {
+    use common::plugins::Kind;
+    use std::f64::consts::PI;
+    let e_fon = |mu: f64| {
+        let si = (1.0 - mu * mu).sqrt();
+        let g = si * (mu.acos() - si * mu) + (2.0 / 3.0) * ((si / mu) * (1.0 - si * si * si) - si);
+        (1.0 + g / PI) / (1.0 + 0.5 - 2.0 / (3.0 * PI))
+    };
+    let p = Params {
+        rho: 1.0,
+        sigma: 1.0,
+        ..Params::typical()
+    };
+    let tol = Tol {
+        abs: 1e-7,
+        rel: 1e-7,
+        depth: 12,
+    };
+    for &ct in &[1e-3f64, 1e-2, 0.5] {
+        let wo = to_f32(common::strategies::dir(ct, 0.3));
+        let mu = common::strategies::to_f64(wo).normalize().z;
+        for (k, want) in [(Kind::Fon, e_fon(mu)), (Kind::Eon, 1.0)] {
+            let b = build(k, &p).unwrap();
+            let a =
+                albedo_quad(b.as_ref(), wo, lobe_width(k, &p), tol).converged(1e-6, format!("{k:?} {ct}"));
+            assert!(
+                (a.value - want).abs() < 1e-6,
+                "{k:?} cos θo = {ct}: {a:?} vs {want}"
+            );
         }
     }
 }

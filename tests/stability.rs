@@ -1,5 +1,5 @@
 //! Stability suite (issue 2): one named test per hard case. Each checks every plugin configuration
-//! (25) under several parameter sets (typical, sharpest, roughest, extreme Fresnel): `eval`, `pdf`,
+//! (28) under several parameter sets (typical, sharpest, roughest, extreme Fresnel): `eval`, `pdf`,
 //! `eval_isotropic` and `sample` (weight, pdf, direction) are finite and non-negative, `sample`'s pdf is
 //! `> 0`, and nothing panics. Invalid parameters are rejected at construction with a typed error whose
 //! `Display` names the parameter.
@@ -9,7 +9,7 @@ use crate::common;
 use common::plugins::{Dyn, Kind, Params, all_kinds, build};
 use radiometry::glam::Vec3;
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, Lambertian, ModifiedPhong, Schlick,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, Fon, Ggx, Lambertian, ModifiedPhong, OrenNayar, Schlick,
 };
 use std::f32::consts::{FRAC_PI_2, PI};
 
@@ -25,6 +25,7 @@ fn param_sets() -> Vec<Params> {
             kd: 0.0,
             ks: 1.0,
             rho: 1.0,
+            sigma: 0.0,
             ..t
         },
         Params {
@@ -33,6 +34,7 @@ fn param_sets() -> Vec<Params> {
             kd: 1.0,
             ks: 0.0,
             rho: 0.0,
+            sigma: 1.0,
             ..t
         },
         Params {
@@ -42,6 +44,8 @@ fn param_sets() -> Vec<Params> {
             k_c: 1e3,
             alpha: 1e-3,
             n: 1e4,
+            rho: 1.0,
+            sigma: 1.0,
             ..t
         },
         Params {
@@ -352,6 +356,22 @@ fn invalid_parameters_rejected() {
     for k in [nan, inf, -1.0] {
         errs.push(Conductor::new(1.0, k).err());
     }
+    for (rho, sigma) in [
+        (nan, 0.5),
+        (0.5, nan),
+        (-0.1, 0.5),
+        (1.1, 0.5),
+        (0.5, -0.1),
+        (0.5, 1.1),
+        (0.5, inf),
+    ] {
+        errs.push(Fon::new(rho, sigma).err());
+        errs.push(Eon::new(rho, sigma).err());
+        // The classic model takes radians: [0, π/2].
+        errs.push(OrenNayar::new(rho, if sigma == 1.1 { 1.6 } else { sigma }).err());
+    }
+    // The classic model gains energy at small σ with ρ = 1: rejected (typed).
+    errs.push(OrenNayar::new(1.0f32, 0.2).err());
     for (i, e) in errs.iter().enumerate() {
         let e = e
             .as_ref()
@@ -364,4 +384,6 @@ fn invalid_parameters_rejected() {
     assert!(ModifiedPhong::new(0.0f32, 1.0, 1e7).is_ok() && BlinnPhong::new(1.0f32, 0.0, 0.0).is_ok());
     assert!(Ggx::new(1e-4).is_ok() && Ggx::new(1.0).is_ok() && Beckmann::new(1e-4).is_ok());
     assert!(Schlick::new(0.0f32).is_ok() && Conductor::new(0.2f32, 0.0).is_ok());
+    assert!(Fon::new(1.0f32, 0.0).is_ok() && Eon::new(0.0f32, 1.0).is_ok() && Eon::new(1.0f32, 1.0).is_ok());
+    assert!(OrenNayar::new(1.0f32, 0.0).is_ok() && OrenNayar::new(1.0f32, FRAC_PI_2).is_ok());
 }

@@ -29,6 +29,28 @@ pub enum BrdfError {
         /// What is violated.
         what: &'static str,
     },
+    /// A parameter would make the directional albedo exceed 1 somewhere (a
+    /// model that gains energy there, e.g. the classic Oren–Nayar at small
+    /// roughness and grazing view): `value` is above `max`, the largest value
+    /// that keeps the albedo ≤ 1 for the other parameters given.
+    EnergyGain {
+        /// Parameter name.
+        name: &'static str,
+        /// The rejected value.
+        value: f32,
+        /// Largest accepted value for the other parameters given.
+        max: f32,
+    },
+    /// A wavelength outside the range of a tabulated spectrum (e.g. the
+    /// `η`, `k` table of a [`Metal`](crate::metals::Metal)).
+    WavelengthOutOfRange {
+        /// The requested wavelength, nm.
+        lambda_nm: f32,
+        /// Smallest tabulated wavelength, nm.
+        min_nm: f32,
+        /// Largest tabulated wavelength, nm.
+        max_nm: f32,
+    },
 }
 
 impl fmt::Display for BrdfError {
@@ -44,6 +66,18 @@ impl fmt::Display for BrdfError {
                 write!(f, "parameter `{name}` = {value} is outside [{min}, {max}]")
             }
             BrdfError::Constraint { what } => write!(f, "invalid parameters: {what}"),
+            BrdfError::EnergyGain { name, value, max } => write!(
+                f,
+                "parameter `{name}` = {value} makes the albedo exceed 1 (energy gain); at these parameters it must be ≤ {max}"
+            ),
+            BrdfError::WavelengthOutOfRange {
+                lambda_nm,
+                min_nm,
+                max_nm,
+            } => write!(
+                f,
+                "wavelength {lambda_nm} nm is outside the table's range [{min_nm}, {max_nm}] nm"
+            ),
         }
     }
 }

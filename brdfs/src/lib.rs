@@ -18,9 +18,25 @@
 //! | [`Lambertian<S>`](Lambertian) | `ρ/π` | — | — | — | any [`Spectrum`](radiometry::Spectrum) | cosine-weighted | `eval`, `pdf`, `sample` |
 //! | [`ModifiedPhong<S>`](ModifiedPhong) | Lafortune & Willems 1994: diffuse `kd` + lobe `ks`, exponent `n ∈ [0, 10⁷]` | — | — | — | any | one-sample mixture of cosine and lobe | `eval`, `pdf`, `sample` |
 //! | [`BlinnPhong<S>`](BlinnPhong) | Blinn 1977, exactly normalised | — | — | — | any | mixture of cosine and half-vector lobe | `eval`, `pdf`, `sample` |
-//! | [`Microfacet<D, G, F>`](Microfacet) | Walter et al. 2007 with `D` = [`Ggx`] or [`Beckmann`], `α ∈ [10⁻⁴, 1]` | `F` = [`NoFresnel`], [`Schlick`], [`Dielectric`], [`Conductor`] (complex index, per channel) | `G` = [`HeightCorrelated`] (pbrt-v4), [`Separable`] (Mitsuba 3) | — | that of `F` (`f32`, RGB, …) | visible normals (Heitz & d'Eon 2014) | `eval`, `pdf`, `sample` |
+//! | [`Microfacet<D, G, F>`](Microfacet) | Walter et al. 2007 with `D` = [`Ggx`] or [`Beckmann`], `α ∈ [10⁻⁴, 1]` | `F` = [`NoFresnel`], [`Schlick`], [`Dielectric`], [`Conductor`] (complex index, per channel; or a named metal: [`metals`]), [`F82Tint`] (OpenPBR's metal) | `G` = [`HeightCorrelated`] (pbrt-v4), [`Separable`] (Mitsuba 3) | — | that of `F` (`f32`, RGB, sampled) | visible normals (Heitz & d'Eon 2014) | `eval`, `pdf`, `sample` |
 //! | [`KullaConty<D, G, F>`](KullaConty) | `Microfacet<D, G, F>` + the lobe of Kulla & Conty 2017 from tabulated albedos | as `Microfacet` (coloured `F_ms`) | as `Microfacet` | energy compensation: the furnace albedo is `1 − 6·10⁻⁴` | that of `F` | mixture of visible normals and cosine, exact pdf | scalar loops |
+//! | [`Fon<S>`](Fon) | Fujii's improved Oren–Nayar `(ρ/π) A (1 + σ s/t)` (Portsmouth, Kutz & Hill 2025), `σ ∈ [0, 1]` dimensionless | — | — | — (albedo `ρ E_FON(μo)`, exact closed form) | any | mixture of cosine and uniform, exact pdf | scalar loops |
+//! | [`Eon<S>`](Eon) | FON + the closed-form multiple-scattering lobe of Portsmouth, Kutz & Hill 2025 ("EON"), `σ ∈ [0, 1]` | — | — | energy-preserving: albedo 1 at `ρ = 1` for every `θo` (exact FON albedo) | any | mixture of cosine and uniform, exact pdf | scalar loops |
+//! | [`OrenNayar<S>`](OrenNayar) | the classic qualitative Oren–Nayar as pbrt-v3 has it, `σ ∈ [0, π/2]` **radians**; `ρ ≤ 1/(A + B/2)` (it gains energy above) | — | — | — | any | mixture of cosine and uniform, exact pdf | scalar loops |
+//! | [`Sheen<S>`](Sheen) | Estevez & Kulla 2017 cloth sheen: "Charlie" `D`, fitted Smith `Λ`, `r ∈ [0.07, 1]` | — (`F = 1`, scaled by `color`) | height-correlated, fitted `Λ` | — | any | uniform hemisphere, exact pdf `1/(2π)` | scalar loops |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
+//!
+//! **Directional albedo** ([`Brdf::directional_albedo`](radiometry::Brdf::directional_albedo),
+//! what the lobe combinators of `radiometry::compose` pick lobes by): `Lambertian`
+//! exactly; `Microfacet` and `KullaConty` from the Kulla–Conty tables times a
+//! 16-point Fresnel average over the lobe, with a bound (the range of `F`
+//! plus the table's `10⁻³`, [`microfacet::ALBEDO_TABLE_ERROR`]); the others by
+//! the default 16-point sampling rule (an estimated error).
+//!
+//! **Metals** ([`metals`]): measured `η(λ) + i k(λ)` of Au, Ag, Cu, Al, Cr, Fe,
+//! Ni, Ti, Pt and brass, evaluated at a renderer's wavelengths
+//! ([`Conductor::metal_sampled`]) or reduced to RGB ([`Conductor::metal`],
+//! [`F82Tint::metal`], [`metals::Metal::reflectance_rgb`]).
 //!
 //! Common to all: `eval` is zero below the horizon and never NaN, ∞ or a
 //! panic for finite input (grazing angles, `ωi = −ωo`, `u = 1 − 2⁻²⁴`);
@@ -70,8 +86,11 @@
 pub mod blinn_phong;
 pub mod error;
 pub mod lambertian;
+pub mod metals;
 pub mod microfacet;
 pub mod phong;
+pub mod rough_diffuse;
+pub mod sheen;
 #[cfg(feature = "simd")]
 pub mod simd;
 pub mod tabulated;
@@ -85,13 +104,17 @@ pub use error::BrdfError;
 pub use blinn_phong::BlinnPhong;
 pub use lambertian::Lambertian;
 pub use phong::ModifiedPhong;
+pub use sheen::Sheen;
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 pub use microfacet::{
-    Beckmann, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty, Microfacet,
+    Beckmann, Conductor, Dielectric, F82Tint, Fresnel, Ggx, HeightCorrelated, KullaConty, Microfacet,
     MicrofacetDistribution, NoFresnel, Schlick, Separable, ShadowingMasking,
 };
 // -- end microfacet
+// -- re-exports: rough diffuse (keep this block for that module)
+pub use rough_diffuse::{Eon, Fon, OrenNayar};
+// -- end rough diffuse
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]

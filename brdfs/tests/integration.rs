@@ -6,5 +6,7 @@
 
 mod batch;
 mod kulla_conty;
+mod microfacet_albedo;
 mod sample_batch;
+mod sheen;
 mod tabulated;

@@ -29,7 +29,7 @@ use radiometry_brdfs::microfacet::{
 };
 
 /// Gauss–Legendre nodes and weights on `[0, 1]` (Newton on `P_n`, A&S 25.4.29).
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     (0..n)
         .map(|i| {
             let mut z = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
@@ -55,7 +55,12 @@ fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 
 /// `∫₀^π f(φ) dφ` in pieces split at `π/2 ± 4ⁱ μo`: near `φ = π/2` the valid cap of normals changes
 /// from `θm < π/2` to `θm < 0` over a width `∼ μo` (at grazing `ωo`), so the pieces are graded there.
-fn over_half_circle(g: &[(f64, f64)], mu: f64, panels: usize, f: &mut dyn FnMut(f64) -> f64) -> f64 {
+pub(crate) fn over_half_circle(
+    g: &[(f64, f64)],
+    mu: f64,
+    panels: usize,
+    f: &mut dyn FnMut(f64) -> f64,
+) -> f64 {
     let h = PI / 2.0;
     let mut cuts = vec![0.0, h, PI];
     let mut w = mu;
@@ -70,7 +75,7 @@ fn over_half_circle(g: &[(f64, f64)], mu: f64, panels: usize, f: &mut dyn FnMut(
 
 /// `∫_a^b f` in pieces graded towards `a` (cuts at `a + (b − a) 4⁻ⁱ`, `i = 1..6`): where `ωi` meets
 /// the horizon, `G2` falls to 0 over a width `∼ α` in `cos θi`.
-fn graded(g: &[(f64, f64)], a: f64, b: f64, panels: usize, f: &mut dyn FnMut(f64) -> f64) -> f64 {
+pub(crate) fn graded(g: &[(f64, f64)], a: f64, b: f64, panels: usize, f: &mut dyn FnMut(f64) -> f64) -> f64 {
     let mut cuts: Vec<f64> = (0..=6).map(|i| a + (b - a) * 0.25f64.powi(i)).collect();
     cuts.push(a);
     cuts.reverse();
@@ -90,14 +95,14 @@ fn composite(g: &[(f64, f64)], a: f64, b: f64, panels: usize, f: &mut dyn FnMut(
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Dist {
+pub(crate) enum Dist {
     Ggx,
     Beckmann,
 }
 
 /// Smith `Λ(tan²θ)` in `f64`: GGX `(−1 + √(1 + α² tan²θ))/2` (Heitz 2014, eq. 86); Beckmann
 /// `(erf(a) − 1)/2 + e^{−a²}/(2a√π)`, `a = 1/(α tan θ)` (Heitz 2014, eq. 80).
-fn lambda(d: Dist, alpha: f64, tan2: f64) -> f64 {
+pub(crate) fn lambda(d: Dist, alpha: f64, tan2: f64) -> f64 {
     match d {
         Dist::Ggx => ((1.0 + alpha * alpha * tan2).sqrt() - 1.0) / 2.0,
         Dist::Beckmann => {
@@ -111,7 +116,7 @@ fn lambda(d: Dist, alpha: f64, tan2: f64) -> f64 {
 }
 
 /// `tan θm` at the `D cos θm`-CDF value `u`.
-fn tan_theta(d: Dist, alpha: f64, u: f64) -> f64 {
+pub(crate) fn tan_theta(d: Dist, alpha: f64, u: f64) -> f64 {
     match d {
         Dist::Ggx => alpha * (u / (1.0 - u)).sqrt(),
         Dist::Beckmann => alpha * (-(-u).ln_1p()).sqrt(),
@@ -119,7 +124,7 @@ fn tan_theta(d: Dist, alpha: f64, u: f64) -> f64 {
 }
 
 /// The CDF `u(tan²θm)`.
-fn cdf(d: Dist, alpha: f64, tan2: f64) -> f64 {
+pub(crate) fn cdf(d: Dist, alpha: f64, tan2: f64) -> f64 {
     match d {
         Dist::Ggx => tan2 / (alpha * alpha + tan2),
         Dist::Beckmann => -(-tan2 / (alpha * alpha)).exp_m1(),
@@ -129,6 +134,18 @@ fn cdf(d: Dist, alpha: f64, tan2: f64) -> f64 {
 /// Single-scattering albedo `E(μo)` with `F = 1` (height-correlated `G2 = 1/(1 + Λi + Λo)` or
 /// separable `G2 = 1/((1 + Λi)(1 + Λo))`), with `panels` panels of 16 points per axis.
 fn e_ref(d: Dist, hc: bool, alpha: f64, mu: f64, panels: usize) -> f64 {
+    e_ref_fresnel(d, hc, alpha, mu, panels, &|_| 1.0)
+}
+
+/// [`e_ref`] with a Fresnel factor `fresnel(cos θd)`, `cos θd = ωo·m`, in the integrand.
+pub(crate) fn e_ref_fresnel(
+    d: Dist,
+    hc: bool,
+    alpha: f64,
+    mu: f64,
+    panels: usize,
+    fresnel: &dyn Fn(f64) -> f64,
+) -> f64 {
     let g = gauss_legendre(16);
     let so = (1.0 - mu * mu).sqrt();
     let wo = [so, 0.0, mu];
@@ -156,7 +173,7 @@ fn e_ref(d: Dist, hc: bool, alpha: f64, mu: f64, panels: usize) -> f64 {
             } else {
                 1.0 / ((1.0 + li) * (1.0 + lo))
             };
-            g2 * dot / (mu * c) * 2.0 * v
+            g2 * fresnel(dot) * dot / (mu * c) * 2.0 * v
         })
     };
     // Symmetric in φ: twice the integral over [0, π], divided by 2π.

@@ -101,6 +101,41 @@ pub extern "C" fn main(_argc: i32, _argv: *const *const u8) -> i32 {
             exercise(&KullaConty::<_, Separable, _>::new(d, f), &mut acc);
         }
     }
+    // Rough diffuse: FON, EON (with its closed-form albedo) and the classic Oren–Nayar.
+    if let Ok(b) = Fon::new(black_box(0.8f32), 0.5) {
+        exercise(&b, &mut acc);
+    }
+    if let Ok(b) = Eon::new(black_box(Vec3::new(0.9, 0.5, 0.2)), 1.0) {
+        exercise(&b, &mut acc);
+        acc += b.directional_albedo(black_box(Vec3::new(0.6, 0.0, 0.8))).value.average();
+    }
+    if let Ok(b) = OrenNayar::new(black_box(0.5f32), 0.35) {
+        exercise(&b, &mut acc);
+        acc += b.directional_albedo(black_box(Vec3::new(0.6, 0.0, 0.8))).value;
+    }
+    // Metals: the F82-tint Fresnel, the directional albedo from the tables
+    // (with the Fresnel bounds search), and the named metals' tables.
+    if let Ok(d) = Ggx::new(black_box(0.4)) {
+        if let Ok(f) = F82Tint::new(black_box(0.9f32), 0.7) {
+            let b = Microfacet::<_, HeightCorrelated, _>::new(d, f);
+            exercise(&b, &mut acc);
+            acc += b.directional_albedo(black_box(Vec3::new(0.6, 0.0, 0.8))).value;
+            let k = KullaConty::<_, Separable, _>::new(d, f);
+            exercise(&k, &mut acc);
+            acc += k.directional_albedo(black_box(Vec3::new(0.6, 0.0, 0.8))).error;
+        }
+        let m = metals::Metal::ALL[black_box(2usize) % metals::Metal::ALL.len()];
+        let c = Conductor::metal_luminance(m);
+        acc += Microfacet::<_, HeightCorrelated, _>::new(d, c)
+            .directional_albedo(black_box(Vec3::Z))
+            .value;
+        if let Ok(c) = Conductor::metal_sampled(m, &black_box([450.0, 550.0, 650.0, 750.0])) {
+            acc += Microfacet::<_, HeightCorrelated, _>::new(d, c)
+                .eval(black_box(Vec3::Z), Vec3::Z)
+                .average();
+        }
+        acc += m.eta_k_clamped(black_box(1e4)).0 + m.reflectance_rgb().x;
+    }
     // Tabulated: a small table and sampling buffer on the stack.
     {
         use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};

@@ -23,6 +23,9 @@ SPECS = [
     "ggx(alpha=0.05, g=separable, fresnel=conductor(eta=0.2, k=3.9))",
     "beckmann(alpha=0.5, fresnel=schlick(f0=0.04))",
     "beckmann(alpha=1, g=separable, fresnel=dielectric(eta=1.5))",
+    "lambertian(albedo=0.3) + ggx(alpha=0.2, fresnel=schlick(f0=0.04))",
+    "mix(0.4, ggx(alpha=0.1, fresnel=conductor(eta=0.2, k=3.9)), lambertian(albedo=0.9))",
+    "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8), coat_color=0.6)",
 ]
 
 

@@ -1,11 +1,13 @@
-//! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`, and their
-//! compositions `A + B`, `mix(W, A, B)` and `coated(TOP, BASE)`.
+//! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`,
+//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, `sheen(...)`, and their compositions `A + B`, `mix(W, A, B)` and
+//! `coated(TOP, BASE)`.
 
 use crate::SpecError;
 use crate::args::Args;
 use crate::call::{Call, Parser};
 use crate::error::err_span;
 use crate::lex::Tok;
+use radiometry_brdfs::metals::Metal;
 
 /// Microfacet normal distribution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,6 +58,23 @@ pub enum FresnelSpec {
         /// Extinction coefficient.
         k: f64,
     },
+    /// `conductor(metal=Au)`: the exact conductor Fresnel of a named metal's
+    /// measured `η(λ), k(λ)`, reduced to one channel (the run-time BRDF is
+    /// monochrome): the `η`, `k` whose Fresnel curve has the luminance of the
+    /// metal's reflectance at normal incidence and at 82°
+    /// (`Conductor::metal_luminance` of `radiometry-brdfs`).
+    Metal {
+        /// The metal (names case-insensitive).
+        metal: Metal,
+    },
+    /// `f82(f0=…, f82=…)`: the F82-tint metal Fresnel of OpenPBR
+    /// (Hoffman 2019), one channel.
+    F82 {
+        /// Reflectance at normal incidence, `[0, 1]`.
+        f0: f64,
+        /// Tint of the reflectance at 82°, `[0, 1]` (default 1: Schlick).
+        f82: f64,
+    },
 }
 
 /// A validated BRDF description (parameters as given; angles none).
@@ -102,6 +121,39 @@ pub enum BrdfSpec {
         /// `phong`'s `kd` already has (not a layered model: the sum may
         /// reflect more than 1 when `kd` and the specular albedo are both large).
         kd: f64,
+    },
+    /// `fon(rho=R, sigma=S)`: Fujii's improved Oren–Nayar (the EON paper's
+    /// FON), σ ∈ [0, 1] dimensionless.
+    Fon {
+        /// Albedo colour ρ ∈ [0, 1] (default 1).
+        rho: f64,
+        /// Roughness σ ∈ [0, 1] (dimensionless; required).
+        sigma: f64,
+    },
+    /// `eon(rho=R, sigma=S)`: the energy-preserving Oren–Nayar (Portsmouth,
+    /// Kutz & Hill 2025), σ ∈ [0, 1] dimensionless.
+    Eon {
+        /// Albedo colour ρ ∈ [0, 1] (default 1).
+        rho: f64,
+        /// Roughness σ ∈ [0, 1] (dimensionless; required).
+        sigma: f64,
+    },
+    /// `oren-nayar(rho=R, sigma_rad=S)`: the classic qualitative Oren–Nayar
+    /// as pbrt-v3 has it, σ in **radians**; ρ at most
+    /// `OrenNayar::max_rho(σ)` (it gains energy above).
+    OrenNayar {
+        /// Albedo colour ρ (default 1).
+        rho: f64,
+        /// Roughness σ ∈ [0, π/2] in radians (required).
+        sigma_rad: f64,
+    },
+    /// `sheen(color=1, roughness=R)`: the microfacet sheen of Estevez &
+    /// Kulla 2017 (Charlie distribution, fitted `Λ`).
+    Sheen {
+        /// Colour (one number: the run-time BRDF is monochrome), in `[0, 1]`.
+        color: f64,
+        /// Roughness `r ∈ [MIN_SHEEN_ROUGHNESS, 1]`.
+        roughness: f64,
     },
     /// `tabulated(file=PATH)`: a MERL `.binary` file, read by the caller.
     Tabulated {
@@ -154,16 +206,26 @@ pub const MAX_EXPONENT: f64 = 1e7;
 pub const MIN_ALPHA: f64 = 1e-4;
 /// Largest accepted microfacet roughness (the plugins' `MAX_ALPHA`).
 pub const MAX_ALPHA: f64 = 1.0;
+/// Smallest accepted sheen roughness (the plugin's `MIN_SHEEN_ROUGHNESS`,
+/// below which the paper's fitted `Λ` lets the lobe reflect more than it
+/// receives).
+pub const MIN_SHEEN_ROUGHNESS: f64 = 0.07;
 
 /// Help text describing the BRDF spec language (used by `--help`).
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
-fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9), ms=none|kulla-conty, kd=0)`, \
-`beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`); \
+fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9)|conductor(metal=Au)|f82(f0=0.9,f82=0.8), \
+ms=none|kulla-conty, kd=0)` (metals: Au, Ag, Cu, Al, Cr, Fe, Ni, Ti, Pt, Brass, reduced to their luminance; \
+colours are one number: the run-time BRDF is monochrome), \
+`beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
+`eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
+`oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
+cloth sheen; roughness ∈ [0.07, 1] is required); \
 compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5)` \
-(TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
+(TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
-exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1.";
+exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1; eon/fon take sigma ∈ [0, 1] (dimensionless), \
+oren-nayar takes sigma_rad ∈ [0, π/2] in radians and rho ≤ 1/(A + B/2) (its albedo exceeds 1 above).";
 
 /// Parses and validates a BRDF spec.
 pub fn parse_brdf(spec: &str) -> Result<BrdfSpec, SpecError> {
@@ -367,11 +429,49 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
                 kd,
             })
         }
+        "fon" | "eon" => {
+            let mut a = Args::new(spec, call, &["rho", "sigma"])?;
+            let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
+            let sigma = a.num("sigma", None, 0.0, 1.0, false)?;
+            Ok(if name == "fon" {
+                BrdfSpec::Fon { rho, sigma }
+            } else {
+                BrdfSpec::Eon { rho, sigma }
+            })
+        }
+        "oren-nayar" => {
+            let mut a = Args::new(spec, call, &["rho", "sigma_rad"])?;
+            let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
+            let sigma_rad = a.num("sigma_rad", None, 0.0, core::f64::consts::FRAC_PI_2, false)?;
+            let max = radiometry_brdfs::OrenNayar::max_rho(sigma_rad as f32) as f64;
+            if rho as f32 as f64 > max {
+                let span = call
+                    .args
+                    .iter()
+                    .find(|x| x.key == "rho")
+                    .map_or(call.name_span, |x| x.value.span());
+                return Err(err_span(
+                    spec,
+                    span,
+                    format!(
+                        "`rho` = {rho} makes the classic Oren–Nayar reflect more than it receives at grazing view \
+                         (energy gain); at sigma_rad = {sigma_rad} it must be ≤ {max} (or use eon)"
+                    ),
+                ));
+            }
+            Ok(BrdfSpec::OrenNayar { rho, sigma_rad })
+        }
+        "sheen" => {
+            let mut a = Args::new(spec, call, &["color", "roughness"])?;
+            let color = a.num("color", Some(1.0), 0.0, 1.0, false)?;
+            let roughness = a.num("roughness", None, MIN_SHEEN_ROUGHNESS, 1.0, false)?;
+            Ok(BrdfSpec::Sheen { color, roughness })
+        }
         other => Err(err_span(
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, tabulated, mix or coated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, tabulated, mix or coated)"
             ),
         )),
     }
@@ -396,16 +496,49 @@ fn parse_fresnel(spec: &str, c: &Call) -> Result<FresnelSpec, SpecError> {
             })
         }
         "conductor" => {
-            let mut a = Args::new(spec, c, &["eta", "k"])?;
+            let mut a = Args::new(spec, c, &["eta", "k", "metal"])?;
+            if let Some(m) = a.call_value("metal")? {
+                if let Some(x) = c.args.iter().find(|x| x.key != "metal") {
+                    return Err(err_span(
+                        spec,
+                        x.key_span,
+                        format!(
+                            "`{}` cannot be given with `metal` (the metal's table sets η and k)",
+                            x.key
+                        ),
+                    ));
+                }
+                Args::new(spec, m, &[])?;
+                let metal = Metal::from_name(&m.name).ok_or_else(|| {
+                    let names: Vec<&str> = Metal::ALL.iter().map(|x| x.name()).collect();
+                    err_span(
+                        spec,
+                        m.name_span,
+                        format!(
+                            "unknown metal `{}` (expected one of: {})",
+                            m.name,
+                            names.join(", ")
+                        ),
+                    )
+                })?;
+                return Ok(FresnelSpec::Metal { metal });
+            }
             Ok(FresnelSpec::Conductor {
                 eta: a.num("eta", None, 0.0, 1e3, true)?,
                 k: a.num("k", None, 0.0, 1e3, false)?,
             })
         }
+        "f82" | "f82-tint" => {
+            let mut a = Args::new(spec, c, &["f0", "f82"])?;
+            Ok(FresnelSpec::F82 {
+                f0: a.num("f0", None, 0.0, 1.0, false)?,
+                f82: a.num("f82", Some(1.0), 0.0, 1.0, false)?,
+            })
+        }
         other => Err(err_span(
             spec,
             c.name_span,
-            format!("unknown fresnel `{other}` (expected none, schlick, dielectric or conductor)"),
+            format!("unknown fresnel `{other}` (expected none, schlick, dielectric, conductor or f82)"),
         )),
     }
 }
@@ -463,6 +596,41 @@ mod tests {
             let e = parse_brdf(t).expect_err(t);
             assert_eq!(caret_of(&e), bad, "{t}: {e}");
         }
+    }
+
+    #[test]
+    fn metal_and_f82_fresnel() {
+        let fresnel_of = |s: &str| match parse_brdf(s).unwrap() {
+            BrdfSpec::Microfacet { fresnel, .. } => fresnel,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(
+            fresnel_of("ggx(alpha=0.3, fresnel=conductor(metal=Au))"),
+            FresnelSpec::Metal { metal: Metal::Au }
+        );
+        for (name, m) in [
+            ("au", Metal::Au),
+            ("AG", Metal::Ag),
+            ("brass", Metal::Brass),
+            ("Pt", Metal::Pt),
+        ] {
+            let s = format!("beckmann(alpha=0.1, fresnel=conductor(metal={name}))");
+            assert_eq!(fresnel_of(&s), FresnelSpec::Metal { metal: m }, "{s}");
+        }
+        assert_eq!(
+            fresnel_of("ggx(alpha=0.3, fresnel=f82(f0=0.9, f82=0.7))"),
+            FresnelSpec::F82 { f0: 0.9, f82: 0.7 }
+        );
+        assert_eq!(
+            fresnel_of("ggx(alpha=0.3, fresnel=f82(f0=0.5))"),
+            FresnelSpec::F82 { f0: 0.5, f82: 1.0 }
+        );
+        let e = parse_brdf("ggx(alpha=0.1, fresnel=conductor(metal=steel))").unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("unknown metal `steel`") && msg.contains("Au, Ag, Cu"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -569,6 +737,15 @@ mod tests {
             ("ggx(alpha=0.1, fresnel=schlik(f0=0.04))", "schlik"),
             ("ggx(alpha=0.1, fresnel=schlick(f=0.04))", "f"),
             ("ggx(alpha=0.1, fresnel=conductor(eta=0.2))", "conductor"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=Steel))", "Steel"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=Au, k=3))", "k"),
+            ("ggx(alpha=0.1, fresnel=conductor(eta=1, metal=Au))", "eta"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=1))", "1"),
+            ("ggx(alpha=0.1, fresnel=conductor(metal=Au(x=1)))", "x"),
+            ("ggx(alpha=0.1, fresnel=f82(f82=0.5))", "f82"),
+            ("ggx(alpha=0.1, fresnel=f82(f0=1.2))", "1.2"),
+            ("ggx(alpha=0.1, fresnel=f82(f0=0.9, f82=-0.1))", "-0.1"),
+            ("ggx(alpha=0.1, fresnel=f82(f0=0.9, tint=1))", "tint"),
             ("ggx(alpha=0)", "0"),
             ("ggx(alpha=1x)", "1x"),
             ("ggx(alpha=0.1) junk", "junk"),
@@ -586,6 +763,35 @@ mod tests {
             let shown = e.to_string();
             assert!(shown.contains('^'), "{shown}");
             assert!(shown.contains(spec.trim_end()) || spec.is_empty(), "{shown}");
+        }
+    }
+
+    #[test]
+    fn sheen_spec() {
+        assert_eq!(
+            parse_brdf("sheen(color=1, roughness=0.5)").unwrap(),
+            BrdfSpec::Sheen {
+                color: 1.0,
+                roughness: 0.5
+            }
+        );
+        assert_eq!(
+            parse_brdf("sheen(roughness=1)").unwrap(),
+            BrdfSpec::Sheen {
+                color: 1.0,
+                roughness: 1.0
+            }
+        );
+        for (spec, bad) in [
+            ("sheen(color=1)", "sheen"),
+            ("sheen(roughness=0.01)", "0.01"),
+            ("sheen(roughness=0)", "0"),
+            ("sheen(color=1.5, roughness=0.5)", "1.5"),
+            ("sheen(colour=1, roughness=0.5)", "colour"),
+            ("sheen(roughness=0.5, alpha=0.1)", "alpha"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
         }
     }
 
@@ -624,6 +830,59 @@ mod tests {
             let e = parse_brdf(spec).expect_err(spec);
             assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
         }
+    }
+
+    /// The rough diffuse plugins: names and parameters as scripts call them,
+    /// the two roughness conventions kept apart, caret errors for bad values.
+    #[test]
+    fn rough_diffuse_specs() {
+        assert_eq!(
+            parse_brdf("eon(rho=0.8, sigma=0.5)").unwrap(),
+            BrdfSpec::Eon { rho: 0.8, sigma: 0.5 }
+        );
+        assert_eq!(
+            parse_brdf("fon(sigma=1)").unwrap(),
+            BrdfSpec::Fon { rho: 1.0, sigma: 1.0 }
+        );
+        assert_eq!(
+            parse_brdf("oren-nayar(rho=0.9, sigma_rad=0.35)").unwrap(),
+            BrdfSpec::OrenNayar {
+                rho: 0.9,
+                sigma_rad: 0.35
+            }
+        );
+        assert_eq!(
+            parse_brdf("oren-nayar(sigma_rad=1.2)").unwrap(),
+            BrdfSpec::OrenNayar {
+                rho: 1.0,
+                sigma_rad: 1.2
+            }
+        );
+        for (spec, bad) in [
+            ("eon(rho=0.5, sigma=1.5)", "1.5"),
+            ("eon(rho=1.2, sigma=0.5)", "1.2"),
+            ("fon(rho=0.5, sigma=-0.1)", "-0.1"),
+            ("eon(rho=0.5)", "eon"),
+            ("eon(rho=0.5, sigma_rad=0.3)", "sigma_rad"),
+            ("fon(rho=0.5, sigma=nan)", "nan"),
+            ("oren-nayar(rho=0.5, sigma=0.3)", "sigma"),
+            ("oren-nayar(rho=0.5, sigma_rad=2)", "2"),
+            ("oren-nayar(rho=1, sigma_rad=0.2)", "1"),
+            ("oren-nayar(sigma_rad=0.2)", "oren-nayar"),
+            ("oren_nayar(sigma_rad=0.2)", "oren_nayar"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
+            assert!(e.to_string().contains('^'), "{e}");
+        }
+        let e = parse_brdf("oren-nayar(rho=1, sigma_rad=0.2)").unwrap_err();
+        assert!(
+            e.message.contains("energy gain") && e.message.contains("0.985"),
+            "{e}"
+        );
+        // At the bound it is accepted.
+        let max = radiometry_brdfs::OrenNayar::max_rho(0.2);
+        assert!(parse_brdf(&format!("oren-nayar(rho={max}, sigma_rad=0.2)")).is_ok());
     }
 
     #[test]

@@ -18,9 +18,9 @@ use radiometry::integrator::{
 };
 use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, KullaConty,
-    Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, Schlick, Separable,
-    ShadowingMasking, microfacet::EnergyTable,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx,
+    HeightCorrelated, KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel,
+    OrenNayar, Schlick, Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -133,6 +133,8 @@ where
         FresnelSpec::Schlick { f0 } => mk::<D, G, _>(d, Schlick::new(f0 as f32)?, ms),
         FresnelSpec::Dielectric { eta } => mk::<D, G, _>(d, Dielectric::new(eta as f32)?, ms),
         FresnelSpec::Conductor { eta, k } => mk::<D, G, _>(d, Conductor::new(eta as f32, k as f32)?, ms),
+        FresnelSpec::Metal { metal } => mk::<D, G, _>(d, Conductor::metal_luminance(metal), ms),
+        FresnelSpec::F82 { f0, f82 } => mk::<D, G, _>(d, F82Tint::new(f0 as f32, f82 as f32)?, ms),
     })
 }
 
@@ -198,6 +200,10 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
                 });
         }
         BrdfSpec::Lambertian { albedo } => Lambertian::new(albedo as f32).map(boxed),
+        BrdfSpec::Fon { rho, sigma } => Fon::new(rho as f32, sigma as f32).map(boxed),
+        BrdfSpec::Eon { rho, sigma } => Eon::new(rho as f32, sigma as f32).map(boxed),
+        BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(rho as f32, sigma_rad as f32).map(boxed),
+        BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::Phong { exponent, ks, kd } => {
             ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)
         }
@@ -226,7 +232,9 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
     };
     r.map_err(|e| {
         let name = match e {
-            BrdfError::NotFinite { name } | BrdfError::OutOfRange { name, .. } => Some(name),
+            BrdfError::NotFinite { name }
+            | BrdfError::OutOfRange { name, .. }
+            | BrdfError::EnergyGain { name, .. } => Some(name),
             _ => None,
         };
         let (start, end) = name.and_then(|n| find_param(text, n)).unwrap_or((0, text.len()));
@@ -424,6 +432,27 @@ mod tests {
     }
 
     #[test]
+    fn metal_and_f82_specs_build_the_plugins() {
+        let build = |t: &str| build_brdf(t, &parse_brdf(t).unwrap()).unwrap();
+        let (wi, wo) = (
+            Vec3::new(0.3, 0.1, 0.948_683_3),
+            Vec3::new(-0.5, 0.0, 0.866_025_4),
+        );
+        // A white tint is Schlick's approximation.
+        let f82 = build("ggx(alpha=0.3, fresnel=f82(f0=0.6, f82=1))").eval(wi, wo);
+        let schlick = build("ggx(alpha=0.3, fresnel=schlick(f0=0.6))").eval(wi, wo);
+        assert!((f82 - schlick).abs() <= 1e-6 * schlick, "{f82} vs {schlick}");
+        // Gold is the monochrome conductor fitted to the luminance of its reflectance.
+        let gold = build("ggx(alpha=0.3, fresnel=conductor(metal=au))");
+        let c = Conductor::metal_luminance(radiometry_brdfs::metals::Metal::Au);
+        let direct = Microfacet::<Ggx, HeightCorrelated, _>::new(Ggx::new(0.3).unwrap(), c);
+        assert_eq!(gold.eval(wi, wo), direct.eval(wi, wo));
+        assert!(
+            build("beckmann(alpha=0.5, fresnel=conductor(metal=Brass), ms=kulla-conty)").eval(wi, wo) > 0.0
+        );
+    }
+
+    #[test]
     fn plugin_constructor_errors_point_at_the_parameter() {
         // The parser accepts η > 0; the plugin requires η ≥ MIN_ETA = 1e-3.
         let text = "ggx(alpha=0.1, fresnel=dielectric(eta=0.0001))";
@@ -432,5 +461,38 @@ mod tests {
             .expect("plugin rejects η = 1e-4");
         assert_eq!(&text[e.start..e.end], "0.0001", "{e}");
         assert_eq!(find_param("phong(exponent=5, ks=0.5)", "ks"), Some((21, 24)));
+        // The classic Oren–Nayar's energy bound, reached through a spec built by hand.
+        let text = "oren-nayar(rho=1, sigma_rad=0.2)";
+        let spec = BrdfSpec::OrenNayar {
+            rho: 1.0,
+            sigma_rad: 0.2,
+        };
+        let e = build_brdf(text, &spec).err().expect("energy gain rejected");
+        assert_eq!(&text[e.start..e.end], "1", "{e}");
+    }
+
+    /// The rough diffuse specs build the plugins: EON's white furnace through
+    /// the run-time BRDF, FON below it, the classic model with σ in radians.
+    #[test]
+    fn rough_diffuse_specs_build() {
+        let wo = Vec3::new(0.8, 0.0, 0.6);
+        let albedo = |text: &str| {
+            let b = build_brdf(text, &parse_brdf(text).unwrap()).unwrap();
+            let a = b.directional_albedo(wo);
+            // The microfacet plugins' albedo is still the sampled estimate: only closed forms are bounds.
+            assert!(a.is_bound || text.starts_with("coated"), "{text}");
+            a.value
+        };
+        assert!((albedo("eon(rho=1, sigma=0.5)") - 1.0).abs() < 2e-6);
+        assert!(albedo("fon(rho=1, sigma=1)") < 0.9);
+        let on = albedo("oren-nayar(rho=0.5, sigma_rad=0.35)");
+        assert!(on > 0.45 && on < 0.5, "{on}");
+        assert_eq!(albedo("eon(rho=0.7, sigma=0)"), albedo("fon(rho=0.7, sigma=0)"));
+        // In compositions: a plastic over EON, and a sum.
+        let plastic = albedo("coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=1, sigma=0.5))");
+        assert!(plastic > 0.5 && plastic <= 1.0, "{plastic}");
+        let sum = albedo("eon(rho=0.5, sigma=1) + lambertian(albedo=0.25)");
+        let eon = albedo("eon(rho=0.5, sigma=1)");
+        assert!(eon < 0.5 && (sum - (eon + 0.25)).abs() < 1e-6, "{sum} {eon}");
     }
 }

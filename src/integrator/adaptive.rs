@@ -16,6 +16,17 @@ use crate::spectrum::WideSpectrum;
 /// ever discarded or frozen).
 pub const MAX_REGIONS: usize = 512;
 
+/// The region table of a run whose budget cannot fill it: every split
+/// spends at least `2 × 17` evaluations and adds one region to the 4 it
+/// starts with, so a budget of at most [`SMALL_REGIONS_BUDGET`] keeps fewer
+/// than `SMALL_REGIONS` live and the run is the same, bit for bit, as with
+/// [`MAX_REGIONS`]: the stack follows the budget (≈ 4 KiB of regions for
+/// `f32` instead of ≈ 37 KiB; firmware-sized at a budget of 1,024).
+pub const SMALL_REGIONS: usize = 48;
+
+/// Largest budget run with the [`SMALL_REGIONS`] table.
+pub const SMALL_REGIONS_BUDGET: u32 = (SMALL_REGIONS as u32 - 5) * 2 * GM_POINTS as u32;
+
 /// Most evaluations an [`Adaptive`] run spends (`2²⁰`).
 pub const MAX_ADAPTIVE_EVALUATIONS: u32 = 1 << 20;
 
@@ -548,7 +559,9 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 /// [`MAX_ADAPTIVE_EVALUATIONS`] are spent. NaN/∞ → `NonFiniteIntegrand`.
 /// Stack use: the region table takes `MAX_REGIONS × (48 + 24·CHANNELS)`
 /// bytes (≈ 37 KiB for `f32`, ≈ 61 KiB for RGB; for a sampled spectrum
-/// with many channels mind small thread stacks).
+/// with many channels mind small thread stacks), or [`SMALL_REGIONS`] ×
+/// the same at budgets up to [`SMALL_REGIONS_BUDGET`] (1,462), which cannot
+/// fill more (same result).
 /// `warped` without a sampling map → `NoSamplingMap`.
 ///
 /// ```
@@ -646,6 +659,23 @@ impl Adaptive {
         &self,
         budget: u32,
         probe: &[([f64; 2], f64)],
+        f: impl BatchFn<W>,
+        confirm: Option<f64>,
+    ) -> Result<Staged<W>, IntegrateError> {
+        if budget <= SMALL_REGIONS_BUDGET {
+            self.run_with::<W, SMALL_REGIONS>(budget, probe, f, confirm)
+        } else {
+            self.run_with::<W, MAX_REGIONS>(budget, probe, f, confirm)
+        }
+    }
+
+    /// [`Adaptive::run`] with a table of `N` regions. Never inlined: each
+    /// table size keeps its own stack frame.
+    #[inline(never)]
+    fn run_with<W: WideSpectrum, const N: usize>(
+        &self,
+        budget: u32,
+        probe: &[([f64; 2], f64)],
         mut f: impl BatchFn<W>,
         confirm: Option<f64>,
     ) -> Result<Staged<W>, IntegrateError> {
@@ -672,7 +702,7 @@ impl Adaptive {
             axis: 0,
             n: 1,
         };
-        let mut regions = [empty; MAX_REGIONS];
+        let mut regions = [empty; N];
         let mut live = 0usize;
         // Initial cut at `FIRST_CUT` (not ½) on both axes, so later
         // midpoint cuts do not fall on the symmetry lines ¼, ½, ¾ of
@@ -690,7 +720,7 @@ impl Adaptive {
             c0[k] = [0.5 * (x0 + x1), 0.5 * (y0 + y1)];
             h0[k] = [0.5 * (x1 - x0), 0.5 * (y1 - y0)];
         }
-        // Checked writes and `take(live)` below: `live ≤ MAX_REGIONS` holds
+        // Checked writes and `take(live)` below: `live ≤ N` holds
         // by construction, and the code keeps no panic path for it.
         rules(&c0, &h0, &mut f, |r| {
             if let Some(slot) = regions.get_mut(live) {
@@ -771,7 +801,7 @@ impl Adaptive {
             };
             let mut forced = splits % FORCED_EVERY == FORCED_EVERY - 1
                 || acc::max_abs(w.error) <= F32_FLOOR * acc::max_abs(w.abs);
-            if live == MAX_REGIONS && !forced {
+            if live == N && !forced {
                 let n = w.n.saturating_mul(2) as u64;
                 forced = evals + n * n * GM_POINTS as u64 + edge_cost > budget;
             }
@@ -781,7 +811,7 @@ impl Adaptive {
             let Some(&r) = regions.get(worst) else {
                 break;
             };
-            if live == MAX_REGIONS {
+            if live == N {
                 // Table full: re-evaluate the region with the composite
                 // rule on a grid twice as fine per axis (the table never
                 // discards a region, so none is left blind for good).

@@ -15,6 +15,13 @@ use core::f64::consts::TAU;
 /// arrays of this length).
 pub const MAX_ORDER: usize = 1024;
 
+/// Node tables of at most this order serve every rule whose orders fit
+/// (budgets up to about 2,700 evaluations for [`GaussLegendre`], a few
+/// thousand for [`WarpedGaussLegendre`]): the stack follows the budget (firmware-sized,
+/// ≤ 8 KB at a budget of 1,024) instead of always holding [`MAX_ORDER`]
+/// tables. The same nodes either way: the results are bit-identical.
+pub const SMALL_ORDER: usize = 64;
+
 /// Node `x` and weight `w` of the `i`-th largest root of `P_n` (`i < ⌈n/2⌉`),
 /// on `[-1, 1]`.
 ///
@@ -102,21 +109,23 @@ pub fn gauss_legendre_rule(n: usize, x: &mut [f64], w: &mut [f64]) -> usize {
     n
 }
 
-/// A Gauss–Legendre rule on `[0, 1]` stored on the stack.
-struct UnitRule {
+/// A Gauss–Legendre rule on `[0, 1]` stored on the stack, of order at most
+/// `N` ([`SMALL_ORDER`] or [`MAX_ORDER`]: the caller picks the smallest that
+/// holds its orders).
+struct UnitRule<const N: usize> {
     n: usize,
-    x: [f64; MAX_ORDER],
-    w: [f64; MAX_ORDER],
+    x: [f64; N],
+    w: [f64; N],
 }
 
-impl UnitRule {
+impl<const N: usize> UnitRule<N> {
     fn new(n: usize) -> Self {
         let mut r = UnitRule {
             n: 0,
-            x: [0.0; MAX_ORDER],
-            w: [0.0; MAX_ORDER],
+            x: [0.0; N],
+            w: [0.0; N],
         };
-        r.n = gauss_legendre_rule(n.min(MAX_ORDER), &mut r.x, &mut r.w);
+        r.n = gauss_legendre_rule(n.min(N), &mut r.x, &mut r.w);
         for (x, w) in r.x.iter_mut().zip(r.w.iter_mut()).take(r.n) {
             *x = 0.5 * (*x + 1.0);
             *w *= 0.5;
@@ -138,13 +147,16 @@ impl UnitRule {
 /// channel-wise `Σ |wᵢ wⱼ f|` (for the rounding floor). Nodes go to `f` in
 /// row-major order, [`CHUNK`] at a time; the sums are accumulated in that
 /// order.
-fn product_square<W: WideSpectrum>(
+// Never inlined: each table size keeps its own frame (an inlined copy would put the
+// largest tables in every caller's frame, whatever the budget).
+#[inline(never)]
+fn product_square<W: WideSpectrum, const N: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<(W, W, W, bool), IntegrateError> {
-    let ra = UnitRule::new(na);
-    let rb = UnitRule::new(nb);
+    let ra = UnitRule::<N>::new(na);
+    let rb = UnitRule::<N>::new(nb);
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
     let mut sq = WideSum::<W>::new();
@@ -215,13 +227,16 @@ pub const MIN_EFFECTIVE_NODES: f64 = 16.0;
 /// off by up to `max(|h(aᵢ, x)|, |h(aᵢ, end)|) · gap` (whichever of the
 /// two is non-zero). Returns `Σᵢ wᵢ (those terms)` and the
 /// evaluations spent (four per line: both ends and both end nodes).
-fn edge_gap_bound<W: WideSpectrum>(
+// Never inlined: each table size keeps its own frame (an inlined copy would put the
+// largest tables in every caller's frame, whatever the budget).
+#[inline(never)]
+fn edge_gap_bound<W: WideSpectrum, const N: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<(W, usize), IntegrateError> {
-    let ra = UnitRule::new(na);
-    let rb = UnitRule::new(nb);
+    let ra = UnitRule::<N>::new(na);
+    let rb = UnitRule::<N>::new(nb);
     let (lo, hi) = (rb.node(0).0, rb.node(rb.n.saturating_sub(1)).0);
     let mut bound = WideSum::<W>::new();
     let mut vals = [W::splat(0.0); 4];
@@ -363,12 +378,12 @@ fn with_comparison_rules<W: WideSpectrum>(
 }
 
 /// The plain product rule of order `(na, nb)` as a [`RuleSum`].
-fn plain_rule<W: WideSpectrum>(
+fn plain_rule<W: WideSpectrum, const N: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<RuleSum<W>, IntegrateError> {
-    let (sum, abs, sq, edge_peak) = product_square(na, nb, f)?;
+    let (sum, abs, sq, edge_peak) = product_square::<W, N>(na, nb, f)?;
     Ok(RuleSum {
         sum,
         abs,
@@ -442,16 +457,21 @@ fn sidi(t: f64) -> (f64, f64) {
 /// integral). A line with more than [`MAX_STEPS_PER_LINE`] steps keeps the
 /// plain rule and marks the result unlocated. A support pocket between two
 /// neighbouring nodes that both see zero (or both non-zero) is not seen.
-fn split_rule<W: WideSpectrum>(
+/// `N` is the largest order of the node tables, `P = N + 2` the points of a
+/// scan line (both ends and the nodes).
+// Never inlined: each table size keeps its own frame (an inlined copy would put the
+// largest tables in every caller's frame, whatever the budget).
+#[inline(never)]
+fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<RuleSum<W>, IntegrateError> {
-    let ra = UnitRule::new(na);
-    let rb = UnitRule::new(nb);
-    let rh = UnitRule::new(nb.div_ceil(2));
-    // `n ≤ MAX_ORDER` for every rule; `min` states it for the optimiser.
-    let (m, mh) = (rb.n.min(MAX_ORDER), rh.n.min(MAX_ORDER));
+    let ra = UnitRule::<N>::new(na);
+    let rb = UnitRule::<N>::new(nb);
+    let rh = UnitRule::<N>::new(nb.div_ceil(2));
+    // `n ≤ N` for every rule; `min` states it for the optimiser.
+    let (m, mh) = (rb.n.min(N), rh.n.min(N));
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
     let mut sq = WideSum::<W>::new();
@@ -459,8 +479,8 @@ fn split_rule<W: WideSpectrum>(
     let mut support_seen = false;
     let mut unlocated = false;
     // Scan points of a line: 0, the m nodes, 1.
-    let mut pts = [[0.0f64; 2]; MAX_ORDER + 2];
-    let mut vals = [W::splat(0.0); MAX_ORDER + 2];
+    let mut pts = [[0.0f64; 2]; P];
+    let mut vals = [W::splat(0.0); P];
     let mut one = [W::splat(0.0); 1];
     for i in 0..ra.n {
         let (a, wa) = ra.node(i);
@@ -620,7 +640,8 @@ fn order_for_budget(budget: u32, k: usize) -> usize {
 /// (`n_θ·2n_θ + ⌈n_θ/2⌉·n_θ + …`, ≈ 33 % extra) fit the budget. Minimum
 /// budget 11 (`n_θ = 2`); capped at `n_θ = 512`, `n_φ = 1024`
 /// ([`MAX_ORDER`]), i.e. 696,320 evaluations, whatever the budget. Node
-/// storage: two stack arrays of `MAX_ORDER` f64 per axis (32 KiB).
+/// storage: two stack arrays of f64 per axis, of [`SMALL_ORDER`] entries
+/// (2 KiB) when `n_φ ≤ 64`, of [`MAX_ORDER`] (32 KiB) above.
 ///
 /// A NaN/∞ integrand value gives [`IntegrateError::NonFiniteIntegrand`].
 ///
@@ -682,11 +703,20 @@ impl Integrator for GaussLegendre {
             Ok(())
         };
         let none = (WideOf::<I>::splat(0.0), 0);
-        let mut e = with_comparison_rules(nt, np, none, |a, b| {
-            let r = plain_rule(a, b, &mut f);
-            first.set(false);
-            r
-        })?;
+        // Node tables sized by the orders (np ≥ nt): the stack follows the budget.
+        let mut e = if np <= SMALL_ORDER {
+            with_comparison_rules(nt, np, none, |a, b| {
+                let r = plain_rule::<_, SMALL_ORDER>(a, b, &mut f);
+                first.set(false);
+                r
+            })?
+        } else {
+            with_comparison_rules(nt, np, none, |a, b| {
+                let r = plain_rule::<_, MAX_ORDER>(a, b, &mut f);
+                first.set(false);
+                r
+            })?
+        };
         if probing {
             e.status = probe::judge(e.status, node_peak.get() / TAU, probe::Probe::take(g)?.peak());
             e.evaluations += probe::PROBE_POINTS as u64;
@@ -818,13 +848,26 @@ impl Integrator for WarpedGaussLegendre {
         }
         let mut f = |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::warped_values(g, p, out);
         match Self::split_order(budget) {
+            // Node tables sized by the order: the stack follows the budget.
             ns if self.split && ns >= MIN_SPLIT_ORDER => {
                 let none = (WideOf::<I>::splat(0.0), 0);
-                with_comparison_rules(ns, ns, none, |a, b| split_rule(a, b, &mut f))
+                if ns <= SMALL_ORDER {
+                    with_comparison_rules(ns, ns, none, |a, b| {
+                        split_rule::<_, SMALL_ORDER, { SMALL_ORDER + 2 }>(a, b, &mut f)
+                    })
+                } else {
+                    with_comparison_rules(ns, ns, none, |a, b| {
+                        split_rule::<_, MAX_ORDER, { MAX_ORDER + 2 }>(a, b, &mut f)
+                    })
+                }
+            }
+            _ if n <= SMALL_ORDER => {
+                let edges = edge_gap_bound::<_, SMALL_ORDER>(n, n, &mut f)?;
+                with_comparison_rules(n, n, edges, |a, b| plain_rule::<_, SMALL_ORDER>(a, b, &mut f))
             }
             _ => {
-                let edges = edge_gap_bound(n, n, &mut f)?;
-                with_comparison_rules(n, n, edges, |a, b| plain_rule(a, b, &mut f))
+                let edges = edge_gap_bound::<_, MAX_ORDER>(n, n, &mut f)?;
+                with_comparison_rules(n, n, edges, |a, b| plain_rule::<_, MAX_ORDER>(a, b, &mut f))
             }
         }
     }

@@ -54,7 +54,7 @@ impl<S: Spectrum> Cap<S> {
         if half_angle.is_nan() || half_angle <= 0.0 || half_angle > FRAC_PI_2 {
             return Err(LightError::HalfAngleOutOfRange(half_angle));
         }
-        let (sn, cs) = libm::sincosf(half_angle);
+        let (sn, cs) = crate::math::sincos(half_angle);
         let cs = cs.max(0.0);
         Ok(Self {
             axis,
@@ -76,7 +76,7 @@ impl<S: Spectrum> Cap<S> {
         if half_angle.is_nan() || half_angle <= 0.0 || half_angle > FRAC_PI_2 {
             return Err(LightError::HalfAngleOutOfRange(half_angle));
         }
-        let s = libm::sinf(half_angle);
+        let s = crate::math::sin(half_angle);
         // s > 0, but s² underflows to 0 for σ ≲ 1e-19, making k infinite.
         let k = FRAC_1_PI / (s * s);
         if !k.is_finite() {
@@ -316,10 +316,10 @@ fn sidi(t: f32) -> (f32, f32, bool) {
         // S(½ − u) = ½ − (x + (4/3) sin x + (1/6) sin 2x)/(2π), x = 2πu ≤ π/4:
         // a sum of positive terms, at most 2.5× the result.
         let x = TAU * (0.5 - tau);
-        let (sx, cx) = libm::sincosf(x);
+        let (sx, cx) = crate::math::sincos(x);
         0.5 - (x + (4.0 / 3.0) * sx + (1.0 / 3.0) * sx * cx) / TAU
     };
-    let s1 = libm::sinf(core::f32::consts::PI * tau);
+    let s1 = crate::math::sin(core::f32::consts::PI * tau);
     let s2 = s1 * s1;
     (s_tau.clamp(0.0, 0.5), (8.0 / 3.0) * s2 * s2, from_end)
 }
@@ -368,7 +368,7 @@ impl<B: Brdf> CapIntegrand<B> {
         let e1 = Vec3::new(c * cp, c * sp, -s);
         let e2 = Vec3::new(-sp, cp, 0.0);
         let elevation = libm::atan2f(c, s);
-        let (ss, cs) = libm::sincosf(cap.half_angle);
+        let (ss, cs) = crate::math::sincos(cap.half_angle);
         let (ss, cs) = (ss.clamp(0.0, 1.0), cs.clamp(0.0, 1.0));
         // ψ_max(y) = ε_a ⇔ sin²σ − y² = cos²σ tan²ε_a: the horizon meets the
         // rim at |y| = y*, i.e. at χ* = asin(y*/sin σ).
@@ -431,7 +431,7 @@ impl<B: Brdf> CapIntegrand<B> {
         } else {
             sidi_piece(lo, hi - lo, q - k)
         };
-        let (sc, cc) = libm::sincosf(chi);
+        let (sc, cc) = crate::math::sincos(chi);
         let ss = self.sin_sigma;
         let chord = ss * cc.max(0.0);
         Some((ss * sc, chord, chord * dchi / part))
@@ -451,10 +451,10 @@ impl<B: Brdf> CapIntegrand<B> {
         }
         let psi = (lo + u0.clamp(0.0, 1.0) * width).min(hi);
         let r = safe_sqrt((1.0 - y) * (1.0 + y));
-        let (sp, cp) = libm::sincosf(psi);
+        let (sp, cp) = crate::math::sincos(psi);
         let mut w = r * (cp * self.a + sp * self.e1) + y * self.e2;
         // ω_z = √(1 − y²) sin(ε_a − ψ), without the cancellation of the sum.
-        w.z = r * libm::sinf(self.elevation - psi);
+        w.z = r * crate::math::sin(self.elevation - psi);
         let cz = w.z;
         if cz.is_nan() || cz <= 0.0 {
             return None;

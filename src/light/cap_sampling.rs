@@ -92,7 +92,7 @@ impl<B: Brdf> CapSampled<B> {
         let q = a.x * a.y * p;
         let e1 = Vec3::new(1.0 + sign * a.x * a.x * p, sign * q, -sign * a.x);
         let e2 = Vec3::new(q, sign + a.y * a.y * p, -a.y);
-        let h = libm::sinf(0.5 * cap.half_angle());
+        let h = crate::math::sin(0.5 * cap.half_angle());
         let v_sigma = 2.0 * h * h;
         // No cone technique where its density is not an f32 (see the type's docs).
         let cone_pdf = 1.0 / (TAU * v_sigma);

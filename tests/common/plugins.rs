@@ -6,8 +6,8 @@ use super::strategies::{alpha, exponent, kd_ks, log_uniform};
 use proptest::prelude::*;
 use radiometry::IsotropicBrdf;
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Ggx, HeightCorrelated, KullaConty, Lambertian,
-    Microfacet, ModifiedPhong, NoFresnel, Schlick, Separable,
+    Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Ggx, HeightCorrelated,
+    KullaConty, Lambertian, Microfacet, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable, Sheen,
 };
 
 /// A plugin behind a trait object.
@@ -42,6 +42,8 @@ pub enum Fres {
     Dielectric,
     /// Exact conductor.
     Conductor,
+    /// F82-tint metal Fresnel (OpenPBR), `f0` and tint `f82` of [`Params`].
+    F82,
 }
 
 /// A plugin configuration.
@@ -59,6 +61,15 @@ pub enum Kind {
     KullaConty(Dist, Shadow, Fres),
     /// `Tabulated` over a fixed table (parameters unused).
     Tabulated(Table),
+    /// `Fon` (Fujii's Oren–Nayar, σ ∈ [0, 1]).
+    Fon,
+    /// `Eon` (energy-preserving Oren–Nayar, σ ∈ [0, 1]).
+    Eon,
+    /// `OrenNayar` (classic, pbrt-v3) with `σ_rad = σ · π/2` and ρ capped at `OrenNayar::max_rho`.
+    OrenNayar,
+    /// `Sheen` (Estevez & Kulla 2017): colour `rho`, roughness `r = r_min + (1 − r_min) α` (so the
+    /// strategy's `α ∈ [10⁻⁴, 1]` reaches both ends of `[r_min, 1]`).
+    Sheen,
     /// A composite of plugins (`radiometry::compose`).
     Composite(Comp),
 }
@@ -172,29 +183,48 @@ fn tabulated(t: Table) -> radiometry_brdfs::tabulated::Tabulated<'static, f32> {
     }
 }
 
-/// The four compensated configurations in [`all_kinds`]: every `(D, G)` once, two with `F = 1` (where
-/// the compensation matters most) and two with a coloured conductor.
-pub const KULLA_CONTY_KINDS: [Kind; 4] = [
+/// The five compensated configurations in [`all_kinds`]: every `(D, G)` once, two with `F = 1` (where
+/// the compensation matters most) and two with a coloured conductor, plus GGX with the F82-tint metal
+/// Fresnel (OpenPBR's metal).
+pub const KULLA_CONTY_KINDS: [Kind; 5] = [
     Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::None),
     Kind::KullaConty(Dist::Ggx, Shadow::Separable, Fres::Conductor),
     Kind::KullaConty(Dist::Beckmann, Shadow::HeightCorrelated, Fres::Conductor),
     Kind::KullaConty(Dist::Beckmann, Shadow::Separable, Fres::None),
+    Kind::KullaConty(Dist::Ggx, Shadow::HeightCorrelated, Fres::F82),
 ];
 
-/// All 29 configurations (19 single-scattering, 4 compensated, 2 tabulated, 4 composites).
+/// The rough diffuse configurations in [`all_kinds`].
+pub const ROUGH_DIFFUSE_KINDS: [Kind; 3] = [Kind::Fon, Kind::Eon, Kind::OrenNayar];
+
+/// All 38 configurations (23 single-scattering, 5 compensated, 2 tabulated, 3 rough diffuse, sheen, 4 composites).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {
         for g in [Shadow::HeightCorrelated, Shadow::Separable] {
-            for f in [Fres::None, Fres::Schlick, Fres::Dielectric, Fres::Conductor] {
+            for f in [
+                Fres::None,
+                Fres::Schlick,
+                Fres::Dielectric,
+                Fres::Conductor,
+                Fres::F82,
+            ] {
                 v.push(Kind::Micro(d, g, f));
             }
         }
     }
     v.extend(KULLA_CONTY_KINDS);
     v.extend(TABULATED_KINDS);
-    // COMPOSITES-PENDING v.extend(COMPOSITE_KINDS);
+    v.extend(ROUGH_DIFFUSE_KINDS);
+    v.push(Kind::Sheen);
+    v.extend(COMPOSITE_KINDS);
     v
+}
+
+/// The sheen roughness of the parameter set `p`: `r_min + (1 − r_min) α`.
+pub fn sheen_roughness(p: &Params) -> f32 {
+    use radiometry_brdfs::sheen::MIN_SHEEN_ROUGHNESS;
+    (MIN_SHEEN_ROUGHNESS + (1.0 - MIN_SHEEN_ROUGHNESS) * p.alpha).min(1.0)
 }
 
 /// Parameters for every plugin (each uses its own subset).
@@ -218,6 +248,10 @@ pub struct Params {
     pub eta_c: f32,
     /// Conductor k.
     pub k_c: f32,
+    /// Rough diffuse roughness σ ∈ [0, 1] (FON/EON as is; the classic Oren–Nayar takes `σ · π/2` radians).
+    pub sigma: f32,
+    /// F82 tint (with `f0` as the F82-tint term's normal-incidence reflectance).
+    pub f82: f32,
 }
 
 impl Params {
@@ -233,12 +267,16 @@ impl Params {
             eta_d: 1.5,
             eta_c: 0.2,
             k_c: 3.0,
+            sigma: 0.5,
+            f82: 0.8,
         }
     }
 }
 
 /// Valid parameters, hitting the edges (α down to 1e-4, n up to 1e7, kd + ks = 1, ρ = 1, f0 ∈ {0, 1},
-/// η < 1 for the dielectric (total internal reflection)).
+/// η < 1 for the dielectric (total internal reflection), F82 tint ∈ {0, 1}, σ ∈ {0, 1}).
+///
+/// σ takes the value drawn for `f0` (same distribution, `[0, 1]` with both edges; no plugin uses both).
 pub fn params() -> impl Strategy<Value = Params> + Clone {
     (
         prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
@@ -249,8 +287,9 @@ pub fn params() -> impl Strategy<Value = Params> + Clone {
         log_uniform(0.2, 5.0),
         log_uniform(0.01, 10.0),
         prop_oneof![3 => 0.0f64..=10.0, 1 => Just(0.0)],
+        prop_oneof![3 => 0.0f32..=1.0, 1 => Just(1.0f32), 1 => Just(0.0f32)],
     )
-        .prop_map(|(rho, (kd, ks), n, alpha, f0, eta_d, eta_c, k_c)| Params {
+        .prop_map(|(rho, (kd, ks), n, alpha, f0, eta_d, eta_c, k_c, f82)| Params {
             rho,
             kd,
             ks,
@@ -260,6 +299,8 @@ pub fn params() -> impl Strategy<Value = Params> + Clone {
             eta_d: eta_d as f32,
             eta_c: eta_c as f32,
             k_c: k_c as f32,
+            sigma: f0,
+            f82,
         })
 }
 
@@ -273,6 +314,7 @@ where
         Fres::Schlick => Box::new(Microfacet::<D, G, _>::new(d, Schlick::new(p.f0)?)),
         Fres::Dielectric => Box::new(Microfacet::<D, G, _>::new(d, Dielectric::new(p.eta_d)?)),
         Fres::Conductor => Box::new(Microfacet::<D, G, _>::new(d, Conductor::new(p.eta_c, p.k_c)?)),
+        Fres::F82 => Box::new(Microfacet::<D, G, _>::new(d, F82Tint::new(p.f0, p.f82)?)),
     })
 }
 
@@ -289,6 +331,7 @@ where
         Fres::Schlick => Box::new(KullaConty::<D, G, _>::new(d, Schlick::new(p.f0)?)),
         Fres::Dielectric => Box::new(KullaConty::<D, G, _>::new(d, Dielectric::new(p.eta_d)?)),
         Fres::Conductor => Box::new(KullaConty::<D, G, _>::new(d, Conductor::new(p.eta_c, p.k_c)?)),
+        Fres::F82 => Box::new(KullaConty::<D, G, _>::new(d, F82Tint::new(p.f0, p.f82)?)),
     })
 }
 
@@ -321,7 +364,17 @@ pub fn build(kind: Kind, p: &Params) -> Result<Dyn, BrdfError> {
             compensated::<_, Separable>(Beckmann::new(p.alpha)?, f, p)?
         }
         Kind::Tabulated(t) => Box::new(tabulated(t)),
+        Kind::Fon => Box::new(Fon::new(p.rho, p.sigma)?),
+        Kind::Eon => Box::new(Eon::new(p.rho, p.sigma)?),
+        Kind::OrenNayar => {
+            let sigma_rad = p.sigma * std::f32::consts::FRAC_PI_2;
+            Box::new(OrenNayar::new(
+                p.rho.min(OrenNayar::max_rho(sigma_rad)),
+                sigma_rad,
+            )?)
+        }
         Kind::Composite(c) => composite(c, p)?,
+        Kind::Sheen => Box::new(Sheen::new(p.rho, sheen_roughness(p))?),
     })
 }
 
@@ -338,7 +391,10 @@ pub fn lobe_width(kind: Kind, p: &Params) -> f64 {
         Kind::KullaConty(..) => 2.0 * p.alpha as f64,
         Kind::Tabulated(Table::GgxMerl) => 0.6,
         Kind::Tabulated(Table::DiffuseGgxCoarse) => 0.2,
+        Kind::Fon | Kind::Eon | Kind::OrenNayar => 10.0,
         // The narrowest part sets the breakpoints.
         Kind::Composite(_) => 2.0 * p.alpha as f64,
+        // A broad lobe (D of width ~√r in cos θh), zero at the mirror direction.
+        Kind::Sheen => 1.0,
     }
 }

@@ -279,6 +279,8 @@ fn spec_string(s: &BrdfSpec) -> String {
         FresnelSpec::Schlick { f0 } => t.push_str(&format!(", fresnel=schlick(f0={f0})")),
         FresnelSpec::Conductor { eta, k } => t.push_str(&format!(", fresnel=conductor(eta={eta}, k={k})")),
         FresnelSpec::Dielectric { eta } => t.push_str(&format!(", fresnel=dielectric(eta={eta})")),
+        FresnelSpec::Metal { metal } => t.push_str(&format!(", fresnel=conductor(metal={})", metal.name())),
+        FresnelSpec::F82 { f0, f82 } => t.push_str(&format!(", fresnel=f82(f0={f0}, f82={f82})")),
         FresnelSpec::None => {}
     }
     if kd > 0.0 {

@@ -162,6 +162,10 @@ impl MicrofacetDistribution for Beckmann {
         self.alpha
     }
 
+    fn energy_tables(&self) -> Option<super::EnergyTables> {
+        Some(Self::TABLES)
+    }
+
     /// `D(m) = exp(−tan²θm/α²) / (π α² cos⁴θm)` (Walter et al. 2007, eq. 25)
     /// of `m` normalised robustly; see
     /// [`d_cos2`](MicrofacetDistribution::d_cos2).

@@ -43,6 +43,22 @@ pub trait Fresnel {
         false
     }
 
+    /// The smallest and largest value of `F(cos θd)` per channel over
+    /// `cos θd ∈ [0, 1]`, `(min, max)` — what bounds the Fresnel factor of a
+    /// microfacet albedo ([`Microfacet`](super::Microfacet)'s
+    /// `directional_albedo`).
+    ///
+    /// The default evaluates `F` on the 33 nodes `cos θd = j/32` and refines
+    /// each channel's smallest node value by 24 golden-section steps in the
+    /// two cells around it (about 33 + 24·channels evaluations; exact for a
+    /// function with one interior minimum, as every Fresnel term of this
+    /// crate has); the maximum is the largest node value (`F(0) = 1` for
+    /// every physical term). [`NoFresnel`] and [`Schlick`] override it with
+    /// their closed forms.
+    fn bounds(&self) -> (Self::Spectrum, Self::Spectrum) {
+        numeric_bounds(|c| self.eval(c))
+    }
+
     /// Hidden hook of the `simd` feature (not a stable API): the last factor
     /// of the microfacet BRDF for one vector of lanes,
     /// `out[k] = F(cos θd[k]) · scale[k]`, and exactly `0` where
@@ -68,8 +84,61 @@ pub trait Fresnel {
     }
 }
 
+/// [`Fresnel::bounds`] of a function of `cos θd ∈ [0, 1]`: node minimum on
+/// 33 nodes, refined per channel by golden-section search in the two cells
+/// around it; node maximum.
+pub(crate) fn numeric_bounds<S: Spectrum>(f: impl Fn(f32) -> S) -> (S, S) {
+    const NODES: usize = 33;
+    let h = 1.0 / (NODES - 1) as f32;
+    let mut lo = f(0.0);
+    let mut hi = lo;
+    // Node of each channel's minimum (channels past 64 keep node 0 and are
+    // refined around it: their node minimum still bounds them).
+    let mut arg = [0usize; 64];
+    for j in 1..NODES {
+        let v = f(j as f32 * h);
+        for (c, a) in arg.iter_mut().enumerate().take(S::CHANNELS) {
+            if v.channel(c) < lo.channel(c) {
+                *a = j;
+            }
+        }
+        lo = S::from_fn(|c| lo.channel(c).min(v.channel(c)));
+        hi = S::from_fn(|c| hi.channel(c).max(v.channel(c)));
+    }
+    // Golden-section refinement per channel on [x_{j−1}, x_{j+1}].
+    const INV_PHI: f32 = 0.618_034;
+    let refined = S::from_fn(|c| {
+        let j = if c < 64 { arg[c] } else { 0 };
+        let (mut a, mut b) = ((j as f32 - 1.0).max(0.0) * h, ((j + 1) as f32 * h).min(1.0));
+        let g = |x: f32| f(x).channel(c);
+        let mut x1 = b - INV_PHI * (b - a);
+        let mut x2 = a + INV_PHI * (b - a);
+        let (mut f1, mut f2) = (g(x1), g(x2));
+        let mut best = lo.channel(c).min(f1).min(f2);
+        for _ in 0..24 {
+            if f1 <= f2 {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = b - INV_PHI * (b - a);
+                f1 = g(x1);
+                best = best.min(f1);
+            } else {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = a + INV_PHI * (b - a);
+                f2 = g(x2);
+                best = best.min(f2);
+            }
+        }
+        best
+    });
+    (refined, hi)
+}
+
 #[inline]
-fn clamp_cos(c: f32) -> f32 {
+pub(crate) fn clamp_cos(c: f32) -> f32 {
     if c > 0.0 { c.min(1.0) } else { 0.0 }
 }
 
@@ -93,6 +162,10 @@ impl Fresnel for NoFresnel {
     type Spectrum = f32;
     fn is_smooth(&self) -> bool {
         true
+    }
+    /// `(1, 1)`.
+    fn bounds(&self) -> (f32, f32) {
+        (1.0, 1.0)
     }
     #[inline(always)]
     fn eval(&self, _cos_theta_d: f32) -> f32 {
@@ -142,6 +215,10 @@ impl<S: Spectrum> Fresnel for Schlick<S> {
     type Spectrum = S;
     fn is_smooth(&self) -> bool {
         true
+    }
+    /// `(f0, 1)`: `F` falls monotonically from 1 at grazing to `f0`.
+    fn bounds(&self) -> (S, S) {
+        (self.f0, S::splat(1.0))
     }
     #[inline]
     fn eval(&self, cos_theta_d: f32) -> S {
@@ -278,13 +355,19 @@ impl<S: Spectrum> Conductor<S> {
             check_range("eta", eta.channel(i), MIN_ETA, MAX_ETA)?;
             check_range("k", k.channel(i), 0.0, MAX_K)?;
         }
+        Ok(Self::from_valid(eta, k))
+    }
+
+    /// [`new`](Self::new) without the checks, for parameters known to be in
+    /// the domain (the named metals).
+    pub(crate) fn from_valid(eta: S, k: S) -> Self {
         let inv = |i: usize| inv_eta2(eta.channel(i), k.channel(i));
-        Ok(Conductor {
+        Conductor {
             eta,
             k,
             inv_eta2_re: S::from_fn(|i| inv(i).re),
             inv_eta2_im: S::from_fn(|i| inv(i).im),
-        })
+        }
     }
 
     /// The real part `η` of the index.

@@ -52,6 +52,10 @@ impl MicrofacetDistribution for Ggx {
         self.alpha
     }
 
+    fn energy_tables(&self) -> Option<super::EnergyTables> {
+        Some(Self::TABLES)
+    }
+
     /// `D(m) = α² / (π (α² cos²θm + sin²θm)²)` (Walter et al. 2007, eq. 33,
     /// multiplied through by `cos⁴θm`) of `m` normalised robustly; see
     /// [`d_cos2`](MicrofacetDistribution::d_cos2).

@@ -8,7 +8,7 @@ use super::{
 use core::f32::consts::FRAC_1_PI;
 use radiometry::glam::Vec3;
 use radiometry::math::sincos_turn;
-use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
+use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
 /// Below this cosine-weighted average loss `1 − E_avg` the compensation lobe
 /// is switched off (it would be `0/0`): at `α ≲ 10⁻³` the single-scattering
@@ -423,6 +423,33 @@ where
         let w = self.cosine_weight(wo_u);
         let p = (1.0 - w) * self.single.pdf(wi, wo) + w * self.lobe_pdf(wi_u.z);
         if p > 0.0 { p.min(f32::MAX) } else { 0.0 }
+    }
+
+    /// The single-scattering part as [`Microfacet`]'s albedo (this
+    /// instance's tabulated `E(μo)` times the lobe's Fresnel average, bounded over the
+    /// range of `F` plus the table's [`ALBEDO_TABLE_ERROR`](super::ALBEDO_TABLE_ERROR)),
+    /// plus the added lobe's albedo in closed form: `∫ scale (1 − E(μi))(1 − E(μo)) cos θi dωi
+    /// = F_ms (1 − E(μo))` (margined losses), since `scale = F_ms/(π (1 − E_avg))`
+    /// and `E_avg` was integrated over the same interpolant; the lobe's term
+    /// in the error is `10⁻⁴ F_ms (1 − E(μo))` for that Gauss–Legendre
+    /// integration. With `F = 1` the value is `1 − LOSS_MARGIN` up to the
+    /// margin's clamp. Zero at or below the horizon.
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
+        let Some(w) = unitize(wo) else {
+            return Albedo::zero();
+        };
+        if w.z <= 0.0 {
+            return Albedo::zero();
+        }
+        let s2 = w.x * w.x + w.y * w.y;
+        let raw_loss = lerp_row(&self.loss, rescale_mu(w.z, s2, self.r2));
+        let f_bar = self.single.fresnel_average(w);
+        let single = super::fresnel_albedo(&self.single.fresnel, 1.0 - raw_loss, f_bar);
+        // F_ms = scale · π (1 − E_avg) per channel.
+        let f_ms = self.scale * (core::f32::consts::PI * (1.0 - self.e_avg));
+        let lobe = f_ms * self.loss_at(w.z, s2);
+        let lobe_err = 1e-4 * lobe.max_channel();
+        Albedo::bounded(single.value + lobe, single.error + lobe_err)
     }
 }
 

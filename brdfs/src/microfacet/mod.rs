@@ -13,8 +13,9 @@
 //! * `D` — [`Ggx`] or [`Beckmann`], implementing [`MicrofacetDistribution`];
 //! * `G2` — [`HeightCorrelated`] (default; pbrt-v4) or [`Separable`]
 //!   (Mitsuba 3), implementing [`ShadowingMasking`];
-//! * `F` — [`NoFresnel`] (default, `F = 1`), [`Schlick`], [`Dielectric`] or
-//!   [`Conductor`], implementing [`Fresnel`].
+//! * `F` — [`NoFresnel`] (default, `F = 1`), [`Schlick`], [`Dielectric`],
+//!   [`Conductor`] or the F82-tint metal term [`F82Tint`] (OpenPBR),
+//!   implementing [`Fresnel`].
 //!
 //! Zero-sized choices (`NoFresnel`, `HeightCorrelated`, `Separable`) cost
 //! nothing at run time: `NoFresnel::eval` is the constant `1.0` and inlines
@@ -48,6 +49,7 @@ mod beckmann_lanes;
 mod beckmann_slope;
 mod beckmann_slope_table;
 mod beckmann_tail;
+pub(crate) mod f82;
 mod fresnel;
 mod ggx;
 mod kulla_conty;
@@ -59,11 +61,15 @@ mod special_lanes;
 #[cfg(test)]
 mod tests;
 
-pub use albedo_table::{ALPHA_REF, AlbedoTable, EnergyTable, N_ALPHA, N_MU, alpha_node, mu_node, node_scale};
+pub use albedo_table::{
+    ALBEDO_TABLE_ERROR, ALPHA_REF, AlbedoTable, EnergyTable, EnergyTables, N_ALPHA, N_MU, alpha_node,
+    mu_node, node_scale,
+};
 #[cfg(feature = "simd")]
 #[doc(hidden)]
 pub use batch::{DistributionKind, G2Kind};
 pub use beckmann::Beckmann;
+pub use f82::{F82Tint, MU_BAR};
 pub use fresnel::{Conductor, Dielectric, Fresnel, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
 pub use ggx::Ggx;
 pub use kulla_conty::{KullaConty, LOSS_MARGIN};
@@ -74,7 +80,7 @@ use core::marker::PhantomData;
 use radiometry::batch::Vec3Soa;
 use radiometry::frame::half_vector_sum;
 use radiometry::glam::Vec3;
-use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
+use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
 /// Smallest accepted roughness `α` (pbrt-v4 uses the same floor). At this
 /// value the GGX peak `D(+Z) = 1/(π α²) ≈ 3.2·10⁷` is still comfortably
@@ -220,6 +226,15 @@ pub trait MicrofacetDistribution {
     /// [`visible_pdf`](Self::visible_pdf) does). Always returns a finite unit
     /// vector with `z ≥ 0`.
     fn sample_visible(&self, wo: Vec3, u: [f32; 2]) -> Vec3;
+
+    /// The tabulated single-scattering albedos `E(μ, α)` (`F = 1`) of this
+    /// distribution, one per Smith variant, if the crate has them: what
+    /// [`Microfacet`]'s `directional_albedo` reads. Default `None` (a
+    /// third-party distribution gets the sampling rule of
+    /// [`Brdf::directional_albedo`]); [`Ggx`] and [`Beckmann`] return theirs.
+    fn energy_tables(&self) -> Option<EnergyTables> {
+        None
+    }
 
     /// Hidden hook of the `simd` feature: which vectorised kernel (if any)
     /// the batch methods of [`Microfacet`] may use for this distribution.
@@ -531,6 +546,40 @@ where
         }
     }
 
+    /// The Fresnel average `F̄(ωo) = Σ F(ωo·m_k) G2_k / Σ G2_k` over the 16
+    /// visible normals `m_k` of the stratified points
+    /// `u = ((i + ½)/4, (j + ½)/4)` whose reflection stays above the horizon
+    /// (`G2_k = G2(ωi,k, ωo)`; the `F = 1` weight of a visible-normal sample
+    /// is `G2/G1(ωo)`, and `G1(ωo)` cancels): the lobe's own average of `F`,
+    /// a convex combination of values of `F`. `F(cos θo)` when no point
+    /// reflects above the horizon. `wo` unit, above the horizon.
+    pub(crate) fn fresnel_average(&self, wo: Vec3) -> F::Spectrum {
+        let mut sum = F::Spectrum::zero();
+        let mut weight = 0.0f32;
+        for k in 0..16u8 {
+            let u = [(f32::from(k % 4) + 0.5) / 4.0, (f32::from(k / 4) + 0.5) / 4.0];
+            let m = self.distribution.sample_visible(wo, u);
+            let dot = wo.dot(m);
+            let wi = 2.0 * dot * m - wo;
+            // (False for NaN.)
+            let valid = dot > 0.0 && wi.z > 0.0;
+            let g = if valid {
+                G::g2(&self.distribution, wi, wo)
+            } else {
+                0.0
+            };
+            if g > 0.0 && g.is_finite() {
+                sum += self.fresnel.eval(dot) * g;
+                weight += g;
+            }
+        }
+        if weight > 0.0 {
+            sum / weight
+        } else {
+            self.fresnel.eval(wo.z)
+        }
+    }
+
     /// `pdf` for unit `wi`, `wo`:
     /// `D_ωo(h)/(4 ωo·h) = G1(ωo) D(h)/(4 cos θo) = D(h)/(4 A(ωo))`.
     #[inline(always)]
@@ -575,6 +624,32 @@ where
         let ratio = ((4.0 * wi.z) * ao / inv_v).clamp(0.0, 1.0);
         Some((wi, pdf, self.fresnel.eval(h.cos_theta_d()) * ratio))
     }
+}
+
+/// The single-scattering albedo with Fresnel term `F` from the tabulated
+/// albedo `e ≈ E_ss(μo)` (`F = 1`, known to within
+/// `δ =` [`ALBEDO_TABLE_ERROR`]) and a Fresnel average `F̄` (any value in
+/// the range of `F`, per channel): value `e F̄`, and the bound
+///
+/// ```text
+/// |E_F − e F̄| ≤ m e + δ (m + F̄),   m = max(F̄ − F_min, F_max − F̄),
+/// ```
+///
+/// (largest over the channels), with `[F_min, F_max]` the range of `F` over
+/// `cos θd ∈ [0, 1]` ([`Fresnel::bounds`]). Why it holds: the exact albedo is
+/// `E_F = ∫ w F(cos θd) dωi` with the `F = 1` integrand `w ≥ 0` (`∫ w = E_ss`),
+/// so `E_F ∈ [F_min, F_max] · E_ss`, and `|E_ss − e| ≤ δ`.
+#[inline]
+pub(crate) fn fresnel_albedo<F: Fresnel>(fresnel: &F, e: f32, f: F::Spectrum) -> Albedo<F::Spectrum> {
+    let e = clamp01(e);
+    let (lo, hi) = fresnel.bounds();
+    let mut error = 0.0f32;
+    for c in 0..F::Spectrum::CHANNELS {
+        let fc = f.channel(c);
+        let m = (fc - lo.channel(c)).max(hi.channel(c) - fc).max(0.0);
+        error = error.max(m * e + ALBEDO_TABLE_ERROR * (m + fc));
+    }
+    Albedo::bounded(f * e, error)
 }
 
 impl<D, G, F> Brdf for Microfacet<D, G, F>
@@ -681,6 +756,36 @@ where
             self.pdf_unit(wi, wo)
         } else {
             self.pdf_cold(wi, wo)
+        }
+    }
+
+    /// The Kulla–Conty table of `(D, G)` ([`AlbedoTable::albedo`], `F = 1`)
+    /// times a Fresnel average `F̄` over the lobe (16 stratified
+    /// visible-normal points weighted by `G2`; `F̄ = 1` exactly for
+    /// [`NoFresnel`]), with a bound that covers the range of `F` and the
+    /// table's error ([`ALBEDO_TABLE_ERROR`]): `|E − value| ≤ m E_tab + δ (m + F̄)`,
+    /// `m = max(F̄ − F_min, F_max − F̄)` over the channels (derivation:
+    /// `fresnel_albedo` in this module's source). `10⁻³` for `F = 1`; the
+    /// Fresnel part of the bound is wide where `F` varies a lot over
+    /// `cos θd` (dielectrics), the value itself much closer (both measured in
+    /// `brdfs/tests/microfacet_albedo.rs`). A distribution or shadowing term
+    /// without a table falls back to the default sampling rule. Zero at or
+    /// below the horizon.
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
+        let Some(table) = self
+            .distribution
+            .energy_tables()
+            .and_then(|t| G::select_table(&t))
+        else {
+            return radiometry::compose::albedo_by_sampling(self, wo);
+        };
+        match unitize(wo) {
+            Some(w) if w.z > 0.0 => fresnel_albedo(
+                &self.fresnel,
+                table.albedo(w.z, self.distribution.alpha()),
+                self.fresnel_average(w),
+            ),
+            _ => Albedo::zero(),
         }
     }
 }

@@ -46,6 +46,14 @@ pub trait ShadowingMasking {
     /// Hidden hook of the `simd` feature: which vectorised `G2` (if any) the
     /// batched microfacet kernel may use. The default keeps the scalar loop.
     /// Not part of the stable API.
+    /// This variant's table among a distribution's tabulated albedos
+    /// ([`MicrofacetDistribution::energy_tables`]). Default `None`;
+    /// [`HeightCorrelated`] and [`Separable`] pick theirs.
+    fn select_table(tables: &super::EnergyTables) -> Option<&'static super::AlbedoTable> {
+        let _ = tables;
+        None
+    }
+
     #[cfg(feature = "simd")]
     #[doc(hidden)]
     const BATCH_KIND: super::G2Kind = super::G2Kind::Scalar;
@@ -76,6 +84,10 @@ pub struct HeightCorrelated;
 pub struct Separable;
 
 impl ShadowingMasking for HeightCorrelated {
+    fn select_table(tables: &super::EnergyTables) -> Option<&'static super::AlbedoTable> {
+        Some(tables.height_correlated)
+    }
+
     #[cfg(feature = "simd")]
     const BATCH_KIND: super::G2Kind = super::G2Kind::HeightCorrelated;
 
@@ -105,6 +117,10 @@ impl ShadowingMasking for HeightCorrelated {
 }
 
 impl ShadowingMasking for Separable {
+    fn select_table(tables: &super::EnergyTables) -> Option<&'static super::AlbedoTable> {
+        Some(tables.separable)
+    }
+
     #[cfg(feature = "simd")]
     const BATCH_KIND: super::G2Kind = super::G2Kind::Separable;
 
