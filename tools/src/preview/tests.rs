@@ -72,6 +72,54 @@ fn white_furnace_ball_disappears_into_the_sky() {
     }
 }
 
+/// Mean radiance over the pixels fully on the ball, its standard error from the
+/// spread between those pixels (independent estimates of one value when the
+/// ball is uniform), and their number.
+fn ball_mean(img: &Image) -> (f64, f64, usize) {
+    let v: Vec<f64> = img
+        .radiance()
+        .iter()
+        .zip(img.coverage())
+        .filter(|&(_, &c)| c == 1.0)
+        .map(|(&l, _)| l as f64)
+        .collect();
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt(), v.len())
+}
+
+/// The furnace: EON with ρ = 1 keeps all energy (its albedo is 1
+/// within 10⁻⁴ at every θo), so under the sky alone the ball is the sky. EON is
+/// not sampled exactly in proportion to `f cos`, so pixels are noisy: the test
+/// is on the mean over the ball, within 4 standard errors (from the spread
+/// between pixels) plus the albedo's 10⁻⁴ (measured at 48 px and 512 samples:
+/// −1·10⁻⁵ ± 2·10⁻⁴ at σ = 0.5, −1.6·10⁻⁴ ± 3·10⁻⁴ at σ = 1, relative);
+/// ρ = 0.99 is rejected by the same test.
+#[test]
+fn white_furnace_eon_ball_matches_the_sky_on_average() {
+    let opt = Options {
+        sun_irradiance: 0.0,
+        ..quiet(32, 128)
+    };
+    let sky = opt.sky_radiance as f64;
+    let within = |spec: &str| {
+        let (mean, se, n) = ball_mean(&render(&brdf(spec), &opt).unwrap());
+        assert!(n > 200, "{spec}: {n}");
+        ((mean - sky).abs() <= 4.0 * se + 1e-4 * sky, mean, se)
+    };
+    for spec in [
+        "eon(rho=1, sigma=0)",
+        "eon(rho=1, sigma=0.5)",
+        "eon(rho=1, sigma=1)",
+    ] {
+        let (ok, mean, se) = within(spec);
+        assert!(ok, "{spec}: ball {mean} ± {se} vs sky {sky}");
+    }
+    let (ok, mean, se) = within("eon(rho=0.99, sigma=1)");
+    assert!(!ok, "ρ = 0.99 passed: {mean} ± {se}");
+}
+
 #[test]
 fn image_has_the_requested_size_and_shows_the_sky_around_the_ball() {
     let opt = quiet(20, 8);
