@@ -21,12 +21,14 @@ const MIN_ALBEDO_MARGIN: f32 = 1e-3;
 ///
 /// ```text
 /// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) ⊙ f_B(ωi, ωo)
-/// τ(ωi, ωo) = A(μi, μo) ⊙ (1 − Ê_T(ωi)) ⊙ (1 − Ê_T(ωo)) / (1 − E_min)
+/// τ(ωi, ωo) = A(μi, μo) ⊙ t(ωi) ⊙ t(ωo) (1 − E_min)
+/// t(ω)      = min((1 − E_T(ω)) / (1 − E_min), 1)
 /// A(μi, μo) = C^{(1/μᵗi + 1/μᵗo)/2},   μᵗ = √(1 − (1 − μ²)/η²)
 /// ```
 ///
-/// `E_T` is the top's [directional albedo](Brdf::directional_albedo) and
-/// `Ê_T` its upper end (value plus stated error, at most 1): light
+/// `E_T` is the top's [directional albedo](Brdf::directional_albedo) (its
+/// value, not the upper end of its error: the plugins' bounds for Fresnel
+/// tops are wide, and the base would go dark under them): light
 /// the top reflects never reaches the base, once on the way in and once on
 /// the way out — a product, so `τ` is symmetric and the layer stays
 /// **reciprocal** (OpenPBR's `(1 − E_T(ωo))` alone is not). `E_min` is the
@@ -35,9 +37,11 @@ const MIN_ALBEDO_MARGIN: f32 = 1e-3;
 /// two-way product would lose to the top's *average* reflectance, as far
 /// as that is safe:
 ///
-/// * **Energy**: `(1 − E_T(ωi))/(1 − E_min) ≤ 1`, so
-///   `E(ωo) ≤ E_T(ωo) + (1 − E_T(ωo)) E_B(ωo) ≤ 1` for any base with
-///   `E_B ≤ 1` and any top with `E_T ≤ 1`.
+/// * **Energy**: `t ≤ 1`, so `E(ωo) ≤ E_T(ωo) + (1 − E_T(ωo)) E_B(ωo) ≤ 1`
+///   for any base with `E_B ≤ 1` and any top with `E_T ≤ 1` — with `E_T` the
+///   value the top reports; where that value is below the top's true
+///   albedo, the layer can exceed 1 by at most the difference times `E_B`
+///   (so by at most the top's stated albedo error).
 /// * **Furnace**: with a white Lambertian base and a clear coat,
 ///   `E(ωo) = 1 − (1 − E_T(ωo)) (E_avg − E_min)/(1 − E_min)`, where
 ///   `E_avg = 2∫E_T μ dμ` — a smooth dielectric coat of η = 1.5 keeps
@@ -173,13 +177,14 @@ where
         }
     }
 
-    /// `1 − E_T(ω)` with `E_T` at the upper end of its stated error, clamped
-    /// to `[0, 1]` per channel (so that a bounded albedo can never let more
-    /// light through than the top transmits).
+    /// `min(g (1 − E_T(ω)), 1)` per channel: what the top lets through,
+    /// scaled by the gain `g = 1/(1 − E_min)` and capped at 1 (the cap keeps
+    /// the energy bound where the top's albedo dips below `E_min` between
+    /// the nodes it was read at).
     #[inline]
-    fn through(&self, w: Vec3) -> S {
+    fn through_scaled(&self, w: Vec3) -> S {
         let e = self.top.directional_albedo(w);
-        e.value.map(|v| (1.0 - (v + e.error)).clamp(0.0, 1.0))
+        e.value.map(|v| ((1.0 - v).clamp(0.0, 1.0) * self.gain).min(1.0))
     }
 
     /// The probability of drawing from the top at `wo`.
@@ -236,7 +241,7 @@ where
         if fb.is_black() {
             return top;
         }
-        let tau = self.absorption(mi, mo) * (self.through(wi) * self.through(wo)) * self.gain;
+        let tau = self.absorption(mi, mo) * (self.through_scaled(wi) * self.through_scaled(wo)) * (1.0 / self.gain);
         top + tau * fb
     }
 
@@ -269,9 +274,9 @@ where
         }
         let et = self.top.directional_albedo(wo);
         let eb = self.base.directional_albedo(wo);
-        let through = et.value.map(|e| (1.0 - (e + et.error)).clamp(0.0, 1.0));
+        let through = et.value.map(|e| (1.0 - e).clamp(0.0, 1.0));
         let upper = through * eb.value; // g · X ≤ E_B
-        let est = upper * self.absorption(mu, mu) * (self.gain * (1.0 - self.average));
+        let est = upper * self.absorption(mu, mu) * (self.gain * (1.0 - self.average)).min(1.0);
         let spread = (upper - est).max_channel().max(est.max_channel());
         Albedo {
             value: et.value + est,

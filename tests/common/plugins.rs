@@ -95,6 +95,22 @@ pub const COMPOSITE_KINDS: [Kind; 4] = [
     Kind::Composite(Comp::CoatedMetal),
 ];
 
+/// The top lobe of a coated composite (`None` for other kinds): its albedo error at `ωo` bounds how much
+/// the layer can exceed an albedo of 1 (`radiometry::compose::Coated`).
+pub fn coat_top(k: Kind, p: &Params) -> Option<Dyn> {
+    Some(match k {
+        Kind::Composite(Comp::Plastic) => Box::new(Microfacet::<_, HeightCorrelated, _>::new(
+            Ggx::new(p.alpha).ok()?,
+            Dielectric::new(p.eta_d).ok()?,
+        )),
+        Kind::Composite(Comp::CoatedMetal) => Box::new(Microfacet::<_, HeightCorrelated, _>::new(
+            Beckmann::new(p.alpha).ok()?,
+            Dielectric::new(p.eta_d).ok()?,
+        )),
+        _ => return None,
+    })
+}
+
 fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
     use radiometry::compose::{Coated, Mix, Scaled, Sum};
     let ggx = Ggx::new(p.alpha)?;

@@ -554,6 +554,10 @@ where
     /// a convex combination of values of `F`. `F(cos θo)` when no point
     /// reflects above the horizon. `wo` unit, above the horizon.
     pub(crate) fn fresnel_average(&self, wo: Vec3) -> F::Spectrum {
+        // The lobe is isotropic: average at the azimuth φo = 0, so that the
+        // stratified points (fixed in the local frame) give the same value
+        // for every rotation of `wo` about the normal.
+        let wo = Vec3::new(libm::sqrtf((1.0 - wo.z * wo.z).max(0.0)), 0.0, wo.z);
         let mut sum = F::Spectrum::zero();
         let mut weight = 0.0f32;
         for k in 0..16u8 {
