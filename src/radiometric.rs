@@ -330,6 +330,33 @@ fn clamp_or_zero(x: f32, lo: f32, hi: f32) -> f32 {
     }
 }
 
+/// `asin x` for `x ∈ [0, 1]` in `f32` arithmetic only, as `atan2(x, √((1 − x)(1 + x)))` (`libm::asinf` takes an
+/// `f64` square root, a soft-float helper on an FPU without double precision). `atan2f` is within 2 ulp, the
+/// square root of the exactly formed `(1 − x)(1 + x)` within 1 ulp, whose relative error moves the result by at
+/// most `x·√(1−x²)·ε ≤ ε/2` absolute: a few ulp of `asin x` over `[0, 1]`.
+#[inline]
+fn asin_f32(x: f32) -> f32 {
+    libm::atan2f(x, safe_sqrt((1.0 - x) * (1.0 + x)))
+}
+
+/// `a·b + c` with the product kept exact, in `f32` arithmetic only (`libm::fmaf` computes in `f64`, a
+/// soft-float helper on an FPU without double precision): Dekker's two-product (Veltkamp split by `2¹² + 1`;
+/// Dekker 1971, Numer. Math. 18) gives `a·b = p + e` exactly, then `(p + c) + e`. Where `p ≈ −c` (the
+/// cancellation the caller guards against) `p + c` is exact (Sterbenz) and the result is the correctly
+/// rounded `a·b + c`; elsewhere it is within 1 ulp of it. Domain: `|a·b| < 2¹¹⁴` (no overflow in the split).
+#[inline]
+fn mul_add_f32(a: f32, b: f32, c: f32) -> f32 {
+    let split = |x: f32| {
+        let t = 4097.0 * x;
+        let hi = t - (t - x);
+        (hi, x - hi)
+    };
+    let p = a * b;
+    let ((ah, al), (bh, bl)) = (split(a), split(b));
+    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    (p + c) + e
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -391,31 +418,4 @@ mod tests {
             assert!((v - PI * (1.0 + c) / 2.0).abs() < 2e-6, "c={c} v={v}");
         }
     }
-}
-
-/// `asin x` for `x ∈ [0, 1]` in `f32` arithmetic only, as `atan2(x, √((1 − x)(1 + x)))` (`libm::asinf` takes an
-/// `f64` square root, a soft-float helper on an FPU without double precision). `atan2f` is within 2 ulp, the
-/// square root of the exactly formed `(1 − x)(1 + x)` within 1 ulp, whose relative error moves the result by at
-/// most `x·√(1−x²)·ε ≤ ε/2` absolute: a few ulp of `asin x` over `[0, 1]`.
-#[inline]
-fn asin_f32(x: f32) -> f32 {
-    libm::atan2f(x, safe_sqrt((1.0 - x) * (1.0 + x)))
-}
-
-/// `a·b + c` with the product kept exact, in `f32` arithmetic only (`libm::fmaf` computes in `f64`, a
-/// soft-float helper on an FPU without double precision): Dekker's two-product (Veltkamp split by `2¹² + 1`;
-/// Dekker 1971, Numer. Math. 18) gives `a·b = p + e` exactly, then `(p + c) + e`. Where `p ≈ −c` (the
-/// cancellation the caller guards against) `p + c` is exact (Sterbenz) and the result is the correctly
-/// rounded `a·b + c`; elsewhere it is within 1 ulp of it. Domain: `|a·b| < 2¹¹⁴` (no overflow in the split).
-#[inline]
-fn mul_add_f32(a: f32, b: f32, c: f32) -> f32 {
-    let split = |x: f32| {
-        let t = 4097.0 * x;
-        let hi = t - (t - x);
-        (hi, x - hi)
-    };
-    let p = a * b;
-    let ((ah, al), (bh, bl)) = (split(a), split(b));
-    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    (p + c) + e
 }

@@ -415,8 +415,17 @@ fn albedo_by_quadrature_hard_cases() {
                     // Converged first (asked for 1e-4; at most 1e-3 accepted), so the slack `err`
                     // below cannot hide a gain above 0.2 %.
                     let a = a.converged(QUAD_ERR_MAX, ctx());
-                    WORST_QUAD.record(a.value, ctx);
-                    assert!(a.value <= 1.0 + a.err + 1e-6, "energy gain: {}", ctx());
+                    // A coated layer may exceed 1 by its top's albedo error (see `energy_check_allowing`).
+                    let allowance = common::plugins::coat_top(k, &p)
+                        .map_or(0.0, |t| f64::from(t.directional_albedo(wo).error));
+                    if allowance == 0.0 {
+                        WORST_QUAD.record(a.value, ctx);
+                    }
+                    assert!(
+                        a.value <= 1.0 + allowance + a.err + 1e-6,
+                        "energy gain: {} (allowance {allowance:.2e})",
+                        ctx()
+                    );
                 }
             }
         }

@@ -1,5 +1,5 @@
-//! `Brdf::directional_albedo` of [`Microfacet`] and [`KullaConty`] (the Kulla–Conty table times
-//! `F(cos θo)`, with a bound over the range of `F` plus the table's error) against the independent
+//! `Brdf::directional_albedo` of [`Microfacet`] and [`KullaConty`] (the Kulla–Conty table times the
+//! lobe's Fresnel average, with an error from the range of `F` over the lobe plus the table's error) against the independent
 //! `f64` quadrature of `kulla_conty.rs` (textbook `D`, `Λ` and Fresnel formulas written in `f64`
 //! here, not the crate's): the claimed error must cover `|value − E|` (plus the quadrature's own
 //! error estimate) at every point of a grid of distributions, Smith variants, roughnesses, angles
@@ -7,7 +7,8 @@
 //! ratio of the actual error to the claimed one. Measured (700 points per model): `|value − E|` ≤
 //! 7.3·10⁻⁵ with `F = 1` (8.4·10⁻⁵ with Kulla–Conty), 1.5·10⁻² Schlick 0.04, 1.6·10⁻³ Schlick 0.9,
 //! 1.4·10⁻² dielectric 1.5, 1.3·10⁻³ conductor 0.2 + 3i, 9.5·10⁻³ / 1.2·10⁻² F82-tint; the claimed
-//! bound is never below the actual error (largest actual/claimed 0.08).
+//! error (a bound for `F = 1`, an estimate otherwise) is never below the actual error (largest
+//! actual/claimed 0.10).
 
 use super::kulla_conty::{Dist, e_ref_fresnel};
 use core::f64::consts::PI;
@@ -160,7 +161,9 @@ fn check(kc: bool) {
                 for (i, &fr) in FRESNELS.iter().enumerate() {
                     let b = build(d, hc, alpha, fr, kc);
                     let a = b.directional_albedo(wo);
-                    assert!(a.is_bound && a.error.is_finite() && a.error >= 0.0);
+                    assert!(a.error.is_finite() && a.error >= 0.0);
+                    // A bound with a constant F (the table's error), an estimate otherwise.
+                    assert_eq!(a.is_bound, matches!(fr, Fr::None), "{fr:?}");
                     let (mut e, q_err) = reference(d, hc, f64::from(alpha), mu, fr);
                     if kc {
                         e += lobe_albedo(&b, &build(d, hc, alpha, fr, false), wo);

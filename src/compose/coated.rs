@@ -241,7 +241,8 @@ where
         if fb.is_black() {
             return top;
         }
-        let tau = self.absorption(mi, mo) * (self.through_scaled(wi) * self.through_scaled(wo)) * (1.0 / self.gain);
+        let tau =
+            self.absorption(mi, mo) * (self.through_scaled(wi) * self.through_scaled(wo)) * (1.0 / self.gain);
         top + tau * fb
     }
 

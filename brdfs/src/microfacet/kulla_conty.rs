@@ -426,7 +426,7 @@ where
     }
 
     /// The single-scattering part as [`Microfacet`]'s albedo (this
-    /// instance's tabulated `E(μo)` times the lobe's Fresnel average, bounded over the
+    /// instance's tabulated `E(μo)` times the lobe's Fresnel average, with the error over the
     /// range of `F` plus the table's [`ALBEDO_TABLE_ERROR`](super::ALBEDO_TABLE_ERROR)),
     /// plus the added lobe's albedo in closed form: `∫ scale (1 − E(μi))(1 − E(μo)) cos θi dωi
     /// = F_ms (1 − E(μo))` (margined losses), since `scale = F_ms/(π (1 − E_avg))`
@@ -443,13 +443,16 @@ where
         }
         let s2 = w.x * w.x + w.y * w.y;
         let raw_loss = lerp_row(&self.loss, rescale_mu(w.z, s2, self.r2));
-        let f_bar = self.single.fresnel_average(w);
-        let single = super::fresnel_albedo(&self.single.fresnel, 1.0 - raw_loss, f_bar);
+        let single = super::fresnel_albedo(1.0 - raw_loss, self.single.fresnel_spread(w));
         // F_ms = scale · π (1 − E_avg) per channel.
         let f_ms = self.scale * (core::f32::consts::PI * (1.0 - self.e_avg));
         let lobe = f_ms * self.loss_at(w.z, s2);
         let lobe_err = 1e-4 * lobe.max_channel();
-        Albedo::bounded(single.value + lobe, single.error + lobe_err)
+        Albedo {
+            value: single.value + lobe,
+            error: single.error + lobe_err,
+            is_bound: single.is_bound,
+        }
     }
 }
 

@@ -546,22 +546,38 @@ where
         }
     }
 
-    /// The Fresnel average `F̄(ωo) = Σ F(ωo·m_k) G2_k / Σ G2_k` over the 16
-    /// visible normals `m_k` of the stratified points
-    /// `u = ((i + ½)/4, (j + ½)/4)` whose reflection stays above the horizon
-    /// (`G2_k = G2(ωi,k, ωo)`; the `F = 1` weight of a visible-normal sample
-    /// is `G2/G1(ωo)`, and `G1(ωo)` cancels): the lobe's own average of `F`,
-    /// a convex combination of values of `F`. `F(cos θo)` when no point
-    /// reflects above the horizon. `wo` unit, above the horizon.
-    pub(crate) fn fresnel_average(&self, wo: Vec3) -> F::Spectrum {
+    /// The Fresnel factor over the lobe at `ωo`: the average
+    /// `F̄(ωo) = Σ F(ωo·m_k) G2_k / Σ G2_k` over the 16 visible normals `m_k`
+    /// of the stratified points `u = ((i + ½)/4, (j + ½)/4)` whose reflection
+    /// stays above the horizon (`G2_k = G2(ωi,k, ωo)`; the `F = 1` weight of
+    /// a visible-normal sample is `G2/G1(ωo)`, and `G1(ωo)` cancels), and the
+    /// range of `F` over those normals and four more in the lobe's tails
+    /// (`u ∈ {1/256, 255/256}²`). When no point reflects above the
+    /// horizon: `F(cos θo)` and the range of `F` over all of `[0, 1]`
+    /// ([`Fresnel::bounds`]). `wo` unit, above the horizon.
+    pub(crate) fn fresnel_spread(&self, wo: Vec3) -> FresnelSpread<F::Spectrum> {
         // The lobe is isotropic: average at the azimuth φo = 0, so that the
         // stratified points (fixed in the local frame) give the same value
         // for every rotation of `wo` about the normal.
         let wo = Vec3::new(libm::sqrtf((1.0 - wo.z * wo.z).max(0.0)), 0.0, wo.z);
         let mut sum = F::Spectrum::zero();
         let mut weight = 0.0f32;
-        for k in 0..16u8 {
-            let u = [(f32::from(k % 4) + 0.5) / 4.0, (f32::from(k / 4) + 0.5) / 4.0];
+        let mut lo = F::Spectrum::splat(f32::INFINITY);
+        let mut hi = F::Spectrum::splat(f32::NEG_INFINITY);
+        // 16 stratified points for the average, then 4 points near the
+        // corners of the square (the lobe's tails, u = 1/256 and 255/256)
+        // for the range only.
+        const TAIL: [[f32; 2]; 4] = [
+            [1.0 / 256.0, 1.0 / 256.0],
+            [255.0 / 256.0, 1.0 / 256.0],
+            [1.0 / 256.0, 255.0 / 256.0],
+            [255.0 / 256.0, 255.0 / 256.0],
+        ];
+        for k in 0..20u8 {
+            let u = match TAIL.get(usize::from(k).wrapping_sub(16)) {
+                Some(&t) => t,
+                None => [(f32::from(k % 4) + 0.5) / 4.0, (f32::from(k / 4) + 0.5) / 4.0],
+            };
             let m = self.distribution.sample_visible(wo, u);
             let dot = wo.dot(m);
             let wi = 2.0 * dot * m - wo;
@@ -573,14 +589,37 @@ where
                 0.0
             };
             if g > 0.0 && g.is_finite() {
-                sum += self.fresnel.eval(dot) * g;
-                weight += g;
+                let f = self.fresnel.eval(dot);
+                if k < 16 {
+                    sum += f * g;
+                    weight += g;
+                }
+                lo = F::Spectrum::from_fn(|c| lo.channel(c).min(f.channel(c)));
+                hi = F::Spectrum::from_fn(|c| hi.channel(c).max(f.channel(c)));
             }
         }
         if weight > 0.0 {
-            sum / weight
+            // The sampled range is a bound only when F is constant (checked
+            // over all of [0, 1] only when the samples already agree).
+            let same = (0..F::Spectrum::CHANNELS).all(|c| lo.channel(c) == hi.channel(c));
+            let is_bound = same && {
+                let (a, b) = self.fresnel.bounds();
+                (0..F::Spectrum::CHANNELS).all(|c| a.channel(c) == b.channel(c))
+            };
+            FresnelSpread {
+                mean: sum / weight,
+                lo,
+                hi,
+                is_bound,
+            }
         } else {
-            self.fresnel.eval(wo.z)
+            let (lo, hi) = self.fresnel.bounds();
+            FresnelSpread {
+                mean: self.fresnel.eval(wo.z),
+                lo,
+                hi,
+                is_bound: true,
+            }
         }
     }
 
@@ -630,30 +669,63 @@ where
     }
 }
 
+/// The Fresnel factor of a microfacet lobe at one `ωo`
+/// ([`Microfacet::fresnel_spread`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FresnelSpread<S> {
+    /// The lobe's average `F̄`, per channel.
+    mean: S,
+    /// Smallest `F` seen, per channel.
+    lo: S,
+    /// Largest `F` seen, per channel.
+    hi: S,
+    /// Whether `[lo, hi]` holds every value of `F` (a constant `F`, or
+    /// [`Fresnel::bounds`] over every `cos θd`), not only the sampled ones.
+    is_bound: bool,
+}
+
 /// The single-scattering albedo with Fresnel term `F` from the tabulated
 /// albedo `e ≈ E_ss(μo)` (`F = 1`, known to within
-/// `δ =` [`ALBEDO_TABLE_ERROR`]) and a Fresnel average `F̄` (any value in
-/// the range of `F`, per channel): value `e F̄`, and the bound
+/// `δ =` [`ALBEDO_TABLE_ERROR`]) and the lobe's Fresnel spread: value
+/// `e F̄`, error
 ///
 /// ```text
-/// |E_F − e F̄| ≤ m e + δ (m + F̄),   m = max(F̄ − F_min, F_max − F̄),
+/// m e + t e max(F̄, 1 − F̄) + δ (m + F̄),   m = max(F̄ − F_lo, F_hi − F̄),
 /// ```
 ///
-/// (largest over the channels), with `[F_min, F_max]` the range of `F` over
-/// `cos θd ∈ [0, 1]` ([`Fresnel::bounds`]). Why it holds: the exact albedo is
-/// `E_F = ∫ w F(cos θd) dωi` with the `F = 1` integrand `w ≥ 0` (`∫ w = E_ss`),
-/// so `E_F ∈ [F_min, F_max] · E_ss`, and `|E_ss − e| ≤ δ`.
+/// (largest over the channels), with `[F_lo, F_hi]` the range of `F` over the
+/// lobe's 20 sampled normals (16 for the average, 4 in the tails at
+/// `u ∈ {1/256, 255/256}²`) and `t = 1 − (127/128)²` the sample-space mass
+/// outside those tail points, where `F` may take any value in `[0, 1]`.
+/// The exact albedo is `E_F = ∫ w F(cos θd) dωi` with the `F = 1` integrand
+/// `w ≥ 0` (`∫ w = E_ss`, `|E_ss − e| ≤ δ`), so `E_F/E_ss` is an average of
+/// `F` over the lobe. For a constant `F` (`NoFresnel`) the error is the
+/// bound `δ` (`t` drops out: `m = 0`, and the tail term is not needed), and
+/// with [`Fresnel::bounds`] (the fallback) it is a bound too; otherwise it
+/// is an estimate (the range over 20 normals stands for the range over the
+/// central part of the lobe), which `brdfs/tests/microfacet_albedo.rs`
+/// finds above the actual error at every point of its grid.
 #[inline]
-pub(crate) fn fresnel_albedo<F: Fresnel>(fresnel: &F, e: f32, f: F::Spectrum) -> Albedo<F::Spectrum> {
+pub(crate) fn fresnel_albedo<S: Spectrum>(e: f32, f: FresnelSpread<S>) -> Albedo<S> {
     let e = clamp01(e);
-    let (lo, hi) = fresnel.bounds();
+    /// `1 − (127/128)²`: the sample-space mass outside the tail points.
+    const TAIL_MASS: f32 = 255.0 / 16_384.0;
     let mut error = 0.0f32;
-    for c in 0..F::Spectrum::CHANNELS {
-        let fc = f.channel(c);
-        let m = (fc - lo.channel(c)).max(hi.channel(c) - fc).max(0.0);
-        error = error.max(m * e + ALBEDO_TABLE_ERROR * (m + fc));
+    for c in 0..S::CHANNELS {
+        let (fc, lo, hi) = (f.mean.channel(c), f.lo.channel(c), f.hi.channel(c));
+        let m = (fc - lo).max(hi - fc).max(0.0);
+        let tail = if f.is_bound {
+            0.0
+        } else {
+            TAIL_MASS * e * fc.max(1.0 - fc)
+        };
+        error = error.max(m * e + tail + ALBEDO_TABLE_ERROR * (m + fc));
     }
-    Albedo::bounded(f * e, error)
+    Albedo {
+        value: f.mean * e,
+        error: if error.is_finite() { error } else { 1.0 },
+        is_bound: f.is_bound,
+    }
 }
 
 impl<D, G, F> Brdf for Microfacet<D, G, F>
@@ -766,13 +838,13 @@ where
     /// The Kulla–Conty table of `(D, G)` ([`AlbedoTable::albedo`], `F = 1`)
     /// times a Fresnel average `F̄` over the lobe (16 stratified
     /// visible-normal points weighted by `G2`; `F̄ = 1` exactly for
-    /// [`NoFresnel`]), with a bound that covers the range of `F` and the
-    /// table's error ([`ALBEDO_TABLE_ERROR`]): `|E − value| ≤ m E_tab + δ (m + F̄)`,
-    /// `m = max(F̄ − F_min, F_max − F̄)` over the channels (derivation:
-    /// `fresnel_albedo` in this module's source). `10⁻³` for `F = 1`; the
-    /// Fresnel part of the bound is wide where `F` varies a lot over
-    /// `cos θd` (dielectrics), the value itself much closer (both measured in
-    /// `brdfs/tests/microfacet_albedo.rs`). A distribution or shadowing term
+    /// [`NoFresnel`]), with the error `m E_tab + δ (m + F̄)`,
+    /// `m = max(F̄ − F_lo, F_hi − F̄)` over the channels, `[F_lo, F_hi]` the
+    /// range of `F` over those normals and `δ =` [`ALBEDO_TABLE_ERROR`]
+    /// (`fresnel_albedo` in this module's source). A bound (`is_bound`) for
+    /// a constant `F` (`10⁻³` with `NoFresnel`); otherwise an estimate,
+    /// measured above the actual error at every point of the grid of
+    /// `brdfs/tests/microfacet_albedo.rs`. A distribution or shadowing term
     /// without a table falls back to the default sampling rule. Zero at or
     /// below the horizon.
     fn directional_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
@@ -785,9 +857,8 @@ where
         };
         match unitize(wo) {
             Some(w) if w.z > 0.0 => fresnel_albedo(
-                &self.fresnel,
                 table.albedo(w.z, self.distribution.alpha()),
-                self.fresnel_average(w),
+                self.fresnel_spread(w),
             ),
             _ => Albedo::zero(),
         }
