@@ -1,6 +1,6 @@
 //! `radiometry` command-line tool: the accuracy-vs-time report of the
 //! hemisphere integrators (`tradeoff`), directional albedo, irradiance and
-//! BRDF queries.
+//! BRDF queries, material-ball previews.
 //!
 //! Exit codes: 0 success, 1 runtime failure (e.g. an integrator error or an
 //! unwritable output folder), 2 invalid command line or spec.
@@ -10,6 +10,7 @@
 mod bench;
 mod fit_cmd;
 mod furnace;
+mod preview_cmd;
 mod sensor_cmd;
 mod sensor_edge;
 mod tabulate_cmd;
@@ -163,6 +164,10 @@ enum Command {
     /// `tabulated(file=…)`.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
     Tabulate(tabulate_cmd::TabulateArgs),
+    /// Render a material ball: a sphere with the BRDF under a sun and a sky, by BRDF sampling, light sampling and
+    /// multiple importance sampling, to a PNG or SVG.
+    #[command(after_help = format!("{}{}", preview_cmd::AFTER_HELP, spec::BRDF_SPEC_HELP))]
+    Preview(preview_cmd::PreviewArgs),
 }
 
 fn spec_error(e: spec::SpecError) -> ExitCode {
@@ -351,6 +356,7 @@ fn main() -> ExitCode {
         Command::Furnace(args) => furnace::run(args),
         Command::Fit(args) => fit_cmd::run(args),
         Command::Tabulate(args) => tabulate_cmd::run(args),
+        Command::Preview(args) => preview_cmd::run(args),
         Command::Integrators => {
             for i in model::all_integrators(model::DEFAULT_SEED, 0.0) {
                 println!("{}", i.name());

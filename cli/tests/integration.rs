@@ -10,4 +10,5 @@ mod cli;
 mod fit;
 mod fit_cli;
 mod merl;
+mod preview;
 mod sensor;
