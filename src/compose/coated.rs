@@ -7,14 +7,14 @@ use crate::frame::cos_theta;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
-/// Number of `μ` nodes (midpoints of 32 equal cells, plus `μ = 1`) at which
-/// [`Coated::new`] reads the top's albedo for `E_min` and `E_avg`.
-const ALBEDO_NODES: u8 = 32;
+/// Number of nodes of the top's albedo table: `μ_k = (k/127)²`, `k = 0..128`
+/// (`μ_0` raised to `10⁻⁶`), dense near the horizon where a lobe's albedo
+/// changes fastest.
+const TOP_NODES: usize = 128;
 
-/// Subtracted from the smallest albedo seen at the nodes, so that
-/// `E_min` stays below the top's true minimum between nodes (the energy
-/// guarantee needs `E_top ≥ E_min` everywhere).
-const MIN_ALBEDO_MARGIN: f32 = 1e-3;
+/// Smallest `μ` at which the top's albedo is read (the horizon itself has
+/// albedo 0 by convention).
+const MIN_NODE_MU: f32 = 1e-6;
 
 /// A coat: a top lobe (a clear or tinted dielectric interface, a sheen)
 /// over a base, by albedo scaling (OpenPBR Surface 1.1, §"Layering"):
@@ -32,8 +32,8 @@ const MIN_ALBEDO_MARGIN: f32 = 1e-3;
 /// the top reflects never reaches the base, once on the way in and once on
 /// the way out — a product, so `τ` is symmetric and the layer stays
 /// **reciprocal** (OpenPBR's `(1 − E_T(ωo))` alone is not). `E_min` is the
-/// top's smallest albedo over all directions (read at construction, less a
-/// margin of `10⁻³`); dividing by `1 − E_min` gives back the light that the
+/// top's smallest albedo over all directions (from the table of the top's
+/// albedo read at construction); dividing by `1 − E_min` gives back the light that the
 /// two-way product would lose to the top's *average* reflectance, as far
 /// as that is safe:
 ///
@@ -59,9 +59,10 @@ const MIN_ALBEDO_MARGIN: f32 = 1e-3;
 /// (`Ē_through` = the channel average of `A(μo, μo)(1 − E_T(ωo)) E_B(ωo)`),
 /// with the mixture density; `pdf(sample) == sample.pdf` bit for bit.
 ///
-/// Cost: each `eval` asks the top for its albedo at `ωi` and `ωo` — cheap for
-/// the plugins (closed forms and tables), 16 samples each for a lobe that
-/// keeps the default [`Brdf::directional_albedo`].
+/// Cost: [`Coated::new`] reads the top's albedo at 128 directions into a
+/// table (the top must be isotropic: its albedo a function of `μ` alone);
+/// each `eval` then reads it twice — two square roots and four loads —
+/// besides evaluating both lobes.
 ///
 /// ```
 /// use radiometry::compose::Coated;
@@ -93,6 +94,11 @@ pub struct Coated<T: Brdf, B> {
     gain: f32,
     /// `E_avg = 2∫E_T μ dμ` (for the albedo estimate).
     average: f32,
+    /// The top's albedo at the nodes `μ_k = (k/127)²` (read once, at
+    /// construction).
+    table: [T::Spectrum; TOP_NODES],
+    /// The largest error the top stated at the nodes.
+    top_error: f32,
 }
 
 impl<T, B, S> Coated<T, B>
@@ -102,15 +108,64 @@ where
     S: Spectrum,
 {
     /// `top` over `base`, clear (no absorption). Reads the top's albedo at
-    /// 33 directions for `E_min` and `E_avg`.
+    /// 128 directions (`μ_k = (k/127)²`; the top is isotropic) into a table
+    /// that `eval` reads (the larger of the two values around `μ`), and takes
+    /// `E_min` (the smallest tabulated value) and `E_avg` from it.
     pub fn new(top: T, base: B) -> Self {
-        let (gain, average) = top_albedo_summary(&top);
+        let mut table = [S::zero(); TOP_NODES];
+        let mut top_error = 0.0f32;
+        for (k, e) in table.iter_mut().enumerate() {
+            let x = k as f32 / (TOP_NODES - 1) as f32;
+            let mu = (x * x).max(MIN_NODE_MU);
+            let s = libm::sqrtf((1.0 - mu * mu).max(0.0));
+            let a = top.directional_albedo(Vec3::new(s, 0.0, mu));
+            *e = a
+                .value
+                .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
+            if a.error.is_finite() {
+                top_error = top_error.max(a.error);
+            }
+        }
+        let e_min = table
+            .iter()
+            .fold(1.0f32, |m, e| m.min(e.min_channel()))
+            .clamp(0.0, 0.999);
+        // E_avg = 2∫E μ dμ by the trapezoid rule over the nodes.
+        let mut average = 0.0f32;
+        let mut prev = (0.0f32, 0.0f32);
+        for (k, e) in table.iter().enumerate() {
+            let x = k as f32 / (TOP_NODES - 1) as f32;
+            let mu = x * x;
+            let cur = (mu, 2.0 * e.average() * mu);
+            if k > 0 {
+                average += 0.5 * (cur.1 + prev.1) * (cur.0 - prev.0);
+            }
+            prev = cur;
+        }
         Self {
             top,
             base,
             absorption: None,
-            gain,
-            average,
+            gain: 1.0 / (1.0 - e_min),
+            average: average.clamp(0.0, 1.0),
+            table,
+            top_error,
+        }
+    }
+
+    /// The top's albedo at `μ` as the layer uses it: the larger of the two
+    /// table values around `μ` (nodes uniform in `√μ`), per channel. Taking
+    /// the larger rather than interpolating keeps the energy bound where the
+    /// albedo jumps between nodes (a smooth dielectric coat with `η < 1`
+    /// turns to total internal reflection within a hair of its critical
+    /// angle); in smooth parts it lets through at most one node step less.
+    #[inline]
+    fn top_albedo(&self, mu: f32) -> S {
+        let x = libm::sqrtf(mu.clamp(0.0, 1.0)) * (TOP_NODES - 1) as f32;
+        let i = (x as usize).min(TOP_NODES - 2);
+        match (self.table.get(i), self.table.get(i + 1)) {
+            (Some(&a), Some(&b)) => S::from_fn(|c| a.channel(c).max(b.channel(c))),
+            _ => S::zero(),
         }
     }
 
@@ -183,44 +238,22 @@ where
     /// the nodes it was read at).
     #[inline]
     fn through_scaled(&self, w: Vec3) -> S {
-        let e = self.top.directional_albedo(w);
-        e.value.map(|v| ((1.0 - v).clamp(0.0, 1.0) * self.gain).min(1.0))
+        self.top_albedo(cos_theta(w))
+            .map(|v| ((1.0 - v).clamp(0.0, 1.0) * self.gain).min(1.0))
     }
 
     /// The probability of drawing from the top at `wo`.
     pub fn pick_probability(&self, wo: Vec3) -> f32 {
-        let et = self.top.directional_albedo(wo).value;
         let mu = cos_theta(wo);
+        if mu.is_nan() || mu <= 0.0 {
+            return 0.5;
+        }
+        let et = self.top_albedo(mu);
         let through = self.absorption(mu, mu)
             * et.map(|e| (1.0 - e).clamp(0.0, 1.0))
             * self.base.directional_albedo(wo).value;
         pick_first(et.average(), through.average())
     }
-}
-
-/// `(1/(1 − E_min), E_avg)` of a top lobe from its albedo at `μ = 1` and the
-/// midpoints of 32 cells of `[0, 1]`.
-fn top_albedo_summary<T: Brdf + ?Sized>(top: &T) -> (f32, f32) {
-    let at = |mu: f32| {
-        let s = libm::sqrtf((1.0 - mu * mu).max(0.0));
-        let e = top.directional_albedo(Vec3::new(s, 0.0, mu));
-        let lo = (e.value.min_channel() - e.error).max(0.0);
-        let avg = e.value.average();
-        (
-            if lo.is_finite() { lo } else { 0.0 },
-            if avg.is_finite() { avg } else { 0.0 },
-        )
-    };
-    let (mut e_min, _) = at(1.0);
-    let mut avg = 0.0f32;
-    for k in 0..ALBEDO_NODES {
-        let mu = (f32::from(k) + 0.5) / f32::from(ALBEDO_NODES);
-        let (lo, a) = at(mu);
-        e_min = e_min.min(lo);
-        avg += 2.0 * a * mu / f32::from(ALBEDO_NODES);
-    }
-    let e_min = (e_min - MIN_ALBEDO_MARGIN).clamp(0.0, 0.999);
-    (1.0 / (1.0 - e_min), avg.clamp(0.0, 1.0))
 }
 
 impl<T, B, S> Brdf for Coated<T, B>
@@ -273,16 +306,17 @@ where
         if mu.is_nan() || mu <= 0.0 {
             return Albedo::zero();
         }
-        let et = self.top.directional_albedo(wo);
+        let et = self.top_albedo(mu);
         let eb = self.base.directional_albedo(wo);
-        let through = et.value.map(|e| (1.0 - e).clamp(0.0, 1.0));
+        let through = et.map(|e| (1.0 - e).clamp(0.0, 1.0));
         let upper = through * eb.value; // g · X ≤ E_B
         let est = upper * self.absorption(mu, mu) * (self.gain * (1.0 - self.average)).min(1.0);
         let spread = (upper - est).max_channel().max(est.max_channel());
         Albedo {
-            value: et.value + est,
-            error: et.error * (1.0 + eb.value.max_channel()) + eb.error + spread,
-            is_bound: et.is_bound && eb.is_bound,
+            value: et + est,
+            error: self.top_error * (1.0 + eb.value.max_channel()) + eb.error + spread,
+            // The table's interpolation error is not bounded.
+            is_bound: false,
         }
     }
 }
