@@ -88,6 +88,7 @@ pub mod error;
 pub mod lambertian;
 pub mod metals;
 pub mod microfacet;
+pub mod openpbr;
 pub mod phong;
 pub mod rough_diffuse;
 pub mod sheen;
@@ -112,6 +113,9 @@ pub use microfacet::{
     MicrofacetDistribution, NoFresnel, Schlick, Separable, ShadowingMasking,
 };
 // -- end microfacet
+// -- re-exports: OpenPBR
+pub use openpbr::{OpenPbr, OpenPbrParams};
+// -- end OpenPBR
 // -- re-exports: rough diffuse (keep this block for that module)
 pub use rough_diffuse::{Eon, Fon, OrenNayar};
 // -- end rough diffuse

@@ -82,7 +82,45 @@ impl<'a> Args<'a> {
                 }
             }
             Value::Call(c) => Err(err_span(self.spec, c.span, format!("`{key}` must be a number"))),
+            Value::Rgb(_, span) => Err(err_span(
+                self.spec,
+                *span,
+                format!("`{key}` must be one number, not a colour"),
+            )),
         }
+    }
+
+    /// A colour in `[0, 1]` per channel: one number (grey) or `rgb(R, G, B)`;
+    /// `default` when absent (`None`: required).
+    pub(crate) fn colour(&mut self, key: &str, default: Option<f64>) -> Result<[f64; 3], SpecError> {
+        let Some(a) = self.find(key) else {
+            return default.map(|v| [v; 3]).ok_or_else(|| {
+                err_span(
+                    self.spec,
+                    self.call.name_span,
+                    format!("`{}` needs parameter `{key}`", self.call.name),
+                )
+            });
+        };
+        let (c, span) = match &a.value {
+            Value::Num(v, span) => ([*v; 3], *span),
+            Value::Rgb(c, span) => (*c, *span),
+            Value::Call(c) => {
+                return Err(err_span(
+                    self.spec,
+                    c.span,
+                    format!("`{key}` must be a number or rgb(R, G, B)"),
+                ));
+            }
+        };
+        if let Some(v) = c.iter().find(|v| !(0.0..=1.0).contains(*v)) {
+            return Err(err_span(
+                self.spec,
+                span,
+                format!("`{key}` = {v} is outside [0, 1] (a colour channel)"),
+            ));
+        }
+        Ok(c)
     }
 
     /// A nested call (or bare name) value.
@@ -92,7 +130,7 @@ impl<'a> Args<'a> {
         };
         match &a.value {
             Value::Call(c) => Ok(Some(c)),
-            Value::Num(_, span) => Err(err_span(
+            Value::Num(_, span) | Value::Rgb(_, span) => Err(err_span(
                 self.spec,
                 *span,
                 format!("`{key}` must be a name, not a number"),

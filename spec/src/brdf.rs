@@ -155,6 +155,9 @@ pub enum BrdfSpec {
         /// Roughness `r ∈ [MIN_SHEEN_ROUGHNESS, 1]`.
         roughness: f64,
     },
+    /// `openpbr(base_color=…, specular_roughness=…, …)`: the reflection layer of OpenPBR Surface
+    /// (`radiometry_brdfs::OpenPbr`), OpenPBR's parameter names and defaults.
+    OpenPbr(OpenPbrSpec),
     /// `tabulated(file=PATH)`: a MERL `.binary` file, read by the caller.
     Tabulated {
         /// Byte span `(start, end)` of the path in the spec text given to
@@ -188,6 +191,90 @@ pub enum BrdfSpec {
     },
 }
 
+/// The parameters of `openpbr(...)`, with OpenPBR Surface 1.1's names and defaults (see
+/// `radiometry_brdfs::openpbr`). Colours are `rgb(R, G, B)` or one number; the run-time BRDF is
+/// monochrome, so [`build_brdf`](crate::build_brdf) uses each colour's Rec. 709 luminance
+/// ([`luminance`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OpenPbrSpec {
+    /// `base_weight` (1).
+    pub base_weight: f64,
+    /// `base_color` (0.8).
+    pub base_color: [f64; 3],
+    /// `base_metalness` (0).
+    pub base_metalness: f64,
+    /// `base_diffuse_roughness` (0).
+    pub base_diffuse_roughness: f64,
+    /// `specular_weight` (1).
+    pub specular_weight: f64,
+    /// `specular_color` (1).
+    pub specular_color: [f64; 3],
+    /// `specular_roughness` (0.3).
+    pub specular_roughness: f64,
+    /// `specular_ior` (1.5).
+    pub specular_ior: f64,
+    /// `coat_weight` (0).
+    pub coat_weight: f64,
+    /// `coat_color` (1).
+    pub coat_color: [f64; 3],
+    /// `coat_roughness` (0).
+    pub coat_roughness: f64,
+    /// `coat_ior` (1.6).
+    pub coat_ior: f64,
+    /// `fuzz_weight` (0).
+    pub fuzz_weight: f64,
+    /// `fuzz_color` (1).
+    pub fuzz_color: [f64; 3],
+    /// `fuzz_roughness` (0.5).
+    pub fuzz_roughness: f64,
+}
+
+/// The parameter names `openpbr(...)` accepts (OpenPBR Surface 1.1's reflection parameters).
+pub const OPENPBR_PARAMS: [&str; 15] = [
+    "base_weight",
+    "base_color",
+    "base_metalness",
+    "base_diffuse_roughness",
+    "specular_weight",
+    "specular_color",
+    "specular_roughness",
+    "specular_ior",
+    "coat_weight",
+    "coat_color",
+    "coat_roughness",
+    "coat_ior",
+    "fuzz_weight",
+    "fuzz_color",
+    "fuzz_roughness",
+];
+
+/// OpenPBR parameters outside a reflection-only isotropic BRDF: named in the error message when a
+/// spec uses one.
+const OPENPBR_OUTSIDE: [&str; 12] = [
+    "transmission_weight",
+    "subsurface_weight",
+    "specular_anisotropy",
+    "coat_anisotropy",
+    "coat_darkening",
+    "thin_film_weight",
+    "thin_film_thickness",
+    "thin_film_ior",
+    "emission_luminance",
+    "geometry_opacity",
+    "geometry_thin_walled",
+    "base_subsurface",
+];
+
+/// The Rec. 709 / sRGB luminance `Y = 0.2126 R + 0.7152 G + 0.0722 B` of a linear colour (how a
+/// colour enters the monochrome run-time BRDF).
+/// A grey colour (three equal channels) is its value exactly.
+pub fn luminance(c: [f64; 3]) -> f64 {
+    if c[0] == c[1] && c[1] == c[2] {
+        return c[0];
+    }
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
 impl BrdfSpec {
     /// The path of a `tabulated(file=PATH)` spec, sliced from `text` (the
     /// string that was parsed); `None` for other BRDFs or a span that does
@@ -216,11 +303,14 @@ pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `pho
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
 fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9)|conductor(metal=Au)|f82(f0=0.9,f82=0.8), \
 ms=none|kulla-conty, kd=0)` (metals: Au, Ag, Cu, Al, Cr, Fe, Ni, Ti, Pt, Brass, reduced to their luminance; \
-colours are one number: the run-time BRDF is monochrome), \
+the run-time BRDF is monochrome: a colour is one number or rgb(R, G, B), which enters as its Rec. 709 luminance), \
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
 `oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
-cloth sheen; roughness ∈ [0.07, 1] is required); \
+cloth sheen; roughness ∈ [0.07, 1] is required), \
+`openpbr(base_weight=1, base_color=0.8, base_metalness=0, base_diffuse_roughness=0, specular_weight=1, \
+specular_color=1, specular_roughness=0.3, specular_ior=1.5, coat_weight=0, coat_color=1, coat_roughness=0, \
+coat_ior=1.6, fuzz_weight=0, fuzz_color=1, fuzz_roughness=0.5)` (OpenPBR Surface's reflection layer, its defaults shown); \
 compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5)` \
 (TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
@@ -346,7 +436,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
     match name {
         "lambertian" | "lambert" => {
             let mut a = Args::new(spec, call, &["albedo"])?;
-            let albedo = a.num("albedo", Some(1.0), 0.0, 1.0, false)?;
+            let albedo = luminance(a.colour("albedo", Some(1.0))?);
             Ok(BrdfSpec::Lambertian { albedo })
         }
         "phong" | "blinn-phong" => {
@@ -431,7 +521,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
         }
         "fon" | "eon" => {
             let mut a = Args::new(spec, call, &["rho", "sigma"])?;
-            let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
+            let rho = luminance(a.colour("rho", Some(1.0))?);
             let sigma = a.num("sigma", None, 0.0, 1.0, false)?;
             Ok(if name == "fon" {
                 BrdfSpec::Fon { rho, sigma }
@@ -441,7 +531,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
         }
         "oren-nayar" => {
             let mut a = Args::new(spec, call, &["rho", "sigma_rad"])?;
-            let rho = a.num("rho", Some(1.0), 0.0, 1.0, false)?;
+            let rho = luminance(a.colour("rho", Some(1.0))?);
             let sigma_rad = a.num("sigma_rad", None, 0.0, core::f64::consts::FRAC_PI_2, false)?;
             let max = radiometry_brdfs::OrenNayar::max_rho(sigma_rad as f32) as f64;
             if rho as f32 as f64 > max {
@@ -461,9 +551,44 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             }
             Ok(BrdfSpec::OrenNayar { rho, sigma_rad })
         }
+        "openpbr" => {
+            if let Some(x) = call
+                .args
+                .iter()
+                .find(|x| OPENPBR_OUTSIDE.contains(&x.key.as_str()))
+            {
+                return Err(err_span(
+                    spec,
+                    x.key_span,
+                    format!(
+                        "`{}` is an OpenPBR parameter outside a reflection-only, isotropic BRDF (see docs/materials.md)",
+                        x.key
+                    ),
+                ));
+            }
+            let mut a = Args::new(spec, call, &OPENPBR_PARAMS)?;
+            let unit = |a: &mut Args<'_>, k: &str, d: f64| a.num(k, Some(d), 0.0, 1.0, false);
+            Ok(BrdfSpec::OpenPbr(OpenPbrSpec {
+                base_weight: unit(&mut a, "base_weight", 1.0)?,
+                base_color: a.colour("base_color", Some(0.8))?,
+                base_metalness: unit(&mut a, "base_metalness", 0.0)?,
+                base_diffuse_roughness: unit(&mut a, "base_diffuse_roughness", 0.0)?,
+                specular_weight: unit(&mut a, "specular_weight", 1.0)?,
+                specular_color: a.colour("specular_color", Some(1.0))?,
+                specular_roughness: unit(&mut a, "specular_roughness", 0.3)?,
+                specular_ior: a.num("specular_ior", Some(1.5), 1.0, 1e3, false)?,
+                coat_weight: unit(&mut a, "coat_weight", 0.0)?,
+                coat_color: a.colour("coat_color", Some(1.0))?,
+                coat_roughness: unit(&mut a, "coat_roughness", 0.0)?,
+                coat_ior: a.num("coat_ior", Some(1.6), 1.0, 1e3, false)?,
+                fuzz_weight: unit(&mut a, "fuzz_weight", 0.0)?,
+                fuzz_color: a.colour("fuzz_color", Some(1.0))?,
+                fuzz_roughness: unit(&mut a, "fuzz_roughness", 0.5)?,
+            }))
+        }
         "sheen" => {
             let mut a = Args::new(spec, call, &["color", "roughness"])?;
-            let color = a.num("color", Some(1.0), 0.0, 1.0, false)?;
+            let color = luminance(a.colour("color", Some(1.0))?);
             let roughness = a.num("roughness", None, MIN_SHEEN_ROUGHNESS, 1.0, false)?;
             Ok(BrdfSpec::Sheen { color, roughness })
         }
@@ -471,7 +596,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, tabulated, mix or coated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, openpbr, tabulated, mix or coated)"
             ),
         )),
     }
@@ -764,6 +889,73 @@ mod tests {
             assert!(shown.contains('^'), "{shown}");
             assert!(shown.contains(spec.trim_end()) || spec.is_empty(), "{shown}");
         }
+    }
+
+    #[test]
+    fn openpbr_spec_has_openpbr_names_defaults_and_rgb_colours() {
+        let BrdfSpec::OpenPbr(d) = parse_brdf("openpbr").unwrap() else {
+            panic!("not openpbr")
+        };
+        assert_eq!(
+            (d.base_weight, d.base_color, d.base_metalness),
+            (1.0, [0.8; 3], 0.0)
+        );
+        assert_eq!(
+            (d.specular_roughness, d.specular_ior, d.coat_ior),
+            (0.3, 1.5, 1.6)
+        );
+        assert_eq!((d.coat_weight, d.fuzz_weight, d.fuzz_roughness), (0.0, 0.0, 0.5));
+        let BrdfSpec::OpenPbr(p) = parse_brdf(
+            "openpbr(base_color=rgb(0.9, 0.5, 0.1), base_metalness=1, specular_color=0.7, coat_weight=0.5, \
+             coat_color=rgb(1, 0.9, 0.8), fuzz_weight=0.25, fuzz_color=rgb(0.2,0.3,0.4), specular_ior=1.4)",
+        )
+        .unwrap() else {
+            panic!("not openpbr")
+        };
+        assert_eq!(p.base_color, [0.9, 0.5, 0.1]);
+        assert_eq!(p.specular_color, [0.7; 3]);
+        assert_eq!(p.coat_color, [1.0, 0.9, 0.8]);
+        assert_eq!(p.fuzz_color, [0.2, 0.3, 0.4]);
+        assert_eq!(
+            (p.base_metalness, p.coat_weight, p.fuzz_weight, p.specular_ior),
+            (1.0, 0.5, 0.25, 1.4)
+        );
+        // Errors point at the offending value or name.
+        for (spec, caret) in [
+            ("openpbr(base_color=rgb(0.9, 1.5, 0.1))", "rgb(0.9, 1.5, 0.1)"),
+            ("openpbr(base_color=rgb(0.9, 0.5))", ")"),
+            ("openpbr(base_color=rgb(0.9, 0.5, 0.1, 0.2))", ","),
+            ("openpbr(base_weight=rgb(1, 1, 1))", "rgb(1, 1, 1)"),
+            ("openpbr(specular_ior=0.5)", "0.5"),
+            ("openpbr(transmission_weight=1)", "transmission_weight"),
+            ("openpbr(coat_darkening=1)", "coat_darkening"),
+            ("openpbr(base_colour=0.5)", "base_colour"),
+            ("openpbr(fuzz_weight=2)", "2"),
+        ] {
+            let e = parse_brdf(spec).unwrap_err();
+            assert_eq!(caret_of(&e), caret, "{spec}: {e}");
+        }
+        assert!(
+            parse_brdf("openpbr(transmission_weight=1)")
+                .unwrap_err()
+                .to_string()
+                .contains("outside a reflection-only")
+        );
+    }
+
+    #[test]
+    fn plugin_colours_accept_rgb_as_luminance() {
+        assert_eq!(
+            parse_brdf("lambertian(albedo=rgb(0.5, 0.5, 0.5))").unwrap(),
+            BrdfSpec::Lambertian { albedo: 0.5 }
+        );
+        let BrdfSpec::Eon { rho, .. } = parse_brdf("eon(rho=rgb(1, 0, 0), sigma=0.5)").unwrap() else {
+            panic!()
+        };
+        assert_eq!(rho, 0.2126);
+        assert_eq!(luminance([0.3; 3]), 0.3);
+        assert!((luminance([1.0, 1.0, 0.0]) - 0.9278).abs() < 1e-12);
+        assert!(parse_brdf("sheen(color=rgb(1, 1, 2), roughness=0.5)").is_err());
     }
 
     #[test]

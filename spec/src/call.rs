@@ -34,6 +34,8 @@ pub enum Value {
     Num(f64, (usize, usize)),
     /// A nested call (or a bare name).
     Call(Call),
+    /// `rgb(R, G, B)`: a colour's three numbers, with the span of the whole value.
+    Rgb([f64; 3], (usize, usize)),
 }
 
 impl Value {
@@ -41,6 +43,7 @@ impl Value {
         match self {
             Value::Num(_, s) => *s,
             Value::Call(c) => c.span,
+            Value::Rgb(_, s) => *s,
         }
     }
 }
@@ -124,6 +127,7 @@ impl<'a> Parser<'a> {
                     self.bump();
                     Value::Num(v, (vt.start, vt.end))
                 }
+                Tok::Ident(ref n) if n == "rgb" => self.rgb()?,
                 Tok::Ident(_) => Value::Call(self.call(depth + 1)?),
                 _ => return Err(self.expected(&format!("a value for `{key}`"))),
             };
@@ -143,6 +147,37 @@ impl<'a> Parser<'a> {
         let close = self.bump();
         call.span.1 = close.end;
         Ok(call)
+    }
+
+    /// `rgb(R, G, B)`, three numbers (positional), at the current token.
+    fn rgb(&mut self) -> Result<Value, SpecError> {
+        let start = self.bump().start;
+        if self.peek().tok != Tok::LParen {
+            return Err(self.expected("`(` after `rgb`"));
+        }
+        self.bump();
+        let mut c = [0.0; 3];
+        for (i, v) in c.iter_mut().enumerate() {
+            let t = self.peek().clone();
+            let Tok::Num(x) = t.tok else {
+                return Err(self.expected("a number (rgb takes three: rgb(R, G, B))"));
+            };
+            self.bump();
+            *v = x;
+            let (sep, what) = if i < 2 {
+                (Tok::Comma, "`,` (rgb takes three numbers)")
+            } else {
+                (Tok::RParen, "`)` (rgb takes three numbers)")
+            };
+            if self.peek().tok != sep {
+                return Err(self.expected(what));
+            }
+            if i < 2 {
+                self.bump();
+            }
+        }
+        let close = self.bump();
+        Ok(Value::Rgb(c, (start, close.end)))
     }
 
     pub(crate) fn finish(&mut self) -> Result<(), SpecError> {

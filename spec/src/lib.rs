@@ -51,7 +51,7 @@ pub mod model;
 pub use angles::parse_angles;
 pub use brdf::{
     BRDF_SPEC_HELP, BrdfSpec, Distribution, FresnelSpec, G2Kind, MAX_ALPHA, MAX_EXPONENT, MIN_ALPHA,
-    MultipleScattering, parse_brdf,
+    MultipleScattering, OPENPBR_PARAMS, OpenPbrSpec, luminance, parse_brdf,
 };
 pub use call::{Arg, Call, Value, parse_call, parse_sum};
 pub use error::SpecError;

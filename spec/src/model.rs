@@ -20,7 +20,7 @@ use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx,
     HeightCorrelated, KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel,
-    OrenNayar, Schlick, Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
+    OpenPbr, OpenPbrParams, OrenNayar, Schlick, Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -204,6 +204,27 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
         BrdfSpec::Eon { rho, sigma } => Eon::new(rho as f32, sigma as f32).map(boxed),
         BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(rho as f32, sigma_rad as f32).map(boxed),
         BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
+        BrdfSpec::OpenPbr(ref p) => {
+            let c = |v: [f64; 3]| crate::brdf::luminance(v) as f32;
+            OpenPbr::new(OpenPbrParams {
+                base_weight: p.base_weight as f32,
+                base_color: c(p.base_color),
+                base_metalness: p.base_metalness as f32,
+                base_diffuse_roughness: p.base_diffuse_roughness as f32,
+                specular_weight: p.specular_weight as f32,
+                specular_color: c(p.specular_color),
+                specular_roughness: p.specular_roughness as f32,
+                specular_ior: p.specular_ior as f32,
+                coat_weight: p.coat_weight as f32,
+                coat_color: c(p.coat_color),
+                coat_roughness: p.coat_roughness as f32,
+                coat_ior: p.coat_ior as f32,
+                fuzz_weight: p.fuzz_weight as f32,
+                fuzz_color: c(p.fuzz_color),
+                fuzz_roughness: p.fuzz_roughness as f32,
+            })
+            .map(boxed)
+        }
         BrdfSpec::Phong { exponent, ks, kd } => {
             ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)
         }
@@ -480,7 +501,10 @@ mod tests {
             let b = build_brdf(text, &parse_brdf(text).unwrap()).unwrap();
             let a = b.directional_albedo(wo);
             // The microfacet plugins' albedo is still the sampled estimate: only closed forms are bounds.
-            assert!(a.is_bound || text.starts_with("coated"), "{text}");
+            assert!(
+                a.is_bound || text.starts_with("coated") || text.starts_with("openpbr"),
+                "{text}"
+            );
             a.value
         };
         assert!((albedo("eon(rho=1, sigma=0.5)") - 1.0).abs() < 2e-6);
@@ -491,6 +515,13 @@ mod tests {
         // In compositions: a plastic over EON, and a sum.
         let plastic = albedo("coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=1, sigma=0.5))");
         assert!(plastic > 0.5 && plastic <= 1.0, "{plastic}");
+        // OpenPBR's defaults: a white-ish dielectric, albedo below 1; an rgb colour enters as its luminance.
+        let d = albedo("openpbr");
+        assert!(d > 0.5 && d < 1.0, "{d}");
+        assert_eq!(albedo("openpbr(base_color=rgb(0.8, 0.8, 0.8))"), d);
+        let red = albedo("openpbr(base_color=rgb(1, 0, 0))");
+        let lum = albedo("openpbr(base_color=0.2126)");
+        assert_eq!(red, lum);
         let sum = albedo("eon(rho=0.5, sigma=1) + lambertian(albedo=0.25)");
         let eon = albedo("eon(rho=0.5, sigma=1)");
         assert!(eon < 0.5 && (sum - (eon + 0.25)).abs() < 1e-6, "{sum} {eon}");

@@ -99,6 +99,9 @@ pub struct Coated<T: Brdf, B> {
     table: [T::Spectrum; TOP_NODES],
     /// The largest error the top stated at the nodes.
     top_error: f32,
+    /// The tint `K` of the top's reflection (1 unless set by
+    /// [`with_top_tint`](Coated::with_top_tint)).
+    tint: T::Spectrum,
 }
 
 impl<T, B, S> Coated<T, B>
@@ -150,7 +153,27 @@ where
             average: average.clamp(0.0, 1.0),
             table,
             top_error,
+            tint: S::splat(1.0),
         }
+    }
+
+    /// Tints the top's reflection by `K ∈ [0, 1]` per channel, leaving what
+    /// it lets through unchanged: `f = K ⊙ f_T + τ ⊙ f_B`, `τ` still from the
+    /// untinted `E_T` (OpenPBR Surface 1.1, `specular_color`: "only the
+    /// Fresnel reflection from above is tinted", an energy-removing
+    /// convenience). Energy: `E ≤ K E_T + (1 − E_T) E_B ≤ 1`.
+    ///
+    /// # Errors
+    /// [`ComposeError::TopTint`] for a channel outside `[0, 1]` or not finite.
+    pub fn with_top_tint(mut self, tint: S) -> Result<Self, ComposeError> {
+        for i in 0..S::CHANNELS {
+            let c = tint.channel(i);
+            if !(0.0..=1.0).contains(&c) {
+                return Err(ComposeError::TopTint(c));
+            }
+        }
+        self.tint = tint;
+        Ok(self)
     }
 
     /// The top's albedo at `μ` as the layer uses it: the larger of the two
@@ -252,7 +275,7 @@ where
         let through = self.absorption(mu, mu)
             * et.map(|e| (1.0 - e).clamp(0.0, 1.0))
             * self.base.directional_albedo(wo).value;
-        pick_first(et.average(), through.average())
+        pick_first((et * self.tint).average(), through.average())
     }
 }
 
@@ -270,7 +293,7 @@ where
             return S::zero();
         }
         let fb = self.base.eval(wi, wo);
-        let top = self.top.eval(wi, wo);
+        let top = self.top.eval(wi, wo) * self.tint;
         if fb.is_black() {
             return top;
         }
@@ -313,7 +336,7 @@ where
         let est = upper * self.absorption(mu, mu) * (self.gain * (1.0 - self.average)).min(1.0);
         let spread = (upper - est).max_channel().max(est.max_channel());
         Albedo {
-            value: et + est,
+            value: et * self.tint + est,
             error: self.top_error * (1.0 + eb.value.max_channel()) + eb.error + spread,
             // The table's interpolation error is not bounded.
             is_bound: false,

@@ -15,6 +15,9 @@ pub enum ComposeError {
     CoatColor(f32),
     /// A coat index of refraction below 1 or not finite.
     CoatIor(f32),
+    /// A [`Coated`](super::Coated) top tint channel outside `[0, 1]` or not
+    /// finite.
+    TopTint(f32),
 }
 
 impl fmt::Display for ComposeError {
@@ -24,6 +27,7 @@ impl fmt::Display for ComposeError {
             Self::Scale(s) => write!(f, "scale factor {s} is negative or not finite"),
             Self::CoatColor(c) => write!(f, "coat colour {c} is outside [0, 1]"),
             Self::CoatIor(e) => write!(f, "coat index of refraction {e} is below 1 or not finite"),
+            Self::TopTint(t) => write!(f, "top tint {t} is outside [0, 1]"),
         }
     }
 }

@@ -86,6 +86,27 @@ where
     }
 }
 
+impl<A, B, S> Mix<A, B>
+where
+    A: Brdf<Spectrum = S>,
+    B: Brdf<Spectrum = S>,
+    S: Spectrum,
+{
+    /// The mixture density at pick probability `p`; one expression for
+    /// `sample` and `pdf`. With `w = 0` (`p = 0`) or `w = 1` (`p = 1`) the
+    /// unused lobe's density is not computed (its term is `0 · pdf = 0`).
+    #[inline]
+    fn density(&self, p: f32, wi: Vec3, wo: Vec3) -> f32 {
+        if self.w == 0.0 {
+            return mixture_pdf(p, 0.0, self.b.pdf(wi, wo));
+        }
+        if self.w == 1.0 {
+            return mixture_pdf(p, self.a.pdf(wi, wo), 0.0);
+        }
+        mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+    }
+}
+
 impl<A, B, S> Brdf for Mix<A, B>
 where
     A: Brdf<Spectrum = S>,
@@ -96,19 +117,25 @@ where
 
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        // `w = 0` or `1` leave one lobe: the formula's value (`0 · f + 1 · g
+        // = g` for finite `f`) without evaluating the other.
+        if self.w == 0.0 {
+            return self.b.eval(wi, wo);
+        }
+        if self.w == 1.0 {
+            return self.a.eval(wi, wo);
+        }
         self.a.eval(wi, wo) * self.w + self.b.eval(wi, wo) * (1.0 - self.w)
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         let p = self.pick_probability(wo);
         let wi = pick_and_sample(p, u, |v| self.a.sample(wo, v), |v| self.b.sample(wo, v))?;
-        let pdf = mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo));
-        finish_sample(wi, self.eval(wi, wo), pdf)
+        finish_sample(wi, self.eval(wi, wo), self.density(p, wi, wo))
     }
 
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        let p = self.pick_probability(wo);
-        mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+        self.density(self.pick_probability(wo), wi, wo)
     }
 
     fn is_smooth(&self) -> bool {
@@ -116,6 +143,12 @@ where
     }
 
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
+        if self.w == 0.0 {
+            return self.b.directional_albedo(wo);
+        }
+        if self.w == 1.0 {
+            return self.a.directional_albedo(wo);
+        }
         let (ea, eb) = (self.a.directional_albedo(wo), self.b.directional_albedo(wo));
         Albedo {
             value: ea.value * self.w + eb.value * (1.0 - self.w),

@@ -15,7 +15,8 @@
 //!   (Mitsuba 3), implementing [`ShadowingMasking`];
 //! * `F` — [`NoFresnel`] (default, `F = 1`), [`Schlick`], [`Dielectric`],
 //!   [`Conductor`] or the F82-tint metal term [`F82Tint`] (OpenPBR),
-//!   implementing [`Fresnel`].
+//!   implementing [`Fresnel`]; [`Achromatic`] puts a monochrome term on
+//!   every channel of an RGB or spectral BRDF.
 //!
 //! Zero-sized choices (`NoFresnel`, `HeightCorrelated`, `Separable`) cost
 //! nothing at run time: `NoFresnel::eval` is the constant `1.0` and inlines
@@ -38,6 +39,7 @@
 //! # }
 //! ```
 
+mod achromatic;
 mod albedo_data;
 mod albedo_table;
 #[cfg(feature = "simd")]
@@ -61,6 +63,7 @@ mod special_lanes;
 #[cfg(test)]
 mod tests;
 
+pub use achromatic::Achromatic;
 pub use albedo_table::{
     ALBEDO_TABLE_ERROR, ALPHA_REF, AlbedoTable, EnergyTable, EnergyTables, N_ALPHA, N_MU, alpha_node,
     mu_node, node_scale,

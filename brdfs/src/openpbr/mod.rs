@@ -1,0 +1,332 @@
+//! The reflection layer of OpenPBR Surface as one plugin: [`OpenPbr`], built
+//! from this crate's lobes and `radiometry::compose`.
+//!
+//! # The layer stack
+//!
+//! OpenPBR Surface 1.1 (Academy Software Foundation, 2024; §"Model") stacks
+//! slabs and mixes them by weights. Restricted to reflection from an opaque,
+//! isotropic surface, the stack is
+//!
+//! ```text
+//! f        = fuzz over coated                                   (weight w_F)
+//! coated   = mix(w_C, coat over substrate, substrate)
+//! substrate= mix(m, metal, glossy-diffuse)
+//! metal    = ξ_s · f_GGX(α_s; F82-tint(f0 = w_B C_B, t = C_s)),  Kulla–Conty compensated
+//! glossy   = C_s ⊙ f_GGX(α_s; dielectric η_s) over f_EON(ρ = w_B C_B, σ = r_D)
+//! coat     = f_GGX(α_c; dielectric η_c), absorption C_c
+//! fuzz     = w_F · f_sheen(C_F, r_F)
+//! ```
+//!
+//! where `A over B` is [`Coated`]'s albedo-scaled layering (reciprocal:
+//! `f_A + t(ωi) t(ωo)(1 − E_min) f_B`, see its docs) and `α = r²` for every
+//! roughness `r` (OpenPBR §"Specular"). The dielectric's index comes from
+//! `specular_ior` and `specular_weight` as the specification defines it:
+//!
+//! ```text
+//! η   = specular_ior / (1 + w_C (coat_ior − 1))         (eq. 60: the base's index relative to the coat)
+//! F0  = ((η − 1)/(η + 1))²
+//! ε   = sign(η − 1) √(min(ξ_s, 1/F0) F0),   η_s = (1 + ε)/(1 − ε)   (eq. 26: ξ_s scales F0)
+//! ```
+//!
+//! `specular_color` `C_s` tints only the dielectric's reflection from above
+//! (the base below sees `1 − E` of the untinted layer:
+//! [`Coated::with_top_tint`]) and is the F82 tint of the metal.
+//!
+//! # Parameters
+//!
+//! [`OpenPbrParams`] has OpenPBR's names and defaults; colours are any
+//! [`Spectrum`] (`f32`, RGB as `glam::Vec3`, sampled). Domains (checked by
+//! [`OpenPbr::new`], [`BrdfError`] otherwise): every weight, colour channel,
+//! roughness and `base_metalness` in `[0, 1]`; `specular_ior` and `coat_ior`
+//! in `[1, 1000]`. Documented fallbacks, as a renderer needs them:
+//!
+//! * roughness 0 (a perfect mirror; OpenPBR allows it) is raised to the
+//!   microfacet floor `α = 10⁻⁴` (`r = 0.01`);
+//! * `fuzz_roughness` below 0.07 is raised to 0.07, the smallest the sheen
+//!   tables cover ([`MIN_SHEEN_ROUGHNESS`](crate::sheen::MIN_SHEEN_ROUGHNESS)).
+//!
+//! # Outside a reflection-only isotropic BRDF
+//!
+//! These OpenPBR parameters have no counterpart here, and the plugin behaves
+//! as if each were at the value in brackets: `transmission_weight` (0: the
+//! dielectric base is opaque, its body is the EON diffuse),
+//! `subsurface_weight` (0: likewise), `specular_anisotropy` and
+//! `coat_anisotropy` (0: isotropic), `thin_film_weight` (0), `geometry_*`
+//! (opaque, one-sided), `emission_*` (0), `coat_darkening` (0: the base is not
+//! darkened by light trapped in the coat — OpenPBR's default is 1), the coat's
+//! roughening of the base lobes (not applied), and `fuzz_weight`'s layering is
+//! `Coated`'s reciprocal form rather than the specification's one-sided
+//! `(1 − w_F E_F(ωo))`.
+//!
+//! # Energy
+//!
+//! Every piece keeps `E ≤ 1` (EON, the Kulla–Conty metal, `Coated`, `Mix`),
+//! up to the error of the tops' reported albedos that `Coated` reads (see its
+//! docs): the defaults stay below 1 at every `θo`, and a white metal
+//! (`base_metalness = 1`, `base_color = specular_color = 1`) keeps at least
+//! 99 % at `r ≤ 0.7` (`α ≤ 0.5`).
+//!
+//! ```
+//! use radiometry::{Brdf, glam::Vec3};
+//! use radiometry_brdfs::openpbr::{OpenPbr, OpenPbrParams};
+//! let plastic = OpenPbr::new(OpenPbrParams::<Vec3> {
+//!     base_color: Vec3::new(0.8, 0.1, 0.1),
+//!     specular_roughness: 0.2,
+//!     ..OpenPbrParams::default()
+//! })?;
+//! let wo = Vec3::new(0.6, 0.0, 0.8);
+//! let wi = Vec3::new(-0.3, 0.2, 0.93).normalize();
+//! assert_eq!(plastic.eval(wi, wo), plastic.eval(wo, wi)); // reciprocal
+//! let s = plastic.sample(wo, [0.3, 0.6]).unwrap();
+//! assert_eq!(s.pdf, plastic.pdf(s.wi, wo)); // bit for bit
+//! assert!(plastic.directional_albedo(wo).value.max_element() < 1.0);
+//! # Ok::<(), radiometry_brdfs::BrdfError>(())
+//! ```
+
+#[cfg(test)]
+mod tests;
+
+use crate::error::{BrdfError, check_range};
+use crate::microfacet::{
+    Achromatic, Dielectric, F82Tint, Ggx, HeightCorrelated, KullaConty, MAX_ETA, MIN_ALPHA, Microfacet,
+};
+use crate::rough_diffuse::Eon;
+use crate::sheen::{MIN_SHEEN_ROUGHNESS, Sheen};
+use radiometry::compose::{Coated, ComposeError, Mix, Scaled};
+use radiometry::glam::Vec3;
+use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
+
+/// The parameters of [`OpenPbr`], with OpenPBR Surface 1.1's names and
+/// defaults ([`Default`]). Plain data: [`OpenPbr::new`] validates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OpenPbrParams<S> {
+    /// `base_weight` `w_B` (default 1): scales `base_color`.
+    pub base_weight: f32,
+    /// `base_color` `C_B` (default 0.8): the diffuse albedo and the metal's
+    /// reflectance at normal incidence.
+    pub base_color: S,
+    /// `base_metalness` `m` (default 0): the mix of metal and glossy-diffuse.
+    pub base_metalness: f32,
+    /// `base_diffuse_roughness` `r_D` (default 0): EON's `σ`.
+    pub base_diffuse_roughness: f32,
+    /// `specular_weight` `ξ_s` (default 1): scales the dielectric's `F0`
+    /// (through its index) and the metal lobe.
+    pub specular_weight: f32,
+    /// `specular_color` `C_s` (default 1): tints the dielectric's
+    /// reflection; the metal's F82 tint.
+    pub specular_color: S,
+    /// `specular_roughness` `r_s` (default 0.3): `α_s = r_s²`.
+    pub specular_roughness: f32,
+    /// `specular_ior` (default 1.5).
+    pub specular_ior: f32,
+    /// `coat_weight` `w_C` (default 0).
+    pub coat_weight: f32,
+    /// `coat_color` `C_c` (default 1): the coat's absorption (the square of
+    /// its transmittance at normal incidence).
+    pub coat_color: S,
+    /// `coat_roughness` `r_c` (default 0): `α_c = r_c²`.
+    pub coat_roughness: f32,
+    /// `coat_ior` `η_c` (default 1.6).
+    pub coat_ior: f32,
+    /// `fuzz_weight` `w_F` (default 0).
+    pub fuzz_weight: f32,
+    /// `fuzz_color` `C_F` (default 1).
+    pub fuzz_color: S,
+    /// `fuzz_roughness` `r_F` (default 0.5).
+    pub fuzz_roughness: f32,
+}
+
+impl<S: Spectrum> Default for OpenPbrParams<S> {
+    /// OpenPBR Surface 1.1's defaults: a white-ish (0.8) dielectric base with
+    /// a `r = 0.3`, `η = 1.5` specular layer; no coat, no fuzz.
+    fn default() -> Self {
+        Self {
+            base_weight: 1.0,
+            base_color: S::splat(0.8),
+            base_metalness: 0.0,
+            base_diffuse_roughness: 0.0,
+            specular_weight: 1.0,
+            specular_color: S::splat(1.0),
+            specular_roughness: 0.3,
+            specular_ior: 1.5,
+            coat_weight: 0.0,
+            coat_color: S::splat(1.0),
+            coat_roughness: 0.0,
+            coat_ior: 1.6,
+            fuzz_weight: 0.0,
+            fuzz_color: S::splat(1.0),
+            fuzz_roughness: 0.5,
+        }
+    }
+}
+
+type DielectricLobe<S> = Microfacet<Ggx, HeightCorrelated, Achromatic<Dielectric, S>>;
+type Metal<S> = Scaled<KullaConty<Ggx, HeightCorrelated, F82Tint<S>>, S>;
+type Glossy<S> = Coated<DielectricLobe<S>, Eon<S>>;
+type Substrate<S> = Mix<Metal<S>, Glossy<S>>;
+type CoatMix<S> = Mix<Coated<DielectricLobe<S>, Substrate<S>>, Substrate<S>>;
+type Stack<S> = Coated<Scaled<Sheen<S>, S>, CoatMix<S>>;
+
+/// OpenPBR Surface's reflection: metal, glossy-diffuse (a dielectric
+/// specular layer over EON), an optional coat and an optional fuzz, layered
+/// by albedo scaling (see the [module docs](self) for the stack, the
+/// formulas and what is outside a reflection-only BRDF).
+///
+/// Sampling picks layers and lobes in proportion to their albedos at `ωo`
+/// (`radiometry::compose`), with the exact mixture density. A layer whose
+/// weight is 0 costs nothing per call: `Mix` with weight 0 or 1 evaluates
+/// one side, and a zero `fuzz_weight` skips the fuzz layer. Construction
+/// tabulates each layer's top albedo once (three 128-node tables).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OpenPbr<S: Spectrum = f32> {
+    params: OpenPbrParams<S>,
+    stack: Stack<S>,
+    fuzz: bool,
+}
+
+/// `α = max(r², 10⁻⁴)`.
+fn alpha(r: f32) -> f32 {
+    (r * r).max(MIN_ALPHA)
+}
+
+/// OpenPBR eq. 26: the index whose `F0` is `ξ F0(η)` (`ξ` capped at
+/// `1/F0`), on the same side of 1 as `η`; clamped to the dielectric's
+/// domain.
+pub fn modulated_ior(eta: f32, xi: f32) -> f32 {
+    let r = (eta - 1.0) / (eta + 1.0);
+    let f0 = r * r;
+    if f0 <= 0.0 || !f0.is_finite() {
+        return 1.0;
+    }
+    let scaled = (xi.max(0.0) * f0).min(1.0);
+    let eps = libm::sqrtf(scaled).copysign(eta - 1.0);
+    ((1.0 + eps) / (1.0 - eps)).clamp(crate::microfacet::MIN_ETA, MAX_ETA)
+}
+
+fn colour<S: Spectrum>(name: &'static str, c: S) -> Result<S, BrdfError> {
+    for i in 0..S::CHANNELS {
+        check_range(name, c.channel(i), 0.0, 1.0)?;
+    }
+    Ok(c)
+}
+
+fn composed(e: ComposeError) -> BrdfError {
+    // Unreachable after the checks of `OpenPbr::new`; kept typed.
+    let what = match e {
+        ComposeError::CoatColor(_) => "coat_color outside [0, 1]",
+        ComposeError::CoatIor(_) => "coat_ior below 1",
+        _ => "a layer weight or colour outside [0, 1]",
+    };
+    BrdfError::Constraint { what }
+}
+
+impl<S: Spectrum> OpenPbr<S> {
+    /// Builds the stack from `p`.
+    ///
+    /// # Errors
+    /// [`BrdfError::NotFinite`] / [`BrdfError::OutOfRange`] naming the
+    /// OpenPBR parameter outside its domain (see the [module docs](self)).
+    pub fn new(p: OpenPbrParams<S>) -> Result<Self, BrdfError> {
+        let unit = |name, v| check_range(name, v, 0.0, 1.0);
+        let base_weight = unit("base_weight", p.base_weight)?;
+        let base_color = colour("base_color", p.base_color)?;
+        let metalness = unit("base_metalness", p.base_metalness)?;
+        let sigma = unit("base_diffuse_roughness", p.base_diffuse_roughness)?;
+        let xi = unit("specular_weight", p.specular_weight)?;
+        let spec_color = colour("specular_color", p.specular_color)?;
+        let r_s = unit("specular_roughness", p.specular_roughness)?;
+        let ior = check_range("specular_ior", p.specular_ior, 1.0, MAX_ETA)?;
+        let coat_weight = unit("coat_weight", p.coat_weight)?;
+        let coat_color = colour("coat_color", p.coat_color)?;
+        let r_c = unit("coat_roughness", p.coat_roughness)?;
+        let coat_ior = check_range("coat_ior", p.coat_ior, 1.0, MAX_ETA)?;
+        let fuzz_weight = unit("fuzz_weight", p.fuzz_weight)?;
+        let fuzz_color = colour("fuzz_color", p.fuzz_color)?;
+        let r_f = unit("fuzz_roughness", p.fuzz_roughness)?;
+
+        let rho = base_color * base_weight;
+        let ggx_s = Ggx::new(alpha(r_s))?;
+        let metal = Scaled::new(
+            KullaConty::new(ggx_s, F82Tint::new(rho, spec_color)?),
+            S::splat(xi),
+        )
+        .map_err(composed)?;
+        let eta = ior / (1.0 + coat_weight * (coat_ior - 1.0));
+        let specular = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(modulated_ior(eta, xi))?));
+        let glossy = Coated::new(specular, Eon::new(rho, sigma)?)
+            .with_top_tint(spec_color)
+            .map_err(composed)?;
+        let substrate = Mix::new(metalness, metal, glossy).map_err(composed)?;
+        let coat = Microfacet::new(Ggx::new(alpha(r_c))?, Achromatic::new(Dielectric::new(coat_ior)?));
+        let coated = Mix::new(
+            coat_weight,
+            Coated::with_absorption(coat, substrate, coat_color, coat_ior).map_err(composed)?,
+            substrate,
+        )
+        .map_err(composed)?;
+        let fuzz = Scaled::new(
+            Sheen::new(fuzz_color, r_f.max(MIN_SHEEN_ROUGHNESS))?,
+            S::splat(fuzz_weight),
+        )
+        .map_err(composed)?;
+        Ok(Self {
+            params: p,
+            stack: Coated::new(fuzz, coated),
+            fuzz: fuzz_weight > 0.0,
+        })
+    }
+
+    /// The parameters it was built from.
+    pub fn params(&self) -> &OpenPbrParams<S> {
+        &self.params
+    }
+
+    /// The layers below the fuzz (the whole BRDF when `fuzz_weight = 0`).
+    fn coated(&self) -> &CoatMix<S> {
+        self.stack.base()
+    }
+}
+
+impl<S: Spectrum> Brdf for OpenPbr<S> {
+    type Spectrum = S;
+
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        if self.fuzz {
+            self.stack.eval(wi, wo)
+        } else {
+            self.coated().eval(wi, wo)
+        }
+    }
+
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        if self.fuzz {
+            self.stack.sample(wo, u)
+        } else {
+            self.coated().sample(wo, u)
+        }
+    }
+
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if self.fuzz {
+            self.stack.pdf(wi, wo)
+        } else {
+            self.coated().pdf(wi, wo)
+        }
+    }
+
+    /// `false`: `Coated` reads its tops' albedos from tables.
+    fn is_smooth(&self) -> bool {
+        false
+    }
+
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
+        if self.fuzz {
+            self.stack.directional_albedo(wo)
+        } else {
+            self.coated().directional_albedo(wo)
+        }
+    }
+}
+
+impl<S: Spectrum> IsotropicBrdf for OpenPbr<S> {}

@@ -1,0 +1,349 @@
+use super::*;
+use crate::Lambertian;
+use radiometry::integrator::{Auto, DEFAULT_MAX_BUDGET, DirectionalAlbedo, integrate_to_tolerance};
+
+fn dir(theta_deg: f32, phi: f32) -> Vec3 {
+    let t = theta_deg.to_radians();
+    Vec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+}
+
+/// `∫ f cos θi dωi` by the crate's `auto` integrator to an absolute
+/// tolerance (the integrators are verified against independent references in
+/// the root crate's suites): the albedo of the BRDF as evaluated, not as it
+/// reports it.
+fn integrated_albedo<B: Brdf<Spectrum = f32>>(b: &B, wo: Vec3, tol: f64) -> (f64, f64) {
+    let g = DirectionalAlbedo { brdf: b, wo };
+    let out = integrate_to_tolerance(&Auto::new(), &g, tol, 64, DEFAULT_MAX_BUDGET).unwrap();
+    assert!(out.reached(), "albedo at {wo:?} did not reach {tol}: {out:?}");
+    (out.estimate.value, out.estimate.error)
+}
+
+const THETAS: [f32; 9] = [0.0, 20.0, 40.0, 60.0, 70.0, 80.0, 85.0, 89.0, 89.9];
+
+#[test]
+fn defaults_are_openpbr_defaults_and_keep_albedo_below_one() {
+    let p = OpenPbrParams::<f32>::default();
+    assert_eq!((p.base_weight, p.base_color, p.base_metalness), (1.0, 0.8, 0.0));
+    assert_eq!(
+        (p.specular_roughness, p.specular_ior, p.coat_ior),
+        (0.3, 1.5, 1.6)
+    );
+    assert_eq!((p.coat_weight, p.fuzz_weight, p.fuzz_roughness), (0.0, 0.0, 0.5));
+    let m = OpenPbr::new(p).unwrap();
+    for t in THETAS {
+        let wo = dir(t, 0.4);
+        let (e, err) = integrated_albedo(&m, wo, 1e-3);
+        assert!(e + err <= 1.0, "θo = {t}°: albedo {e} ± {err}");
+        assert!(e > 0.5, "θo = {t}°: albedo {e} (a white-ish base)");
+        // The reported albedo is close to the integral.
+        let r = m.directional_albedo(wo);
+        assert!(
+            (f64::from(r.value) - e).abs() <= f64::from(r.error) + err,
+            "{t}: {r:?} vs {e}"
+        );
+    }
+}
+
+#[test]
+fn white_metal_loses_less_than_one_percent_up_to_alpha_half() {
+    for r in [0.1f32, 0.3, 0.5, 0.7] {
+        let m = OpenPbr::new(OpenPbrParams::<f32> {
+            base_metalness: 1.0,
+            base_color: 1.0,
+            specular_color: 1.0,
+            specular_roughness: r,
+            ..OpenPbrParams::default()
+        })
+        .unwrap();
+        for t in THETAS {
+            let (e, err) = integrated_albedo(&m, dir(t, 1.1), 1e-3);
+            assert!(
+                e - err >= 0.99,
+                "r = {r}, θo = {t}°: white metal albedo {e} ± {err}"
+            );
+            assert!(e - err <= 1.0, "r = {r}, θo = {t}°: albedo {e} ± {err} above 1");
+        }
+    }
+}
+
+/// Parameter sets that turn each layer on.
+fn variety() -> [OpenPbrParams<f32>; 5] {
+    let d = OpenPbrParams::<f32>::default();
+    [
+        d,
+        OpenPbrParams {
+            base_metalness: 0.4,
+            base_diffuse_roughness: 0.7,
+            specular_roughness: 0.1,
+            ..d
+        },
+        OpenPbrParams {
+            coat_weight: 1.0,
+            coat_roughness: 0.2,
+            coat_color: 0.7,
+            base_metalness: 1.0,
+            base_color: 0.9,
+            specular_color: 0.8,
+            ..d
+        },
+        OpenPbrParams {
+            fuzz_weight: 0.8,
+            fuzz_roughness: 0.4,
+            fuzz_color: 0.9,
+            coat_weight: 0.5,
+            ..d
+        },
+        OpenPbrParams {
+            specular_roughness: 0.0,
+            coat_roughness: 0.0,
+            coat_weight: 0.3,
+            fuzz_weight: 1.0,
+            fuzz_roughness: 0.0,
+            specular_weight: 0.5,
+            ..d
+        },
+    ]
+}
+
+#[test]
+fn reciprocal_and_pdf_of_sample_is_bit_exact() {
+    for p in variety() {
+        let m = OpenPbr::new(p).unwrap();
+        let mut n = 0;
+        for i in 0..24 {
+            let wo = dir(3.7 * i as f32, 0.9 * i as f32);
+            for j in 0..24 {
+                let wi = dir(3.9 * j as f32 + 1.0, 2.1 * j as f32);
+                let (a, b) = (m.eval(wi, wo), m.eval(wo, wi));
+                assert!(a.is_finite() && a >= 0.0);
+                assert!((a - b).abs() <= 1e-5 * a.max(b).max(1.0), "{p:?}: {a} vs {b}");
+                let u = [(j as f32 + 0.5) / 24.0, (i as f32 * 0.618_034).fract()];
+                if let Some(s) = m.sample(wo, u) {
+                    assert_eq!(s.pdf, m.pdf(s.wi, wo), "{p:?}");
+                    assert!(s.weight.is_finite() && s.weight >= 0.0);
+                    n += 1;
+                }
+            }
+        }
+        assert!(n > 400, "{p:?}: only {n} samples");
+    }
+}
+
+#[test]
+fn energy_at_most_one_for_every_variety() {
+    for p in variety() {
+        let m = OpenPbr::new(p).unwrap();
+        for t in [0.0f32, 45.0, 75.0, 88.0] {
+            let wo = dir(t, 0.3);
+            let (e, err) = integrated_albedo(&m, wo, 1e-3);
+            let stated = m.directional_albedo(wo);
+            // Allowed: the tops' stated albedo errors (the layering's bound).
+            assert!(
+                e - err <= 1.0 + f64::from(stated.error),
+                "{p:?} θo = {t}°: {e} ± {err}"
+            );
+        }
+    }
+}
+
+#[test]
+fn hard_inputs_stay_finite() {
+    for p in variety() {
+        let m = OpenPbr::new(p).unwrap();
+        let hard = [
+            Vec3::Z,
+            Vec3::new(1.0, 0.0, 1e-7),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(f32::NAN, 0.0, 1.0),
+            Vec3::new(f32::INFINITY, 0.0, 1.0),
+            Vec3::ZERO,
+        ];
+        for &wo in &hard {
+            for &wi in &hard {
+                let f = m.eval(wi, wo);
+                assert!(f.is_finite() && f >= 0.0, "{wi:?} {wo:?}: {f}");
+                let pdf = m.pdf(wi, wo);
+                assert!(pdf.is_finite() && pdf >= 0.0);
+            }
+            for u in [
+                [0.0, 0.0],
+                [1.0 - f32::EPSILON / 2.0; 2],
+                [f32::NAN, 0.5],
+                [2.0, -1.0],
+            ] {
+                if let Some(s) = m.sample(wo, u) {
+                    assert!(s.weight.is_finite() && s.pdf > 0.0 && s.wi.is_finite());
+                }
+            }
+            let a = m.directional_albedo(wo);
+            assert!(a.value.is_finite() && a.error.is_finite());
+        }
+    }
+}
+
+#[test]
+fn layers_reduce_to_their_pieces() {
+    let wo = dir(50.0, 0.2);
+    let dirs: [Vec3; 4] = [dir(10.0, 1.0), dir(45.0, 3.0), dir(70.0, -2.0), dir(89.0, 0.5)];
+    // specular_weight 0: η_s = 1, no specular reflection; the glossy base is
+    // EON alone, bit for bit.
+    let d = OpenPbrParams::<f32> {
+        specular_weight: 0.0,
+        base_color: 0.6,
+        base_weight: 0.9,
+        base_diffuse_roughness: 0.4,
+        ..OpenPbrParams::default()
+    };
+    let m = OpenPbr::new(d).unwrap();
+    let eon = Eon::new(0.6f32 * 0.9, 0.4).unwrap();
+    for wi in dirs {
+        assert_eq!(m.eval(wi, wo), eon.eval(wi, wo));
+    }
+    // base_metalness 1: the Kulla–Conty F82-tint metal scaled by ξ_s.
+    let d = OpenPbrParams::<f32> {
+        base_metalness: 1.0,
+        specular_weight: 0.7,
+        specular_color: 0.9,
+        ..OpenPbrParams::default()
+    };
+    let m = OpenPbr::new(d).unwrap();
+    let metal = KullaConty::<_, HeightCorrelated, _>::new(
+        Ggx::new(0.09).unwrap(),
+        F82Tint::new(0.8f32, 0.9).unwrap(),
+    );
+    for wi in dirs {
+        assert_eq!(m.eval(wi, wo), metal.eval(wi, wo) * 0.7);
+    }
+    // A coat of index 1 reflects nothing and lets everything through.
+    let base = OpenPbrParams::<f32>::default();
+    let clear = OpenPbrParams {
+        coat_weight: 1.0,
+        coat_ior: 1.0,
+        coat_color: 1.0,
+        ..base
+    };
+    let (a, b) = (OpenPbr::new(base).unwrap(), OpenPbr::new(clear).unwrap());
+    for wi in dirs {
+        assert_eq!(a.eval(wi, wo), b.eval(wi, wo));
+    }
+    // A fuzz of weight 0 is skipped; the same stack under a fuzz of tiny
+    // weight differs by about that weight.
+    let fuzzy = OpenPbr::new(OpenPbrParams {
+        fuzz_weight: 1e-3,
+        ..base
+    })
+    .unwrap();
+    for wi in dirs {
+        let (x, y) = (a.eval(wi, wo), fuzzy.eval(wi, wo));
+        assert!((x - y).abs() <= 2e-3 * x.max(1.0), "{x} vs {y}");
+    }
+    // A different (non-test) spectrum type builds too.
+    let _ = Lambertian::new(0.5f32).unwrap();
+}
+
+#[test]
+fn specular_weight_scales_f0_through_the_index() {
+    let f0 = |eta: f32| ((eta - 1.0) / (eta + 1.0)).powi(2);
+    for eta in [1.2f32, 1.5, 2.4, 0.8] {
+        assert!((modulated_ior(eta, 1.0) - eta).abs() <= 1e-5 * eta);
+        assert_eq!(modulated_ior(eta, 0.0), 1.0);
+        for xi in [0.25f32, 0.5, 2.0] {
+            let e = modulated_ior(eta, xi);
+            assert!((f0(e) - xi * f0(eta)).abs() <= 1e-6, "η {eta} ξ {xi}: {e}");
+            assert_eq!(e > 1.0, eta > 1.0);
+        }
+    }
+    assert_eq!(modulated_ior(1.0, 1.0), 1.0);
+}
+
+#[test]
+fn bad_parameters_name_the_parameter() {
+    let d = OpenPbrParams::<f32>::default();
+    let cases: [(OpenPbrParams<f32>, &str); 8] = [
+        (
+            OpenPbrParams {
+                base_weight: 1.5,
+                ..d
+            },
+            "base_weight",
+        ),
+        (
+            OpenPbrParams {
+                base_color: -0.1,
+                ..d
+            },
+            "base_color",
+        ),
+        (
+            OpenPbrParams {
+                base_metalness: f32::NAN,
+                ..d
+            },
+            "base_metalness",
+        ),
+        (
+            OpenPbrParams {
+                specular_roughness: 2.0,
+                ..d
+            },
+            "specular_roughness",
+        ),
+        (
+            OpenPbrParams {
+                specular_ior: 0.5,
+                ..d
+            },
+            "specular_ior",
+        ),
+        (OpenPbrParams { coat_color: 1.2, ..d }, "coat_color"),
+        (
+            OpenPbrParams {
+                coat_ior: f32::INFINITY,
+                ..d
+            },
+            "coat_ior",
+        ),
+        (
+            OpenPbrParams {
+                fuzz_weight: -1.0,
+                ..d
+            },
+            "fuzz_weight",
+        ),
+    ];
+    for (p, name) in cases {
+        match OpenPbr::new(p) {
+            Err(BrdfError::OutOfRange { name: n, .. }) | Err(BrdfError::NotFinite { name: n }) => {
+                assert_eq!(n, name)
+            }
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn rgb_colours_are_per_channel() {
+    let p = OpenPbrParams::<Vec3> {
+        base_color: Vec3::new(0.9, 0.2, 0.05),
+        ..OpenPbrParams::default()
+    };
+    let m = OpenPbr::new(p).unwrap();
+    let (wi, wo) = (dir(30.0, 0.0), dir(40.0, 2.0));
+    let f = m.eval(wi, wo);
+    assert!(f.x > f.y && f.y > f.z && f.z > 0.0);
+    // Each channel equals the monochrome material of that channel's colour.
+    for (c, v) in [0.9f32, 0.2, 0.05].into_iter().enumerate() {
+        let mono = OpenPbr::new(OpenPbrParams::<f32> {
+            base_color: v,
+            ..OpenPbrParams::default()
+        })
+        .unwrap();
+        let x = mono.eval(wi, wo);
+        assert!(
+            (f[c] - x).abs() <= 1e-6 * x.max(1.0),
+            "channel {c}: {} vs {x}",
+            f[c]
+        );
+    }
+}
