@@ -3,7 +3,7 @@
 //! every Fresnel term used is ≤ 1, so the bound applies to all configurations.
 //!
 //! Two estimators:
-//! * `directional_albedo_at_most_one_every_plugin` (1,000 proptest cases × 38 configurations): importance
+//! * `directional_albedo_at_most_one_every_plugin` (1,000 proptest cases × 39 configurations): importance
 //!   sampling with the plugin's sampler, 4,096 jittered-stratified sample points each contributing
 //!   `f(ωi, ωo) cos θi / pdf(ωi, ωo)` recomputed with `eval` and `pdf` (a `None` sample contributes 0).
 //!   This is unbiased as long as the sampler draws from `pdf` — which `tests/sampling.rs` establishes

@@ -1,6 +1,6 @@
 //! Isotropy of every plugin configuration (issue 2): rotating both directions about the normal leaves
 //! `f` unchanged, and `eval_isotropic(θi, θo, Δφ)` agrees with `eval` — 1,000 proptest cases, each checking
-//! all 38 configurations.
+//! all 39 configurations.
 //!
 //! * Rotations by multiples of 90° map `f32` vectors to `f32` vectors exactly (`(x, y) → (−y, x)`), so
 //!   there the tolerance is `1e-5` relative (plus a `1e-30` underflow floor).

@@ -1,5 +1,5 @@
 //! Reciprocity `f(ωi, ωo) = f(ωo, ωi)` and `f ≥ 0`, finite, for every plugin configuration (issue 2),
-//! 1,000 proptest cases, each case checking all 38 configurations at the same inputs.
+//! 1,000 proptest cases, each case checking all 39 configurations at the same inputs.
 //!
 //! Tolerance: `|f(ωi,ωo) − f(ωo,ωi)| ≤ 1e-5 max(f) + S + 1e-30`, where `S` is the sensitivity of `f` to
 //! one-ulp changes of its inputs ([`common::sensitivity`], measured at both argument orders). Why `S`:

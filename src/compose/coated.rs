@@ -1,7 +1,9 @@
 //! [`Coated`]: albedo-scaled layering of a top lobe over a base, in a
 //! reciprocal, energy-safe form.
 
-use super::{ComposeError, finish_sample, mixture_pdf, pick_and_sample, pick_first};
+use super::{
+    ComposeError, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample, pick_first,
+};
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::frame::cos_theta;
 use crate::spectrum::Spectrum;
@@ -265,6 +267,27 @@ where
             .map(|v| ((1.0 - v).clamp(0.0, 1.0) * self.gain).min(1.0))
     }
 
+    /// Whether both directions are strictly above the horizon.
+    #[inline]
+    fn both_above(wi: Vec3, wo: Vec3) -> bool {
+        let (mi, mo) = (cos_theta(wi), cos_theta(wo));
+        !((mi.is_nan() || mi <= 0.0) || (mo.is_nan() || mo <= 0.0))
+    }
+
+    /// `K ⊙ f_T + τ ⊙ f_B` from the lobes' values (both directions above the
+    /// horizon).
+    #[inline]
+    fn layer(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S) -> S {
+        let top = f_top * self.tint;
+        if fb.is_black() {
+            return top;
+        }
+        let tau = self.absorption(cos_theta(wi), cos_theta(wo))
+            * (self.through_scaled(wi) * self.through_scaled(wo))
+            * (1.0 / self.gain);
+        top + tau * fb
+    }
+
     /// The probability of drawing from the top at `wo`.
     pub fn pick_probability(&self, wo: Vec3) -> f32 {
         let mu = cos_theta(wo);
@@ -288,18 +311,30 @@ where
     type Spectrum = S;
 
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
-        let (mi, mo) = (cos_theta(wi), cos_theta(wo));
-        if (mi.is_nan() || mi <= 0.0) || (mo.is_nan() || mo <= 0.0) {
+        if !Self::both_above(wi, wo) {
             return S::zero();
         }
-        let fb = self.base.eval(wi, wo);
-        let top = self.top.eval(wi, wo) * self.tint;
-        if fb.is_black() {
-            return top;
-        }
-        let tau =
-            self.absorption(mi, mo) * (self.through_scaled(wi) * self.through_scaled(wo)) * (1.0 / self.gain);
-        top + tau * fb
+        self.layer(wi, wo, self.top.eval(wi, wo), self.base.eval(wi, wo))
+    }
+
+    /// The lobes' own batch kernels, layered as [`eval`](Brdf::eval) layers
+    /// them (element by element equal).
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        eval_batch_pair(&self.top, &self.base, wi, wo, out, |i, o, ft, fb| {
+            if Self::both_above(i, o) {
+                self.layer(i, o, ft, fb)
+            } else {
+                S::zero()
+            }
+        });
+    }
+
+    /// The lobes' own `pdf_batch` kernels, mixed with the pick probability
+    /// at each `ωo` (element by element equal to [`pdf`](Brdf::pdf)).
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        pdf_batch_pair(Some(&self.top), Some(&self.base), wi, wo, out, |w, x, y| {
+            mixture_pdf(self.pick_probability(w), x, y)
+        });
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {

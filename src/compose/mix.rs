@@ -1,6 +1,8 @@
 //! [`Mix`]: a weighted blend of two lobes.
 
-use super::{ComposeError, finish_sample, mixture_pdf, pick_and_sample, pick_first};
+use super::{
+    ComposeError, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample, pick_first,
+};
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -136,6 +138,38 @@ where
 
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         self.density(self.pick_probability(wo), wi, wo)
+    }
+
+    /// The lobes' own batch kernels, mixed (equal to [`eval`](Brdf::eval)
+    /// element by element; a zero-weight side is not evaluated).
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        if self.w == 0.0 {
+            return self.b.eval_batch(wi, wo, out);
+        }
+        if self.w == 1.0 {
+            return self.a.eval_batch(wi, wo, out);
+        }
+        let w = self.w;
+        eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x * w + y * (1.0 - w));
+    }
+
+    /// The lobes' own `pdf_batch` kernels, mixed as [`pdf`](Brdf::pdf) mixes
+    /// them (element by element equal).
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        let pick = |w| self.pick_probability(w);
+        if self.w == 0.0 {
+            pdf_batch_pair(None::<&A>, Some(&self.b), wi, wo, out, |w, _, y| {
+                mixture_pdf(pick(w), 0.0, y)
+            });
+        } else if self.w == 1.0 {
+            pdf_batch_pair(Some(&self.a), None::<&B>, wi, wo, out, |w, x, _| {
+                mixture_pdf(pick(w), x, 0.0)
+            });
+        } else {
+            pdf_batch_pair(Some(&self.a), Some(&self.b), wi, wo, out, |w, x, y| {
+                mixture_pdf(pick(w), x, y)
+            });
+        }
     }
 
     fn is_smooth(&self) -> bool {

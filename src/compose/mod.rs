@@ -52,6 +52,71 @@ use crate::frame::cos_theta;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
+/// Elements per chunk of the composites' batch paths (two stack buffers of
+/// this many values per lobe pair).
+const CHUNK: usize = 32;
+
+/// `out[k] = combine(wi[k], wo[k], f_A[k], f_B[k])` with `f_A`, `f_B` from
+/// the lobes' own [`Brdf::eval_batch`] kernels, in chunks of [`CHUNK`]; the
+/// [batch length rule](crate::batch::zero_tail) for the rest of `out`. Equal
+/// to the scalar path element by element when each lobe's batch equals its
+/// scalar `eval` (the plugins' batches do, bit for bit).
+#[inline]
+pub(crate) fn eval_batch_pair<S, A, B>(
+    a: &A,
+    b: &B,
+    wi: &[Vec3],
+    wo: &[Vec3],
+    out: &mut [S],
+    combine: impl Fn(Vec3, Vec3, S, S) -> S,
+) where
+    S: Spectrum,
+    A: Brdf<Spectrum = S> + ?Sized,
+    B: Brdf<Spectrum = S> + ?Sized,
+{
+    let mut fa = [S::zero(); CHUNK];
+    let mut fb = [S::zero(); CHUNK];
+    for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+        a.eval_batch(wi, wo, &mut fa);
+        b.eval_batch(wi, wo, &mut fb);
+        for ((o, (&x, &y)), (&i, &j)) in out.iter_mut().zip(fa.iter().zip(&fb)).zip(wi.iter().zip(wo)) {
+            *o = combine(i, j, x, y);
+        }
+    }
+    crate::batch::zero_tail(out, wi.len().min(wo.len()));
+}
+
+/// `out[k] = mix(wo[k], pdf_A[k], pdf_B[k])` with the lobes' densities from
+/// their [`Brdf::pdf_batch`] kernels (`None` for a lobe skips it: its
+/// density is taken as 0), in chunks; the batch length rule for the rest.
+#[inline]
+pub(crate) fn pdf_batch_pair<A, B>(
+    a: Option<&A>,
+    b: Option<&B>,
+    wi: &[Vec3],
+    wo: &[Vec3],
+    out: &mut [f32],
+    mix: impl Fn(Vec3, f32, f32) -> f32,
+) where
+    A: Brdf + ?Sized,
+    B: Brdf + ?Sized,
+{
+    let mut pa = [0.0f32; CHUNK];
+    let mut pb = [0.0f32; CHUNK];
+    for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+        if let Some(a) = a {
+            a.pdf_batch(wi, wo, &mut pa);
+        }
+        if let Some(b) = b {
+            b.pdf_batch(wi, wo, &mut pb);
+        }
+        for ((o, (&x, &y)), &w) in out.iter_mut().zip(pa.iter().zip(&pb)).zip(wo) {
+            *o = mix(w, x, y);
+        }
+    }
+    crate::batch::zero_tail(out, wi.len().min(wo.len()));
+}
+
 /// The largest `f32` below 1: remapped sample coordinates stay in `[0, 1)`.
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 

@@ -1,6 +1,7 @@
 //! [`Scaled`]: a lobe times a non-negative spectrum.
 
 use super::ComposeError;
+use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -77,6 +78,27 @@ impl<B: Brdf<Spectrum = S>, S: Spectrum> Brdf for Scaled<B, S> {
     #[inline]
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         self.lobe.pdf(wi, wo)
+    }
+
+    /// The lobe's own batch kernel, scaled.
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        self.lobe.eval_batch(wi, wo, out);
+        for o in out.iter_mut() {
+            *o = *o * self.scale;
+        }
+    }
+
+    /// The lobe's own batch kernel, scaled.
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        self.lobe.eval_batch_soa(wi, wo, out);
+        for o in out.iter_mut() {
+            *o = *o * self.scale;
+        }
+    }
+
+    /// The lobe's own `pdf_batch`.
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        self.lobe.pdf_batch(wi, wo, out);
     }
 
     fn is_smooth(&self) -> bool {

@@ -1,6 +1,8 @@
 //! [`Sum`]: two lobes added.
 
-use super::{add_albedo, finish_sample, mixture_pdf, pick_and_sample, pick_first};
+use super::{
+    add_albedo, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample, pick_first,
+};
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -91,6 +93,20 @@ where
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         let p = self.pick_probability(wo);
         mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+    }
+
+    /// The lobes' own batch kernels, summed (equal to [`eval`](Brdf::eval)
+    /// element by element).
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x + y);
+    }
+
+    /// The lobes' own `pdf_batch` kernels, mixed with the pick probability
+    /// at each `ωo` (equal to [`pdf`](Brdf::pdf) element by element).
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        pdf_batch_pair(Some(&self.a), Some(&self.b), wi, wo, out, |w, x, y| {
+            mixture_pdf(self.pick_probability(w), x, y)
+        });
     }
 
     fn is_smooth(&self) -> bool {

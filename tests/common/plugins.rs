@@ -85,15 +85,42 @@ pub enum Comp {
     MixMetalDiffuse,
     /// `Coated<Beckmann dielectric (α, η), GGX conductor>` with coat colour `ρ` (absorbing): a coated metal.
     CoatedMetal,
+    /// `OpenPbr` with every layer on: see [`openpbr_params`].
+    OpenPbr,
 }
 
 /// The composite configurations in [`all_kinds`].
-pub const COMPOSITE_KINDS: [Kind; 4] = [
+pub const COMPOSITE_KINDS: [Kind; 5] = [
     Kind::Composite(Comp::Plastic),
     Kind::Composite(Comp::SumDiffuseSpecular),
     Kind::Composite(Comp::MixMetalDiffuse),
     Kind::Composite(Comp::CoatedMetal),
+    Kind::Composite(Comp::OpenPbr),
 ];
+
+/// The OpenPBR parameters of `Comp::OpenPbr` from a parameter set: base colour ρ, metalness `f0`,
+/// diffuse roughness σ, specular and coat roughness `√α`, specular colour (the metal's F82 tint) `f82`,
+/// specular IOR `max(η, 1)`, coat weight `kd`, coat colour `1 − ks/2`, coat IOR `1 + η/2`, fuzz weight
+/// `ks` with colour ρ and roughness `√α`.
+pub fn openpbr_params(p: &Params) -> radiometry_brdfs::OpenPbrParams<f32> {
+    let r = p.alpha.sqrt();
+    radiometry_brdfs::OpenPbrParams {
+        base_color: p.rho,
+        base_metalness: p.f0,
+        base_diffuse_roughness: p.sigma,
+        specular_color: p.f82,
+        specular_roughness: r,
+        specular_ior: p.eta_d.max(1.0),
+        coat_weight: p.kd,
+        coat_color: 1.0 - 0.5 * p.ks,
+        coat_roughness: r,
+        coat_ior: 1.0 + 0.5 * p.eta_d,
+        fuzz_weight: p.ks,
+        fuzz_color: p.rho,
+        fuzz_roughness: r,
+        ..Default::default()
+    }
+}
 
 /// The top lobe of a coated composite (`None` for other kinds): its albedo error at `ωo` bounds how much
 /// the layer can exceed an albedo of 1 (`radiometry::compose::Coated`).
@@ -107,6 +134,27 @@ pub fn coat_top(k: Kind, p: &Params) -> Option<Dyn> {
             Beckmann::new(p.alpha).ok()?,
             Dielectric::new(p.eta_d).ok()?,
         )),
+        // Three tops (the specular layer, the coat, the fuzz): their errors add up (a `Sum`'s albedo
+        // error is the sum of its lobes'), each through the layering below it.
+        Kind::Composite(Comp::OpenPbr) => {
+            use radiometry::compose::Sum;
+            let o = openpbr_params(p);
+            let alpha = (o.specular_roughness * o.specular_roughness).max(1e-4);
+            let eta = o.specular_ior / (1.0 + o.coat_weight * (o.coat_ior - 1.0));
+            let eta = radiometry_brdfs::openpbr::modulated_ior(eta, o.specular_weight);
+            let specular =
+                Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(alpha).ok()?, Dielectric::new(eta).ok()?);
+            let coat = Microfacet::<_, HeightCorrelated, _>::new(
+                Ggx::new(alpha).ok()?,
+                Dielectric::new(o.coat_ior).ok()?,
+            );
+            let fuzz = Sheen::new(
+                o.fuzz_color,
+                o.fuzz_roughness.max(radiometry_brdfs::sheen::MIN_SHEEN_ROUGHNESS),
+            )
+            .ok()?;
+            Box::new(Sum::new(specular, Sum::new(coat, fuzz)))
+        }
         _ => return None,
     })
 }
@@ -134,6 +182,7 @@ fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
             )
             .map_err(unwrap)?,
         ),
+        Comp::OpenPbr => Box::new(radiometry_brdfs::OpenPbr::new(openpbr_params(p))?),
         Comp::CoatedMetal => Box::new(
             Coated::with_absorption(
                 Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(p.alpha)?, Dielectric::new(p.eta_d)?),
@@ -213,7 +262,7 @@ pub const KULLA_CONTY_KINDS: [Kind; 5] = [
 /// The rough diffuse configurations in [`all_kinds`].
 pub const ROUGH_DIFFUSE_KINDS: [Kind; 3] = [Kind::Fon, Kind::Eon, Kind::OrenNayar];
 
-/// All 38 configurations (23 single-scattering, 5 compensated, 2 tabulated, 3 rough diffuse, sheen, 4 composites).
+/// All 39 configurations (23 single-scattering, 5 compensated, 2 tabulated, 3 rough diffuse, sheen, 5 composites).
 pub fn all_kinds() -> Vec<Kind> {
     let mut v = vec![Kind::Lambertian, Kind::ModifiedPhong, Kind::BlinnPhong];
     for d in [Dist::Ggx, Dist::Beckmann] {

@@ -315,6 +315,26 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
         }
     }
 
+    /// The layers' own batch kernels (equal to [`eval`](Brdf::eval) element
+    /// by element).
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        if self.fuzz {
+            self.stack.eval_batch(wi, wo, out)
+        } else {
+            self.coated().eval_batch(wi, wo, out)
+        }
+    }
+
+    /// The layers' own `pdf_batch` kernels (equal to [`pdf`](Brdf::pdf)
+    /// element by element).
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        if self.fuzz {
+            self.stack.pdf_batch(wi, wo, out)
+        } else {
+            self.coated().pdf_batch(wi, wo, out)
+        }
+    }
+
     /// `false`: `Coated` reads its tops' albedos from tables.
     fn is_smooth(&self) -> bool {
         false
