@@ -84,7 +84,7 @@ impl<B: Brdf<Spectrum = S>, S: Spectrum> Brdf for Scaled<B, S> {
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         self.lobe.eval_batch(wi, wo, out);
         for o in out.iter_mut() {
-            *o = *o * self.scale;
+            *o *= self.scale;
         }
     }
 
@@ -92,7 +92,7 @@ impl<B: Brdf<Spectrum = S>, S: Spectrum> Brdf for Scaled<B, S> {
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
         self.lobe.eval_batch_soa(wi, wo, out);
         for o in out.iter_mut() {
-            *o = *o * self.scale;
+            *o *= self.scale;
         }
     }
 
