@@ -15,6 +15,10 @@ pub enum ComposeError {
     CoatColor(f32),
     /// A coat index of refraction below 1 or not finite.
     CoatIor(f32),
+    /// A value of a [`Coated::from_table`](super::Coated::from_table) albedo
+    /// table outside `[0, 1]` or not finite, or a negative or non-finite
+    /// table error (the offending value).
+    AlbedoTable(f32),
 }
 
 impl fmt::Display for ComposeError {
@@ -24,6 +28,7 @@ impl fmt::Display for ComposeError {
             Self::Scale(s) => write!(f, "scale factor {s} is negative or not finite"),
             Self::CoatColor(c) => write!(f, "coat colour {c} is outside [0, 1]"),
             Self::CoatIor(e) => write!(f, "coat index of refraction {e} is below 1 or not finite"),
+            Self::AlbedoTable(v) => write!(f, "albedo table value {v} is outside [0, 1] or not finite"),
         }
     }
 }
