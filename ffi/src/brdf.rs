@@ -205,82 +205,89 @@ impl<B: Brdf<Spectrum = f32>> DynBrdf for B {
     }
 }
 
-/// The callback of [`dispatch`]: runs once on the plugin built.
-type Visit<'a> = &'a mut dyn FnMut(&dyn DynBrdf);
-
-fn microfacet_g<D, G>(d: D, fresnel: u32, a: f32, b: f32, f: Visit<'_>) -> Result<(), RadStatus>
+fn microfacet_g<D, G, R>(
+    d: D,
+    fresnel: u32,
+    a: f32,
+    b: f32,
+    f: impl FnOnce(&dyn DynBrdf) -> R,
+) -> Result<R, RadStatus>
 where
     D: MicrofacetDistribution,
     G: ShadowingMasking,
 {
-    fn run<D: MicrofacetDistribution, G: ShadowingMasking, F: Fresnel<Spectrum = f32>>(
+    fn run<D: MicrofacetDistribution, G: ShadowingMasking, F: Fresnel<Spectrum = f32>, R>(
         d: D,
         fr: F,
-        f: Visit<'_>,
-    ) {
+        f: impl FnOnce(&dyn DynBrdf) -> R,
+    ) -> R {
         f(&Microfacet::<D, G, F>::new(d, fr))
     }
-    match fresnel {
-        RAD_FRESNEL_NONE => run::<D, G, _>(d, NoFresnel, f),
-        RAD_FRESNEL_SCHLICK => run::<D, G, _>(d, Schlick::new(a)?, f),
-        RAD_FRESNEL_DIELECTRIC => run::<D, G, _>(d, Dielectric::new(a)?, f),
-        RAD_FRESNEL_CONDUCTOR | RAD_FRESNEL_METAL => run::<D, G, _>(d, Conductor::new(a, b)?, f),
-        RAD_FRESNEL_F82 => run::<D, G, _>(d, F82Tint::new(a, b)?, f),
+    Ok(match fresnel {
+        RAD_FRESNEL_NONE => run::<D, G, _, R>(d, NoFresnel, f),
+        RAD_FRESNEL_SCHLICK => run::<D, G, _, R>(d, Schlick::new(a)?, f),
+        RAD_FRESNEL_DIELECTRIC => run::<D, G, _, R>(d, Dielectric::new(a)?, f),
+        RAD_FRESNEL_CONDUCTOR | RAD_FRESNEL_METAL => run::<D, G, _, R>(d, Conductor::new(a, b)?, f),
+        RAD_FRESNEL_F82 => run::<D, G, _, R>(d, F82Tint::new(a, b)?, f),
         _ => return Err(RadStatus::UnknownKind),
-    }
-    Ok(())
+    })
 }
 
-fn microfacet_d<D: MicrofacetDistribution>(d: D, h: &RadBrdf, f: Visit<'_>) -> Result<(), RadStatus> {
+fn microfacet_d<D: MicrofacetDistribution, R>(
+    d: D,
+    h: &RadBrdf,
+    f: impl FnOnce(&dyn DynBrdf) -> R,
+) -> Result<R, RadStatus> {
     let [_, a, b] = h.params;
     // The metal id goes with the metal Fresnel only (its η, k are in `a`, `b`).
     if (h.fresnel == RAD_FRESNEL_METAL) != metal(h.metal).is_some() {
         return Err(RadStatus::BadHandle);
     }
     match h.shadowing {
-        RAD_SHADOWING_HEIGHT_CORRELATED => microfacet_g::<D, HeightCorrelated>(d, h.fresnel, a, b, f),
-        RAD_SHADOWING_SEPARABLE => microfacet_g::<D, Separable>(d, h.fresnel, a, b, f),
+        RAD_SHADOWING_HEIGHT_CORRELATED => microfacet_g::<D, HeightCorrelated, R>(d, h.fresnel, a, b, f),
+        RAD_SHADOWING_SEPARABLE => microfacet_g::<D, Separable, R>(d, h.fresnel, a, b, f),
         _ => Err(RadStatus::UnknownKind),
     }
 }
 
 /// Builds the plugin that `h` describes (validating every parameter) and
-/// calls `f` on it once; the plugin's constructor error otherwise. Not
-/// generic: the tree of every plugin type is compiled once, not once per
-/// caller (firmware flash).
-fn dispatch(h: &RadBrdf, f: Visit<'_>) -> Result<(), RadStatus> {
+/// runs `f` on it; the plugin's constructor error otherwise.
+pub(crate) fn with_plugin<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
     let [p0, p1, p2] = h.params;
     if h.kind != RAD_BRDF_MICROFACET && h.metal != 0 {
         return Err(RadStatus::BadHandle);
     }
     match h.kind {
-        RAD_BRDF_LAMBERTIAN => f(&Lambertian::new(p0)?),
-        RAD_BRDF_EON => f(&Eon::new(p0, p1)?),
-        RAD_BRDF_FON => f(&Fon::new(p0, p1)?),
-        RAD_BRDF_OREN_NAYAR => f(&OrenNayar::new(p0, p1)?),
-        RAD_BRDF_SHEEN => f(&Sheen::new(p0, p1)?),
-        RAD_BRDF_PHONG => f(&ModifiedPhong::new(p0, p1, p2)?),
-        RAD_BRDF_BLINN_PHONG => f(&BlinnPhong::new(p0, p1, p2)?),
+        RAD_BRDF_LAMBERTIAN => Ok(f(&Lambertian::new(p0)?)),
+        RAD_BRDF_EON => Ok(f(&Eon::new(p0, p1)?)),
+        RAD_BRDF_FON => Ok(f(&Fon::new(p0, p1)?)),
+        RAD_BRDF_OREN_NAYAR => Ok(f(&OrenNayar::new(p0, p1)?)),
+        RAD_BRDF_SHEEN => Ok(f(&Sheen::new(p0, p1)?)),
+        RAD_BRDF_PHONG => Ok(f(&ModifiedPhong::new(p0, p1, p2)?)),
+        RAD_BRDF_BLINN_PHONG => Ok(f(&BlinnPhong::new(p0, p1, p2)?)),
         RAD_BRDF_MICROFACET => match h.distribution {
-            RAD_DISTRIBUTION_GGX => microfacet_d(Ggx::new(p0)?, h, f)?,
-            RAD_DISTRIBUTION_BECKMANN => microfacet_d(Beckmann::new(p0)?, h, f)?,
-            _ => return Err(RadStatus::UnknownKind),
+            RAD_DISTRIBUTION_GGX => microfacet_d(Ggx::new(p0)?, h, f),
+            RAD_DISTRIBUTION_BECKMANN => microfacet_d(Beckmann::new(p0)?, h, f),
+            _ => Err(RadStatus::UnknownKind),
         },
-        _ => return Err(RadStatus::BadHandle),
+        _ => Err(RadStatus::BadHandle),
     }
-    Ok(())
 }
 
-/// Builds the plugin that `h` describes (validating every parameter) and
-/// runs `f` on it; the plugin's constructor error otherwise.
-pub(crate) fn with_plugin<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+/// As [`with_plugin`], through one shared instance of the plugin tree (the
+/// callback behind `&mut dyn FnMut`): for callers with many closures (the
+/// materials), where a copy of the tree per closure would cost firmware
+/// flash. [`with_plugin`] itself is generic so that a `RadBrdf` call runs
+/// its plugin's methods directly (and links only the methods it calls).
+pub(crate) fn with_plugin_shared<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
     let (mut f, mut out) = (Some(f), None);
-    dispatch(h, &mut |b| {
+    let visit: &mut dyn FnMut(&dyn DynBrdf) = &mut |b| {
         if let Some(f) = f.take() {
             out = Some(f(b));
         }
-    })?;
-    // `dispatch` calls back exactly once when it succeeds.
+    };
+    with_plugin(h, visit)?;
+    // `with_plugin` calls back exactly once when it succeeds.
     out.ok_or(RadStatus::BadHandle)
 }
 

@@ -21,7 +21,7 @@
 //! sample reported, bit for bit.
 
 use crate::brdf::{
-    DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch, with_plugin,
+    DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch, with_plugin_shared,
 };
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdf, RadBrdfSample, RadStatus, RadVec3};
@@ -146,7 +146,7 @@ impl Brdf for Lobe<'_> {
 /// Builds both lobes of `m` and runs `f` on them.
 fn two<R>(m: &RadMaterial, f: impl FnOnce(Lobe<'_>, Lobe<'_>) -> R) -> Result<R, RadStatus> {
     let [a, b] = &m.lobes;
-    with_plugin(a, |a| with_plugin(b, |b| f(Lobe(a), Lobe(b))))?
+    with_plugin_shared(a, |a| with_plugin_shared(b, |b| f(Lobe(a), Lobe(b))))?
 }
 
 /// Checks a coat's colour and index of refraction (as `Coated` does): the
@@ -168,7 +168,7 @@ impl Handle for RadMaterial {
                 if self.lobes[1] != RadBrdf::default() {
                     return Err(RadStatus::BadHandle);
                 }
-                with_plugin(&self.lobes[0], f)
+                with_plugin_shared(&self.lobes[0], f)
             }
             RAD_MATERIAL_SUM => two(self, |a, b| f(&Sum::new(a, b))),
             RAD_MATERIAL_MIX => two(self, |a, b| Ok(f(&Mix::new(self.weight, a, b)?)))?,
