@@ -303,8 +303,9 @@ pub unsafe extern "C" fn rad_material_mix(
 /// directions into `RadMaterial::table`: the slow step, about a millisecond
 /// for a microfacet top on a desktop core), `E_min` its smallest value, `C =
 /// coat_color ∈ [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. Each call then
-/// checks the table and derives `E_min` and `E_avg` from it again (a few
-/// hundred flops: batch calls pay it once per batch). A plastic is a
+/// checks the table and derives `E_min` and `E_avg` from it again (three
+/// passes over the 128 values: batch calls pay it once per batch). A
+/// plastic is a
 /// dielectric microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a
 /// diffuse base. Sampling picks the top with probability
 /// `Ē_T / (Ē_T + Ē_through)` at `ωo`.
