@@ -26,6 +26,18 @@
 // `RadBrdf::kind`: microfacet, `params = {alpha, fresnel_a, fresnel_b}`.
 #define RAD_BRDF_MICROFACET 4
 
+// `RadBrdf::kind`: energy-preserving Oren–Nayar (EON), `params = {rho, sigma}`.
+#define RAD_BRDF_EON 5
+
+// `RadBrdf::kind`: Fujii's improved Oren–Nayar (FON), `params = {rho, sigma}`.
+#define RAD_BRDF_FON 6
+
+// `RadBrdf::kind`: classic Oren–Nayar, `params = {rho, sigma_rad}`.
+#define RAD_BRDF_OREN_NAYAR 7
+
+// `RadBrdf::kind`: Charlie sheen, `params = {color, roughness}`.
+#define RAD_BRDF_SHEEN 8
+
 // Microfacet distribution: GGX / Trowbridge–Reitz.
 #define RAD_DISTRIBUTION_GGX 0
 
@@ -49,6 +61,65 @@
 
 // Exact conductor; `fresnel_a = η ∈ [1e-3, 1e3]`, `fresnel_b = k ∈ [0, 1e3]`.
 #define RAD_FRESNEL_CONDUCTOR 3
+
+// F82-tint (OpenPBR's metal Fresnel, Hoffman 2019); `fresnel_a = f0 ∈ [0, 1]`
+// (reflectance at normal incidence), `fresnel_b = f82 ∈ [0, 1]` (the tint at
+// 82°; 1 is Schlick's approximation).
+#define RAD_FRESNEL_F82 4
+
+// Exact conductor of a named metal: `fresnel_a` = one of the `RAD_METAL_*`
+// ids (as a number: `(float)RAD_METAL_AU`), `fresnel_b` ignored. The
+// constructor fits the monochrome `η`, `k` whose Fresnel curve has the
+// luminance of the metal's measured reflectance at normal incidence and at
+// 82° (what the spec grammar's `conductor(metal=Au)` builds) and stores them
+// in `params[1]`, `params[2]`, the id in `RadBrdf::metal`.
+#define RAD_FRESNEL_METAL 5
+
+// Gold (Johnson & Christy 1972), for [`RAD_FRESNEL_METAL`].
+#define RAD_METAL_AU 1
+
+// Silver (Johnson & Christy 1972).
+#define RAD_METAL_AG 2
+
+// Copper (Johnson & Christy 1972).
+#define RAD_METAL_CU 3
+
+// Aluminium (Rakić 1995).
+#define RAD_METAL_AL 4
+
+// Chromium (Johnson & Christy 1974).
+#define RAD_METAL_CR 5
+
+// Iron (Johnson & Christy 1974).
+#define RAD_METAL_FE 6
+
+// Nickel (Johnson & Christy 1974).
+#define RAD_METAL_NI 7
+
+// Titanium (Johnson & Christy 1974).
+#define RAD_METAL_TI 8
+
+// Platinum (Rakić et al. 1998).
+#define RAD_METAL_PT 9
+
+// Brass, Cu 70 % Zn 30 % (Querry 1985).
+#define RAD_METAL_BRASS 10
+
+// `RadMaterial::kind`: one lobe, `lobes[0]`.
+#define RAD_MATERIAL_BRDF 1
+
+// `RadMaterial::kind`: the sum `lobes[0] + lobes[1]`.
+#define RAD_MATERIAL_SUM 2
+
+// `RadMaterial::kind`: the mix `weight · lobes[0] + (1 − weight) · lobes[1]`.
+#define RAD_MATERIAL_MIX 3
+
+// `RadMaterial::kind`: `lobes[0]` (top) coated over `lobes[1]` (base).
+#define RAD_MATERIAL_COATED 4
+
+// Number of values in [`RadMaterial::table`]: the top's directional albedo
+// at `μ_k = (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`).
+#define RAD_MATERIAL_TABLE_NODES 128
 
 // `RadSpectrum::kind`: CIE standard illuminant D65 (relative SPD, 300–830 nm,
 // CIE 015:2018 Table T.1).
@@ -86,7 +157,8 @@ typedef enum RadStatus {
   RAD_STATUS_NOT_FINITE = 4,
   // A parameter is outside its documented range.
   RAD_STATUS_OUT_OF_RANGE = 5,
-  // A combination of parameters violates a constraint (e.g. `kd + ks ≤ 1`).
+  // A combination of parameters violates a constraint (e.g. `kd + ks ≤ 1`,
+  // or a classic Oren–Nayar `rho` that would reflect more than 1).
   RAD_STATUS_CONSTRAINT = 6,
   // A selector (`kind`, distribution, shadowing, Fresnel) has no meaning.
   RAD_STATUS_UNKNOWN_KIND = 7,
@@ -136,10 +208,11 @@ typedef struct RadSpectrum {
   size_t len;
 } RadSpectrum;
 
-// A BRDF plugin: plain data, filled in by `rad_brdf_lambertian`,
-// `rad_brdf_phong`, `rad_brdf_blinn_phong` or `rad_brdf_microfacet`. Treat the
+// A BRDF plugin: plain data (32 bytes, 4-byte aligned: eight 32-bit
+// fields), filled in by one of the `rad_brdf_*` constructors. Treat the
 // fields as read-only; a zeroed struct is an invalid handle
-// (`RAD_STATUS_BAD_HANDLE`).
+// (`RAD_STATUS_BAD_HANDLE`). Every call re-validates the fields (a few range
+// comparisons) and rebuilds the plugin from them.
 typedef struct RadBrdf {
   // One of the `RAD_BRDF_*` kinds.
   uint32_t kind;
@@ -149,7 +222,10 @@ typedef struct RadBrdf {
   uint32_t shadowing;
   // `RAD_FRESNEL_*` (microfacet only).
   uint32_t fresnel;
-  // The parameters, by kind (see the `RAD_BRDF_*` constants).
+  // `RAD_METAL_*` with `RAD_FRESNEL_METAL`; 0 otherwise.
+  uint32_t metal;
+  // The parameters, by kind (see the `RAD_BRDF_*` constants; unused
+  // slots 0).
   float params[3];
 } RadBrdf;
 
@@ -176,6 +252,39 @@ typedef struct RadBrdfSample {
   // `f_r · cos θi / pdf`.
   float weight;
 } RadBrdfSample;
+
+// A material: one or two [`RadBrdf`] lobes and how they combine. Plain data
+// (596 bytes, 4-byte aligned: five 32-bit fields, two `RadBrdf`s and 128
+// `float`s, no padding), filled in by `rad_material_brdf`,
+// `rad_material_sum`, `rad_material_mix` or `rad_material_coated`; copy it
+// freely (it holds no pointers). Treat the fields as read-only; a zeroed
+// struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`). Fields a kind does
+// not use are 0. Each call checks the fields the kind uses (the lobes as
+// `RadBrdf` calls do, the weight, the coat parameters, every table value
+// finite and in `[0, 1]`: about 130 comparisons) and rebuilds the
+// composite.
+typedef struct RadMaterial {
+  // One of the `RAD_MATERIAL_*` kinds.
+  uint32_t kind;
+  // `RAD_MATERIAL_MIX`: the weight `w ∈ [0, 1]` of `lobes[0]`.
+  float weight;
+  // `RAD_MATERIAL_COATED`: the coat colour `C ∈ [0, 1]` (OpenPBR's
+  // `coat_color`, the square of the coat's transmittance at normal
+  // incidence; 1: a clear coat, no absorption).
+  float coat_color;
+  // `RAD_MATERIAL_COATED`: the coat's index of refraction `≥ 1` (sets
+  // the path length of the absorption).
+  float coat_ior;
+  // `RAD_MATERIAL_COATED`: the largest error the top stated for its
+  // albedo at the table's nodes.
+  float top_error;
+  // The lobes: `A`, `B` (sum, mix), `top`, `base` (coated); `lobes[1]`
+  // zeroed for `RAD_MATERIAL_BRDF`.
+  struct RadBrdf lobes[2];
+  // `RAD_MATERIAL_COATED`: the top's directional albedo at
+  // `μ_k = (k/127)²`, each in `[0, 1]`.
+  float table[RAD_MATERIAL_TABLE_NODES];
+} RadMaterial;
 
 #ifdef __cplusplus
 extern "C" {
@@ -293,7 +402,11 @@ enum RadStatus rad_brdf_blinn_phong(float exponent, float ks, float kd, struct R
 // 2007, eq. 20): `distribution` = `RAD_DISTRIBUTION_GGX | _BECKMANN` with
 // roughness `alpha ∈ [1e-4, 1]`, `shadowing` = `RAD_SHADOWING_*`, `fresnel` =
 // `RAD_FRESNEL_*` with its parameters in `fresnel_a`, `fresnel_b` (see the
-// constants).
+// constants): e.g. `RAD_FRESNEL_F82` with `f0, f82`, or `RAD_FRESNEL_METAL`
+// with `fresnel_a = RAD_METAL_AU` (an unknown id is
+// `RAD_STATUS_UNKNOWN_KIND`). A named metal is fitted here, once (a few
+// hundred Fresnel evaluations over the metal's measured spectrum); the
+// handle keeps the fitted `η`, `k`.
 //
 // # Safety
 // `out` is null or points to a writable `RadBrdf` (unchanged on error).
@@ -304,6 +417,61 @@ enum RadStatus rad_brdf_microfacet(uint32_t distribution,
                                    float fresnel_a,
                                    float fresnel_b,
                                    struct RadBrdf *out);
+
+// Energy-preserving Oren–Nayar, "EON" (Portsmouth, Kutz & Hill, JCGT 14(1),
+// 2025, listing 1 with the exact FON albedo; as OpenPBR Surface 1.1
+// specifies it, without the printed spec's extra `1/π` in `ρ_ms`):
+//
+// ```text
+// f    = f_FON + (ρ_ms/π) (1 − E_FON(μi)) (1 − E_FON(μo)) / (1 − Ē_FON)
+// ρ_ms = ρ² Ē_FON / (1 − ρ (1 − Ē_FON)),   Ē_FON = A (1 + (2/3 − 28/(15π)) σ)
+// ```
+//
+// (`f_FON` as [`rad_brdf_fon`]), albedo colour `rho ∈ [0, 1]`, roughness
+// `sigma ∈ [0, 1]` (dimensionless, OpenPBR's `base_diffuse_roughness`).
+// With `rho = 1` its directional albedo is 1 at every view.
+//
+// # Safety
+// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_eon(float rho, float sigma, struct RadBrdf *out);
+
+// Fujii's improved Oren–Nayar, "FON" (Fujii 2012, in the normalisation of
+// Portsmouth, Kutz & Hill 2025, listing 1 — EON's single-scattering term):
+//
+// ```text
+// f = (ρ/π) A (1 + σ s/t),   A = 1/(1 + (1/2 − 2/(3π)) σ),
+// s = ωi·ωo − μi μo,         t = max(μi, μo) if s > 0, else 1,
+// ```
+//
+// `rho ∈ [0, 1]`, `sigma ∈ [0, 1]` (dimensionless). Loses energy with
+// roughness (22 % at `σ = 1`, normal view), which EON gives back.
+//
+// # Safety
+// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_fon(float rho, float sigma, struct RadBrdf *out);
+
+// The classic qualitative Oren–Nayar (Oren & Nayar 1994, as pbrt-v3 has it):
+// `f = ρ/π (A + B max(0, cos(φi − φo)) sin α tan β)`, `A = 1 − σ²/(2(σ² +
+// 0.33))`, `B = 0.45 σ²/(σ² + 0.09)`, with the roughness `sigma_rad ∈ [0,
+// π/2]` in **radians** (the standard deviation of the facet slope angle; not
+// EON's dimensionless σ) and `rho ∈ [0, 1]` at most `1/(A + B/2)` (above,
+// its albedo exceeds 1 at grazing view: `RAD_STATUS_CONSTRAINT`).
+//
+// # Safety
+// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_oren_nayar(float rho, float sigma_rad, struct RadBrdf *out);
+
+// Microfacet sheen (Estevez & Kulla 2017, "Production Friendly Microfacet
+// Sheen BRDF", eq. 1 with `F = 1`): `f = color · D(h) / (4 μi μo (1 +
+// Λ(μi) + Λ(μo)))` with the "Charlie" distribution `D = (2 + 1/r)
+// sin(θh)^(1/r) / (2π)` and the paper's fitted `Λ` (without its
+// non-reciprocal terminator softening); `color ∈ [0, 1]`, `roughness r ∈
+// [0.07, 1]` (the range of the lobe's albedo table). Sampled uniformly
+// over the hemisphere.
+//
+// # Safety
+// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_sheen(float color, float roughness, struct RadBrdf *out);
 
 // `*out = f_r(wi → wo)` in 1/sr.
 //
@@ -422,6 +590,155 @@ enum RadStatus rad_irradiance_cap(struct RadVec3 axis,
 // `Ω = 2π(1 − cos θ) = 4π sin²(θ/2)` (PBR 4th ed. §4.1.1). `θ` is clamped to
 // `[0, π]`; NaN gives 0. Never fails.
 float rad_cap_solid_angle(float half_angle);
+
+// A material of one lobe: the plugin `brdf` (so a renderer can hold every
+// surface as a `RadMaterial`). Same values as the `RadBrdf` calls.
+//
+// # Safety
+// `brdf` is null or points to a readable `RadBrdf`; `out` is null or points
+// to a writable `RadMaterial` (unchanged on error).
+enum RadStatus rad_material_brdf(const struct RadBrdf *brdf, struct RadMaterial *out);
+
+// The sum of two lobes, `f = f_A + f_B` (`radiometry::compose::Sum`),
+// sampled by picking `A` with probability `Ē_A / (Ē_A + Ē_B)` (their
+// directional albedos at `ωo`) and the mixture density. A sum of
+// energy-conserving lobes need not conserve energy (a plastic is better
+// built with [`rad_material_coated`]).
+//
+// # Safety
+// `a`, `b` are null or point to readable `RadBrdf`s; `out` is null or
+// points to a writable `RadMaterial` (unchanged on error).
+enum RadStatus rad_material_sum(const struct RadBrdf *a,
+                                const struct RadBrdf *b,
+                                struct RadMaterial *out);
+
+// The mix `f = w f_A + (1 − w) f_B`, `w ∈ [0, 1]` (OpenPBR's `mix`;
+// `radiometry::compose::Mix`): `E = w E_A + (1 − w) E_B`, so a mix of
+// energy-conserving lobes conserves energy. Sampled by picking `A` with
+// probability `w Ē_A / (w Ē_A + (1 − w) Ē_B)`.
+//
+// # Safety
+// As [`rad_material_sum`].
+enum RadStatus rad_material_mix(float weight,
+                                const struct RadBrdf *a,
+                                const struct RadBrdf *b,
+                                struct RadMaterial *out);
+
+// `top` coated over `base` by albedo scaling, in a reciprocal, energy-safe
+// form (`radiometry::compose::Coated`; OpenPBR Surface 1.1 §"Layering"):
+//
+// ```text
+// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) f_B(ωi, ωo)
+// τ(ωi, ωo) = A(μi, μo) t(ωi) t(ωo) (1 − E_min),   t(ω) = min((1 − E_T(ω)) / (1 − E_min), 1)
+// A(μi, μo) = C^((1/μᵗi + 1/μᵗo)/2),               μᵗ = √(1 − (1 − μ²)/η²)
+// ```
+//
+// with `E_T` the top's directional albedo (read here, once, at 128
+// directions into `RadMaterial::table`: the slow step, about a millisecond
+// for a microfacet top on a desktop core), `E_min` its smallest value, `C =
+// coat_color ∈ [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. Each call then
+// checks the table and derives `E_min` and `E_avg` from it again (three
+// passes over the 128 values: batch calls pay it once per batch). A
+// plastic is a
+// dielectric microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a
+// diffuse base. Sampling picks the top with probability
+// `Ē_T / (Ē_T + Ē_through)` at `ωo`.
+//
+// # Safety
+// `top`, `base` are null or point to readable `RadBrdf`s; `out` is null or
+// points to a writable `RadMaterial` (unchanged on error).
+enum RadStatus rad_material_coated(const struct RadBrdf *top,
+                                   const struct RadBrdf *base,
+                                   float coat_color,
+                                   float coat_ior,
+                                   struct RadMaterial *out);
+
+// `*out = f_r(wi → wo)` of the material, in 1/sr.
+//
+// # Safety
+// `material` is null or points to a readable `RadMaterial`; `out` is null
+// or points to a writable `float`.
+enum RadStatus rad_material_eval(const struct RadMaterial *material,
+                                 struct RadVec3 wi,
+                                 struct RadVec3 wo,
+                                 float *out);
+
+// `*out` = the solid-angle density with which [`rad_material_sample`] draws
+// `wi` given `wo` (the mixture density of the lobes).
+//
+// # Safety
+// As [`rad_material_eval`].
+enum RadStatus rad_material_pdf(const struct RadMaterial *material,
+                                struct RadVec3 wi,
+                                struct RadVec3 wo,
+                                float *out);
+
+// Importance-samples `wi` for `wo` from `(u0, u1) ∈ [0, 1)²`: a lobe picked
+// by albedo with `u0` (rescaled and reused), then that lobe's sample; the
+// returned pdf is the mixture density, equal to [`rad_material_pdf`] bit for
+// bit. `pdf = 0` means no sample (see `RadBrdfSample`).
+//
+// # Safety
+// `material` is null or points to a readable `RadMaterial`; `out` is null
+// or points to a writable `RadBrdfSample`.
+enum RadStatus rad_material_sample(const struct RadMaterial *material,
+                                   struct RadVec3 wo,
+                                   float u0,
+                                   float u1,
+                                   struct RadBrdfSample *out);
+
+// `out[k] = f_r(wi[k] → wo[k])` for `k < n` (validates the material once
+// per batch).
+//
+// # Safety
+// `material` points to a readable `RadMaterial`; `wi`, `wo` to `n` readable
+// `RadVec3`; `out` to `n` writable `float`s not overlapping the inputs
+// (checked: `RAD_STATUS_OVERLAP`). Null pointers are reported, not
+// dereferenced; `n = 0` reads nothing.
+enum RadStatus rad_material_eval_batch(const struct RadMaterial *material,
+                                       const struct RadVec3 *wi,
+                                       const struct RadVec3 *wo,
+                                       float *out,
+                                       size_t n);
+
+// `out[k] = pdf(wi[k], wo[k])` for `k < n`.
+//
+// # Safety
+// As [`rad_material_eval_batch`].
+enum RadStatus rad_material_pdf_batch(const struct RadMaterial *material,
+                                      const struct RadVec3 *wi,
+                                      const struct RadVec3 *wo,
+                                      float *out,
+                                      size_t n);
+
+// Structure-of-arrays form of [`rad_material_eval_batch`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`.
+//
+// # Safety
+// Each of the six input pointers points to `n` readable `float`s, `out` to
+// `n` writable `float`s overlapping none of them (checked).
+enum RadStatus rad_material_eval_batch_soa(const struct RadMaterial *material,
+                                           const float *wi_x,
+                                           const float *wi_y,
+                                           const float *wi_z,
+                                           const float *wo_x,
+                                           const float *wo_y,
+                                           const float *wo_z,
+                                           float *out,
+                                           size_t n);
+
+// Samples for `n` pairs: `out[k]` from `wo[k]` and `u[2k], u[2k+1]`, each
+// equal to [`rad_material_sample`]'s.
+//
+// # Safety
+// `material` points to a readable `RadMaterial`, `wo` to `n` readable
+// `RadVec3`, `u` to `2n` readable `float`s, `out` to `n` writable
+// `RadBrdfSample`s overlapping neither input (checked).
+enum RadStatus rad_material_sample_batch(const struct RadMaterial *material,
+                                         const struct RadVec3 *wo,
+                                         const float *u,
+                                         struct RadBrdfSample *out,
+                                         size_t n);
 
 // A static, NUL-terminated English description of a status code (any
 // integer: unknown codes get "unknown status"). Never null.

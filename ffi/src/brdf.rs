@@ -12,16 +12,22 @@
 //! The formulas are those of the plugins: Lambertian `ρ/π`; modified Phong
 //! (Lafortune & Willems 1994); normalised Blinn–Phong; microfacet
 //! `D G2 F / (4 cos θi cos θo)` (Walter et al. 2007, eq. 20) with GGX or
-//! Beckmann `D` and Smith `G2` (Heitz 2014, eqs. 98–99).
+//! Beckmann `D` and Smith `G2` (Heitz 2014, eqs. 98–99) and a Fresnel term
+//! (Schlick, exact dielectric or conductor, F82-tint, a named metal); the
+//! rough diffuse lobes EON and FON (Portsmouth, Kutz & Hill 2025) and the
+//! classic Oren–Nayar (1994); the sheen of Estevez & Kulla (2017).
+//! Compositions of these lobes are [`RadMaterial`](crate::RadMaterial)s.
 
 use crate::ptr::{as_mut, as_ref, slice, slice_mut_disjoint, span};
 use crate::{RadStatus, RadVec3};
 use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
-use radiometry::{Brdf, BrdfSample};
+use radiometry::{Albedo, Brdf, BrdfSample};
+use radiometry_brdfs::metals::Metal;
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Dielectric, Fresnel, Ggx, HeightCorrelated, Lambertian, Microfacet,
-    MicrofacetDistribution, ModifiedPhong, NoFresnel, Schlick, Separable, ShadowingMasking,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx, HeightCorrelated,
+    Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable,
+    ShadowingMasking, Sheen,
 };
 
 /// `RadBrdf::kind`: Lambertian, `params = {albedo}`.
@@ -32,6 +38,14 @@ pub const RAD_BRDF_PHONG: u32 = 2;
 pub const RAD_BRDF_BLINN_PHONG: u32 = 3;
 /// `RadBrdf::kind`: microfacet, `params = {alpha, fresnel_a, fresnel_b}`.
 pub const RAD_BRDF_MICROFACET: u32 = 4;
+/// `RadBrdf::kind`: energy-preserving Oren–Nayar (EON), `params = {rho, sigma}`.
+pub const RAD_BRDF_EON: u32 = 5;
+/// `RadBrdf::kind`: Fujii's improved Oren–Nayar (FON), `params = {rho, sigma}`.
+pub const RAD_BRDF_FON: u32 = 6;
+/// `RadBrdf::kind`: classic Oren–Nayar, `params = {rho, sigma_rad}`.
+pub const RAD_BRDF_OREN_NAYAR: u32 = 7;
+/// `RadBrdf::kind`: Charlie sheen, `params = {color, roughness}`.
+pub const RAD_BRDF_SHEEN: u32 = 8;
 
 /// Microfacet distribution: GGX / Trowbridge–Reitz.
 pub const RAD_DISTRIBUTION_GGX: u32 = 0;
@@ -49,11 +63,61 @@ pub const RAD_FRESNEL_SCHLICK: u32 = 1;
 pub const RAD_FRESNEL_DIELECTRIC: u32 = 2;
 /// Exact conductor; `fresnel_a = η ∈ [1e-3, 1e3]`, `fresnel_b = k ∈ [0, 1e3]`.
 pub const RAD_FRESNEL_CONDUCTOR: u32 = 3;
+/// F82-tint (OpenPBR's metal Fresnel, Hoffman 2019); `fresnel_a = f0 ∈ [0, 1]`
+/// (reflectance at normal incidence), `fresnel_b = f82 ∈ [0, 1]` (the tint at
+/// 82°; 1 is Schlick's approximation).
+pub const RAD_FRESNEL_F82: u32 = 4;
+/// Exact conductor of a named metal: `fresnel_a` = one of the `RAD_METAL_*`
+/// ids (as a number: `(float)RAD_METAL_AU`), `fresnel_b` ignored. The
+/// constructor fits the monochrome `η`, `k` whose Fresnel curve has the
+/// luminance of the metal's measured reflectance at normal incidence and at
+/// 82° (what the spec grammar's `conductor(metal=Au)` builds) and stores them
+/// in `params[1]`, `params[2]`, the id in `RadBrdf::metal`.
+pub const RAD_FRESNEL_METAL: u32 = 5;
 
-/// A BRDF plugin: plain data, filled in by `rad_brdf_lambertian`,
-/// `rad_brdf_phong`, `rad_brdf_blinn_phong` or `rad_brdf_microfacet`. Treat the
+/// Gold (Johnson & Christy 1972), for [`RAD_FRESNEL_METAL`].
+pub const RAD_METAL_AU: u32 = 1;
+/// Silver (Johnson & Christy 1972).
+pub const RAD_METAL_AG: u32 = 2;
+/// Copper (Johnson & Christy 1972).
+pub const RAD_METAL_CU: u32 = 3;
+/// Aluminium (Rakić 1995).
+pub const RAD_METAL_AL: u32 = 4;
+/// Chromium (Johnson & Christy 1974).
+pub const RAD_METAL_CR: u32 = 5;
+/// Iron (Johnson & Christy 1974).
+pub const RAD_METAL_FE: u32 = 6;
+/// Nickel (Johnson & Christy 1974).
+pub const RAD_METAL_NI: u32 = 7;
+/// Titanium (Johnson & Christy 1974).
+pub const RAD_METAL_TI: u32 = 8;
+/// Platinum (Rakić et al. 1998).
+pub const RAD_METAL_PT: u32 = 9;
+/// Brass, Cu 70 % Zn 30 % (Querry 1985).
+pub const RAD_METAL_BRASS: u32 = 10;
+
+/// The metal of a `RAD_METAL_*` id.
+fn metal(id: u32) -> Option<Metal> {
+    Some(match id {
+        RAD_METAL_AU => Metal::Au,
+        RAD_METAL_AG => Metal::Ag,
+        RAD_METAL_CU => Metal::Cu,
+        RAD_METAL_AL => Metal::Al,
+        RAD_METAL_CR => Metal::Cr,
+        RAD_METAL_FE => Metal::Fe,
+        RAD_METAL_NI => Metal::Ni,
+        RAD_METAL_TI => Metal::Ti,
+        RAD_METAL_PT => Metal::Pt,
+        RAD_METAL_BRASS => Metal::Brass,
+        _ => return None,
+    })
+}
+
+/// A BRDF plugin: plain data (32 bytes, 4-byte aligned: eight 32-bit
+/// fields), filled in by one of the `rad_brdf_*` constructors. Treat the
 /// fields as read-only; a zeroed struct is an invalid handle
-/// (`RAD_STATUS_BAD_HANDLE`).
+/// (`RAD_STATUS_BAD_HANDLE`). Every call re-validates the fields (a few range
+/// comparisons) and rebuilds the plugin from them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RadBrdf {
@@ -65,7 +129,10 @@ pub struct RadBrdf {
     pub shadowing: u32,
     /// `RAD_FRESNEL_*` (microfacet only).
     pub fresnel: u32,
-    /// The parameters, by kind (see the `RAD_BRDF_*` constants).
+    /// `RAD_METAL_*` with `RAD_FRESNEL_METAL`; 0 otherwise.
+    pub metal: u32,
+    /// The parameters, by kind (see the `RAD_BRDF_*` constants; unused
+    /// slots 0).
     pub params: [f32; 3],
 }
 
@@ -96,7 +163,9 @@ impl From<Option<BrdfSample<f32>>> for RadBrdfSample {
 }
 
 /// Object-safe view of a monochrome plugin (one virtual call per C call).
-trait DynBrdf {
+pub(crate) trait DynBrdf {
+    fn is_smooth(&self) -> bool;
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<f32>;
     fn eval(&self, wi: Vec3, wo: Vec3) -> f32;
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32;
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>>;
@@ -107,6 +176,12 @@ trait DynBrdf {
 }
 
 impl<B: Brdf<Spectrum = f32>> DynBrdf for B {
+    fn is_smooth(&self) -> bool {
+        Brdf::is_smooth(self)
+    }
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
+        Brdf::directional_albedo(self, wo)
+    }
     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
         Brdf::eval(self, wi, wo)
     }
@@ -152,7 +227,8 @@ where
         RAD_FRESNEL_NONE => run::<D, G, _, R>(d, NoFresnel, f),
         RAD_FRESNEL_SCHLICK => run::<D, G, _, R>(d, Schlick::new(a)?, f),
         RAD_FRESNEL_DIELECTRIC => run::<D, G, _, R>(d, Dielectric::new(a)?, f),
-        RAD_FRESNEL_CONDUCTOR => run::<D, G, _, R>(d, Conductor::new(a, b)?, f),
+        RAD_FRESNEL_CONDUCTOR | RAD_FRESNEL_METAL => run::<D, G, _, R>(d, Conductor::new(a, b)?, f),
+        RAD_FRESNEL_F82 => run::<D, G, _, R>(d, F82Tint::new(a, b)?, f),
         _ => return Err(RadStatus::UnknownKind),
     })
 }
@@ -163,6 +239,10 @@ fn microfacet_d<D: MicrofacetDistribution, R>(
     f: impl FnOnce(&dyn DynBrdf) -> R,
 ) -> Result<R, RadStatus> {
     let [_, a, b] = h.params;
+    // The metal id goes with the metal Fresnel only (its η, k are in `a`, `b`).
+    if (h.fresnel == RAD_FRESNEL_METAL) != metal(h.metal).is_some() {
+        return Err(RadStatus::BadHandle);
+    }
     match h.shadowing {
         RAD_SHADOWING_HEIGHT_CORRELATED => microfacet_g::<D, HeightCorrelated, R>(d, h.fresnel, a, b, f),
         RAD_SHADOWING_SEPARABLE => microfacet_g::<D, Separable, R>(d, h.fresnel, a, b, f),
@@ -172,10 +252,17 @@ fn microfacet_d<D: MicrofacetDistribution, R>(
 
 /// Builds the plugin that `h` describes (validating every parameter) and
 /// runs `f` on it; the plugin's constructor error otherwise.
-fn with_plugin<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+pub(crate) fn with_plugin<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
     let [p0, p1, p2] = h.params;
+    if h.kind != RAD_BRDF_MICROFACET && h.metal != 0 {
+        return Err(RadStatus::BadHandle);
+    }
     match h.kind {
         RAD_BRDF_LAMBERTIAN => Ok(f(&Lambertian::new(p0)?)),
+        RAD_BRDF_EON => Ok(f(&Eon::new(p0, p1)?)),
+        RAD_BRDF_FON => Ok(f(&Fon::new(p0, p1)?)),
+        RAD_BRDF_OREN_NAYAR => Ok(f(&OrenNayar::new(p0, p1)?)),
+        RAD_BRDF_SHEEN => Ok(f(&Sheen::new(p0, p1)?)),
         RAD_BRDF_PHONG => Ok(f(&ModifiedPhong::new(p0, p1, p2)?)),
         RAD_BRDF_BLINN_PHONG => Ok(f(&BlinnPhong::new(p0, p1, p2)?)),
         RAD_BRDF_MICROFACET => match h.distribution {
@@ -185,6 +272,23 @@ fn with_plugin<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, R
         },
         _ => Err(RadStatus::BadHandle),
     }
+}
+
+/// As [`with_plugin`], through one shared instance of the plugin tree (the
+/// callback behind `&mut dyn FnMut`): for callers with many closures (the
+/// materials), where a copy of the tree per closure would cost firmware
+/// flash. [`with_plugin`] itself is generic so that a `RadBrdf` call runs
+/// its plugin's methods directly (and links only the methods it calls).
+pub(crate) fn with_plugin_shared<R>(h: &RadBrdf, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+    let (mut f, mut out) = (Some(f), None);
+    let visit: &mut dyn FnMut(&dyn DynBrdf) = &mut |b| {
+        if let Some(f) = f.take() {
+            out = Some(f(b));
+        }
+    };
+    with_plugin(h, visit)?;
+    // `with_plugin` calls back exactly once when it succeeds.
+    out.ok_or(RadStatus::BadHandle)
 }
 
 /// Validates `h` and, on success, writes it to `out`.
@@ -264,7 +368,11 @@ pub unsafe extern "C" fn rad_brdf_blinn_phong(
 /// 2007, eq. 20): `distribution` = `RAD_DISTRIBUTION_GGX | _BECKMANN` with
 /// roughness `alpha ∈ [1e-4, 1]`, `shadowing` = `RAD_SHADOWING_*`, `fresnel` =
 /// `RAD_FRESNEL_*` with its parameters in `fresnel_a`, `fresnel_b` (see the
-/// constants).
+/// constants): e.g. `RAD_FRESNEL_F82` with `f0, f82`, or `RAD_FRESNEL_METAL`
+/// with `fresnel_a = RAD_METAL_AU` (an unknown id is
+/// `RAD_STATUS_UNKNOWN_KIND`). A named metal is fitted here, once (a few
+/// hundred Fresnel evaluations over the metal's measured spectrum); the
+/// handle keeps the fitted `η`, `k`.
 ///
 /// # Safety
 /// `out` is null or points to a writable `RadBrdf` (unchanged on error).
@@ -278,12 +386,118 @@ pub unsafe extern "C" fn rad_brdf_microfacet(
     fresnel_b: f32,
     out: *mut RadBrdf,
 ) -> RadStatus {
-    let h = RadBrdf {
+    let mut h = RadBrdf {
         kind: RAD_BRDF_MICROFACET,
         distribution,
         shadowing,
         fresnel,
+        metal: 0,
         params: [alpha, fresnel_a, fresnel_b],
+    };
+    if fresnel == RAD_FRESNEL_METAL {
+        if !fresnel_a.is_finite() {
+            return RadStatus::NotFinite;
+        }
+        // An integral id in 1..=10; `as` saturates, so any other value
+        // either fails the round trip or names no metal.
+        let id = fresnel_a as u32;
+        let Some(m) = metal(id).filter(|_| id as f32 == fresnel_a) else {
+            return RadStatus::UnknownKind;
+        };
+        let c = Conductor::metal_luminance(m);
+        h.metal = id;
+        h.params = [alpha, c.eta(), c.k()];
+    }
+    // SAFETY: forwarded caller contract.
+    unsafe { construct(h, out) }
+}
+
+/// Energy-preserving Oren–Nayar, "EON" (Portsmouth, Kutz & Hill, JCGT 14(1),
+/// 2025, listing 1 with the exact FON albedo; as OpenPBR Surface 1.1
+/// specifies it, without the printed spec's extra `1/π` in `ρ_ms`):
+///
+/// ```text
+/// f    = f_FON + (ρ_ms/π) (1 − E_FON(μi)) (1 − E_FON(μo)) / (1 − Ē_FON)
+/// ρ_ms = ρ² Ē_FON / (1 − ρ (1 − Ē_FON)),   Ē_FON = A (1 + (2/3 − 28/(15π)) σ)
+/// ```
+///
+/// (`f_FON` as [`rad_brdf_fon`]), albedo colour `rho ∈ [0, 1]`, roughness
+/// `sigma ∈ [0, 1]` (dimensionless, OpenPBR's `base_diffuse_roughness`).
+/// With `rho = 1` its directional albedo is 1 at every view.
+///
+/// # Safety
+/// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_brdf_eon(rho: f32, sigma: f32, out: *mut RadBrdf) -> RadStatus {
+    let h = RadBrdf {
+        kind: RAD_BRDF_EON,
+        params: [rho, sigma, 0.0],
+        ..RadBrdf::default()
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { construct(h, out) }
+}
+
+/// Fujii's improved Oren–Nayar, "FON" (Fujii 2012, in the normalisation of
+/// Portsmouth, Kutz & Hill 2025, listing 1 — EON's single-scattering term):
+///
+/// ```text
+/// f = (ρ/π) A (1 + σ s/t),   A = 1/(1 + (1/2 − 2/(3π)) σ),
+/// s = ωi·ωo − μi μo,         t = max(μi, μo) if s > 0, else 1,
+/// ```
+///
+/// `rho ∈ [0, 1]`, `sigma ∈ [0, 1]` (dimensionless). Loses energy with
+/// roughness (22 % at `σ = 1`, normal view), which EON gives back.
+///
+/// # Safety
+/// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_brdf_fon(rho: f32, sigma: f32, out: *mut RadBrdf) -> RadStatus {
+    let h = RadBrdf {
+        kind: RAD_BRDF_FON,
+        params: [rho, sigma, 0.0],
+        ..RadBrdf::default()
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { construct(h, out) }
+}
+
+/// The classic qualitative Oren–Nayar (Oren & Nayar 1994, as pbrt-v3 has it):
+/// `f = ρ/π (A + B max(0, cos(φi − φo)) sin α tan β)`, `A = 1 − σ²/(2(σ² +
+/// 0.33))`, `B = 0.45 σ²/(σ² + 0.09)`, with the roughness `sigma_rad ∈ [0,
+/// π/2]` in **radians** (the standard deviation of the facet slope angle; not
+/// EON's dimensionless σ) and `rho ∈ [0, 1]` at most `1/(A + B/2)` (above,
+/// its albedo exceeds 1 at grazing view: `RAD_STATUS_CONSTRAINT`).
+///
+/// # Safety
+/// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_brdf_oren_nayar(rho: f32, sigma_rad: f32, out: *mut RadBrdf) -> RadStatus {
+    let h = RadBrdf {
+        kind: RAD_BRDF_OREN_NAYAR,
+        params: [rho, sigma_rad, 0.0],
+        ..RadBrdf::default()
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { construct(h, out) }
+}
+
+/// Microfacet sheen (Estevez & Kulla 2017, "Production Friendly Microfacet
+/// Sheen BRDF", eq. 1 with `F = 1`): `f = color · D(h) / (4 μi μo (1 +
+/// Λ(μi) + Λ(μo)))` with the "Charlie" distribution `D = (2 + 1/r)
+/// sin(θh)^(1/r) / (2π)` and the paper's fitted `Λ` (without its
+/// non-reciprocal terminator softening); `color ∈ [0, 1]`, `roughness r ∈
+/// [0.07, 1]` (the range of the lobe's albedo table). Sampled uniformly
+/// over the hemisphere.
+///
+/// # Safety
+/// `out` is null or points to a writable `RadBrdf` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_brdf_sheen(color: f32, roughness: f32, out: *mut RadBrdf) -> RadStatus {
+    let h = RadBrdf {
+        kind: RAD_BRDF_SHEEN,
+        params: [color, roughness, 0.0],
+        ..RadBrdf::default()
     };
     // SAFETY: forwarded caller contract.
     unsafe { construct(h, out) }
@@ -291,6 +505,66 @@ pub unsafe extern "C" fn rad_brdf_microfacet(
 
 fn status(r: Result<(), RadStatus>) -> RadStatus {
     r.err().unwrap_or(RadStatus::Ok)
+}
+
+/// A C handle that describes a monochrome BRDF ([`RadBrdf`],
+/// [`RadMaterial`](crate::RadMaterial)): validates its fields, rebuilds the
+/// BRDF and runs `f` on it.
+pub(crate) trait Handle {
+    fn with<R>(&self, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus>;
+}
+
+impl Handle for RadBrdf {
+    #[inline]
+    fn with<R>(&self, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+        with_plugin(self, f)
+    }
+}
+
+/// The body of `rad_*_eval`.
+///
+/// # Safety
+/// `h` is null or points to a readable `H`; `out` is null or points to a
+/// writable `float`.
+pub(crate) unsafe fn eval_one<H: Handle>(h: *const H, wi: RadVec3, wo: RadVec3, out: *mut f32) -> RadStatus {
+    status((|| {
+        // SAFETY: forwarded caller contract.
+        let (h, out) = unsafe { (as_ref(h)?, as_mut(out)?) };
+        *out = h.with(|b| b.eval(wi.into(), wo.into()))?;
+        Ok(())
+    })())
+}
+
+/// The body of `rad_*_pdf`.
+///
+/// # Safety
+/// As [`eval_one`].
+pub(crate) unsafe fn pdf_one<H: Handle>(h: *const H, wi: RadVec3, wo: RadVec3, out: *mut f32) -> RadStatus {
+    status((|| {
+        // SAFETY: forwarded caller contract.
+        let (h, out) = unsafe { (as_ref(h)?, as_mut(out)?) };
+        *out = h.with(|b| b.pdf(wi.into(), wo.into()))?;
+        Ok(())
+    })())
+}
+
+/// The body of `rad_*_sample`.
+///
+/// # Safety
+/// `h` is null or points to a readable `H`; `out` is null or points to a
+/// writable `RadBrdfSample`.
+pub(crate) unsafe fn sample_one<H: Handle>(
+    h: *const H,
+    wo: RadVec3,
+    u: [f32; 2],
+    out: *mut RadBrdfSample,
+) -> RadStatus {
+    status((|| {
+        // SAFETY: forwarded caller contract.
+        let (h, out) = unsafe { (as_ref(h)?, as_mut(out)?) };
+        *out = h.with(|b| b.sample(wo.into(), u))?.into();
+        Ok(())
+    })())
 }
 
 /// `*out = f_r(wi → wo)` in 1/sr.
@@ -305,12 +579,8 @@ pub unsafe extern "C" fn rad_brdf_eval(
     wo: RadVec3,
     out: *mut f32,
 ) -> RadStatus {
-    status((|| {
-        // SAFETY: forwarded caller contract.
-        let (h, out) = unsafe { (as_ref(brdf)?, as_mut(out)?) };
-        *out = with_plugin(h, |b| b.eval(wi.into(), wo.into()))?;
-        Ok(())
-    })())
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_one(brdf, wi, wo, out) }
 }
 
 /// `*out` = the solid-angle density with which [`rad_brdf_sample`] draws `wi`
@@ -325,12 +595,8 @@ pub unsafe extern "C" fn rad_brdf_pdf(
     wo: RadVec3,
     out: *mut f32,
 ) -> RadStatus {
-    status((|| {
-        // SAFETY: forwarded caller contract.
-        let (h, out) = unsafe { (as_ref(brdf)?, as_mut(out)?) };
-        *out = with_plugin(h, |b| b.pdf(wi.into(), wo.into()))?;
-        Ok(())
-    })())
+    // SAFETY: forwarded caller contract.
+    unsafe { pdf_one(brdf, wi, wo, out) }
 }
 
 /// Importance-samples `wi` for `wo` from the uniform pair `(u0, u1) ∈ [0, 1)²`
@@ -347,12 +613,8 @@ pub unsafe extern "C" fn rad_brdf_sample(
     u1: f32,
     out: *mut RadBrdfSample,
 ) -> RadStatus {
-    status((|| {
-        // SAFETY: forwarded caller contract.
-        let (h, out) = unsafe { (as_ref(brdf)?, as_mut(out)?) };
-        *out = with_plugin(h, |b| b.sample(wo.into(), [u0, u1]))?.into();
-        Ok(())
-    })())
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_one(brdf, wo, [u0, u1], out) }
 }
 
 /// Views `[RadVec3]` as `[Vec3]`.
@@ -364,12 +626,13 @@ fn as_vec3(v: &[RadVec3]) -> &[Vec3] {
     unsafe { core::slice::from_raw_parts(v.as_ptr().cast::<Vec3>(), v.len()) }
 }
 
-/// Shared argument handling of the two-direction batch calls.
+/// Shared argument handling of the two-direction batch calls
+/// (`rad_*_eval_batch`, `rad_*_pdf_batch`).
 ///
 /// # Safety
 /// As [`rad_brdf_eval_batch`].
-unsafe fn pair_batch(
-    brdf: *const RadBrdf,
+pub(crate) unsafe fn pair_batch<H: Handle>(
+    h: *const H,
     wi: *const RadVec3,
     wo: *const RadVec3,
     out: *mut f32,
@@ -378,11 +641,11 @@ unsafe fn pair_batch(
 ) -> RadStatus {
     status((|| {
         // SAFETY: forwarded caller contract.
-        let (h, wi, wo) = unsafe { (as_ref(brdf)?, slice(wi, n)?, slice(wo, n)?) };
+        let (h, wi, wo) = unsafe { (as_ref(h)?, slice(wi, n)?, slice(wo, n)?) };
         // SAFETY: forwarded caller contract; `out` is checked to overlap
         // neither input.
         let out = unsafe { slice_mut_disjoint(out, n, &[span(wi), span(wo)])? };
-        with_plugin(h, |b| run(b, as_vec3(wi), as_vec3(wo), out))
+        h.with(|b| run(b, as_vec3(wi), as_vec3(wo), out))
     })())
 }
 
@@ -422,6 +685,44 @@ pub unsafe extern "C" fn rad_brdf_pdf_batch(
     unsafe { pair_batch(brdf, wi, wo, out, n, |b, wi, wo, out| b.pdf_batch(wi, wo, out)) }
 }
 
+/// The body of `rad_*_eval_batch_soa`.
+///
+/// # Safety
+/// As [`rad_brdf_eval_batch_soa`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn soa_batch<H: Handle>(
+    h: *const H,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    status((|| {
+        // SAFETY: forwarded caller contract.
+        let h = unsafe { as_ref(h)? };
+        // SAFETY: forwarded caller contract.
+        let s = |p| unsafe { slice(p, n) };
+        let wi = Vec3Soa {
+            x: s(wi_x)?,
+            y: s(wi_y)?,
+            z: s(wi_z)?,
+        };
+        let wo = Vec3Soa {
+            x: s(wo_x)?,
+            y: s(wo_y)?,
+            z: s(wo_z)?,
+        };
+        let inputs = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(span);
+        // SAFETY: forwarded caller contract; `out` is checked to overlap no input.
+        let out = unsafe { slice_mut_disjoint(out, n, &inputs)? };
+        h.with(|b| b.eval_batch_soa(wi, wo, out))
+    })())
+}
+
 /// Structure-of-arrays form of [`rad_brdf_eval_batch`] (wavefront
 /// renderers): direction `k` is `(wi_x[k], wi_y[k], wi_z[k])`.
 ///
@@ -441,25 +742,42 @@ pub unsafe extern "C" fn rad_brdf_eval_batch_soa(
     out: *mut f32,
     n: usize,
 ) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { soa_batch(brdf, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out, n) }
+}
+
+/// The body of `rad_*_sample_batch`.
+///
+/// # Safety
+/// As [`rad_brdf_sample_batch`].
+pub(crate) unsafe fn sample_batch<H: Handle>(
+    h: *const H,
+    wo: *const RadVec3,
+    u: *const f32,
+    out: *mut RadBrdfSample,
+    n: usize,
+) -> RadStatus {
     status((|| {
-        // SAFETY: forwarded caller contract.
-        let h = unsafe { as_ref(brdf)? };
-        // SAFETY: forwarded caller contract.
-        let s = |p| unsafe { slice(p, n) };
-        let wi = Vec3Soa {
-            x: s(wi_x)?,
-            y: s(wi_y)?,
-            z: s(wi_z)?,
-        };
-        let wo = Vec3Soa {
-            x: s(wo_x)?,
-            y: s(wo_y)?,
-            z: s(wo_z)?,
-        };
-        let inputs = [wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(span);
-        // SAFETY: forwarded caller contract; `out` is checked to overlap no input.
-        let out = unsafe { slice_mut_disjoint(out, n, &inputs)? };
-        with_plugin(h, |b| b.eval_batch_soa(wi, wo, out))
+        // SAFETY: forwarded caller contract; `[f32; 2]` has the size of two
+        // `f32` and the alignment of one, so `2n` floats are `n` pairs.
+        let (h, wo, u) = unsafe { (as_ref(h)?, slice(wo, n)?, slice(u.cast::<[f32; 2]>(), n)?) };
+        // SAFETY: forwarded caller contract; `out` is checked to overlap
+        // neither input.
+        let out = unsafe { slice_mut_disjoint(out, n, &[span(wo), span(u)])? };
+        h.with(|b| {
+            // The plugin writes `Option<BrdfSample>`s; go through a stack
+            // buffer (no heap) in chunks.
+            const CHUNK: usize = 64;
+            let mut buf = [None; CHUNK];
+            let wo = as_vec3(wo);
+            for ((wo, u), out) in wo.chunks(CHUNK).zip(u.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+                let buf = &mut buf[..wo.len()];
+                b.sample_batch(wo, u, buf);
+                for (o, s) in out.iter_mut().zip(buf.iter()) {
+                    *o = (*s).into();
+                }
+            }
+        })
     })())
 }
 
@@ -477,26 +795,6 @@ pub unsafe extern "C" fn rad_brdf_sample_batch(
     out: *mut RadBrdfSample,
     n: usize,
 ) -> RadStatus {
-    status((|| {
-        // SAFETY: forwarded caller contract; `[f32; 2]` has the size of two
-        // `f32` and the alignment of one, so `2n` floats are `n` pairs.
-        let (h, wo, u) = unsafe { (as_ref(brdf)?, slice(wo, n)?, slice(u.cast::<[f32; 2]>(), n)?) };
-        // SAFETY: forwarded caller contract; `out` is checked to overlap
-        // neither input.
-        let out = unsafe { slice_mut_disjoint(out, n, &[span(wo), span(u)])? };
-        with_plugin(h, |b| {
-            // The plugin writes `Option<BrdfSample>`s; go through a stack
-            // buffer (no heap) in chunks.
-            const CHUNK: usize = 64;
-            let mut buf = [None; CHUNK];
-            let wo = as_vec3(wo);
-            for ((wo, u), out) in wo.chunks(CHUNK).zip(u.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
-                let buf = &mut buf[..wo.len()];
-                b.sample_batch(wo, u, buf);
-                for (o, s) in out.iter_mut().zip(buf.iter()) {
-                    *o = (*s).into();
-                }
-            }
-        })
-    })())
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_batch(brdf, wo, u, out, n) }
 }

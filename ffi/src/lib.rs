@@ -7,10 +7,14 @@
 //! out-of-range parameters, and handles the caller has scribbled over are all
 //! reported as a status code.
 //!
-//! * BRDF plugins ([`RadBrdf`]): Lambertian, modified Phong, Blinn–Phong and the
+//! * BRDF plugins ([`RadBrdf`]): Lambertian, modified Phong, Blinn–Phong, the
 //!   microfacet family (GGX / Beckmann × Smith height-correlated / separable ×
-//!   Fresnel none / Schlick / dielectric / conductor); `eval`, `pdf`, `sample`,
-//!   single and batched ([`brdf`]).
+//!   Fresnel none / Schlick / dielectric / conductor / F82-tint / a named
+//!   metal), the rough diffuse EON, FON and classic Oren–Nayar, and sheen;
+//!   `eval`, `pdf`, `sample`, single and batched ([`brdf`]).
+//! * Materials ([`RadMaterial`]): a sum, a mix or a coat of two plugins
+//!   (a plastic, a coated metal), built once, evaluated like a plugin
+//!   ([`material`]).
 //! * Ambient-light sensors: raw counts → lux with dark offset, calibration and
 //!   spectral mismatch correction ([`als`]).
 //! * Irradiance closed forms: uniform sky, directional light, spherical cap
@@ -36,12 +40,14 @@ extern crate std;
 pub mod als;
 pub mod brdf;
 pub mod irradiance;
+pub mod material;
 mod ptr;
 pub mod spectrum;
 mod status;
 
 pub use als::RadAlsCalibration;
 pub use brdf::{RadBrdf, RadBrdfSample};
+pub use material::RadMaterial;
 pub use spectrum::RadSpectrum;
 pub use status::{RadStatus, rad_status_message};
 

@@ -1,5 +1,6 @@
 //! [`RadStatus`]: the return code of every fallible C function.
 
+use radiometry::compose::ComposeError;
 use radiometry::light::LightError;
 use radiometry::sensor::SensorError;
 use radiometry::sensor::als::AlsError;
@@ -23,7 +24,8 @@ pub enum RadStatus {
     NotFinite = 4,
     /// A parameter is outside its documented range.
     OutOfRange = 5,
-    /// A combination of parameters violates a constraint (e.g. `kd + ks ≤ 1`).
+    /// A combination of parameters violates a constraint (e.g. `kd + ks ≤ 1`,
+    /// or a classic Oren–Nayar `rho` that would reflect more than 1).
     Constraint = 6,
     /// A selector (`kind`, distribution, shadowing, Fresnel) has no meaning.
     UnknownKind = 7,
@@ -47,10 +49,30 @@ impl From<BrdfError> for RadStatus {
         match e {
             BrdfError::NotFinite { .. } => RadStatus::NotFinite,
             BrdfError::OutOfRange { .. } => RadStatus::OutOfRange,
-            BrdfError::Constraint { .. } => RadStatus::Constraint,
+            BrdfError::Constraint { .. } | BrdfError::EnergyGain { .. } => RadStatus::Constraint,
             // The Rust error enums are #[non_exhaustive]: a variant added
             // later maps to the generic out-of-range status.
             _ => RadStatus::OutOfRange,
+        }
+    }
+}
+
+impl From<ComposeError> for RadStatus {
+    fn from(e: ComposeError) -> Self {
+        let value = match e {
+            // A saved albedo table that fails its check was not written by
+            // `rad_material_coated` (or was overwritten since).
+            ComposeError::AlbedoTable(_) => return RadStatus::BadHandle,
+            ComposeError::Weight(v)
+            | ComposeError::Scale(v)
+            | ComposeError::CoatColor(v)
+            | ComposeError::CoatIor(v) => v,
+            _ => return RadStatus::OutOfRange,
+        };
+        if value.is_finite() {
+            RadStatus::OutOfRange
+        } else {
+            RadStatus::NotFinite
         }
     }
 }

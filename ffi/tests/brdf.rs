@@ -54,6 +54,14 @@ fn all_plugins() -> Vec<RadBrdf> {
         v.push(b);
         assert_eq!(rad_brdf_blinn_phong(30.0, 0.6, 0.3, &mut b), RadStatus::Ok);
         v.push(b);
+        assert_eq!(rad_brdf_eon(0.8, 0.5, &mut b), RadStatus::Ok);
+        v.push(b);
+        assert_eq!(rad_brdf_fon(0.8, 1.0, &mut b), RadStatus::Ok);
+        v.push(b);
+        assert_eq!(rad_brdf_oren_nayar(0.9, 0.35, &mut b), RadStatus::Ok);
+        v.push(b);
+        assert_eq!(rad_brdf_sheen(0.7, 0.4, &mut b), RadStatus::Ok);
+        v.push(b);
         for d in [RAD_DISTRIBUTION_GGX, RAD_DISTRIBUTION_BECKMANN] {
             for g in [RAD_SHADOWING_HEIGHT_CORRELATED, RAD_SHADOWING_SEPARABLE] {
                 for (f, a, k) in [
@@ -61,6 +69,8 @@ fn all_plugins() -> Vec<RadBrdf> {
                     (RAD_FRESNEL_SCHLICK, 0.04, 0.0),
                     (RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
                     (RAD_FRESNEL_CONDUCTOR, 0.2, 3.9),
+                    (RAD_FRESNEL_F82, 0.9, 0.7),
+                    (RAD_FRESNEL_METAL, RAD_METAL_CU as f32, 0.0),
                 ] {
                     assert_eq!(rad_brdf_microfacet(d, 0.3, g, f, a, k, &mut b), RadStatus::Ok);
                     v.push(b);

@@ -9,10 +9,12 @@ use crate::frame::cos_theta;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
-/// Number of nodes of the top's albedo table: `μ_k = (k/127)²`, `k = 0..128`
-/// (`μ_0` raised to `10⁻⁶`), dense near the horizon where a lobe's albedo
-/// changes fastest.
-const TOP_NODES: usize = 128;
+/// Number of nodes of the top's albedo table of a [`Coated`]: `μ_k =
+/// (k/127)²`, `k = 0..128` (`μ_0` raised to `10⁻⁶`), dense near the horizon
+/// where a lobe's albedo changes fastest (see [`Coated::table`] and
+/// [`Coated::from_table`]).
+pub const COATED_TABLE_NODES: usize = 128;
+const TOP_NODES: usize = COATED_TABLE_NODES;
 
 /// Smallest `μ` at which the top's albedo is read (the horizon itself has
 /// albedo 0 by convention).
@@ -131,6 +133,38 @@ where
                 top_error = top_error.max(a.error);
             }
         }
+        Self::from_valid_table(top, base, table, top_error)
+    }
+
+    /// `top` over `base` (clear) from a table of the top's albedo that
+    /// [`Coated::new`] read before ([`Coated::table`], [`Coated::top_error`]):
+    /// no albedo query, so a caller that keeps the table (the C API, which
+    /// rebuilds the layer from plain data on every call) skips the 128
+    /// queries. `table[k]` is the top's albedo at `μ_k = (k/127)²` (`μ_0 =
+    /// 10⁻⁶`), each channel finite and in `[0, 1]`; `top_error` finite and
+    /// `≥ 0`; otherwise [`ComposeError::AlbedoTable`] with the offending
+    /// value. With the table and error of [`Coated::new`] the layer is equal
+    /// to it (same `E_min`, `E_avg`, bit for bit). A table that is not the
+    /// top's keeps every guarantee but energy (the layer is reciprocal and
+    /// finite; its energy bound holds for the albedo the table states).
+    /// [`Coated::absorbing`] adds a coat's absorption.
+    pub fn from_table(top: T, base: B, table: [S; TOP_NODES], top_error: f32) -> Result<Self, ComposeError> {
+        for e in &table {
+            for c in 0..S::CHANNELS {
+                let v = e.channel(c);
+                if !(0.0..=1.0).contains(&v) {
+                    return Err(ComposeError::AlbedoTable(v));
+                }
+            }
+        }
+        if !(top_error.is_finite() && top_error >= 0.0) {
+            return Err(ComposeError::AlbedoTable(top_error));
+        }
+        Ok(Self::from_valid_table(top, base, table, top_error))
+    }
+
+    /// The layer of a validated table: `E_min` and `E_avg` from it.
+    fn from_valid_table(top: T, base: B, table: [S; TOP_NODES], top_error: f32) -> Self {
         let e_min = table
             .iter()
             .fold(1.0f32, |m, e| m.min(e.min_channel()))
@@ -198,21 +232,29 @@ where
     /// 1]` per channel, the square of the normal-incidence transmittance) and
     /// the coat's index of refraction `ior ≥ 1` (relative to the outside).
     pub fn with_absorption(top: T, base: B, coat_color: S, ior: f32) -> Result<Self, ComposeError> {
-        for i in 0..S::CHANNELS {
-            let c = coat_color.channel(i);
-            if !c.is_finite() || c < 0.0 {
-                return Err(ComposeError::Scale(c));
-            }
-            if c > 1.0 {
-                return Err(ComposeError::CoatColor(c));
-            }
-        }
-        if !ior.is_finite() || ior < 1.0 {
-            return Err(ComposeError::CoatIor(ior));
-        }
-        let mut c = Self::new(top, base);
-        c.absorption = Some((coat_color, ior));
-        Ok(c)
+        check_coat(coat_color, ior)?;
+        Self::new(top, base).absorbing(coat_color, ior)
+    }
+
+    /// This layer with an absorbing coat, as [`Coated::with_absorption`]
+    /// builds it (`coat_color ∈ [0, 1]` per channel, `ior ≥ 1`): for a layer
+    /// made by [`Coated::from_table`].
+    pub fn absorbing(mut self, coat_color: S, ior: f32) -> Result<Self, ComposeError> {
+        check_coat(coat_color, ior)?;
+        self.absorption = Some((coat_color, ior));
+        Ok(self)
+    }
+
+    /// The top's albedo at the nodes `μ_k = (k/127)²`, `k = 0..128`, as
+    /// [`Coated::new`] read it (each channel in `[0, 1]`); with
+    /// [`Coated::top_error`], what [`Coated::from_table`] takes back.
+    pub fn table(&self) -> &[S; TOP_NODES] {
+        &self.table
+    }
+
+    /// The largest error the top stated for its albedo at the table's nodes.
+    pub fn top_error(&self) -> f32 {
+        self.top_error
     }
 
     /// The top lobe.
@@ -302,6 +344,23 @@ where
     }
 }
 
+/// The domain of a coat's absorption parameters.
+fn check_coat<S: Spectrum>(coat_color: S, ior: f32) -> Result<(), ComposeError> {
+    for i in 0..S::CHANNELS {
+        let c = coat_color.channel(i);
+        if !c.is_finite() || c < 0.0 {
+            return Err(ComposeError::Scale(c));
+        }
+        if c > 1.0 {
+            return Err(ComposeError::CoatColor(c));
+        }
+    }
+    if !ior.is_finite() || ior < 1.0 {
+        return Err(ComposeError::CoatIor(ior));
+    }
+    Ok(())
+}
+
 impl<T, B, S> Brdf for Coated<T, B>
 where
     T: Brdf<Spectrum = S>,
@@ -385,4 +444,55 @@ where
     B: IsotropicBrdf<Spectrum = S>,
     S: Spectrum,
 {
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `f = ρ (1 + μi μo)/(2π)`: an albedo that varies with `μ`.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    struct Tilted(f32);
+    impl Brdf for Tilted {
+        type Spectrum = f32;
+        fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+            if wi.z > 0.0 && wo.z > 0.0 {
+                self.0 * 0.5 * (1.0 + wi.z * wo.z) * core::f32::consts::FRAC_1_PI
+            } else {
+                0.0
+            }
+        }
+    }
+
+    #[test]
+    fn from_table_rebuilds_the_layer_bit_for_bit_and_rejects_bad_tables() {
+        let layer = Coated::new(Tilted(0.3), Tilted(0.9));
+        assert!(
+            layer.table().iter().any(|&e| e != layer.table()[127]),
+            "the table varies with μ"
+        );
+        let again = Coated::from_table(Tilted(0.3), Tilted(0.9), *layer.table(), layer.top_error()).unwrap();
+        assert_eq!(again, layer);
+        let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, -0.28, 0.96));
+        assert_eq!(again.eval(wi, wo).to_bits(), layer.eval(wi, wo).to_bits());
+        assert_eq!(again.pdf(wi, wo).to_bits(), layer.pdf(wi, wo).to_bits());
+        let tinted = Coated::with_absorption(Tilted(0.3), Tilted(0.9), 0.6, 1.5).unwrap();
+        assert_eq!(again.absorbing(0.6, 1.5), Ok(tinted));
+        assert!(matches!(again.absorbing(0.6, 0.5), Err(ComposeError::CoatIor(_))));
+        for bad in [-0.1, 1.5, f32::NAN, f32::INFINITY] {
+            let mut t = *layer.table();
+            t[17] = bad;
+            let e = Coated::from_table(Tilted(0.3), Tilted(0.9), t, 0.0).unwrap_err();
+            assert!(
+                matches!(e, ComposeError::AlbedoTable(v) if v.to_bits() == bad.to_bits()),
+                "{e:?}"
+            );
+        }
+        for bad in [-1.0, f32::NAN] {
+            assert!(matches!(
+                Coated::from_table(Tilted(0.3), Tilted(0.9), *layer.table(), bad),
+                Err(ComposeError::AlbedoTable(_))
+            ));
+        }
+    }
 }

@@ -18,6 +18,10 @@ pub enum ComposeError {
     /// A [`Coated`](super::Coated) top tint channel outside `[0, 1]` or not
     /// finite.
     TopTint(f32),
+    /// A value of a [`Coated::from_table`](super::Coated::from_table) albedo
+    /// table outside `[0, 1]` or not finite, or a negative or non-finite
+    /// table error (the offending value).
+    AlbedoTable(f32),
 }
 
 impl fmt::Display for ComposeError {
@@ -28,6 +32,7 @@ impl fmt::Display for ComposeError {
             Self::CoatColor(c) => write!(f, "coat colour {c} is outside [0, 1]"),
             Self::CoatIor(e) => write!(f, "coat index of refraction {e} is below 1 or not finite"),
             Self::TopTint(t) => write!(f, "top tint {t} is outside [0, 1]"),
+            Self::AlbedoTable(v) => write!(f, "albedo table value {v} is outside [0, 1] or not finite"),
         }
     }
 }

@@ -41,7 +41,7 @@ mod mix;
 mod scaled;
 mod sum;
 
-pub use coated::Coated;
+pub use coated::{COATED_TABLE_NODES, Coated};
 pub use error::ComposeError;
 pub use mix::Mix;
 pub use scaled::Scaled;

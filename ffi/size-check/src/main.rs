@@ -5,7 +5,7 @@
 // Link the library in every image (it provides the panic handler).
 use radiometry_ffi as _;
 
-#[cfg(any(feature = "als", feature = "brdf"))]
+#[cfg(any(feature = "als", feature = "brdf", feature = "material"))]
 use core::hint::black_box;
 
 /// The reset entry: calls the measured functions with opaque arguments so
@@ -16,6 +16,8 @@ pub extern "C" fn _start() -> ! {
     als();
     #[cfg(feature = "brdf")]
     brdf();
+    #[cfg(feature = "material")]
+    material();
     loop {
         core::hint::spin_loop();
     }
@@ -101,6 +103,10 @@ fn brdf() {
             black_box(3.9),
             &mut b,
         ));
+        black_box(rad_brdf_eon(black_box(0.8), black_box(0.5), &mut b));
+        black_box(rad_brdf_fon(black_box(0.8), black_box(0.5), &mut b));
+        black_box(rad_brdf_oren_nayar(black_box(0.8), black_box(0.5), &mut b));
+        black_box(rad_brdf_sheen(black_box(0.8), black_box(0.5), &mut b));
         let b = black_box(b);
         black_box(rad_brdf_eval(&b, wi, wo, &mut f[0]));
         black_box(rad_brdf_pdf(&b, wi, wo, &mut f[1]));
@@ -129,6 +135,98 @@ fn brdf() {
         let c = black_box([0.5f32; 4]);
         black_box(rad_brdf_eval_batch_soa(
             &b,
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+    }
+    black_box((f, s));
+}
+
+#[cfg(feature = "material")]
+fn material() {
+    use radiometry_ffi::brdf::*;
+    use radiometry_ffi::material::*;
+    use radiometry_ffi::{RadBrdf, RadBrdfSample, RadMaterial, RadVec3};
+    let (mut top, mut base) = (RadBrdf::default(), RadBrdf::default());
+    let mut m = RadMaterial::default();
+    let v = |x: f32, y: f32, z: f32| black_box(RadVec3 { x, y, z });
+    let (wi, wo) = (v(0.1, 0.2, 0.9), v(-0.3, 0.1, 0.8));
+    let mut f = [0.0f32; 4];
+    let mut s = [RadBrdfSample::default(); 4];
+    let (wis, wos, u) = (black_box([wi; 4]), black_box([wo; 4]), black_box([0.5f32; 8]));
+    let n = black_box(4usize);
+    // SAFETY: valid, aligned, exclusive pointers to locals; `n` is their length.
+    unsafe {
+        black_box(rad_brdf_microfacet(
+            black_box(0),
+            black_box(0.1),
+            black_box(0),
+            black_box(RAD_FRESNEL_METAL),
+            black_box(1.0),
+            black_box(0.0),
+            &mut top,
+        ));
+        black_box(rad_brdf_microfacet(
+            black_box(0),
+            black_box(0.1),
+            black_box(0),
+            black_box(RAD_FRESNEL_F82),
+            black_box(0.9),
+            black_box(0.7),
+            &mut top,
+        ));
+        black_box(rad_brdf_eon(black_box(0.8), black_box(0.5), &mut base));
+        let (top, base) = (black_box(top), black_box(base));
+        black_box(rad_material_brdf(&top, &mut m));
+        black_box(rad_material_sum(&top, &base, &mut m));
+        black_box(rad_material_mix(black_box(0.5), &top, &base, &mut m));
+        black_box(rad_material_coated(
+            &top,
+            &base,
+            black_box(1.0),
+            black_box(1.5),
+            &mut m,
+        ));
+        let m = black_box(m);
+        black_box(rad_material_eval(&m, wi, wo, &mut f[0]));
+        black_box(rad_material_pdf(&m, wi, wo, &mut f[1]));
+        black_box(rad_material_sample(
+            &m,
+            wo,
+            black_box(0.3),
+            black_box(0.7),
+            &mut s[0],
+        ));
+        black_box(rad_material_eval_batch(
+            &m,
+            wis.as_ptr(),
+            wos.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+        black_box(rad_material_pdf_batch(
+            &m,
+            wis.as_ptr(),
+            wos.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+        black_box(rad_material_sample_batch(
+            &m,
+            wos.as_ptr(),
+            u.as_ptr(),
+            s.as_mut_ptr(),
+            n,
+        ));
+        let c = black_box([0.5f32; 4]);
+        black_box(rad_material_eval_batch_soa(
+            &m,
             c.as_ptr(),
             c.as_ptr(),
             c.as_ptr(),

@@ -1,0 +1,478 @@
+//! Compositions of BRDF plugins behind one plain C struct, [`RadMaterial`]:
+//! a single lobe, a sum `A + B`, a mix `w A + (1 − w) B` and a coat
+//! `coated(top, base)` — the lobe combinators of `radiometry::compose`
+//! (`Sum`, `Mix`, `Coated`), where `A`, `B`, `top` and `base` are
+//! [`RadBrdf`]s.
+//!
+//! Like a `RadBrdf`, a `RadMaterial` is caller-allocated plain data (no
+//! pointers, no heap; 596 bytes, 4-byte aligned), filled in once by a
+//! `rad_material_*` constructor. Every call re-validates it (the lobes'
+//! parameters as for a `RadBrdf`, the weight and coat parameters, and each
+//! value of a coat's albedo table finite and in `[0, 1]`) and rebuilds the
+//! composite from it. A coat needs its top's directional albedo at 128
+//! directions: [`rad_material_coated`] reads it once into
+//! [`RadMaterial::table`] (that read is the slow part of building a
+//! `Coated`), and each call rebuilds the layer from the saved table
+//! (`Coated::from_table`), bit for bit the layer `Coated::new` builds.
+//!
+//! The values are those of the Rust composites over the same plugins, bit for
+//! bit: `Sum`, `Mix` and `Coated` pick a lobe to sample in proportion to its
+//! directional albedo at `ωo`, and `pdf` returns the mixture density the
+//! sample reported, bit for bit.
+
+use crate::brdf::{
+    DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch, with_plugin_shared,
+};
+use crate::ptr::{as_mut, as_ref};
+use crate::{RadBrdf, RadBrdfSample, RadStatus, RadVec3};
+use radiometry::batch::Vec3Soa;
+use radiometry::compose::{COATED_TABLE_NODES, Coated, Mix, Sum};
+use radiometry::glam::Vec3;
+use radiometry::{Albedo, Brdf, BrdfSample};
+
+/// `RadMaterial::kind`: one lobe, `lobes[0]`.
+pub const RAD_MATERIAL_BRDF: u32 = 1;
+/// `RadMaterial::kind`: the sum `lobes[0] + lobes[1]`.
+pub const RAD_MATERIAL_SUM: u32 = 2;
+/// `RadMaterial::kind`: the mix `weight · lobes[0] + (1 − weight) · lobes[1]`.
+pub const RAD_MATERIAL_MIX: u32 = 3;
+/// `RadMaterial::kind`: `lobes[0]` (top) coated over `lobes[1]` (base).
+pub const RAD_MATERIAL_COATED: u32 = 4;
+
+/// Number of values in [`RadMaterial::table`]: the top's directional albedo
+/// at `μ_k = (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`).
+pub const RAD_MATERIAL_TABLE_NODES: usize = 128;
+
+const _: () = assert!(RAD_MATERIAL_TABLE_NODES == COATED_TABLE_NODES);
+// The layouts the header documents.
+const _: () = assert!(core::mem::size_of::<RadBrdf>() == 32 && core::mem::align_of::<RadBrdf>() == 4);
+const _: () =
+    assert!(core::mem::size_of::<RadMaterial>() == 596 && core::mem::align_of::<RadMaterial>() == 4);
+
+/// A material: one or two [`RadBrdf`] lobes and how they combine. Plain data
+/// (596 bytes, 4-byte aligned: five 32-bit fields, two `RadBrdf`s and 128
+/// `float`s, no padding), filled in by `rad_material_brdf`,
+/// `rad_material_sum`, `rad_material_mix` or `rad_material_coated`; copy it
+/// freely (it holds no pointers). Treat the fields as read-only; a zeroed
+/// struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`). Fields a kind does
+/// not use are 0. Each call checks the fields the kind uses (the lobes as
+/// `RadBrdf` calls do, the weight, the coat parameters, every table value
+/// finite and in `[0, 1]`: about 130 comparisons) and rebuilds the
+/// composite.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RadMaterial {
+    /// One of the `RAD_MATERIAL_*` kinds.
+    pub kind: u32,
+    /// `RAD_MATERIAL_MIX`: the weight `w ∈ [0, 1]` of `lobes[0]`.
+    pub weight: f32,
+    /// `RAD_MATERIAL_COATED`: the coat colour `C ∈ [0, 1]` (OpenPBR's
+    /// `coat_color`, the square of the coat's transmittance at normal
+    /// incidence; 1: a clear coat, no absorption).
+    pub coat_color: f32,
+    /// `RAD_MATERIAL_COATED`: the coat's index of refraction `≥ 1` (sets
+    /// the path length of the absorption).
+    pub coat_ior: f32,
+    /// `RAD_MATERIAL_COATED`: the largest error the top stated for its
+    /// albedo at the table's nodes.
+    pub top_error: f32,
+    /// The lobes: `A`, `B` (sum, mix), `top`, `base` (coated); `lobes[1]`
+    /// zeroed for `RAD_MATERIAL_BRDF`.
+    pub lobes: [RadBrdf; 2],
+    /// `RAD_MATERIAL_COATED`: the top's directional albedo at
+    /// `μ_k = (k/127)²`, each in `[0, 1]`.
+    pub table: [f32; RAD_MATERIAL_TABLE_NODES],
+}
+
+impl Default for RadMaterial {
+    /// A zeroed handle (invalid until a constructor fills it in).
+    fn default() -> Self {
+        RadMaterial {
+            kind: 0,
+            weight: 0.0,
+            coat_color: 0.0,
+            coat_ior: 0.0,
+            top_error: 0.0,
+            lobes: [RadBrdf::default(); 2],
+            table: [0.0; RAD_MATERIAL_TABLE_NODES],
+        }
+    }
+}
+
+/// A plugin behind the object-safe view, as a `Brdf` the combinators take.
+#[derive(Clone, Copy)]
+struct Lobe<'a>(&'a dyn DynBrdf);
+
+impl Brdf for Lobe<'_> {
+    type Spectrum = f32;
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+        DynBrdf::eval(self.0, wi, wo)
+    }
+    #[inline]
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+        DynBrdf::sample(self.0, wo, u)
+    }
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        DynBrdf::pdf(self.0, wi, wo)
+    }
+    #[inline]
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        DynBrdf::eval_batch(self.0, wi, wo, out)
+    }
+    #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [f32]) {
+        DynBrdf::eval_batch_soa(self.0, wi, wo, out)
+    }
+    #[inline]
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        DynBrdf::pdf_batch(self.0, wi, wo, out)
+    }
+    #[inline]
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
+        DynBrdf::sample_batch(self.0, wo, u, out)
+    }
+    #[inline]
+    fn is_smooth(&self) -> bool {
+        DynBrdf::is_smooth(self.0)
+    }
+    #[inline]
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
+        DynBrdf::directional_albedo(self.0, wo)
+    }
+}
+
+/// Builds both lobes of `m` and runs `f` on them.
+fn two<R>(m: &RadMaterial, f: impl FnOnce(Lobe<'_>, Lobe<'_>) -> R) -> Result<R, RadStatus> {
+    let [a, b] = &m.lobes;
+    with_plugin_shared(a, |a| with_plugin_shared(b, |b| f(Lobe(a), Lobe(b))))?
+}
+
+/// Checks a coat's colour and index of refraction (as `Coated` does): the
+/// colour in `[0, 1]`, the index finite and `≥ 1`.
+fn check_coat(coat_color: f32, coat_ior: f32) -> Result<(), RadStatus> {
+    if !coat_color.is_finite() || !coat_ior.is_finite() {
+        return Err(RadStatus::NotFinite);
+    }
+    if !(0.0..=1.0).contains(&coat_color) || coat_ior < 1.0 {
+        return Err(RadStatus::OutOfRange);
+    }
+    Ok(())
+}
+
+impl Handle for RadMaterial {
+    fn with<R>(&self, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+        match self.kind {
+            RAD_MATERIAL_BRDF => {
+                if self.lobes[1] != RadBrdf::default() {
+                    return Err(RadStatus::BadHandle);
+                }
+                with_plugin_shared(&self.lobes[0], f)
+            }
+            RAD_MATERIAL_SUM => two(self, |a, b| f(&Sum::new(a, b))),
+            RAD_MATERIAL_MIX => two(self, |a, b| Ok(f(&Mix::new(self.weight, a, b)?)))?,
+            RAD_MATERIAL_COATED => {
+                check_coat(self.coat_color, self.coat_ior)?;
+                two(self, |top, base| {
+                    let layer = Coated::from_table(top, base, self.table, self.top_error)?;
+                    // A clear coat is `Coated::new`'s layer (as the spec
+                    // grammar builds `coat_color=1`).
+                    Ok(if self.coat_color < 1.0 {
+                        f(&layer.absorbing(self.coat_color, self.coat_ior)?)
+                    } else {
+                        f(&layer)
+                    })
+                })?
+            }
+            _ => Err(RadStatus::BadHandle),
+        }
+    }
+}
+
+/// Copies the lobes (before `out` is borrowed: C may pass overlapping
+/// pointers), builds the material, validates it and writes it to `out`.
+///
+/// # Safety
+/// `a`, `b` are null or point to readable `RadBrdf`s; `out` is null or
+/// points to a writable `RadMaterial`.
+unsafe fn construct(
+    a: *const RadBrdf,
+    b: Option<*const RadBrdf>,
+    out: *mut RadMaterial,
+    fill: impl FnOnce(&mut RadMaterial) -> Result<(), RadStatus>,
+) -> RadStatus {
+    let r = (|| {
+        // SAFETY: forwarded caller contract; the lobes are copied out before
+        // `out` is borrowed.
+        let a = unsafe { *as_ref(a)? };
+        let b = match b {
+            // SAFETY: as above.
+            Some(b) => unsafe { *as_ref(b)? },
+            None => RadBrdf::default(),
+        };
+        let mut m = RadMaterial {
+            lobes: [a, b],
+            ..RadMaterial::default()
+        };
+        fill(&mut m)?;
+        m.with(|_| ())?;
+        // SAFETY: forwarded caller contract.
+        let out = unsafe { as_mut(out)? };
+        *out = m;
+        Ok(())
+    })();
+    r.err().unwrap_or(RadStatus::Ok)
+}
+
+/// A material of one lobe: the plugin `brdf` (so a renderer can hold every
+/// surface as a `RadMaterial`). Same values as the `RadBrdf` calls.
+///
+/// # Safety
+/// `brdf` is null or points to a readable `RadBrdf`; `out` is null or points
+/// to a writable `RadMaterial` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_brdf(brdf: *const RadBrdf, out: *mut RadMaterial) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        construct(brdf, None, out, |m| {
+            m.kind = RAD_MATERIAL_BRDF;
+            Ok(())
+        })
+    }
+}
+
+/// The sum of two lobes, `f = f_A + f_B` (`radiometry::compose::Sum`),
+/// sampled by picking `A` with probability `Ē_A / (Ē_A + Ē_B)` (their
+/// directional albedos at `ωo`) and the mixture density. A sum of
+/// energy-conserving lobes need not conserve energy (a plastic is better
+/// built with [`rad_material_coated`]).
+///
+/// # Safety
+/// `a`, `b` are null or point to readable `RadBrdf`s; `out` is null or
+/// points to a writable `RadMaterial` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_sum(
+    a: *const RadBrdf,
+    b: *const RadBrdf,
+    out: *mut RadMaterial,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        construct(a, Some(b), out, |m| {
+            m.kind = RAD_MATERIAL_SUM;
+            Ok(())
+        })
+    }
+}
+
+/// The mix `f = w f_A + (1 − w) f_B`, `w ∈ [0, 1]` (OpenPBR's `mix`;
+/// `radiometry::compose::Mix`): `E = w E_A + (1 − w) E_B`, so a mix of
+/// energy-conserving lobes conserves energy. Sampled by picking `A` with
+/// probability `w Ē_A / (w Ē_A + (1 − w) Ē_B)`.
+///
+/// # Safety
+/// As [`rad_material_sum`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_mix(
+    weight: f32,
+    a: *const RadBrdf,
+    b: *const RadBrdf,
+    out: *mut RadMaterial,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        construct(a, Some(b), out, |m| {
+            m.kind = RAD_MATERIAL_MIX;
+            m.weight = weight;
+            Ok(())
+        })
+    }
+}
+
+/// `top` coated over `base` by albedo scaling, in a reciprocal, energy-safe
+/// form (`radiometry::compose::Coated`; OpenPBR Surface 1.1 §"Layering"):
+///
+/// ```text
+/// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) f_B(ωi, ωo)
+/// τ(ωi, ωo) = A(μi, μo) t(ωi) t(ωo) (1 − E_min),   t(ω) = min((1 − E_T(ω)) / (1 − E_min), 1)
+/// A(μi, μo) = C^((1/μᵗi + 1/μᵗo)/2),               μᵗ = √(1 − (1 − μ²)/η²)
+/// ```
+///
+/// with `E_T` the top's directional albedo (read here, once, at 128
+/// directions into `RadMaterial::table`: the slow step, about a millisecond
+/// for a microfacet top on a desktop core), `E_min` its smallest value, `C =
+/// coat_color ∈ [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. Each call then
+/// checks the table and derives `E_min` and `E_avg` from it again (three
+/// passes over the 128 values: batch calls pay it once per batch). A
+/// plastic is a
+/// dielectric microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a
+/// diffuse base. Sampling picks the top with probability
+/// `Ē_T / (Ē_T + Ē_through)` at `ωo`.
+///
+/// # Safety
+/// `top`, `base` are null or point to readable `RadBrdf`s; `out` is null or
+/// points to a writable `RadMaterial` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_coated(
+    top: *const RadBrdf,
+    base: *const RadBrdf,
+    coat_color: f32,
+    coat_ior: f32,
+    out: *mut RadMaterial,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        construct(top, Some(base), out, |m| {
+            check_coat(coat_color, coat_ior)?;
+            let (table, top_error) = two(m, |top, base| {
+                let layer = Coated::new(top, base);
+                (*layer.table(), layer.top_error())
+            })?;
+            m.kind = RAD_MATERIAL_COATED;
+            m.coat_color = coat_color;
+            m.coat_ior = coat_ior;
+            m.top_error = top_error;
+            m.table = table;
+            Ok(())
+        })
+    }
+}
+
+/// `*out = f_r(wi → wo)` of the material, in 1/sr.
+///
+/// # Safety
+/// `material` is null or points to a readable `RadMaterial`; `out` is null
+/// or points to a writable `float`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_eval(
+    material: *const RadMaterial,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_one(material, wi, wo, out) }
+}
+
+/// `*out` = the solid-angle density with which [`rad_material_sample`] draws
+/// `wi` given `wo` (the mixture density of the lobes).
+///
+/// # Safety
+/// As [`rad_material_eval`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_pdf(
+    material: *const RadMaterial,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { pdf_one(material, wi, wo, out) }
+}
+
+/// Importance-samples `wi` for `wo` from `(u0, u1) ∈ [0, 1)²`: a lobe picked
+/// by albedo with `u0` (rescaled and reused), then that lobe's sample; the
+/// returned pdf is the mixture density, equal to [`rad_material_pdf`] bit for
+/// bit. `pdf = 0` means no sample (see `RadBrdfSample`).
+///
+/// # Safety
+/// `material` is null or points to a readable `RadMaterial`; `out` is null
+/// or points to a writable `RadBrdfSample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_sample(
+    material: *const RadMaterial,
+    wo: RadVec3,
+    u0: f32,
+    u1: f32,
+    out: *mut RadBrdfSample,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_one(material, wo, [u0, u1], out) }
+}
+
+/// `out[k] = f_r(wi[k] → wo[k])` for `k < n` (validates the material once
+/// per batch).
+///
+/// # Safety
+/// `material` points to a readable `RadMaterial`; `wi`, `wo` to `n` readable
+/// `RadVec3`; `out` to `n` writable `float`s not overlapping the inputs
+/// (checked: `RAD_STATUS_OVERLAP`). Null pointers are reported, not
+/// dereferenced; `n = 0` reads nothing.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_eval_batch(
+    material: *const RadMaterial,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+            b.eval_batch(wi, wo, out)
+        })
+    }
+}
+
+/// `out[k] = pdf(wi[k], wo[k])` for `k < n`.
+///
+/// # Safety
+/// As [`rad_material_eval_batch`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_pdf_batch(
+    material: *const RadMaterial,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+            b.pdf_batch(wi, wo, out)
+        })
+    }
+}
+
+/// Structure-of-arrays form of [`rad_material_eval_batch`]: direction `k` is
+/// `(wi_x[k], wi_y[k], wi_z[k])`.
+///
+/// # Safety
+/// Each of the six input pointers points to `n` readable `float`s, `out` to
+/// `n` writable `float`s overlapping none of them (checked).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn rad_material_eval_batch_soa(
+    material: *const RadMaterial,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { soa_batch(material, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out, n) }
+}
+
+/// Samples for `n` pairs: `out[k]` from `wo[k]` and `u[2k], u[2k+1]`, each
+/// equal to [`rad_material_sample`]'s.
+///
+/// # Safety
+/// `material` points to a readable `RadMaterial`, `wo` to `n` readable
+/// `RadVec3`, `u` to `2n` readable `float`s, `out` to `n` writable
+/// `RadBrdfSample`s overlapping neither input (checked).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_sample_batch(
+    material: *const RadMaterial,
+    wo: *const RadVec3,
+    u: *const f32,
+    out: *mut RadBrdfSample,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_batch(material, wo, u, out, n) }
+}

@@ -1,0 +1,547 @@
+//! The new plugins (EON, FON, classic Oren–Nayar, sheen, F82-tint and named
+//! metal Fresnel) and the materials (sum, mix, coated) of the C API, called
+//! as C would call them: every value equals the Rust plugin's or composite's
+//! bit for bit, `pdf(sample) == sample.pdf` bit for bit, batches equal single
+//! calls, bad parameters and scribbled handles are statuses.
+//!
+//! Run with `cargo test --features std`.
+
+use core::f32::consts::PI;
+use core::ptr::{null, null_mut};
+use radiometry::compose::{Coated, Mix, Sum};
+use radiometry::glam::Vec3;
+use radiometry::{Brdf, BrdfSample};
+use radiometry_brdfs::metals::Metal;
+use radiometry_brdfs::{
+    Conductor, Dielectric, Eon, F82Tint, Fon, Ggx, HeightCorrelated, Lambertian, Microfacet, OrenNayar, Sheen,
+};
+use radiometry_ffi::brdf::*;
+use radiometry_ffi::material::*;
+use radiometry_ffi::{RadBrdf, RadBrdfSample, RadMaterial, RadStatus, RadVec3};
+
+type GgxHc<F> = Microfacet<Ggx, HeightCorrelated, F>;
+
+fn ggx<F: radiometry_brdfs::Fresnel<Spectrum = f32>>(alpha: f32, f: F) -> GgxHc<F> {
+    Microfacet::new(Ggx::new(alpha).unwrap(), f)
+}
+
+fn ok(s: RadStatus) {
+    assert_eq!(s, RadStatus::Ok);
+}
+
+fn c_ggx(alpha: f32, fresnel: u32, a: f32, b: f32) -> RadBrdf {
+    let mut h = RadBrdf::default();
+    ok(unsafe {
+        rad_brdf_microfacet(
+            RAD_DISTRIBUTION_GGX,
+            alpha,
+            RAD_SHADOWING_HEIGHT_CORRELATED,
+            fresnel,
+            a,
+            b,
+            &mut h,
+        )
+    });
+    h
+}
+
+fn c_plugin(f: unsafe extern "C" fn(f32, f32, *mut RadBrdf) -> RadStatus, p: f32, q: f32) -> RadBrdf {
+    let mut h = RadBrdf::default();
+    ok(unsafe { f(p, q, &mut h) });
+    h
+}
+
+fn c_coated(top: &RadBrdf, base: &RadBrdf, color: f32, ior: f32) -> RadMaterial {
+    let mut m = RadMaterial::default();
+    ok(unsafe { rad_material_coated(top, base, color, ior, &mut m) });
+    m
+}
+
+/// Unit directions over the hemisphere (some grazing, some below).
+fn directions(n: usize, seed: f32) -> Vec<RadVec3> {
+    (0..n)
+        .map(|k| {
+            let a = (k as f32 * 0.618_034 + seed).fract();
+            let b = (k as f32 * 0.754_878 + seed * 0.5).fract();
+            let z = match k % 23 {
+                0 => -0.25,
+                1 => 1e-4,
+                _ => 0.01 + 0.99 * a,
+            };
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let p = 2.0 * PI * b;
+            RadVec3 {
+                x: r * p.cos(),
+                y: r * p.sin(),
+                z,
+            }
+        })
+        .collect()
+}
+
+fn us(n: usize) -> Vec<[f32; 2]> {
+    (0..n)
+        .map(|k| {
+            [
+                (k as f32 * 0.377_3 + 0.01).fract(),
+                (k as f32 * 0.711_9 + 0.3).fract(),
+            ]
+        })
+        .collect()
+}
+
+/// The C calls of a handle (a plugin or a material), for the shared checks.
+trait CHandle {
+    fn eval(&self, wi: RadVec3, wo: RadVec3) -> f32;
+    fn pdf(&self, wi: RadVec3, wo: RadVec3) -> f32;
+    fn sample(&self, wo: RadVec3, u: [f32; 2]) -> RadBrdfSample;
+    fn eval_batch(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32>;
+    fn pdf_batch(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32>;
+    fn sample_batch(&self, wo: &[RadVec3], u: &[[f32; 2]]) -> Vec<RadBrdfSample>;
+}
+
+macro_rules! c_handle {
+    ($t:ty, $eval:ident, $pdf:ident, $sample:ident, $eb:ident, $pb:ident, $sb:ident) => {
+        impl CHandle for $t {
+            fn eval(&self, wi: RadVec3, wo: RadVec3) -> f32 {
+                let mut f = f32::NAN;
+                ok(unsafe { $eval(self, wi, wo, &mut f) });
+                f
+            }
+            fn pdf(&self, wi: RadVec3, wo: RadVec3) -> f32 {
+                let mut f = f32::NAN;
+                ok(unsafe { $pdf(self, wi, wo, &mut f) });
+                f
+            }
+            fn sample(&self, wo: RadVec3, u: [f32; 2]) -> RadBrdfSample {
+                let mut s = RadBrdfSample::default();
+                ok(unsafe { $sample(self, wo, u[0], u[1], &mut s) });
+                s
+            }
+            fn eval_batch(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32> {
+                let mut out = vec![f32::NAN; wi.len()];
+                ok(unsafe { $eb(self, wi.as_ptr(), wo.as_ptr(), out.as_mut_ptr(), wi.len()) });
+                out
+            }
+            fn pdf_batch(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32> {
+                let mut out = vec![f32::NAN; wi.len()];
+                ok(unsafe { $pb(self, wi.as_ptr(), wo.as_ptr(), out.as_mut_ptr(), wi.len()) });
+                out
+            }
+            fn sample_batch(&self, wo: &[RadVec3], u: &[[f32; 2]]) -> Vec<RadBrdfSample> {
+                let mut out = vec![RadBrdfSample::default(); wo.len()];
+                ok(unsafe {
+                    $sb(
+                        self,
+                        wo.as_ptr(),
+                        u.as_ptr().cast(),
+                        out.as_mut_ptr(),
+                        wo.len(),
+                    )
+                });
+                out
+            }
+        }
+    };
+}
+
+c_handle!(
+    RadBrdf,
+    rad_brdf_eval,
+    rad_brdf_pdf,
+    rad_brdf_sample,
+    rad_brdf_eval_batch,
+    rad_brdf_pdf_batch,
+    rad_brdf_sample_batch
+);
+c_handle!(
+    RadMaterial,
+    rad_material_eval,
+    rad_material_pdf,
+    rad_material_sample,
+    rad_material_eval_batch,
+    rad_material_pdf_batch,
+    rad_material_sample_batch
+);
+
+fn same_sample(c: RadBrdfSample, r: Option<BrdfSample<f32>>) -> bool {
+    match r {
+        None => c == RadBrdfSample::default(),
+        Some(r) => {
+            c.wi.x.to_bits() == r.wi.x.to_bits()
+                && c.wi.y.to_bits() == r.wi.y.to_bits()
+                && c.wi.z.to_bits() == r.wi.z.to_bits()
+                && c.pdf.to_bits() == r.pdf.to_bits()
+                && c.weight.to_bits() == r.weight.to_bits()
+        }
+    }
+}
+
+/// `c` (through the C API) and `r` (the Rust plugin or composite) give the
+/// same bits for eval, pdf and sample, single and batched; the sample's pdf
+/// is `pdf(sample)` bit for bit.
+fn check_equal(name: &str, c: &impl CHandle, r: &impl Brdf<Spectrum = f32>) {
+    let n = 157;
+    let (wi, wo, u) = (directions(n, 0.0), directions(n, 0.37), us(n));
+    let v = |d: RadVec3| Vec3::new(d.x, d.y, d.z);
+    let (fb, pb, sb) = (
+        c.eval_batch(&wi, &wo),
+        c.pdf_batch(&wi, &wo),
+        c.sample_batch(&wo, &u),
+    );
+    let mut drawn = 0;
+    for k in 0..n {
+        let (f, p) = (r.eval(v(wi[k]), v(wo[k])), r.pdf(v(wi[k]), v(wo[k])));
+        assert_eq!(c.eval(wi[k], wo[k]).to_bits(), f.to_bits(), "{name} eval k={k}");
+        assert_eq!(fb[k].to_bits(), f.to_bits(), "{name} eval_batch k={k}");
+        assert_eq!(c.pdf(wi[k], wo[k]).to_bits(), p.to_bits(), "{name} pdf k={k}");
+        assert_eq!(pb[k].to_bits(), p.to_bits(), "{name} pdf_batch k={k}");
+        let want = r.sample(v(wo[k]), u[k]);
+        let s = c.sample(wo[k], u[k]);
+        assert!(same_sample(s, want), "{name} sample k={k}: {s:?} vs {want:?}");
+        assert_eq!(sb[k], s, "{name} sample_batch k={k}");
+        if s.pdf > 0.0 {
+            drawn += 1;
+            assert_eq!(
+                c.pdf(s.wi, wo[k]).to_bits(),
+                s.pdf.to_bits(),
+                "{name}: pdf(sample) k={k}"
+            );
+            assert!(s.weight.is_finite() && s.weight >= 0.0, "{name} {s:?}");
+        }
+    }
+    assert!(drawn > n / 2, "{name}: {drawn} samples of {n}");
+}
+
+#[test]
+fn new_plugins_equal_the_rust_plugins_bit_for_bit() {
+    check_equal(
+        "eon",
+        &c_plugin(rad_brdf_eon, 0.8, 0.5),
+        &Eon::new(0.8f32, 0.5).unwrap(),
+    );
+    check_equal(
+        "fon",
+        &c_plugin(rad_brdf_fon, 0.7, 1.0),
+        &Fon::new(0.7f32, 1.0).unwrap(),
+    );
+    check_equal(
+        "oren-nayar",
+        &c_plugin(rad_brdf_oren_nayar, 0.9, 0.35),
+        &OrenNayar::new(0.9f32, 0.35).unwrap(),
+    );
+    check_equal(
+        "sheen",
+        &c_plugin(rad_brdf_sheen, 0.8, 0.3),
+        &Sheen::new(0.8f32, 0.3).unwrap(),
+    );
+    check_equal(
+        "f82",
+        &c_ggx(0.3, RAD_FRESNEL_F82, 0.9, 0.7),
+        &ggx(0.3, F82Tint::new(0.9f32, 0.7).unwrap()),
+    );
+    let ids = [
+        RAD_METAL_AU,
+        RAD_METAL_AG,
+        RAD_METAL_CU,
+        RAD_METAL_AL,
+        RAD_METAL_CR,
+        RAD_METAL_FE,
+        RAD_METAL_NI,
+        RAD_METAL_TI,
+        RAD_METAL_PT,
+        RAD_METAL_BRASS,
+    ];
+    assert_eq!(ids.len(), Metal::ALL.len());
+    for (id, m) in ids.into_iter().zip(Metal::ALL) {
+        let h = c_ggx(0.2, RAD_FRESNEL_METAL, id as f32, 0.0);
+        let c = Conductor::metal_luminance(m);
+        assert_eq!((h.metal, h.params[1], h.params[2]), (id, c.eta(), c.k()), "{m:?}");
+        check_equal(m.name(), &h, &ggx(0.2, c));
+    }
+}
+
+#[test]
+fn materials_equal_the_rust_composites_bit_for_bit() {
+    let dielectric = c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0);
+    let eon = c_plugin(rad_brdf_eon, 0.8, 0.5);
+    let r_dielectric = || ggx(0.1, Dielectric::new(1.5).unwrap());
+    let r_eon = || Eon::new(0.8f32, 0.5).unwrap();
+
+    // The plastic: GGX α = 0.1, η = 1.5 over EON, clear.
+    let plastic = c_coated(&dielectric, &eon, 1.0, 1.5);
+    let r_plastic = Coated::new(r_dielectric(), r_eon());
+    assert_eq!(plastic.kind, RAD_MATERIAL_COATED);
+    assert_eq!(&plastic.table, r_plastic.table());
+    assert_eq!(plastic.top_error, r_plastic.top_error());
+    check_equal("plastic", &plastic, &r_plastic);
+
+    // A coated gold with an absorbing coat.
+    let gold = c_ggx(0.3, RAD_FRESNEL_METAL, RAD_METAL_AU as f32, 0.0);
+    let r_gold = ggx(0.3, Conductor::metal_luminance(Metal::Au));
+    check_equal(
+        "coated gold",
+        &c_coated(&dielectric, &gold, 0.6, 1.6),
+        &Coated::with_absorption(r_dielectric(), r_gold, 0.6, 1.6).unwrap(),
+    );
+
+    // Sheen over FON.
+    let sheen = c_plugin(rad_brdf_sheen, 1.0, 0.5);
+    let fon = c_plugin(rad_brdf_fon, 0.6, 0.8);
+    check_equal(
+        "sheen over fon",
+        &c_coated(&sheen, &fon, 1.0, 1.5),
+        &Coated::new(Sheen::new(1.0f32, 0.5).unwrap(), Fon::new(0.6f32, 0.8).unwrap()),
+    );
+
+    // A sum and a mix.
+    let f82 = c_ggx(0.25, RAD_FRESNEL_F82, 0.9, 0.7);
+    let r_f82 = ggx(0.25, F82Tint::new(0.9f32, 0.7).unwrap());
+    let mut m = RadMaterial::default();
+    ok(unsafe { rad_material_sum(&eon, &f82, &mut m) });
+    check_equal("eon + f82", &m, &Sum::new(r_eon(), r_f82));
+    let on = c_plugin(rad_brdf_oren_nayar, 0.9, 0.35);
+    let r_on = OrenNayar::new(0.9f32, 0.35).unwrap();
+    for w in [0.0, 0.3, 1.0] {
+        ok(unsafe { rad_material_mix(w, &sheen, &on, &mut m) });
+        check_equal(
+            "mix",
+            &m,
+            &Mix::new(w, Sheen::new(1.0f32, 0.5).unwrap(), r_on).unwrap(),
+        );
+    }
+
+    // One lobe: the plugin itself.
+    ok(unsafe { rad_material_brdf(&eon, &mut m) });
+    check_equal("brdf", &m, &r_eon());
+    let lambert = {
+        let mut h = RadBrdf::default();
+        ok(unsafe { rad_brdf_lambertian(0.4, &mut h) });
+        h
+    };
+    ok(unsafe { rad_material_mix(0.5, &lambert, &eon, &mut m) });
+    check_equal(
+        "mix(lambertian, eon)",
+        &m,
+        &Mix::new(0.5, Lambertian::new(0.4).unwrap(), r_eon()).unwrap(),
+    );
+}
+
+#[test]
+fn materials_match_their_soa_batches() {
+    let plastic = c_coated(
+        &c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
+        &c_plugin(rad_brdf_eon, 0.8, 0.5),
+        1.0,
+        1.5,
+    );
+    let n = 77;
+    let (wi, wo) = (directions(n, 0.1), directions(n, 0.6));
+    let comp = |d: &[RadVec3], c: usize| -> Vec<f32> { d.iter().map(|v| [v.x, v.y, v.z][c]).collect() };
+    let (ix, iy, iz) = (comp(&wi, 0), comp(&wi, 1), comp(&wi, 2));
+    let (ox, oy, oz) = (comp(&wo, 0), comp(&wo, 1), comp(&wo, 2));
+    let mut out = vec![0.0f32; n];
+    ok(unsafe {
+        rad_material_eval_batch_soa(
+            &plastic,
+            ix.as_ptr(),
+            iy.as_ptr(),
+            iz.as_ptr(),
+            ox.as_ptr(),
+            oy.as_ptr(),
+            oz.as_ptr(),
+            out.as_mut_ptr(),
+            n,
+        )
+    });
+    for k in 0..n {
+        assert_eq!(out[k].to_bits(), plastic.eval(wi[k], wo[k]).to_bits(), "k={k}");
+    }
+}
+
+#[test]
+fn a_plastic_is_reciprocal_and_keeps_energy() {
+    let plastic = c_coated(
+        &c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
+        &c_plugin(rad_brdf_eon, 1.0, 0.5),
+        1.0,
+        1.5,
+    );
+    let d = directions(40, 0.2);
+    for &a in &d {
+        for &b in &d {
+            let (x, y) = (plastic.eval(a, b), plastic.eval(b, a));
+            assert!((x - y).abs() <= 1e-5 * x.abs().max(1e-3), "{x} vs {y}");
+        }
+    }
+    // Albedo by its own sampler (the estimator is unbiased): ≤ 1 within 4 standard errors.
+    for theta in [0.0f32, 1.0, 1.4] {
+        let wo = RadVec3 {
+            x: theta.sin(),
+            y: 0.0,
+            z: theta.cos(),
+        };
+        let n = 20_000;
+        let w: Vec<f64> = us(n)
+            .into_iter()
+            .map(|u| f64::from(plastic.sample(wo, u).weight))
+            .collect();
+        let mean = w.iter().sum::<f64>() / n as f64;
+        let var = w.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+        let se = (var / n as f64).sqrt();
+        assert!(mean <= 1.0 + 4.0 * se, "θo = {theta}: {mean} ± {se}");
+        assert!(mean > 0.8, "a white plastic keeps most of the light: {mean}");
+    }
+}
+
+#[test]
+fn new_constructors_reject_bad_parameters_with_a_status() {
+    let mut b = RadBrdf::default();
+    unsafe {
+        assert_eq!(rad_brdf_eon(0.5, 1.5, &mut b), RadStatus::OutOfRange);
+        assert_eq!(rad_brdf_eon(1.2, 0.5, &mut b), RadStatus::OutOfRange);
+        assert_eq!(rad_brdf_eon(f32::NAN, 0.5, &mut b), RadStatus::NotFinite);
+        assert_eq!(rad_brdf_fon(0.5, -0.1, &mut b), RadStatus::OutOfRange);
+        assert_eq!(rad_brdf_oren_nayar(0.5, 2.0, &mut b), RadStatus::OutOfRange);
+        // ρ = 1 at σ = 0.2 rad reflects more than 1 at grazing view.
+        assert_eq!(rad_brdf_oren_nayar(1.0, 0.2, &mut b), RadStatus::Constraint);
+        assert_eq!(rad_brdf_sheen(0.5, 0.01, &mut b), RadStatus::OutOfRange);
+        assert_eq!(rad_brdf_sheen(1.5, 0.5, &mut b), RadStatus::OutOfRange);
+        assert_eq!(rad_brdf_sheen(0.5, f32::INFINITY, &mut b), RadStatus::NotFinite);
+        let mf = |f, a, k, out: &mut RadBrdf| rad_brdf_microfacet(0, 0.3, 0, f, a, k, out);
+        assert_eq!(mf(RAD_FRESNEL_F82, 1.2, 0.5, &mut b), RadStatus::OutOfRange);
+        assert_eq!(mf(RAD_FRESNEL_F82, 0.5, -0.5, &mut b), RadStatus::OutOfRange);
+        for bad in [0.0, 11.0, 1.5, -1.0, 1e10] {
+            assert_eq!(
+                mf(RAD_FRESNEL_METAL, bad, 0.0, &mut b),
+                RadStatus::UnknownKind,
+                "{bad}"
+            );
+        }
+        assert_eq!(mf(RAD_FRESNEL_METAL, f32::NAN, 0.0, &mut b), RadStatus::NotFinite);
+        assert_eq!(rad_brdf_eon(0.5, 0.5, null_mut()), RadStatus::NullPointer);
+    }
+    assert_eq!(b, RadBrdf::default(), "output untouched on error");
+}
+
+#[test]
+fn material_constructors_reject_bad_parameters_and_lobes() {
+    let eon = c_plugin(rad_brdf_eon, 0.8, 0.5);
+    let top = c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0);
+    let mut broken = eon;
+    broken.params[1] = 7.0;
+    let mut m = RadMaterial::default();
+    unsafe {
+        assert_eq!(rad_material_mix(1.5, &eon, &top, &mut m), RadStatus::OutOfRange);
+        assert_eq!(rad_material_mix(-0.1, &eon, &top, &mut m), RadStatus::OutOfRange);
+        assert_eq!(
+            rad_material_mix(f32::NAN, &eon, &top, &mut m),
+            RadStatus::NotFinite
+        );
+        assert_eq!(
+            rad_material_coated(&top, &eon, 1.5, 1.5, &mut m),
+            RadStatus::OutOfRange
+        );
+        assert_eq!(
+            rad_material_coated(&top, &eon, -0.5, 1.5, &mut m),
+            RadStatus::OutOfRange
+        );
+        assert_eq!(
+            rad_material_coated(&top, &eon, 0.5, 0.9, &mut m),
+            RadStatus::OutOfRange
+        );
+        assert_eq!(
+            rad_material_coated(&top, &eon, f32::NAN, 1.5, &mut m),
+            RadStatus::NotFinite
+        );
+        assert_eq!(
+            rad_material_coated(&top, &eon, 0.5, f32::INFINITY, &mut m),
+            RadStatus::NotFinite
+        );
+        assert_eq!(
+            rad_material_coated(&top, &broken, 1.0, 1.5, &mut m),
+            RadStatus::OutOfRange
+        );
+        assert_eq!(rad_material_sum(&broken, &eon, &mut m), RadStatus::OutOfRange);
+        assert_eq!(
+            rad_material_sum(&RadBrdf::default(), &eon, &mut m),
+            RadStatus::BadHandle
+        );
+        assert_eq!(rad_material_brdf(&broken, &mut m), RadStatus::OutOfRange);
+        assert_eq!(rad_material_sum(null(), &eon, &mut m), RadStatus::NullPointer);
+        assert_eq!(
+            rad_material_coated(&top, null(), 1.0, 1.5, &mut m),
+            RadStatus::NullPointer
+        );
+        assert_eq!(rad_material_sum(&eon, &eon, null_mut()), RadStatus::NullPointer);
+    }
+    assert_eq!(m, RadMaterial::default(), "output untouched on error");
+}
+
+#[test]
+fn scribbled_materials_are_reported() {
+    let plastic = c_coated(
+        &c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
+        &c_plugin(rad_brdf_eon, 0.8, 0.5),
+        1.0,
+        1.5,
+    );
+    let (wi, wo) = (directions(3, 0.2)[2], directions(3, 0.5)[2]);
+    let status = |m: &RadMaterial| {
+        let mut f = 0.0;
+        unsafe { rad_material_eval(m, wi, wo, &mut f) }
+    };
+    assert_eq!(status(&plastic), RadStatus::Ok);
+    assert_eq!(status(&RadMaterial::default()), RadStatus::BadHandle);
+    type Scribble = fn(&mut RadMaterial);
+    let cases: [(&str, Scribble, RadStatus); 8] = [
+        ("kind", |m| m.kind = 99, RadStatus::BadHandle),
+        ("table above 1", |m| m.table[40] = 1.5, RadStatus::BadHandle),
+        ("table NaN", |m| m.table[0] = f32::NAN, RadStatus::BadHandle),
+        ("top error", |m| m.top_error = -1.0, RadStatus::BadHandle),
+        ("coat ior", |m| m.coat_ior = 0.0, RadStatus::OutOfRange),
+        ("coat colour", |m| m.coat_color = f32::NAN, RadStatus::NotFinite),
+        ("lobe", |m| m.lobes[1].params[0] = 3.0, RadStatus::OutOfRange),
+        (
+            "metal id on a non-metal",
+            |m| m.lobes[0].metal = RAD_METAL_AU,
+            RadStatus::BadHandle,
+        ),
+    ];
+    for (what, scribble, want) in cases {
+        let mut m = plastic;
+        scribble(&mut m);
+        assert_eq!(status(&m), want, "{what}");
+    }
+    // A one-lobe material with a second lobe.
+    let mut one = RadMaterial::default();
+    ok(unsafe { rad_material_brdf(&plastic.lobes[1], &mut one) });
+    assert_eq!(status(&one), RadStatus::Ok);
+    one.lobes[1] = plastic.lobes[0];
+    assert_eq!(status(&one), RadStatus::BadHandle);
+    // Batch calls: the same pointer checks as the RadBrdf calls.
+    let d = directions(8, 0.0);
+    let mut out = [0.0f32; 8];
+    unsafe {
+        assert_eq!(
+            rad_material_eval_batch(&plastic, d.as_ptr(), d.as_ptr(), d.as_ptr() as *mut f32, 8),
+            RadStatus::Overlap
+        );
+        assert_eq!(
+            rad_material_pdf_batch(&plastic, null(), d.as_ptr(), out.as_mut_ptr(), 8),
+            RadStatus::NullPointer
+        );
+        assert_eq!(
+            rad_material_eval_batch(&plastic, null(), null(), null_mut(), 0),
+            RadStatus::Ok
+        );
+        assert_eq!(
+            rad_material_sample_batch(&RadMaterial::default(), d.as_ptr(), out.as_ptr(), null_mut(), 0),
+            RadStatus::BadHandle
+        );
+        assert_eq!(
+            rad_material_eval(null(), wi, wo, out.as_mut_ptr()),
+            RadStatus::NullPointer
+        );
+    }
+}
