@@ -24,6 +24,7 @@
 //! | [`Eon<S>`](Eon) | FON + the closed-form multiple-scattering lobe of Portsmouth, Kutz & Hill 2025 ("EON"), `σ ∈ [0, 1]` | — | — | energy-preserving: albedo 1 at `ρ = 1` for every `θo` (exact FON albedo) | any | mixture of cosine and uniform, exact pdf | scalar loops |
 //! | [`OrenNayar<S>`](OrenNayar) | the classic qualitative Oren–Nayar as pbrt-v3 has it, `σ ∈ [0, π/2]` **radians**; `ρ ≤ 1/(A + B/2)` (it gains energy above) | — | — | — | any | mixture of cosine and uniform, exact pdf | scalar loops |
 //! | [`Sheen<S>`](Sheen) | Estevez & Kulla 2017 cloth sheen: "Charlie" `D`, fitted Smith `Λ`, `r ∈ [0.07, 1]` | — (`F = 1`, scaled by `color`) | height-correlated, fitted `Λ` | — | any | uniform hemisphere, exact pdf `1/(2π)` | scalar loops |
+//! | [`OpenPbr<S>`](OpenPbr) | OpenPBR Surface 1.1's reflection layer: F82-tint metal, dielectric specular over EON, coat, fuzz (sheen), layered by `radiometry::compose` | dielectric ([`Achromatic`](microfacet::Achromatic)) and F82-tint | height-correlated | Kulla–Conty on the metal; EON | any | lobes and layers by albedo, exact mixture pdf | through the lobes' kernels |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
 //!
 //! **Directional albedo** ([`Brdf::directional_albedo`](radiometry::Brdf::directional_albedo),
