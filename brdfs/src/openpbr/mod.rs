@@ -43,7 +43,7 @@
 //! * roughness 0 (a perfect mirror; OpenPBR allows it) is raised to the
 //!   microfacet floor `α = 10⁻⁴` (`r = 0.01`);
 //! * `fuzz_roughness` below 0.07 is raised to 0.07, the smallest the sheen
-//!   tables cover ([`MIN_SHEEN_ROUGHNESS`](crate::sheen::MIN_SHEEN_ROUGHNESS)).
+//!   tables cover ([`MIN_SHEEN_ROUGHNESS`]).
 //!
 //! # Outside a reflection-only isotropic BRDF
 //!
