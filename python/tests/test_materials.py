@@ -29,9 +29,12 @@ MATERIALS = [
     "eon(rho=0.5, sigma=1) + sheen(color=1, roughness=0.5)",
     "mix(0.3, sheen(roughness=0.5), oren-nayar(rho=0.9, sigma_rad=0.35))",
     "coated(sheen(roughness=0.4), fon(rho=0.6, sigma=0.8))",
+    "openpbr",
+    "openpbr(base_color=rgb(0.8, 0.2, 0.1), base_metalness=0.5, coat_weight=1, coat_roughness=0.1, "
+    "fuzz_weight=0.3, fuzz_color=rgb(0.9, 0.9, 1))",
 ]
 
-COMPOSITES = [s for s in MATERIALS if s.startswith(("coated", "mix")) or " + " in s]
+COMPOSITES = [s for s in MATERIALS if s.startswith(("coated", "mix", "openpbr")) or " + " in s]
 
 
 @pytest.mark.parametrize("spec", MATERIALS)
@@ -116,6 +119,8 @@ BAD_MATERIALS = [
     "ggx(alpha=0.1, fresnel=f82(f0=1.2))",
     "mix(2, lambertian, lambertian)",
     "coated(lambertian, lambertian, coat_ior=0.5)",
+    "openpbr(transmission_weight=1)",
+    "openpbr(base_color=rgb(1, 2, 0))",
 ]
 
 
