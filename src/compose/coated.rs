@@ -116,7 +116,7 @@ where
 {
     /// `top` over `base`, clear (no absorption). Reads the top's albedo at
     /// 128 directions (`μ_k = (k/127)²`; the top is isotropic) into a table
-    /// that `eval` reads (the larger of the two values around `μ`), and takes
+    /// that `eval` reads (interpolated so as never to fall below the two values around `μ`), and takes
     /// `E_min` (the smallest tabulated value) and `E_avg` from it.
     pub fn new(top: T, base: B) -> Self {
         let mut table = [S::zero(); TOP_NODES];
@@ -212,18 +212,43 @@ where
         Ok(self)
     }
 
-    /// The top's albedo at `μ` as the layer uses it: the larger of the two
-    /// table values around `μ` (nodes uniform in `√μ`), per channel. Taking
-    /// the larger rather than interpolating keeps the energy bound where the
-    /// albedo jumps between nodes (a smooth dielectric coat with `η < 1`
-    /// turns to total internal reflection within a hair of its critical
-    /// angle); in smooth parts it lets through at most one node step less.
+    /// The top's albedo at `μ` as the layer uses it: with nodes uniform in
+    /// `x = 127 √μ` and `Ê_k = max(E_{k−1}, E_k, E_{k+1})` (the table
+    /// dilated by one node), the linear interpolation of `Ê` — per channel,
+    /// for `x ∈ [k, k + 1]`:
+    ///
+    /// ```text
+    /// E_used(μ) = Ê_k + (x − k)(Ê_{k+1} − Ê_k)  ≥  max(E_k, E_{k+1})
+    /// ```
+    ///
+    /// At least the larger of the two table values around `μ` (both `Ê_k` and
+    /// `Ê_{k+1}` are), which keeps the energy bound where the albedo jumps
+    /// between nodes (a smooth dielectric coat with `η < 1` turns to total
+    /// internal reflection within a hair of its critical angle), and
+    /// continuous in `μ`, so the layer's integrand has kinks, not steps, at
+    /// the nodes (quadrature converges on it). In smooth parts it lets
+    /// through at most about two node steps less than the table.
     #[inline]
     fn top_albedo(&self, mu: f32) -> S {
         let x = libm::sqrtf(mu.clamp(0.0, 1.0)) * (TOP_NODES - 1) as f32;
         let i = (x as usize).min(TOP_NODES - 2);
-        match (self.table.get(i), self.table.get(i + 1)) {
-            (Some(&a), Some(&b)) => S::from_fn(|c| a.channel(c).max(b.channel(c))),
+        let f = (x - i as f32).clamp(0.0, 1.0);
+        let at = |k: usize| self.table.get(k).copied();
+        // Ê_k needs k − 1 and k + 1; at the ends the missing neighbour is
+        // left out.
+        let dilated = |k: usize| {
+            let mid = at(k)?;
+            let lo = k.checked_sub(1).and_then(at).unwrap_or(mid);
+            let hi = at(k + 1).unwrap_or(mid);
+            Some(S::from_fn(|c| lo.channel(c).max(mid.channel(c)).max(hi.channel(c))))
+        };
+        match (dilated(i), dilated(i + 1)) {
+            (Some(a), Some(b)) => S::from_fn(|c| {
+                let (a, b) = (a.channel(c), b.channel(c));
+                // Written as a convex combination: stays within [min, max] of
+                // the two, so ≥ the larger table value as argued above.
+                (a + (b - a) * f).clamp(a.min(b), a.max(b))
+            }),
             _ => S::zero(),
         }
     }
