@@ -727,3 +727,31 @@ mod plugin_tests {
         assert!(w < 2e-5, "worst relative difference {w:e}");
     }
 }
+
+/// The report's references of the materials family are converged: the
+/// bound of a full-tolerance reference is far below the `f32` evaluation
+/// floor (`~10⁻⁷` relative) and the report's targets.
+#[cfg(test)]
+mod convergence_tests {
+    use super::*;
+
+    #[test]
+    fn plastic_albedo_reference_bounds_its_error_tightly() {
+        let layer = Layer {
+            top: Lobe::Ggx {
+                alpha: 0.1,
+                fresnel: Fresnel::Dielectric { eta: 1.5 },
+            },
+            base: Lobe::Eon { rho: 0.8, sigma: 0.5 },
+        };
+        let r = albedo(&layer, 60f64.to_radians());
+        assert!(r.value > 0.7 && r.value < 0.85, "{r:?}");
+        assert!(r.bound < 1e-8 * r.value, "{r:?}");
+        let p = prepared(&layer);
+        assert!(p.table_bound < 1e-9, "{}", p.table_bound);
+        // The same layer at looser tolerances lands within the bound of the
+        // coarser run.
+        let loose = albedo_with(p, 60f64.to_radians(), 1e-6, 1e-9);
+        assert!((loose.value - r.value).abs() <= loose.bound, "{loose:?} vs {r:?}");
+    }
+}
