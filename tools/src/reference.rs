@@ -24,6 +24,7 @@
 //! bound would understate its error 38×.)
 
 mod gauss_kronrod;
+pub mod materials;
 pub use gauss_kronrod::adaptive;
 
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -64,6 +65,10 @@ pub enum RefModel {
         /// ([`RefModel::conductor_fresnel`]); `None`: `F = 1`.
         conductor: Option<(f64, f64)>,
     },
+    /// A layered material, `coated(TOP, BASE)`: the albedo-scaled layering
+    /// of `radiometry::compose::Coated` with the top's *true* directional
+    /// albedo tabulated at its nodes (see [`materials`]).
+    Coated(materials::Layer),
 }
 
 fn sph(mu: f64, phi: f64) -> [f64; 3] {
@@ -118,6 +123,7 @@ impl RefModel {
             return 0.0;
         }
         match *self {
+            RefModel::Coated(layer) => materials::prepared(&layer).eval(wi, wo),
             RefModel::Lambertian { albedo } => albedo / PI,
             RefModel::Phong { n, ks, kd } => {
                 let r = [-wo[0], -wo[1], wo[2]];
@@ -182,6 +188,7 @@ impl RefModel {
             RefModel::Lambertian { .. } => None,
             RefModel::Phong { n, .. } => Some((mu_o, (1.0 / (n + 1.0)).sqrt())),
             RefModel::Microfacet { alpha, .. } => Some((mu_o, 2.0 * alpha)),
+            RefModel::Coated(layer) => layer.top.peak_width().map(|w| (mu_o, w)),
         }
     }
 }
@@ -278,6 +285,9 @@ fn integrate_2d(
 /// The directional albedo `ρ(θo)` of `model` (θo in radians) with an error
 /// bound.
 pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
+    if let RefModel::Coated(layer) = model {
+        return materials::albedo(layer, theta_o);
+    }
     let wo = [theta_o.sin(), 0.0, theta_o.cos()];
     let mu_o = wo[2];
     let g = |mu: f64, phi: f64| 2.0 * model.eval(sph(mu, phi), wo) * mu;
@@ -298,8 +308,9 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
     let extra: Vec<f64> = if is_phong { vec![st] } else { vec![] };
     if let Some((_, width)) = peak {
         // Peaked models: polar coordinates about the mirror direction.
-        let (coarse, _) = pole_albedo(model, theta_o, width, 1e-8, 0.0, &mut evals);
-        let (fine, e) = pole_albedo(model, theta_o, width, 1e-12, coarse, &mut evals);
+        let f = |wi: [f64; 3], wo: [f64; 3]| model.eval(wi, wo);
+        let (coarse, _) = pole_albedo(&f, theta_o, width, 1e-8, 0.0, &mut evals);
+        let (fine, e) = pole_albedo(&f, theta_o, width, 1e-12, coarse, &mut evals);
         return Reference {
             value: fine,
             bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
@@ -327,7 +338,7 @@ pub fn albedo(model: &RefModel, theta_o: f64) -> Reference {
 /// `θ' = π/2 − θo` and `0` at `θ' = π/2 + θo`: outer break points, as is
 /// `θ' = π/2` (the modified-Phong kink `cos α = 0`).
 fn pole_albedo(
-    model: &RefModel,
+    f: &dyn Fn([f64; 3], [f64; 3]) -> f64,
     theta_o: f64,
     width: f64,
     tol: f64,
@@ -368,11 +379,7 @@ fn pole_albedo(
                     count += 1;
                     let (s, c) = phi.sin_cos();
                     let w = [cp * r[0] + sp * c * t1[0], sp * s, cp * r[2] + sp * c * t1[2]];
-                    if w[2] <= 0.0 {
-                        0.0
-                    } else {
-                        model.eval(w, wo) * w[2]
-                    }
+                    if w[2] <= 0.0 { 0.0 } else { f(w, wo) * w[2] }
                 },
                 0.0,
                 phi_max,
@@ -408,6 +415,24 @@ fn pole_albedo(
 /// + k sin α = 0`, `k` the z-component of the azimuth direction) and
 /// clustered around the lobe peak `v_r`.
 pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) -> Reference {
+    if let RefModel::Coated(layer) = model {
+        return materials::cap_radiance(layer, wo, axis, sigma);
+    }
+    let f = |wi: [f64; 3]| model.eval(wi, wo);
+    cap_radiance_of(&f, model.peak(wo[2]).map(|(_, w)| w), &[], wo, axis, sigma)
+}
+
+/// [`cap_radiance`] of the BRDF `f(ωi)` (at the given `ωo`) whose narrowest
+/// lobe has width `lobe` (radians; `None`: no peak), with inner break points
+/// also where `cos θi` crosses one of `mu_levels` (where `f` jumps).
+fn cap_radiance_of(
+    f: &dyn Fn([f64; 3]) -> f64,
+    lobe: Option<f64>,
+    mu_levels: &[f64],
+    wo: [f64; 3],
+    axis: [f64; 3],
+    sigma: f64,
+) -> Reference {
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let norm = |a: [f64; 3]| {
         let l = dot(a, a).sqrt();
@@ -437,8 +462,8 @@ pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) 
     let v_sigma = 2.0 * (0.5 * sigma).sin().powi(2);
     let alpha_r = ra.clamp(-1.0, 1.0).acos();
     let v_r = 2.0 * (0.5 * alpha_r).sin().powi(2);
-    let lobe = match model.peak(wo[2]) {
-        Some((_, w)) => w.max(1e-6),
+    let lobe = match lobe {
+        Some(w) => w.max(1e-6),
         None => 1.0,
     };
     let dir = |v: f64, cb: f64, sb: f64| {
@@ -466,15 +491,24 @@ pub fn cap_radiance(model: &RefModel, wo: [f64; 3], axis: [f64; 3], sigma: f64) 
                 if ah > 0.0 && ah < sigma {
                     breaks.push(2.0 * (0.5 * ah).sin().powi(2));
                 }
+                // Levels of cos θi: a_z cos α + k sin α = R cos(α − δ) = μ.
+                let (r, delta) = (a[2].hypot(k), k.atan2(a[2]));
+                for &mu in mu_levels {
+                    if mu.abs() >= r {
+                        continue;
+                    }
+                    let g = (mu / r).acos();
+                    for al in [delta - g, delta + g, delta - g + 2.0 * PI, delta + g - 2.0 * PI] {
+                        if al > 0.0 && al < sigma {
+                            breaks.push(2.0 * (0.5 * al).sin().powi(2));
+                        }
+                    }
+                }
                 adaptive(
                     |v| {
                         count += 1;
                         let w = dir(v, cb, sb);
-                        if w[2] <= 0.0 {
-                            0.0
-                        } else {
-                            model.eval(w, wo) * w[2]
-                        }
+                        if w[2] <= 0.0 { 0.0 } else { f(w) * w[2] }
                     },
                     0.0,
                     v_sigma,

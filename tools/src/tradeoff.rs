@@ -3,7 +3,7 @@
 //! For a standard suite of directional albedos (Lambertian; modified Phong
 //! n ∈ {1, 10, 100, 1000}; GGX and Beckmann α ∈ {0.001, 0.01, 0.05, 0.3, 1},
 //! all with F = 1 and the height-correlated Smith G2; θo ∈ {0°, 60°, 85°,
-//! 89.5°, 89.9°})
+//! 89.5°, 89.9°}; GGX with the Fresnel of gold; two layered [`materials`])
 //! every integrator runs over a ladder of budgets. Each estimate is compared
 //! with an independent f64 reference ([`crate::reference`]) that carries
 //! its own error bound; wall time is the median of a few repeats for small
@@ -101,12 +101,60 @@ pub const GOLD_ETA: f64 = 0.18104;
 /// Imaginary part (extinction coefficient) of gold at 632.8 nm.
 pub const GOLD_K: f64 = 3.068099;
 
+/// The materials of the `materials` families: `(name, spec, f64 model)`.
+///
+/// * `plastic`: a clear dielectric coat (GGX α = 0.1, height-correlated G2,
+///   the exact Fresnel of η = 1.5) over EON (ρ = 0.8, σ = 0.5);
+/// * `coated-gold`: a clear dielectric coat (GGX α = 0.05, η = 1.5) over
+///   GGX α = 0.3 with the exact conductor Fresnel of gold at 632.8 nm
+///   ([`GOLD_ETA`], [`GOLD_K`]).
+///
+/// The references tabulate the coat's true directional albedo at the
+/// layer's nodes ([`crate::reference::materials`]).
+pub fn materials() -> [(&'static str, String, RefModel); 2] {
+    use crate::reference::materials::{Fresnel, Layer, Lobe};
+    let glass = Fresnel::Dielectric { eta: 1.5 };
+    [
+        (
+            "plastic",
+            "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=0.8, sigma=0.5))".into(),
+            RefModel::Coated(Layer {
+                top: Lobe::Ggx {
+                    alpha: 0.1,
+                    fresnel: glass,
+                },
+                base: Lobe::Eon { rho: 0.8, sigma: 0.5 },
+            }),
+        ),
+        (
+            "coated-gold",
+            format!(
+                "coated(ggx(alpha=0.05, fresnel=dielectric(eta=1.5)), \
+                 ggx(alpha=0.3, fresnel=conductor(eta={GOLD_ETA}, k={GOLD_K})))"
+            ),
+            RefModel::Coated(Layer {
+                top: Lobe::Ggx {
+                    alpha: 0.05,
+                    fresnel: glass,
+                },
+                base: Lobe::Ggx {
+                    alpha: 0.3,
+                    fresnel: Fresnel::Conductor {
+                        eta: GOLD_ETA,
+                        k: GOLD_K,
+                    },
+                },
+            }),
+        ),
+    ]
+}
+
 /// One case of the suite.
 #[derive(Clone, Debug)]
 pub struct Case {
     /// Name used in the CSV (no commas).
     pub name: String,
-    /// Family: lambertian, phong, ggx, beckmann, ggx-gold.
+    /// Family: lambertian, phong, ggx, beckmann, ggx-gold, materials.
     pub family: &'static str,
     /// BRDF spec given to the plugins.
     pub spec: String,
@@ -197,6 +245,12 @@ pub fn suite(quick: bool) -> Vec<Case> {
                 },
                 t,
             );
+        }
+    }
+    // Layered materials (see [`materials`]).
+    for (name, spec, model) in materials() {
+        for t in [0.0, 60.0, 85.0] {
+            push("materials", format!("-{name}"), spec.clone(), model, t);
         }
     }
     if quick {
@@ -709,7 +763,7 @@ mod tests {
         let s = suite(false);
         // θo ∈ {0, 60, 85, 89.5, 89.9}; Phong n ∈ {1, 10, 100, 1000};
         // microfacet α ∈ {0.001, 0.01, 0.05, 0.3, 1}.
-        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4);
+        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4 + 6);
         assert!(s.iter().any(|c| c.name == "ggx-a0.001-to89.9"));
         assert!(s.iter().all(|c| !c.name.contains(',')));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();

@@ -1,5 +1,6 @@
-//! Product integrals for the report: a glossy GGX lobe under a cap light
-//! (the sun, σ = 0.27°; a lamp, σ = 5°) — reflected radiance
+//! Product integrals for the report: a glossy GGX lobe, and two layered
+//! materials, under a cap light (the sun, σ = 0.27°; a lamp, σ = 5°) —
+//! reflected radiance
 //! `L_r(ωo) = ∫_cap f_r(ωi, ωo) L cos θi dωi` with `L = 1` — and the methods
 //! a renderer author compares on it: quadrature over the cap, light (cone)
 //! sampling, BRDF sampling and their MIS combination.
@@ -19,7 +20,7 @@ use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
 pub struct ProductCase {
     /// Name used in the CSV (no commas).
     pub name: String,
-    /// Family: `ggx-sun` or `ggx-lamp`.
+    /// Family: `ggx-sun`, `ggx-lamp`, `materials-sun` or `materials-lamp`.
     pub family: &'static str,
     /// BRDF spec.
     pub spec: String,
@@ -41,8 +42,10 @@ pub const LAMP_DEG: f64 = 5.0;
 /// The suite: GGX α ∈ {0.01, 0.1, 0.5} (F = 1, height-correlated G2) × the
 /// sun and the lamp × light elevation {10°, 45°, 80°, and one partly below
 /// the horizon: the sun's centre at 0.1°, the lamp's at 2°} × viewing at the
-/// mirror direction of the light's centre and 10° off it in azimuth.
-/// `--quick` keeps two cases.
+/// mirror direction of the light's centre and 10° off it in azimuth; then
+/// the two layered [`super::materials`] under the same lights at
+/// elevations 45° and 10°, both views (families `materials-sun`,
+/// `materials-lamp`). `--quick` keeps two cases.
 pub fn suite(quick: bool) -> Vec<ProductCase> {
     let mut v = Vec::new();
     for (family, deg, low) in [("ggx-sun", SUN_DEG, 0.1), ("ggx-lamp", LAMP_DEG, 2.0)] {
@@ -66,6 +69,27 @@ pub fn suite(quick: bool) -> Vec<ProductCase> {
                         },
                         wo,
                         axis,
+                        sigma: deg.to_radians(),
+                    });
+                }
+            }
+        }
+    }
+    // Layered materials (`super::materials`) under the same lights, at
+    // elevations 45° and 10°.
+    for (family, deg) in [("materials-sun", SUN_DEG), ("materials-lamp", LAMP_DEG)] {
+        for (material, spec, model) in super::materials() {
+            for elev in [45.0, 10.0] {
+                for (view, dphi) in [("mirror", 0.0f64), ("off", 10.0)] {
+                    let ta = (90.0f64 - elev).to_radians();
+                    let p = std::f64::consts::PI + dphi.to_radians();
+                    v.push(ProductCase {
+                        name: format!("{family}-{material}-el{elev}-{view}"),
+                        family,
+                        spec: spec.clone(),
+                        model,
+                        wo: [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()],
+                        axis: [ta.sin(), 0.0, ta.cos()],
                         sigma: deg.to_radians(),
                     });
                 }
@@ -290,7 +314,7 @@ mod tests {
     #[test]
     fn suite_covers_the_issue_cases() {
         let s = suite(false);
-        assert_eq!(s.len(), 2 * 3 * 4 * 2);
+        assert_eq!(s.len(), 2 * 3 * 4 * 2 + 2 * 2 * 2 * 2);
         // Partly below the horizon: the cap reaches below z = 0.
         assert!(s.iter().any(|c| c.axis[2] < c.sigma.sin()));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();

@@ -81,14 +81,17 @@ impl Report<'_> {
                 "Accuracy vs. time",
                 "Directional albedo with F = 1 (family `ggx-gold`: the exact conductor Fresnel of gold at 632.8 nm, \
                  η = 0.18104, k = 3.068099) and the height-correlated Smith G2 for microfacets; θo ∈ {0°, 60°, 85°, \
-                 89.5°, 89.9°}.",
+                 89.5°, 89.9°}. Family `materials`: `coated(TOP, BASE)` layers, a plastic (a GGX α = 0.1 coat with the \
+                 exact Fresnel of η = 1.5 over EON ρ = 0.8, σ = 0.5) and gold under a clear GGX α = 0.05 coat, at θo ∈ \
+                 {0°, 60°, 85°}; their references tabulate the coat's true albedo at the layer's nodes.",
             ),
             SuiteKind::Product => (
-                "Product integrals: a GGX lobe under a cap light",
+                "Product integrals: glossy lobes under a cap light",
                 "Reflected radiance L_r(ωo) = ∫_cap f_r L cos θi dωi (L = 1) of GGX α ∈ {0.01, 0.1, 0.5} (F = 1, \
                  height-correlated G2) under the sun (σ = 0.27°) and a lamp (σ = 5°) at elevations 10°, 45°, 80° and \
                  partly below the horizon (sun 0.1°, lamp 2°), viewed at the mirror direction of the light's centre \
-                 and 10° off it in azimuth. Methods: `cap-*` quadrature over the visible cap; `light-sampling` \
+                 and 10° off it in azimuth; families `materials-sun` and `materials-lamp`: the two layered materials \
+                 of the albedo suite under the same lights at elevations 45° and 10°. Methods: `cap-*` quadrature over the visible cap; `light-sampling` \
                  (uniform in the cone), `brdf-sampling` (the BRDF's visible-normal sampling) and `mis-light-brdf` \
                  (one-sample balance-heuristic MIS of both), each with PRNG and Sobol points.",
             ),
