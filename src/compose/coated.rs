@@ -240,7 +240,9 @@ where
             let mid = at(k)?;
             let lo = k.checked_sub(1).and_then(at).unwrap_or(mid);
             let hi = at(k + 1).unwrap_or(mid);
-            Some(S::from_fn(|c| lo.channel(c).max(mid.channel(c)).max(hi.channel(c))))
+            Some(S::from_fn(|c| {
+                lo.channel(c).max(mid.channel(c)).max(hi.channel(c))
+            }))
         };
         match (dilated(i), dilated(i + 1)) {
             (Some(a), Some(b)) => S::from_fn(|c| {

@@ -21,18 +21,28 @@
 //!   ```
 //!
 //!   with `E_T` the top's directional albedo tabulated at the 128 nodes
-//!   `μ_k = (k/127)²` (`μ_0` raised to `10⁻⁶`), read as the larger of the two
-//!   table values around `μ`, and `E_min` the smallest table value (clamped to
-//!   `[0, 0.999]`). The table here holds the top's **true** albedo at each
-//!   node, by this module's own quadrature of the top's BRDF ([`Prepared`]),
-//!   so the reference is the layer the documentation defines, whatever the
-//!   library reads into its table.
+//!   `μ_k = (k/127)²` (`μ_0` raised to `10⁻⁶`), read by linear interpolation
+//!   in `√μ` of the table dilated by one node (`Ê_k = max(E_{k−1}, E_k,
+//!   E_{k+1})`), and `E_min` the smallest table value (clamped to
+//!   `[0, 0.999]`).
+//!
+//! The table is part of the layer's definition: `Coated` reads its top's
+//! *reported* albedo into it once. For a microfacet top the reference takes
+//! that table as data ([`library_table`]), as the `Tabulated` references take
+//! the measured values — the report judges the integrators on the layer the
+//! library evaluates, and every formula applied to the table is this module's
+//! own. [`Prepared::with_tolerances`] tabulates the top's **true** albedo by
+//! this module's own quadrature instead: docs/accuracy.md compares the two
+//! (the reported albedo of a dielectric coat misses the truth by up to
+//! ~2·10⁻², which shifts the layer, not the integrators' errors).
 //!
 //! Each table is computed once per process ([`prepared`]) and shared by the
 //! cases that use it; its quadrature evaluations are not counted in a case's
 //! [`Reference::evaluations`].
 
 use super::{RefModel, Reference, cap_radiance_of, integrate_2d, pole_albedo, sph};
+use radiometry::compose::Coated;
+use radiometry_brdfs::{Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet};
 use std::f64::consts::PI;
 use std::sync::{Mutex, OnceLock};
 
@@ -48,8 +58,8 @@ pub fn node_mu(k: usize) -> f64 {
     (x * x).max(MIN_NODE_MU)
 }
 
-/// The `μ` where the layer's reading of the table changes: `(k/127)²`,
-/// `k = 1..=126` (between two of them the layer reads the same pair of nodes).
+/// The `μ` where the layer's reading of the table has kinks: `(k/127)²`,
+/// `k = 1..=126` (between two of them it is linear in `√μ`).
 pub fn node_boundaries() -> Vec<f64> {
     (1..NODES - 1)
         .map(|k| {
@@ -278,11 +288,55 @@ pub struct Prepared {
     pub evaluations: u64,
 }
 
+/// The table `radiometry::compose::Coated` reads for a GGX top (its
+/// reported `directional_albedo` at the 128 nodes, via `Coated::table`), as
+/// data; `None` for other tops (their albedo is tabulated by quadrature).
+pub fn library_table(top: &Lobe) -> Option<[f64; NODES]> {
+    let Lobe::Ggx { alpha, fresnel } = *top else {
+        return None;
+    };
+    let ggx = Ggx::new(alpha as f32).ok()?;
+    let base = Lambertian::new(0.0f32).ok()?;
+    let t = match fresnel {
+        Fresnel::Dielectric { eta } => *Coated::new(
+            Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(eta as f32).ok()?),
+            base,
+        )
+        .table(),
+        Fresnel::Conductor { eta, k } => *Coated::new(
+            Microfacet::<_, HeightCorrelated, _>::new(ggx, Conductor::new(eta as f32, k as f32).ok()?),
+            base,
+        )
+        .table(),
+    };
+    Some(t.map(f64::from))
+}
+
 impl Prepared {
-    /// Tabulates the top's albedo with the references' tolerances
-    /// (`10⁻⁸`, then `10⁻¹²`).
+    /// The layer as the library defines it: the table `Coated` reads
+    /// ([`library_table`], exact data: bound 0) for a GGX top, else the top's
+    /// albedo by quadrature with the references' tolerances (`10⁻⁸`, then
+    /// `10⁻¹²`).
     pub fn new(layer: Layer) -> Prepared {
-        Prepared::with_tolerances(layer, 1e-8, 1e-12)
+        match library_table(&layer.top) {
+            Some(table) => Prepared::from_table(layer, table, 0.0, 0),
+            None => Prepared::with_tolerances(layer, 1e-8, 1e-12),
+        }
+    }
+
+    /// A layer over a given table (each value clamped to `[0, 1]`) whose
+    /// entries are within `table_bound` of what they stand for.
+    pub fn from_table(layer: Layer, table: [f64; NODES], table_bound: f64, evaluations: u64) -> Prepared {
+        let table = table.map(|e| if e.is_finite() { e.clamp(0.0, 1.0) } else { 0.0 });
+        let e_min = table.iter().fold(1.0f64, |m, &e| m.min(e)).clamp(0.0, 0.999);
+        Prepared {
+            layer,
+            table,
+            table_bound,
+            e_min,
+            gain: 1.0 / (1.0 - e_min),
+            evaluations,
+        }
     }
 
     /// Tabulates the top's albedo at relative tolerances `coarse`, `fine`.
@@ -299,23 +353,27 @@ impl Prepared {
             table_bound = table_bound.max(r.bound);
             evaluations += r.evaluations;
         }
-        let e_min = table.iter().fold(1.0f64, |m, &e| m.min(e)).clamp(0.0, 0.999);
-        Prepared {
-            layer,
-            table,
-            table_bound,
-            e_min,
-            gain: 1.0 / (1.0 - e_min),
-            evaluations,
-        }
+        Prepared::from_table(layer, table, table_bound, evaluations)
     }
 
-    /// The top's albedo as the layer reads it at `μ`: the larger of the two
-    /// table values around `μ` (nodes uniform in `√μ`).
+    /// `Ê_k = max(E_{k−1}, E_k, E_{k+1})` (neighbours past the ends left out).
+    fn dilated(&self, k: usize) -> f64 {
+        let lo = if k > 0 { self.table[k - 1] } else { self.table[k] };
+        let hi = if k + 1 < NODES {
+            self.table[k + 1]
+        } else {
+            self.table[k]
+        };
+        lo.max(self.table[k]).max(hi)
+    }
+
+    /// The top's albedo as the layer reads it at `μ`: with `x = 127 √μ` in
+    /// `[k, k + 1]`, `Ê_k + (x − k)(Ê_{k+1} − Ê_k)`.
     pub fn top_albedo(&self, mu: f64) -> f64 {
         let x = mu.clamp(0.0, 1.0).sqrt() * (NODES - 1) as f64;
         let i = (x as usize).min(NODES - 2);
-        self.table[i].max(self.table[i + 1])
+        let (a, b) = (self.dilated(i), self.dilated(i + 1));
+        a + (x - i as f64) * (b - a)
     }
 
     /// `t(μ) = min((1 − E_T(μ))/(1 − E_min), 1)`.
@@ -548,8 +606,8 @@ mod tests {
 
     /// A clear dielectric coat over a white Lambertian base:
     /// `E(μo) = E_T(μo) + (1 − Ē_T(μo))(1 − Ē_s)/(1 − E_min)`, with `Ē_T` the
-    /// larger-neighbour reading of the table and `Ē_s = 2∫Ē_T μ dμ` (a finite
-    /// sum: `Ē_T` is constant between node boundaries). Where the reading
+    /// layer's reading of the table and `Ē_s = 2∫Ē_T μ dμ` (by quadrature
+    /// with the node boundaries as break points). Where the reading
     /// equals the top's albedo this is the documented
     /// `1 − (1 − E_T)(E_avg − E_min)/(1 − E_min)`.
     #[test]
@@ -569,13 +627,7 @@ mod tests {
             "{}",
             p.e_min
         );
-        let mut edges = vec![0.0];
-        edges.extend(node_boundaries());
-        edges.push(1.0);
-        let e_s: f64 = edges
-            .windows(2)
-            .map(|w| p.top_albedo(0.5 * (w[0] + w[1])) * (w[1] * w[1] - w[0] * w[0]))
-            .sum();
+        let e_s = cosine_average(|mu| p.top_albedo(mu), &node_boundaries());
         for deg in [0.0f64, 60.0, 85.0] {
             let mu = deg.to_radians().cos();
             let r = albedo_with(&p, deg.to_radians(), 1e-6, 1e-9);
@@ -614,10 +666,11 @@ mod tests {
         }
     }
 
-    /// The largest-neighbour reading and its steps: between two node
-    /// boundaries it is constant, and it never falls below either node.
+    /// The reading of the table: linear in `√μ` between the dilated nodes
+    /// `Ê_k = max(E_{k−1}, E_k, E_{k+1})`, never below either node around
+    /// `μ`, and continuous across the node boundaries.
     #[test]
-    fn table_reading_is_the_larger_neighbour() {
+    fn table_reading_is_the_dilated_linear_interpolant() {
         let mut p = Prepared::with_tolerances(
             Layer {
                 top: Lobe::Black,
@@ -629,11 +682,23 @@ mod tests {
         for (k, e) in p.table.iter_mut().enumerate() {
             *e = ((k * 37) % 11) as f64 / 20.0;
         }
+        let t = p.table;
+        let hat = |k: usize| {
+            let lo = if k > 0 { t[k - 1] } else { t[k] };
+            let hi = if k + 1 < NODES { t[k + 1] } else { t[k] };
+            lo.max(t[k]).max(hi)
+        };
         for k in 0..NODES - 1 {
             let mid = ((k as f64 + 0.5) / (NODES - 1) as f64).powi(2);
-            assert_eq!(p.top_albedo(mid), p.table[k].max(p.table[k + 1]), "{k}");
+            let v = p.top_albedo(mid);
+            assert!((v - 0.5 * (hat(k) + hat(k + 1))).abs() < 1e-12, "{k}");
+            assert!(v >= t[k].max(t[k + 1]), "{k}");
         }
-        assert_eq!(p.top_albedo(1.0), p.table[NODES - 2].max(p.table[NODES - 1]));
+        for mu in node_boundaries() {
+            let (a, b) = (p.top_albedo(mu * (1.0 - 1e-9)), p.top_albedo(mu * (1.0 + 1e-9)));
+            assert!((a - b).abs() < 1e-6, "{mu}: {a} vs {b}");
+        }
+        assert_eq!(p.top_albedo(1.0), hat(NODES - 1));
     }
 }
 
