@@ -182,12 +182,12 @@ fn brdfs(acc: &mut f32) {
         use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
         let values = black_box([0.3f32; 4 * 4 * 4]);
         let mut buf = [0.0f32; 33];
-        if let Ok(g) = RusinkiewiczGrid::new(black_box(4), 4, 4) {
-            if let Ok(t) = Tabulated::new(g, &values[..]) {
+        if let Ok(g) = RusinkiewiczGrid::new(black_box(4), 4, 4)
+            && let Ok(t) = Tabulated::new(g, &values[..])
+        {
+            exercise(&t, acc);
+            if let Ok(t) = t.with_sampling(&mut buf[..]) {
                 exercise(&t, acc);
-                if let Ok(t) = t.with_sampling(&mut buf[..]) {
-                    exercise(&t, acc);
-                }
             }
         }
     }
@@ -306,13 +306,14 @@ fn monte_carlo<G: Integrand>(g: &G, budget: u32) -> f32 {
 fn to_tolerance<G: Integrand>(g: &G, budget: u32) -> f32 {
     let tol = black_box(1e-5);
     let mut acc = 0.0;
-    for r in [
+    for o in [
         integrate_to_tolerance(&GaussLegendre::new(), g, tol, budget / 4, budget),
         integrate_to_tolerance(&Auto::new(), g, tol, budget / 4, budget),
-    ] {
-        if let Ok(o) = r {
-            acc += o.estimate.value.channel(0) as f32;
-        }
+    ]
+    .into_iter()
+    .flatten()
+    {
+        acc += o.estimate.value.channel(0) as f32;
     }
     acc
 }
