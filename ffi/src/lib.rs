@@ -82,11 +82,45 @@ impl From<radiometry::glam::Vec3> for RadVec3 {
     }
 }
 
-/// Firmware builds have no std: a panic (there is no reachable one in the
-/// public functions, which return status codes) parks the core.
+/// Builds without std: a panic (there is no reachable one in the public
+/// functions, which return status codes; see `size-check/`, whose proof
+/// covers every exported function) aborts, never spins: the C library's
+/// `abort()` on hosted targets, a permanently undefined instruction (a
+/// HardFault, the firmware's abort) on bare-metal Arm.
 #[cfg(all(not(test), not(feature = "std"), not(feature = "prove-no-panic")))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
+    abort_now()
+}
+
+#[cfg(all(
+    not(test),
+    not(feature = "std"),
+    not(feature = "prove-no-panic"),
+    not(target_os = "none")
+))]
+fn abort_now() -> ! {
+    unsafe extern "C" {
+        fn abort() -> !;
+    }
+    // SAFETY: the C library's `abort` takes no arguments and never returns.
+    unsafe { abort() }
+}
+
+#[cfg(all(
+    not(test),
+    not(feature = "std"),
+    not(feature = "prove-no-panic"),
+    target_os = "none"
+))]
+fn abort_now() -> ! {
+    #[cfg(target_arch = "arm")]
+    // SAFETY: `udf` raises an undefined-instruction exception (HardFault on
+    // Cortex-M); it touches no memory and does not return to this code.
+    unsafe {
+        core::arch::asm!("udf #0", options(noreturn, nomem, nostack));
+    }
+    #[cfg(not(target_arch = "arm"))]
     loop {
         core::hint::spin_loop();
     }
@@ -107,9 +141,34 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     unsafe { radiometry_ffi_panic_path_survived_optimisation() }
 }
 
-/// The precompiled `core` refers to the unwinding personality routine even
-/// under `panic = "abort"`; hosted `no_std` shared libraries must define it
-/// to load. Never called (nothing unwinds).
-#[cfg(all(not(test), not(feature = "std"), not(target_os = "none")))]
+// The precompiled `core` refers to the unwinding personality routine even
+// under `panic = "abort"`, so a hosted program or shared library that links
+// this `no_std` library needs a definition (never called: nothing unwinds).
+// It is a *weak* symbol: beside another Rust library (whose std defines the
+// routine) the linker takes that definition instead of reporting a duplicate.
+// Linux on x86_64 and AArch64; other hosted targets keep a plain definition.
+#[cfg(all(
+    not(test),
+    not(feature = "std"),
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64")
+))]
+core::arch::global_asm!(
+    ".pushsection .text.rust_eh_personality,\"ax\",%progbits",
+    ".weak rust_eh_personality",
+    ".type rust_eh_personality,%function",
+    ".hidden rust_eh_personality",
+    "rust_eh_personality:",
+    "ret",
+    ".size rust_eh_personality, . - rust_eh_personality",
+    ".popsection",
+);
+
+#[cfg(all(
+    not(test),
+    not(feature = "std"),
+    not(target_os = "none"),
+    not(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))
+))]
 #[unsafe(no_mangle)]
 extern "C" fn rust_eh_personality() {}

@@ -2,7 +2,7 @@
 //! Genz–Malik degree-7/degree-5 rule ([`Adaptive`]).
 
 use super::acc::{self, F32_FLOOR, WideSum, nonzero};
-use super::chunk::{self, BatchFn};
+use super::chunk::{self, BatchFn, head, head_mut};
 use super::tolerance::{by_doubling, check_tolerance_args};
 use super::{
     Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome, Unresolved,
@@ -26,6 +26,18 @@ pub const SMALL_REGIONS: usize = 48;
 
 /// Largest budget run with the [`SMALL_REGIONS`] table.
 pub const SMALL_REGIONS_BUDGET: u32 = (SMALL_REGIONS as u32 - 5) * 2 * GM_POINTS as u32;
+
+/// The region table of the smallest budgets (up to [`TINY_REGIONS_BUDGET`],
+/// 1,053: the firmware configuration of a budget of 1,024), ≈ 2.6 KiB of
+/// regions for `f32`. The run starts with 4 regions after `4 × 17`
+/// evaluations and splits only while `2 × 17` more fit the budget, so `k`
+/// splits need a budget of at least `34 (k + 2)`: below `34 (N − 2)` the
+/// table of `N` regions never fills, and the run is the same, bit for bit,
+/// as with [`MAX_REGIONS`].
+pub const TINY_REGIONS: usize = 33;
+
+/// Largest budget run with the [`TINY_REGIONS`] table: `34 (N − 2) − 1`.
+pub const TINY_REGIONS_BUDGET: u32 = (TINY_REGIONS as u32 - 2) * 2 * GM_POINTS as u32 - 1;
 
 /// Most evaluations an [`Adaptive`] run spends (`2²⁰`).
 pub const MAX_ADAPTIVE_EVALUATIONS: u32 = 1 << 20;
@@ -138,28 +150,31 @@ impl<W> Region<W> {
 }
 
 /// Most regions whose points go to the integrand in one batch
-/// (`4 × 17 = 68` points: the initial 2 × 2 grid, or four cells of a
-/// composite rule).
-const BATCH_REGIONS: usize = 4;
+/// (`2 × 17 = 34` points: two regions of the initial 2 × 2 grid, the two
+/// halves of a split, or two cells of a composite rule). Each region's
+/// rule reads only its own points: the results do not depend on it.
+const BATCH_REGIONS: usize = 2;
 
-/// Applies the rule to the rectangles `c[r] ± h[r]`,
-/// `r < min(c.len(), h.len(), BATCH_REGIONS)`, evaluating all their points
-/// in one batch, and passes the regions to `each` in order.
+/// Applies the rule to the rectangles `c[r] ± h[r]`, `r < min(c.len(),
+/// h.len())`, evaluating the points of [`BATCH_REGIONS`] of them in one
+/// batch, and passes the regions to `each` in order.
 fn rules<W: WideSpectrum>(
     c: &[[f64; 2]],
     h: &[[f64; 2]],
     f: &mut impl BatchFn<W>,
     mut each: impl FnMut(Region<W>),
 ) -> Result<(), IntegrateError> {
-    let m = c.len().min(h.len()).min(BATCH_REGIONS);
     let mut pts = [[0.0f64; 2]; BATCH_REGIONS * GM_POINTS];
     let mut vals = [W::splat(0.0); BATCH_REGIONS * GM_POINTS];
-    for (r, p) in pts.chunks_exact_mut(GM_POINTS).take(m).enumerate() {
-        rule_points(c[r], h[r], p);
-    }
-    f(&pts[..m * GM_POINTS], &mut vals[..m * GM_POINTS])?;
-    for (r, v) in vals.chunks_exact(GM_POINTS).take(m).enumerate() {
-        each(rule(c[r], h[r], v));
+    for (c, h) in c.chunks(BATCH_REGIONS).zip(h.chunks(BATCH_REGIONS)) {
+        let m = c.len().min(h.len());
+        for ((&c, &h), p) in c.iter().zip(h).zip(pts.chunks_exact_mut(GM_POINTS)) {
+            rule_points(c, h, p);
+        }
+        f(head(&pts, m * GM_POINTS), head_mut(&mut vals, m * GM_POINTS))?;
+        for ((&c, &h), v) in c.iter().zip(h).zip(vals.chunks_exact(GM_POINTS)) {
+            each(rule(c, h, v));
+        }
     }
     Ok(())
 }
@@ -183,14 +198,14 @@ fn composite<W: WideSpectrum>(
     let mut start = 0u64;
     while start < cells {
         let m = (cells - start).min(BATCH_REGIONS as u64) as usize;
-        for (k, cc) in centres[..m].iter_mut().enumerate() {
+        for (k, cc) in centres.iter_mut().take(m).enumerate() {
             let (i, j) = ((start + k as u64) / n as u64, (start + k as u64) % n as u64);
             *cc = [
                 c[0] - h[0] + (2 * i + 1) as f64 * hc[0],
                 c[1] - h[1] + (2 * j + 1) as f64 * hc[1],
             ];
         }
-        rules(&centres[..m], &[hc; BATCH_REGIONS], f, |r| {
+        rules(head(&centres, m), &[hc; BATCH_REGIONS], f, |r| {
             v.add(r.value);
             e.add(r.error);
             a.add(r.abs);
@@ -246,9 +261,11 @@ fn rule<W: WideSpectrum>(c: [f64; 2], h: [f64; 2], vals: &[W]) -> Region<W> {
     let fourth = |a: usize, b: usize, p: usize, q: usize| -> f64 {
         (0..W::CHANNELS)
             .map(|i| {
-                let f0 = vals[0].channel(i);
-                let d2 = vals[a].channel(i) + vals[b].channel(i) - 2.0 * f0;
-                let d3 = vals[p].channel(i) + vals[q].channel(i) - 2.0 * f0;
+                // Indices below GM_POINTS (checked reads: no panic path if not inlined).
+                let v = |k: usize| vals.get(k).map_or(0.0, |v| v.channel(i));
+                let f0 = v(0);
+                let d2 = v(a) + v(b) - 2.0 * f0;
+                let d3 = v(p) + v(q) - 2.0 * f0;
                 (d2 - ratio * d3).abs()
             })
             .sum()
@@ -427,6 +444,8 @@ fn cut_gaps<W: WideSpectrum>(
     axis: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<u64, IntegrateError> {
+    // `axis ∈ {0, 1}`; masking states it (no panic path in the indexing below).
+    let axis = axis & 1;
     let l3 = libm::sqrt(0.9);
     let cut = a.c[axis] + a.h[axis];
     let mut e = a.c;
@@ -439,7 +458,7 @@ fn cut_gaps<W: WideSpectrum>(
     let mut vals = [W::splat(0.0); 3];
     f(&pts, &mut vals)?;
     let mut evals = 3u64;
-    let side = 2.0 * a.h[1 - axis];
+    let side = 2.0 * a.h[axis ^ 1];
     let flag_e = nonzero(&vals[1]);
     for (r, x, vx) in [(a, xa, vals[0]), (b, xb, vals[2])] {
         if nonzero(&vx) == flag_e {
@@ -560,8 +579,9 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 /// Stack use: the region table takes `MAX_REGIONS × (48 + 24·CHANNELS)`
 /// bytes (≈ 37 KiB for `f32`, ≈ 61 KiB for RGB; for a sampled spectrum
 /// with many channels mind small thread stacks), or [`SMALL_REGIONS`] ×
-/// the same at budgets up to [`SMALL_REGIONS_BUDGET`] (1,462), which cannot
-/// fill more (same result).
+/// the same at budgets up to [`SMALL_REGIONS_BUDGET`] (1,462), and
+/// [`TINY_REGIONS`] × the same up to [`TINY_REGIONS_BUDGET`] (1,053), which
+/// cannot fill more (same result).
 /// `warped` without a sampling map → `NoSamplingMap`.
 ///
 /// ```
@@ -662,7 +682,9 @@ impl Adaptive {
         f: impl BatchFn<W>,
         confirm: Option<f64>,
     ) -> Result<Staged<W>, IntegrateError> {
-        if budget <= SMALL_REGIONS_BUDGET {
+        if budget <= TINY_REGIONS_BUDGET {
+            self.run_with::<W, TINY_REGIONS>(budget, probe, f, confirm)
+        } else if budget <= SMALL_REGIONS_BUDGET {
             self.run_with::<W, SMALL_REGIONS>(budget, probe, f, confirm)
         } else {
             self.run_with::<W, MAX_REGIONS>(budget, probe, f, confirm)
@@ -846,7 +868,9 @@ impl Adaptive {
             let mut ab = [empty; 2];
             let mut k = 0;
             rules(&[c1, c2], &[h, h], &mut f, |q| {
-                ab[k] = q;
+                if let Some(slot) = ab.get_mut(k) {
+                    *slot = q;
+                }
                 k += 1;
             })?;
             let [mut a, mut b] = ab;
@@ -912,54 +936,66 @@ impl Adaptive {
                 confirm,
             )
         } else {
-            let turn = |b: f64| {
-                let s = b + PHI_OFFSET;
-                if s >= 1.0 { s - 1.0 } else { s }
-            };
-            // In the staged mode the rule's size is not known in advance:
-            // the mean check is sized by the evaluations the rule spent.
-            let check = if confirm.is_some() {
-                0
-            } else {
-                probe::mean_check_points(g, budget)
-            };
-            let (rule_budget, probing) = probe::split_budget(g, budget - check, Self::MIN_BUDGET);
-            // The probe's points in the square's coordinates `(μ, b)` with
-            // `φ = 2π turn(b)`, values on the scale of `2π g`.
-            let mut pts = [([0.0f64; 2], 0.0f64); probe::PROBE_POINTS];
-            let mut n = 0;
-            if probing {
-                for &(w, v) in probe::Probe::take(g)?.points() {
-                    let phi = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
-                    let b = phi - PHI_OFFSET;
-                    let b = b - libm::floor(b);
-                    if let Some(p) = pts.get_mut(n) {
-                        *p = ([w.z as f64, b], v * core::f64::consts::TAU);
-                        n += 1;
-                    }
+            self.integrate_hemisphere(g, budget, confirm)
+        }
+    }
+
+    /// The plain (unwarped) path of [`Adaptive::integrate_impl`]. Never
+    /// inlined: its probe table stays out of the warped path's frame.
+    #[inline(never)]
+    fn integrate_hemisphere<I: Integrand>(
+        &self,
+        g: &I,
+        budget: u32,
+        confirm: Option<f64>,
+    ) -> Result<Staged<WideOf<I>>, IntegrateError> {
+        let turn = |b: f64| {
+            let s = b + PHI_OFFSET;
+            if s >= 1.0 { s - 1.0 } else { s }
+        };
+        // In the staged mode the rule's size is not known in advance:
+        // the mean check is sized by the evaluations the rule spent.
+        let check = if confirm.is_some() {
+            0
+        } else {
+            probe::mean_check_points(g, budget)
+        };
+        let (rule_budget, probing) = probe::split_budget(g, budget - check, Self::MIN_BUDGET);
+        // The probe's points in the square's coordinates `(μ, b)` with
+        // `φ = 2π turn(b)`, values on the scale of `2π g`.
+        let mut pts = [([0.0f64; 2], 0.0f64); probe::PROBE_POINTS];
+        let mut n = 0;
+        if probing {
+            for &(w, v) in probe::Probe::take(g)?.points() {
+                let phi = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
+                let b = phi - PHI_OFFSET;
+                let b = b - libm::floor(b);
+                if let Some(p) = pts.get_mut(n) {
+                    *p = ([w.z as f64, b], v * core::f64::consts::TAU);
+                    n += 1;
                 }
             }
-            let (mut e, confirmed) = self.run(
-                rule_budget,
-                pts.get(..n).unwrap_or_default(),
-                |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, turn, out),
-                confirm,
-            )?;
-            if probing {
-                e.evaluations += probe::PROBE_POINTS as u64;
-            }
-            let check = if confirm.is_some() {
-                probe::mean_check_points(g, u32::try_from(e.evaluations).unwrap_or(u32::MAX))
-            } else {
-                check
-            };
-            if check > 0 {
-                let m = probe::MeanCheck::take(g, check)?;
-                e.status = m.judge(e.status, e.value, e.error);
-                e.evaluations += check as u64;
-            }
-            Ok((e, confirmed))
         }
+        let (mut e, confirmed) = self.run(
+            rule_budget,
+            pts.get(..n).unwrap_or_default(),
+            |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, turn, out),
+            confirm,
+        )?;
+        if probing {
+            e.evaluations += probe::PROBE_POINTS as u64;
+        }
+        let check = if confirm.is_some() {
+            probe::mean_check_points(g, u32::try_from(e.evaluations).unwrap_or(u32::MAX))
+        } else {
+            check
+        };
+        if check > 0 {
+            let m = probe::MeanCheck::take(g, check)?;
+            e.status = m.judge(e.status, e.value, e.error);
+            e.evaluations += check as u64;
+        }
+        Ok((e, confirmed))
     }
 }
 
@@ -1101,6 +1137,46 @@ impl Integrator for Adaptive {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The region tables sized by the budget give the same results, bit for
+    /// bit, as the largest table, up to the largest budget of each
+    /// (plain and warped runs that never converge: they split to the end).
+    #[test]
+    fn region_tables_sized_by_the_budget_give_the_same_bits() {
+        let f = |p: &[[f64; 2]], out: &mut [f64]| {
+            for (o, &[x, y]) in out.iter_mut().zip(p) {
+                *o = 1.0 / (1e-3 + (x - 0.3) * (x - 0.3) + (y - 0.7) * (y - 0.7))
+                    + if x > 0.9 { 0.0 } else { 1.0 };
+            }
+            Ok(())
+        };
+        for a in [
+            Adaptive::new(1e-12, 0.0).unwrap(),
+            Adaptive::new(1e-12, 0.0).unwrap().warped(),
+        ] {
+            for budget in [a.min_budget(), 500, 1000, 1024, TINY_REGIONS_BUDGET] {
+                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], f, None).unwrap();
+                assert_eq!(
+                    a.run_with::<f64, TINY_REGIONS>(budget, &[], f, None).unwrap(),
+                    max,
+                    "{budget}"
+                );
+                assert_eq!(
+                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], f, None).unwrap(),
+                    max,
+                    "{budget}"
+                );
+            }
+            for budget in [TINY_REGIONS_BUDGET + 1, 1300, SMALL_REGIONS_BUDGET] {
+                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], f, None).unwrap();
+                assert_eq!(
+                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], f, None).unwrap(),
+                    max,
+                    "{budget}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn genz_malik_degrees() {

@@ -4,7 +4,7 @@
 use super::acc::{self, F32_FLOOR};
 use super::chart::peak::ASPECT_RANGE;
 use super::chart::{Chart, PeakChart, ProductChart};
-use super::chunk::{self, CHUNK};
+use super::chunk::{self, CHUNK, head, head_mut};
 use super::probe::{self, Probe};
 use super::{
     Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome,
@@ -319,37 +319,49 @@ fn mu(i: usize) -> f64 {
     0.5 * (1.0 - libm::cos(core::f64::consts::PI * i as f64 / (NMU - 1) as f64))
 }
 
-/// Clenshaw–Curtis weights on `[0, 1]` for `n = 2^a` intervals, indexed by
-/// the finest node index (zero off the level): `w_j = (c_j / 2n) [1 −
-/// Σ_{k=1}^{n/2} b_k cos(2πjk/n)/(4k² − 1)]`, `c_0 = c_n = 1`, else 2;
-/// `b_{n/2} = 1`, else 2 (Trefethen 2008, §2, rescaled from `[−1, 1]`).
-fn cc_weights(a: u32) -> [f64; NMU] {
+/// The Clenshaw–Curtis weight on `[0, 1]` for `n = 2^a` intervals at the
+/// finest node index `i` (zero off the level): `w_j = (c_j / 2n) [1 −
+/// Σ_{k=1}^{n/2} b_k cos(2πjk/n)/(4k² − 1)]` at `j = i / 2^(7−a)`,
+/// `c_0 = c_n = 1`, else 2; `b_{n/2} = 1`, else 2 (Trefethen 2008, §2,
+/// rescaled from `[−1, 1]`). One weight at a time: [`Grid::rules`] keeps no
+/// weight tables on the stack.
+fn cc_weight(a: u32, i: usize) -> f64 {
     let n = 1usize << a;
     let stride = (NMU - 1) >> a;
-    let mut w = [0.0; NMU];
-    for j in 0..=n {
-        let mut s = 1.0;
-        for k in 1..=n / 2 {
-            let b = if 2 * k == n { 1.0 } else { 2.0 };
-            let kk = (k * k) as f64;
-            s -= b * libm::cos(core::f64::consts::TAU * (j * k) as f64 / n as f64) / (4.0 * kk - 1.0);
-        }
-        let c = if j == 0 || j == n { 1.0 } else { 2.0 };
-        if let Some(x) = w.get_mut(j * stride) {
-            *x = c * s / (2 * n) as f64;
-        }
+    if stride == 0 || !i.is_multiple_of(stride) || i / stride > n {
+        return 0.0;
     }
-    w
+    let j = i / stride;
+    let mut s = 1.0;
+    for k in 1..=n / 2 {
+        let b = if 2 * k == n { 1.0 } else { 2.0 };
+        let kk = (k * k) as f64;
+        s -= b * libm::cos(core::f64::consts::TAU * (j * k) as f64 / n as f64) / (4.0 * kk - 1.0);
+    }
+    let c = if j == 0 || j == n { 1.0 } else { 2.0 };
+    c * s / (2 * n) as f64
 }
 
-/// The nested grid: per `μ` node (finest index), sums over the current
+/// Rows of the grid's tables at budgets up to [`SMALL_GRID_BUDGET`]: the
+/// rows of `μ` levels up to 6 (every other finest index).
+const SMALL_GRID_ROWS: usize = (NMU - 1) / 2 + 1;
+
+/// Largest grid budget run with tables of [`SMALL_GRID_ROWS`] rows: refining
+/// `μ` to level 7 costs `2⁶ · 2^b ≥ 512` evaluations on top of the
+/// `2⁶ · 2^b + 1 ≥ 513` of level 6, so a budget of 1,024 never reaches it and
+/// the run is the same, bit for bit, as with all [`NMU`] rows (the stack
+/// follows the budget: 2 KiB less for `f32`; the firmware configuration).
+const SMALL_GRID_BUDGET: u64 = 1024;
+
+/// The nested grid: per `μ` node (finest index `i`, kept in row
+/// `i / ((NMU − 1)/(R − 1))` of tables of `R` rows), sums over the current
 /// azimuth level `b` and over level `b − 1` of `2π g`, of `|2π g|` and of
 /// `(2π g)²`.
-struct Grid<W> {
-    s: [W; NMU],
-    s_prev: [W; NMU],
-    abs: [W; NMU],
-    sq: [W; NMU],
+struct Grid<W, const R: usize> {
+    s: [W; R],
+    s_prev: [W; R],
+    abs: [W; R],
+    sq: [W; R],
     a: u32,
     b: u32,
     /// Largest `max_channel |2π g|` at any node.
@@ -367,20 +379,27 @@ fn turn(b: f64) -> f64 {
     if s >= 1.0 { s - 1.0 } else { s }
 }
 
-impl<W: WideSpectrum> Grid<W> {
+impl<W: WideSpectrum, const R: usize> Grid<W, R> {
     fn new(chart: Option<Chart>) -> Self {
         let z = W::splat(0.0);
         Grid {
             chart,
-            s: [z; NMU],
-            s_prev: [z; NMU],
-            abs: [z; NMU],
-            sq: [z; NMU],
+            s: [z; R],
+            s_prev: [z; R],
+            abs: [z; R],
+            sq: [z; R],
             a: A0,
             b: B0,
             peak: 0.0,
             evals: 0,
         }
+    }
+
+    /// The table row of finest index `i` (`None` for an index the tables
+    /// do not keep: never asked for within their budget).
+    fn row(i: usize) -> Option<usize> {
+        let spacing = (NMU - 1) / R.saturating_sub(1).max(1);
+        (spacing > 0 && i.is_multiple_of(spacing)).then(|| i / spacing.max(1))
     }
 
     /// Evaluates row `i` at the azimuth nodes `k/m` (`m = 2^b`) with
@@ -426,18 +445,18 @@ impl<W: WideSpectrum> Grid<W> {
                 }
                 let mut wide = [W::splat(0.0); CHUNK];
                 if let Some(v) = pole {
-                    for w in wide[..n].iter_mut() {
+                    for w in head_mut(&mut wide, n).iter_mut() {
                         *w = v;
                     }
                 } else {
-                    g.eval_batch(&dirs[..n], &mut vals[..n]);
+                    g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
                     self.evals += n as u64;
-                    for (w, v) in wide[..n].iter_mut().zip(&vals[..n]) {
+                    for (w, v) in head_mut(&mut wide, n).iter_mut().zip(head(&vals, n)) {
                         *w = super::check_finite(v.to_wide())?;
                         self.peak = self.peak.max(core::f64::consts::TAU * acc::max_abs(*w));
                     }
                 }
-                for ((&v, &j), &k) in wide[..n].iter().zip(&jac[..n]).zip(&kept[..n]) {
+                for ((&v, &j), &k) in head(&wide, n).iter().zip(head(&jac, n)).zip(head(&kept, n)) {
                     let v = v.map(|y| y * j);
                     sum = acc::add(sum, v);
                     abs = acc::add(abs, v.map(f64::abs));
@@ -473,9 +492,9 @@ impl<W: WideSpectrum> Grid<W> {
                     *kk = k;
                     n += 1;
                 }
-                chunk::hemisphere_values(g, &pts[..n], turn, &mut vals[..n])?;
+                chunk::hemisphere_values(g, head(&pts, n), turn, head_mut(&mut vals, n))?;
                 self.evals += n as u64;
-                for (&v, &k) in vals[..n].iter().zip(&kept[..n]) {
+                for (&v, &k) in head(&vals, n).iter().zip(head(&kept, n)) {
                     self.peak = self.peak.max(acc::max_abs(v));
                     sum = acc::add(sum, v);
                     abs = acc::add(abs, v.map(f64::abs));
@@ -486,7 +505,8 @@ impl<W: WideSpectrum> Grid<W> {
                 }
             }
         }
-        if let (Some(s), Some(a), Some(q)) = (self.s.get_mut(i), self.abs.get_mut(i), self.sq.get_mut(i)) {
+        let r = Self::row(i).unwrap_or(R);
+        if let (Some(s), Some(a), Some(q)) = (self.s.get_mut(r), self.abs.get_mut(r), self.sq.get_mut(r)) {
             *s = acc::add(*s, sum);
             *a = acc::add(*a, abs);
             *q = acc::add(*q, sq);
@@ -500,9 +520,9 @@ impl<W: WideSpectrum> Grid<W> {
         g: &I,
     ) -> Result<(), IntegrateError> {
         let stride = (NMU - 1) >> self.a;
-        for i in (0..NMU).step_by(stride) {
+        for i in (0..NMU).step_by(stride.max(1)) {
             let even = self.eval_row(g, i, 0, 1)?;
-            if let Some(p) = self.s_prev.get_mut(i) {
+            if let Some(p) = self.s_prev.get_mut(Self::row(i).unwrap_or(R)) {
                 *p = even;
             }
         }
@@ -525,9 +545,9 @@ impl<W: WideSpectrum> Grid<W> {
     ) -> Result<(), IntegrateError> {
         self.a += 1;
         let stride = (NMU - 1) >> self.a;
-        for i in (stride..NMU).step_by(2 * stride) {
+        for i in (stride..NMU).step_by((2 * stride).max(1)) {
             let even = self.eval_row(g, i, 0, 1)?;
-            if let Some(p) = self.s_prev.get_mut(i) {
+            if let Some(p) = self.s_prev.get_mut(Self::row(i).unwrap_or(R)) {
                 *p = even;
             }
         }
@@ -541,8 +561,9 @@ impl<W: WideSpectrum> Grid<W> {
     ) -> Result<(), IntegrateError> {
         self.b += 1;
         let stride = (NMU - 1) >> self.a;
-        for i in (0..NMU).step_by(stride) {
-            if let (Some(p), Some(&s)) = (self.s_prev.get_mut(i), self.s.get(i)) {
+        for i in (0..NMU).step_by(stride.max(1)) {
+            let r = Self::row(i).unwrap_or(R);
+            if let (Some(p), Some(&s)) = (self.s_prev.get_mut(r), self.s.get(r)) {
                 *p = s;
             }
             self.eval_row(g, i, 1, 2)?;
@@ -552,17 +573,20 @@ impl<W: WideSpectrum> Grid<W> {
 
     /// `(Q(a, b), d_μ, d_φ, Σ|w g|, effective node count)`.
     fn rules(&self) -> (W, W, W, W, f64, W) {
-        let wa = cc_weights(self.a);
-        let wc = cc_weights(self.a - 1);
         let (m, mp) = ((1u64 << self.b) as f64, (1u64 << (self.b - 1)) as f64);
         let z = W::splat(0.0);
         let (mut q, mut qa, mut qb, mut ab, mut sq) = (z, z, z, z, z);
         for i in 0..NMU {
-            let (w, wcoarse) = (wa[i], wc[i]);
+            let (w, wcoarse) = (cc_weight(self.a, i), cc_weight(self.a - 1, i));
             if w == 0.0 && wcoarse == 0.0 {
                 continue;
             }
-            let (s, sp, a, qq) = (self.s[i], self.s_prev[i], self.abs[i], self.sq[i]);
+            let r = Self::row(i).unwrap_or(R);
+            let (Some(&s), Some(&sp), Some(&a), Some(&qq)) =
+                (self.s.get(r), self.s_prev.get(r), self.abs.get(r), self.sq.get(r))
+            else {
+                continue;
+            };
             q = acc::add(q, s.map(|x| x * w / m));
             qa = acc::add(qa, s.map(|x| x * wcoarse / m));
             qb = acc::add(qb, sp.map(|x| x * w / mp));
@@ -692,7 +716,25 @@ fn grid<I: Integrand>(
     two: bool,
     chart: Option<Chart>,
 ) -> Result<(Estimate<WideOf<I>>, GridEnd), IntegrateError> {
-    let mut gr = Grid::<WideOf<I>>::new(chart);
+    if budget <= SMALL_GRID_BUDGET {
+        grid_with::<I, SMALL_GRID_ROWS>(g, tol, budget, probe, two, chart)
+    } else {
+        grid_with::<I, NMU>(g, tol, budget, probe, two, chart)
+    }
+}
+
+/// [`grid`] with tables of `R` rows. Never inlined: each table size keeps its
+/// own stack frame.
+#[inline(never)]
+fn grid_with<I: Integrand, const R: usize>(
+    g: &I,
+    tol: f64,
+    budget: u64,
+    probe: &Probe,
+    two: bool,
+    chart: Option<Chart>,
+) -> Result<(Estimate<WideOf<I>>, GridEnd), IntegrateError> {
+    let mut gr = Grid::<WideOf<I>, R>::new(chart);
     gr.start(g)?;
     let mut refined = false;
     // Each dimension's indicators before its last two refinements.
@@ -868,6 +910,11 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
+    /// The weights of a level, indexed by the finest node index.
+    fn cc_weights(a: u32) -> [f64; NMU] {
+        core::array::from_fn(|i| cc_weight(a, i))
+    }
+
     /// Clenshaw–Curtis with `n + 1` nodes integrates polynomials of degree
     /// `≤ n` exactly (Trefethen 2008, Thm. 1): `∫₀¹ μ^k dμ = 1/(k + 1)`.
     #[test]
@@ -893,6 +940,24 @@ mod tests {
         type Spectrum = f32;
         fn eval(&self, w: Vec3) -> f32 {
             w.z.max(0.0).powi(self.0)
+        }
+    }
+
+    /// The grid's tables of every other row give the same results, bit for
+    /// bit, as all rows, up to [`SMALL_GRID_BUDGET`] (a lobe that refines `μ`
+    /// first, and a tilted one that refines both).
+    #[test]
+    fn small_grid_tables_give_the_same_bits() {
+        let c = Vec3::new(0.5, 0.0, 0.866_025_4).normalize();
+        for g in [Tilted(40.0, Vec3::Z), Tilted(20.0, c)] {
+            let p = pilot(&g).unwrap();
+            for budget in [100, 513, 700, 1000, SMALL_GRID_BUDGET] {
+                for (tol, two) in [(0.0, true), (1e-12, false)] {
+                    let all = grid_with::<_, NMU>(&g, tol, budget, &p.probe, two, None).unwrap();
+                    let half = grid_with::<_, SMALL_GRID_ROWS>(&g, tol, budget, &p.probe, two, None).unwrap();
+                    assert_eq!(half, all, "{budget}");
+                }
+            }
         }
     }
 

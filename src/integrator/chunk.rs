@@ -17,12 +17,29 @@ use core::f64::consts::TAU;
 use glam::Vec3;
 
 /// Most points an integrator passes to one call of the batch methods of
-/// [`Integrand`], and the length of their stack buffers: 64, a multiple of
+/// [`Integrand`], and the length of their stack buffers: 32, a multiple of
 /// the SIMD widths in use (8 lanes of `f32`). The buffers of one chunk
-/// (directions, values, samples, their `f64` widenings) take a few KiB for
+/// (directions, values, samples, their `f64` widenings) take 1–2 KiB for
 /// `f32` and RGB spectra, growing linearly with the channel count of a
-/// sampled spectrum.
-pub const CHUNK: usize = 64;
+/// sampled spectrum; several frames hold such buffers at once, so this size
+/// sets most of an integrator's stack (firmware: ≤ 8 KB at a budget of
+/// 1,024). The estimates do not depend on it: values are accumulated point
+/// by point in the same order (Monte Carlo's moments take their draws 64 at
+/// a time whatever this size).
+pub const CHUNK: usize = 32;
+
+/// `&s[..n]` without a panic path: the prefix when `n ≤ s.len()` (every
+/// caller's case: `n` counts points of a buffer of that length), else empty.
+#[inline(always)]
+pub(crate) fn head<T>(s: &[T], n: usize) -> &[T] {
+    s.get(..n).unwrap_or_default()
+}
+
+/// `&mut s[..n]` without a panic path (see [`head`]).
+#[inline(always)]
+pub(crate) fn head_mut<T>(s: &mut [T], n: usize) -> &mut [T] {
+    s.get_mut(..n).unwrap_or_default()
+}
 
 /// Integrand values at a batch of points of the unit square, as the
 /// quadrature rules consume them: `f(p, out)` sets `out[k] = f(p[k])` for
@@ -76,11 +93,11 @@ pub(crate) fn hemisphere_values<I: Integrand>(
     let mut vals = [I::Spectrum::zero(); CHUNK];
     for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         let n = p.len().min(out.len());
-        for (d, &[a, b]) in dirs[..n].iter_mut().zip(p) {
+        for (d, &[a, b]) in head_mut(&mut dirs, n).iter_mut().zip(p) {
             *d = direction(a, TAU * turn(b));
         }
-        g.eval_batch(&dirs[..n], &mut vals[..n]);
-        for (o, v) in out[..n].iter_mut().zip(&vals[..n]) {
+        g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
+        for (o, v) in out.iter_mut().zip(head(&vals, n)) {
             *o = check_finite(v.to_wide())?.map(|x| x * TAU);
         }
     }
@@ -99,11 +116,11 @@ pub(crate) fn warped_values<I: Integrand>(
     let mut ss = [None; CHUNK];
     for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         let n = p.len().min(out.len());
-        for (u, &[a, b]) in us[..n].iter_mut().zip(p) {
+        for (u, &[a, b]) in head_mut(&mut us, n).iter_mut().zip(p) {
             *u = [to_unit_f32(a), to_unit_f32(b)];
         }
-        g.sample_batch(&us[..n], &mut ss[..n]);
-        for (o, &s) in out[..n].iter_mut().zip(&ss[..n]) {
+        g.sample_batch(head(&us, n), head_mut(&mut ss, n));
+        for (o, &s) in out.iter_mut().zip(head(&ss, n)) {
             *o = match sample_weight(s)? {
                 Some((_, _, w)) => w,
                 None => WideOf::<I>::splat(0.0),
@@ -135,8 +152,8 @@ pub(crate) fn brdf_eval_where<B: Brdf>(brdf: &B, wo: Vec3, wi: &[Option<Vec3>], 
             }
         }
         let m = m.min(CHUNK);
-        brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
-        for (&k, &v) in index[..m].iter().zip(&vals[..m]) {
+        brdf.eval_batch(head(&dense, m), head(&wos, m), head_mut(&mut vals, m));
+        for (&k, &v) in head(&index, m).iter().zip(head(&vals, m)) {
             if let Some(o) = out.get_mut(k) {
                 *o = v;
             }
@@ -151,7 +168,7 @@ pub(crate) fn brdf_pdf_batch<B: Brdf>(brdf: &B, wo: Vec3, w: &[Vec3], out: &mut 
     let wos = [wo; CHUNK];
     for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         let n = w.len().min(out.len());
-        brdf.pdf_batch(&w[..n], &wos[..n], &mut out[..n]);
+        brdf.pdf_batch(head(w, n), head(&wos, n), head_mut(out, n));
     }
 }
 
@@ -172,8 +189,8 @@ pub(crate) fn brdf_sample_batch<B: Brdf>(
     let mut s = [None; CHUNK];
     for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         let n = u.len().min(out.len());
-        brdf.sample_batch(&wos[..n], &u[..n], &mut s[..n]);
-        for (o, s) in out[..n].iter_mut().zip(&s[..n]) {
+        brdf.sample_batch(head(&wos, n), head(u, n), head_mut(&mut s, n));
+        for (o, s) in out.iter_mut().zip(head(&s, n)) {
             *o = s.as_ref().map(|s| IntegrandSample {
                 w: s.wi,
                 pdf: s.pdf,

@@ -5,7 +5,7 @@
 
 use super::acc::to_unit_f32;
 use super::acc::{self, F32_FLOOR, WideSum, nonzero};
-use super::chunk::{self, BatchFn, CHUNK};
+use super::chunk::{self, BatchFn, CHUNK, head, head_mut};
 use super::{Estimate, Integrand, IntegrateError, Integrator, Status, Unresolved, WideOf, probe};
 use crate::spectrum::WideSpectrum;
 use core::cell::Cell;
@@ -110,34 +110,63 @@ pub fn gauss_legendre_rule(n: usize, x: &mut [f64], w: &mut [f64]) -> usize {
 }
 
 /// A Gauss–Legendre rule on `[0, 1]` stored on the stack, of order at most
-/// `N` ([`SMALL_ORDER`] or [`MAX_ORDER`]: the caller picks the smallest that
-/// holds its orders).
-struct UnitRule<const N: usize> {
+/// `2H` (`H` = half of [`SMALL_ORDER`] or [`MAX_ORDER`]: the caller picks the
+/// smallest that holds its orders). The rule is symmetric: for each of the
+/// `⌈n/2⌉` roots `xᵢ > 0` of `P_n` only the two nodes `(1 ∓ xᵢ)/2` and the
+/// weight `wᵢ/2` are kept, computed with the same arithmetic as a full table
+/// of [`gauss_legendre_rule`] mapped to `[0, 1]`: the same nodes and weights,
+/// bit for bit, in three quarters of the stack, and no arithmetic per lookup.
+struct UnitRule<const H: usize> {
     n: usize,
-    x: [f64; N],
-    w: [f64; N],
+    /// Node `i` (ascending, lower half): `0.5·(−xᵢ + 1)`; `0.5` at the middle of an odd rule.
+    lo: [f64; H],
+    /// Node `n − 1 − i` (upper half): `0.5·(xᵢ + 1)`.
+    hi: [f64; H],
+    /// The weight of both: `wᵢ · 0.5`.
+    w: [f64; H],
 }
 
-impl<const N: usize> UnitRule<N> {
+impl<const H: usize> UnitRule<H> {
     fn new(n: usize) -> Self {
         let mut r = UnitRule {
             n: 0,
-            x: [0.0; N],
-            w: [0.0; N],
+            lo: [0.0; H],
+            hi: [0.0; H],
+            w: [0.0; H],
         };
-        r.n = gauss_legendre_rule(n.min(N), &mut r.x, &mut r.w);
-        for (x, w) in r.x.iter_mut().zip(r.w.iter_mut()).take(r.n) {
-            *x = 0.5 * (*x + 1.0);
-            *w *= 0.5;
+        let n = n.min(2 * H);
+        let roots = r.lo.iter_mut().zip(r.hi.iter_mut()).zip(r.w.iter_mut());
+        if n == 1 {
+            // As `gauss_legendre_rule`: the node 0 with weight 2.
+            for ((lo, hi), w) in roots.take(1) {
+                (*lo, *hi, *w) = (0.5, 0.5, 1.0);
+                r.n = 1;
+            }
+        } else if n > 1 {
+            // The i-th largest root of P_n (`i < ⌈n/2⌉ ≤ H`); the middle node
+            // of an odd rule is 0 (as `gauss_legendre_rule` writes it).
+            for (i, ((lo, hi), w)) in roots.take(n.div_ceil(2)).enumerate() {
+                let (xi, wi) = positive_root(n, i);
+                let neg = if 2 * i + 1 == n { 0.0 } else { -xi };
+                let pos = if 2 * i + 1 == n { 0.0 } else { xi };
+                (*lo, *hi, *w) = (0.5 * (neg + 1.0), 0.5 * (pos + 1.0), wi * 0.5);
+            }
+            r.n = n;
         }
         r
     }
 
-    /// Node `k` and its weight (`(0, 0)` beyond the rule: no panic path).
+    /// Node `k` (ascending) and its weight (`(0, 0)` beyond the rule: no
+    /// panic path): root `i = min(k, n − 1 − k)`, on its lower or upper side.
     #[inline]
     fn node(&self, k: usize) -> (f64, f64) {
-        match (self.x.get(k), self.w.get(k)) {
-            (Some(&x), Some(&w)) if k < self.n => (x, w),
+        if k >= self.n {
+            return (0.0, 0.0);
+        }
+        let i = k.min(self.n - 1 - k);
+        let side = if k > i { &self.hi } else { &self.lo };
+        match (side.get(i), self.w.get(i)) {
+            (Some(&x), Some(&w)) => (x, w),
             _ => (0.0, 0.0),
         }
     }
@@ -150,13 +179,13 @@ impl<const N: usize> UnitRule<N> {
 // Never inlined: each table size keeps its own frame (an inlined copy would put the
 // largest tables in every caller's frame, whatever the budget).
 #[inline(never)]
-fn product_square<W: WideSpectrum, const N: usize>(
+fn product_square<W: WideSpectrum, const H: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<(W, W, W, bool), IntegrateError> {
-    let ra = UnitRule::<N>::new(na);
-    let rb = UnitRule::<N>::new(nb);
+    let ra = UnitRule::<H>::new(na);
+    let rb = UnitRule::<H>::new(nb);
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
     let mut sq = WideSum::<W>::new();
@@ -178,8 +207,8 @@ fn product_square<W: WideSpectrum, const N: usize>(
             *p = [xa, xb];
             *wt = wa * wb;
         }
-        f(&pts[..n], &mut vals[..n])?;
-        for (k, (v, &wt)) in vals[..n].iter().zip(&wts[..n]).enumerate() {
+        f(head(&pts, n), head_mut(&mut vals, n))?;
+        for (k, (v, &wt)) in head(&vals, n).iter().zip(head(&wts, n)).enumerate() {
             let v = v.map(|c| c * wt);
             sum.add(v);
             abs.add(v.map(f64::abs));
@@ -230,13 +259,13 @@ pub const MIN_EFFECTIVE_NODES: f64 = 16.0;
 // Never inlined: each table size keeps its own frame (an inlined copy would put the
 // largest tables in every caller's frame, whatever the budget).
 #[inline(never)]
-fn edge_gap_bound<W: WideSpectrum, const N: usize>(
+fn edge_gap_bound<W: WideSpectrum, const H: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<(W, usize), IntegrateError> {
-    let ra = UnitRule::<N>::new(na);
-    let rb = UnitRule::<N>::new(nb);
+    let ra = UnitRule::<H>::new(na);
+    let rb = UnitRule::<H>::new(nb);
     let (lo, hi) = (rb.node(0).0, rb.node(rb.n.saturating_sub(1)).0);
     let mut bound = WideSum::<W>::new();
     let mut vals = [W::splat(0.0); 4];
@@ -262,13 +291,14 @@ fn edge_gap_bound<W: WideSpectrum, const N: usize>(
 fn levels(na: usize, nb: usize) -> ([(usize, usize); 4], usize) {
     let mut out = [(na, nb); 4];
     let mut count = 1;
-    while count < 4 {
-        let (a, b) = out[count - 1];
-        let next = (a.div_ceil(2), b.div_ceil(2));
-        if next == (a, b) {
+    let mut last = (na, nb);
+    for slot in out.iter_mut().skip(1) {
+        let next = (last.0.div_ceil(2), last.1.div_ceil(2));
+        if next == last {
             break;
         }
-        out[count] = next;
+        *slot = next;
+        last = next;
         count += 1;
     }
     (out, count)
@@ -277,7 +307,7 @@ fn levels(na: usize, nb: usize) -> ([(usize, usize); 4], usize) {
 /// Total evaluations of [`levels`].
 fn levels_cost(na: usize, nb: usize) -> usize {
     let (l, c) = levels(na, nb);
-    l[..c].iter().map(|&(a, b)| a * b).sum()
+    l.iter().take(c).map(|&(a, b)| a * b).sum()
 }
 
 /// One run of a product rule: `Σ w g`, the channel-wise `Σ |w g|` (for the
@@ -337,14 +367,14 @@ fn with_comparison_rules<W: WideSpectrum>(
     let edge_peak = first.edge_peak;
     let mut unlocated = first.unlocated;
     let mut q = [first.sum; 4];
-    for k in 1..count {
-        let r = rule(lv[k].0, lv[k].1)?;
-        q[k] = r.sum;
+    for (qk, &(a, b)) in q.iter_mut().zip(&lv).take(count).skip(1) {
+        let r = rule(a, b)?;
+        *qk = r.sum;
         evaluations += r.evaluations;
         unlocated |= r.unlocated;
     }
     let error = W::from_fn(|i| {
-        let c = |k: usize| q[k].channel(i);
+        let c = |k: usize| q.get(k).map_or(0.0, |v| v.channel(i));
         let e1 = if count > 1 {
             (c(0) - c(1)).abs()
         } else {
@@ -378,12 +408,12 @@ fn with_comparison_rules<W: WideSpectrum>(
 }
 
 /// The plain product rule of order `(na, nb)` as a [`RuleSum`].
-fn plain_rule<W: WideSpectrum, const N: usize>(
+fn plain_rule<W: WideSpectrum, const H: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<RuleSum<W>, IntegrateError> {
-    let (sum, abs, sq, edge_peak) = product_square::<W, N>(na, nb, f)?;
+    let (sum, abs, sq, edge_peak) = product_square::<W, H>(na, nb, f)?;
     Ok(RuleSum {
         sum,
         abs,
@@ -421,7 +451,7 @@ fn split_line_cost(m: usize) -> usize {
 /// comparison rules.
 fn split_levels_cost(n: usize) -> usize {
     let (l, c) = levels(n, n);
-    l[..c].iter().map(|&(a, b)| a * split_line_cost(b)).sum()
+    l.iter().take(c).map(|&(a, b)| a * split_line_cost(b)).sum()
 }
 
 /// Sidi's sin²-transform `S(t) = t − sin(2πt)/(2π)` of `[0,1]` onto itself
@@ -457,21 +487,21 @@ fn sidi(t: f64) -> (f64, f64) {
 /// integral). A line with more than [`MAX_STEPS_PER_LINE`] steps keeps the
 /// plain rule and marks the result unlocated. A support pocket between two
 /// neighbouring nodes that both see zero (or both non-zero) is not seen.
-/// `N` is the largest order of the node tables, `P = N + 2` the points of a
+/// `2H` is the largest order of the node tables, `P = 2H + 2` the points of a
 /// scan line (both ends and the nodes).
 // Never inlined: each table size keeps its own frame (an inlined copy would put the
 // largest tables in every caller's frame, whatever the budget).
 #[inline(never)]
-fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
+fn split_rule<W: WideSpectrum, const H: usize, const P: usize>(
     na: usize,
     nb: usize,
     f: &mut impl BatchFn<W>,
 ) -> Result<RuleSum<W>, IntegrateError> {
-    let ra = UnitRule::<N>::new(na);
-    let rb = UnitRule::<N>::new(nb);
-    let rh = UnitRule::<N>::new(nb.div_ceil(2));
+    let ra = UnitRule::<H>::new(na);
+    let rb = UnitRule::<H>::new(nb);
+    let rh = UnitRule::<H>::new(nb.div_ceil(2));
     // `n ≤ N` for every rule; `min` states it for the optimiser.
-    let (m, mh) = (rb.n.min(N), rh.n.min(N));
+    let (m, mh) = (rb.n.min(2 * H), rh.n.min(2 * H));
     let mut sum = WideSum::<W>::new();
     let mut abs = WideSum::<W>::new();
     let mut sq = WideSum::<W>::new();
@@ -488,21 +518,23 @@ fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
         for (j, p) in pts.iter_mut().skip(1).take(m).enumerate() {
             *p = [a, rb.node(j).0];
         }
-        pts[m + 1] = [a, 1.0];
-        f(&pts[..m + 2], &mut vals[..m + 2])?;
+        if let Some(p) = pts.get_mut(m + 1) {
+            *p = [a, 1.0];
+        }
+        f(head(&pts, m + 2), head_mut(&mut vals, m + 2))?;
         evaluations += m + 2;
-        // Steps between neighbouring scan points.
+        // Steps between neighbouring scan points `k` and `k + 1`, `k ≤ m`.
         let mut steps = [0usize; MAX_STEPS_PER_LINE];
         let mut count = 0usize;
-        for k in 0..=m {
-            if nonzero(&vals[k]) != nonzero(&vals[k + 1]) {
-                if count < MAX_STEPS_PER_LINE {
-                    steps[count] = k;
+        for (k, (l, r)) in vals.iter().zip(vals.iter().skip(1)).take(m + 1).enumerate() {
+            if nonzero(l) != nonzero(r) {
+                if let Some(s) = steps.get_mut(count) {
+                    *s = k;
                 }
                 count += 1;
             }
         }
-        support_seen |= vals[..m + 2].iter().any(nonzero);
+        support_seen |= head(&vals, m + 2).iter().any(nonzero);
         let mut line = WideSum::<W>::new();
         let mut line_abs = WideSum::<W>::new();
         let mut line_sq = WideSum::<W>::new();
@@ -527,7 +559,7 @@ fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
             };
             let mut cuts = [0.0f64; MAX_STEPS_PER_LINE + 2];
             cuts[0] = 0.0;
-            for (c, &k) in steps.iter().take(count).enumerate() {
+            for (&k, cut) in steps.iter().take(count).zip(cuts.iter_mut().skip(1)) {
                 let left = vals.get(k).is_some_and(nonzero);
                 let (mut lo, mut hi) = (pos(k), pos(k + 1));
                 for _ in 0..BISECTION_STEPS {
@@ -544,9 +576,11 @@ fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
                         hi = mid;
                     }
                 }
-                cuts[c + 1] = 0.5 * (lo + hi);
+                *cut = 0.5 * (lo + hi);
             }
-            cuts[count + 1] = 1.0;
+            if let Some(cut) = cuts.get_mut(count + 1) {
+                *cut = 1.0;
+            }
             // Pieces alternate support / no support, starting with the
             // flag at u₁ = 0.
             let first_support = nonzero(&vals[0]);
@@ -555,7 +589,9 @@ fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
             let r = if support_pieces == 1 { &rb } else { &rh };
             let n = if support_pieces == 1 { m } else { mh };
             for p in (0..pieces).filter(|p| (p % 2 == 0) == first_support) {
-                let (lo, hi) = (cuts[p], cuts[p + 1]);
+                let (Some(&lo), Some(&hi)) = (cuts.get(p), cuts.get(p + 1)) else {
+                    continue;
+                };
                 let len = hi - lo;
                 if len <= 0.0 {
                     continue;
@@ -570,10 +606,10 @@ fn split_rule<W: WideSpectrum, const N: usize, const P: usize>(
                         *p = [a, lo + len * t];
                         *w = len * wr * dt;
                     }
-                    f(&pts[..c], &mut vals[..c])?;
+                    f(head(&pts, c), head_mut(&mut vals, c))?;
                     evaluations += c;
-                    for k in 0..c {
-                        let v = vals[k].map(|x| x * wt[k]);
+                    for (v, &w) in head(&vals, c).iter().zip(head(&wt, c)) {
+                        let v = v.map(|x| x * w);
                         line.add(v);
                         line_abs.add(v.map(f64::abs));
                         line_sq.add(v.map(|c| c * c));
@@ -640,8 +676,9 @@ fn order_for_budget(budget: u32, k: usize) -> usize {
 /// (`n_θ·2n_θ + ⌈n_θ/2⌉·n_θ + …`, ≈ 33 % extra) fit the budget. Minimum
 /// budget 11 (`n_θ = 2`); capped at `n_θ = 512`, `n_φ = 1024`
 /// ([`MAX_ORDER`]), i.e. 696,320 evaluations, whatever the budget. Node
-/// storage: two stack arrays of f64 per axis, of [`SMALL_ORDER`] entries
-/// (2 KiB) when `n_φ ≤ 64`, of [`MAX_ORDER`] (32 KiB) above.
+/// storage: the two nodes and the weight of each root of the (symmetric) rules,
+/// stack arrays of `SMALL_ORDER / 2` entries (1.5 KiB for both axes) when
+/// `n_φ ≤` [`SMALL_ORDER`], of `MAX_ORDER / 2` (24 KiB) above.
 ///
 /// A NaN/∞ integrand value gives [`IntegrateError::NonFiniteIntegrand`].
 ///
@@ -706,13 +743,13 @@ impl Integrator for GaussLegendre {
         // Node tables sized by the orders (np ≥ nt): the stack follows the budget.
         let mut e = if np <= SMALL_ORDER {
             with_comparison_rules(nt, np, none, |a, b| {
-                let r = plain_rule::<_, SMALL_ORDER>(a, b, &mut f);
+                let r = plain_rule::<_, { SMALL_ORDER / 2 }>(a, b, &mut f);
                 first.set(false);
                 r
             })?
         } else {
             with_comparison_rules(nt, np, none, |a, b| {
-                let r = plain_rule::<_, MAX_ORDER>(a, b, &mut f);
+                let r = plain_rule::<_, { MAX_ORDER / 2 }>(a, b, &mut f);
                 first.set(false);
                 r
             })?
@@ -853,21 +890,25 @@ impl Integrator for WarpedGaussLegendre {
                 let none = (WideOf::<I>::splat(0.0), 0);
                 if ns <= SMALL_ORDER {
                     with_comparison_rules(ns, ns, none, |a, b| {
-                        split_rule::<_, SMALL_ORDER, { SMALL_ORDER + 2 }>(a, b, &mut f)
+                        split_rule::<_, { SMALL_ORDER / 2 }, { SMALL_ORDER + 2 }>(a, b, &mut f)
                     })
                 } else {
                     with_comparison_rules(ns, ns, none, |a, b| {
-                        split_rule::<_, MAX_ORDER, { MAX_ORDER + 2 }>(a, b, &mut f)
+                        split_rule::<_, { MAX_ORDER / 2 }, { MAX_ORDER + 2 }>(a, b, &mut f)
                     })
                 }
             }
             _ if n <= SMALL_ORDER => {
-                let edges = edge_gap_bound::<_, SMALL_ORDER>(n, n, &mut f)?;
-                with_comparison_rules(n, n, edges, |a, b| plain_rule::<_, SMALL_ORDER>(a, b, &mut f))
+                let edges = edge_gap_bound::<_, { SMALL_ORDER / 2 }>(n, n, &mut f)?;
+                with_comparison_rules(n, n, edges, |a, b| {
+                    plain_rule::<_, { SMALL_ORDER / 2 }>(a, b, &mut f)
+                })
             }
             _ => {
-                let edges = edge_gap_bound::<_, MAX_ORDER>(n, n, &mut f)?;
-                with_comparison_rules(n, n, edges, |a, b| plain_rule::<_, MAX_ORDER>(a, b, &mut f))
+                let edges = edge_gap_bound::<_, { MAX_ORDER / 2 }>(n, n, &mut f)?;
+                with_comparison_rules(n, n, edges, |a, b| {
+                    plain_rule::<_, { MAX_ORDER / 2 }>(a, b, &mut f)
+                })
             }
         }
     }
@@ -884,6 +925,28 @@ impl Integrator for WarpedGaussLegendre {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The half-size node tables give the nodes and weights of the full
+    /// table of `gauss_legendre_rule` mapped to `[0, 1]`, bit for bit, at
+    /// both table sizes.
+    #[test]
+    fn unit_rule_matches_the_mapped_full_table() {
+        let (mut x, mut w) = ([0.0; MAX_ORDER], [0.0; MAX_ORDER]);
+        for n in (1..=SMALL_ORDER).chain([SMALL_ORDER + 1, 100, 257, MAX_ORDER - 1, MAX_ORDER]) {
+            assert_eq!(gauss_legendre_rule(n, &mut x, &mut w), n);
+            let small = UnitRule::<{ SMALL_ORDER / 2 }>::new(n);
+            let large = UnitRule::<{ MAX_ORDER / 2 }>::new(n);
+            for k in 0..n {
+                let want = (0.5 * (x[k] + 1.0), w[k] * 0.5);
+                let bits = |(a, b): (f64, f64)| (a.to_bits(), b.to_bits());
+                assert_eq!(bits(large.node(k)), bits(want), "n={n} k={k}");
+                if n <= SMALL_ORDER {
+                    assert_eq!(bits(small.node(k)), bits(want), "n={n} k={k}");
+                }
+            }
+            assert_eq!(large.node(n), (0.0, 0.0));
+        }
+    }
 
     #[test]
     fn rule_integrates_polynomials_exactly() {

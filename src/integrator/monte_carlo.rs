@@ -4,7 +4,7 @@
 //! balance or power heuristic, over any [`PointSet`].
 
 use super::acc::{self, Moments, SampleDiagnostics};
-use super::chunk::{CHUNK, sample_weight};
+use super::chunk::{CHUNK, head, head_mut, sample_weight};
 use super::points::{
     Pcg32, PointSet, SOBOL_MAX_POINTS, fibonacci_point, jitter_grid, jittered_point, mix_seed,
     sobol_point_pairs, square_to_cosine_hemisphere_polar,
@@ -247,7 +247,7 @@ fn draw_batch<I: Integrand>(
     peak: &mut f64,
 ) -> Result<(), IntegrateError> {
     let n = u1.len().min(CHUNK);
-    let (u1, u2, out) = (&u1[..n], &u2[..n], &mut out[..n]);
+    let (u1, u2, out) = (head(u1, n), head(u2, n), head_mut(out, n));
     let zero = WideOf::<I>::splat(0.0);
     let mut dirs = [Vec3::ZERO; CHUNK];
     let mut vals = [I::Spectrum::zero(); CHUNK];
@@ -262,20 +262,20 @@ fn draw_batch<I: Integrand>(
     };
     match strategy {
         Strategy::Uniform => {
-            for (d, &u) in dirs[..n].iter_mut().zip(u1) {
+            for (d, &u) in head_mut(&mut dirs, n).iter_mut().zip(u1) {
                 *d = square_to_uniform_hemisphere(u);
             }
-            g.eval_batch(&dirs[..n], &mut vals[..n]);
-            for (o, v) in out.iter_mut().zip(&vals[..n]) {
+            g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
+            for (o, v) in out.iter_mut().zip(head(&vals, n)) {
                 let v = check_finite(v.to_wide())?;
                 *peak = peak.max(acc::max_abs(v));
                 *o = v.map(|v| v * TAU);
             }
         }
         Strategy::Cosine => {
-            cosine_dirs(&mut dirs[..n]);
-            g.eval_batch(&dirs[..n], &mut vals[..n]);
-            for ((o, v), w) in out.iter_mut().zip(&vals[..n]).zip(&dirs[..n]) {
+            cosine_dirs(head_mut(&mut dirs, n));
+            g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
+            for ((o, v), w) in out.iter_mut().zip(head(&vals, n)).zip(head(&dirs, n)) {
                 let p = w.z as f64 * FRAC_1_PI;
                 *o = if p <= 0.0 {
                     zero
@@ -288,8 +288,8 @@ fn draw_batch<I: Integrand>(
         }
         Strategy::Integrand => {
             let mut samples = [None; CHUNK];
-            g.sample_batch(u1, &mut samples[..n]);
-            for (o, &s) in out.iter_mut().zip(&samples[..n]) {
+            g.sample_batch(u1, head_mut(&mut samples, n));
+            for (o, &s) in out.iter_mut().zip(head(&samples, n)) {
                 *o = match sample_weight(s)? {
                     Some((_, _, weight)) => weight,
                     None => zero,
@@ -303,18 +303,18 @@ fn draw_batch<I: Integrand>(
             };
             // Strategy 1 (cosine) values and the other technique's density
             // there; strategy 2 (the integrand's map) draws.
-            cosine_dirs(&mut dirs[..n]);
+            cosine_dirs(head_mut(&mut dirs, n));
             let mut pdfs = [0.0f32; CHUNK];
             let mut samples = [None; CHUNK];
-            g.eval_batch(&dirs[..n], &mut vals[..n]);
-            g.pdf_batch(&dirs[..n], &mut pdfs[..n]);
-            g.sample_batch(u2, &mut samples[..n]);
-            for k in 0..n {
-                let p1 = dirs[k].z as f64 * FRAC_1_PI;
+            g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
+            g.pdf_batch(head(&dirs, n), head_mut(&mut pdfs, n));
+            g.sample_batch(u2, head_mut(&mut samples, n));
+            // `out` holds the `n` draws: the zip visits `k < n`.
+            for ((((o, d), v), &q), &s) in out.iter_mut().zip(&dirs).zip(&vals).zip(&pdfs).zip(&samples) {
+                let p1 = d.z as f64 * FRAC_1_PI;
                 let mut total = zero;
                 if p1 > 0.0 {
-                    let f = check_finite(vals[k].to_wide())?;
-                    let q = pdfs[k];
+                    let f = check_finite(v.to_wide())?;
                     if !q.is_finite() {
                         return Err(IntegrateError::NonFiniteIntegrand);
                     }
@@ -323,28 +323,33 @@ fn draw_batch<I: Integrand>(
                     let k1 = (pw(p1) / p1) / (pw(p1) + pw(q));
                     total = f.map(|v| v * k1);
                 }
-                if let Some((w2, p2, weight)) = sample_weight(samples[k])? {
+                if let Some((w2, p2, weight)) = sample_weight(s)? {
                     let c = (w2.z as f64 * FRAC_1_PI).max(0.0);
                     let k2 = pw(p2) / (pw(p2) + pw(c));
                     total = acc::add(total, weight.map(|v| v * k2));
                 }
-                out[k] = total;
+                *o = total;
             }
         }
     }
     Ok(())
 }
 
-/// Buffers the unit-square points of up to [`CHUNK`] draws, evaluates them
-/// with [`draw_batch`] when full (or on [`Draws::flush`]) and pushes the
-/// estimators into the moments in draw order.
+/// Draws pushed into the moments at a time ([`Moments::push_chunk`]: its
+/// per-chunk partial sums are part of the estimate's bits, so this stays 64
+/// whatever the batch size [`CHUNK`] of the integrand calls).
+const DRAWS: usize = 64;
+
+/// Buffers the unit-square points of up to [`DRAWS`] draws, evaluates them
+/// with [`draw_batch`], [`CHUNK`] at a time, when full (or on
+/// [`Draws::flush`]) and pushes the estimators into the moments in draw order.
 struct Draws<'g, I> {
     g: &'g I,
     strategy: Strategy,
     polar: bool,
     n: usize,
-    u1: [[f32; 2]; CHUNK],
-    u2: [[f32; 2]; CHUNK],
+    u1: [[f32; 2]; DRAWS],
+    u2: [[f32; 2]; DRAWS],
     /// The largest `max_channel |g|` at a drawn direction (uniform and
     /// cosine strategies; compared with the peak probe).
     peak: f64,
@@ -357,8 +362,8 @@ impl<'g, I: Integrand> Draws<'g, I> {
             strategy,
             polar,
             n: 0,
-            u1: [[0.0; 2]; CHUNK],
-            u2: [[0.0; 2]; CHUNK],
+            u1: [[0.0; 2]; DRAWS],
+            u2: [[0.0; 2]; DRAWS],
             peak: 0.0,
         }
     }
@@ -366,30 +371,30 @@ impl<'g, I: Integrand> Draws<'g, I> {
     /// Queues the draw `(u1, u2)`.
     #[inline]
     fn push(&mut self, u1: [f32; 2], u2: [f32; 2], m: &mut Moments<WideOf<I>>) -> Result<(), IntegrateError> {
-        // `n < CHUNK` between calls (a full queue is flushed at once); the
+        // `n < DRAWS` between calls (a full queue is flushed at once); the
         // checked writes keep the code free of panic paths.
         if let (Some(a), Some(b)) = (self.u1.get_mut(self.n), self.u2.get_mut(self.n)) {
             *a = u1;
             *b = u2;
             self.n += 1;
         }
-        if self.n >= CHUNK { self.flush(m) } else { Ok(()) }
+        if self.n >= DRAWS { self.flush(m) } else { Ok(()) }
     }
 
     /// Evaluates the queued draws into `m`.
     fn flush(&mut self, m: &mut Moments<WideOf<I>>) -> Result<(), IntegrateError> {
-        let n = core::mem::replace(&mut self.n, 0).min(CHUNK);
-        let mut vals = [WideOf::<I>::splat(0.0); CHUNK];
-        draw_batch(
-            self.g,
-            self.strategy,
-            self.polar,
-            &self.u1[..n],
-            &self.u2[..n],
-            &mut vals[..n],
-            &mut self.peak,
-        )?;
-        m.push_chunk(&vals[..n]);
+        let n = core::mem::replace(&mut self.n, 0).min(DRAWS);
+        let mut vals = [WideOf::<I>::splat(0.0); DRAWS];
+        // In draw order, CHUNK at a time: the first non-finite value in draw
+        // order is reported, as one call over all the draws would.
+        let parts = head(&self.u1, n)
+            .chunks(CHUNK)
+            .zip(head(&self.u2, n).chunks(CHUNK))
+            .zip(head_mut(&mut vals, n).chunks_mut(CHUNK));
+        for ((u1, u2), out) in parts {
+            draw_batch(self.g, self.strategy, self.polar, u1, u2, out, &mut self.peak)?;
+        }
+        m.push_chunk(head(&vals, n));
         Ok(())
     }
 }
@@ -455,7 +460,9 @@ impl Integrator for MonteCarlo {
             });
         }
 
-        let mut k = self.replicates;
+        // `replicates ≥ 2` (checked by `with_replicates`); `max(1)` keeps the
+        // division free of a panic path by construction.
+        let mut k = self.replicates.max(1);
         if self.points == PointSet::Sobol {
             k = k.max(draws.div_ceil(SOBOL_MAX_POINTS));
         }

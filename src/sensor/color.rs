@@ -73,7 +73,8 @@ fn check_dims(len_a: usize, len_b: usize, w: usize, h: usize) -> Result<usize, S
 #[inline]
 fn reflect(i: isize, n: usize) -> usize {
     let p = 2 * (n as isize - 1);
-    let m = i.rem_euclid(p);
+    // `p ≥ 2` for `n ≥ 2`; `max(1)` keeps the remainder free of a panic path.
+    let m = i.rem_euclid(p.max(1));
     (if m >= n as isize { p - m } else { m }) as usize
 }
 
@@ -88,10 +89,10 @@ pub fn mosaic(
     raw: &mut [f32],
 ) -> Result<(), SensorError> {
     check_dims(rgb.len(), raw.len(), w, h)?;
-    for y in 0..h {
-        for x in 0..w {
-            raw[y * w + x] = rgb[y * w + x][pattern.channel_at(x, y)];
-        }
+    // Row-major: pixel `y·w + x` (checked reads: no panic path).
+    for (k, (r, px)) in raw.iter_mut().zip(rgb).enumerate() {
+        let (x, y) = (k % w.max(1), k / w.max(1));
+        *r = px.get(pattern.channel_at(x, y)).copied().unwrap_or(0.0);
     }
     Ok(())
 }
@@ -129,16 +130,22 @@ pub fn demosaic_bilinear(
                 for (i, kx) in K.iter().enumerate() {
                     let xx = reflect(x as isize + i as isize - 1, w);
                     let c = pattern.channel_at(xx, yy);
-                    num[c] += ky * kx * raw[yy * w + xx];
-                    den[c] += ky * kx;
+                    if let (Some(n), Some(d), Some(&r)) =
+                        (num.get_mut(c), den.get_mut(c), raw.get(yy * w + xx))
+                    {
+                        *n += ky * kx * r;
+                        *d += ky * kx;
+                    }
                 }
             }
-            let px = &mut out[y * w + x];
-            for c in 0..3 {
-                px[c] = if c == own {
-                    raw[y * w + x]
-                } else if den[c] > 0.0 {
-                    num[c] / den[c]
+            let (Some(px), Some(&own_value)) = (out.get_mut(y * w + x), raw.get(y * w + x)) else {
+                continue;
+            };
+            for (c, ((p, &n), &d)) in px.iter_mut().zip(&num).zip(&den).enumerate() {
+                *p = if c == own {
+                    own_value
+                } else if d > 0.0 {
+                    n / d
                 } else {
                     0.0
                 };

@@ -158,18 +158,33 @@ impl Response for TabulatedResponse<'_> {
         let t = unit(x) * (n - 1) as f32;
         let i = (t as usize).min(n - 2);
         let f = t - i as f32;
-        self.y[i] + (self.y[i + 1] - self.y[i]) * f
+        // `i + 1 < n` (`n ≥ 2` from `new`); checked reads keep no panic path.
+        match (self.y.get(i), self.y.get(i + 1)) {
+            (Some(&a), Some(&b)) => a + (b - a) * f,
+            _ => 0.0,
+        }
     }
     /// Inverse: `y` is clamped to the table's range `[y_0, y_{n−1}]`.
     fn inverse(&self, y: f32) -> f32 {
         let n = self.y.len();
-        let y = if y.is_nan() {
-            self.y[0]
+        // `n ≥ 2` and the table increases (from `new`). The clamps are written
+        // out and the reads checked: no panic path (`clamp` asserts
+        // `min ≤ max`), the same values.
+        let (first, last) = (
+            self.y.first().copied().unwrap_or(0.0),
+            self.y.last().copied().unwrap_or(0.0),
+        );
+        let y = if y.is_nan() || y < first {
+            first
+        } else if y > last {
+            last
         } else {
-            y.clamp(self.y[0], self.y[n - 1])
+            y
         };
-        let hi = self.y.partition_point(|&v| v <= y).clamp(1, n - 1);
-        let (a, b) = (self.y[hi - 1], self.y[hi]);
+        let hi = self.y.partition_point(|&v| v <= y).max(1).min(n - 1);
+        let (Some(&a), Some(&b)) = (self.y.get(hi.wrapping_sub(1)), self.y.get(hi)) else {
+            return 0.0;
+        };
         let f = ((y - a) / (b - a)).clamp(0.0, 1.0);
         ((hi - 1) as f32 + f) / (n - 1) as f32
     }

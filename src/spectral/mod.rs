@@ -273,17 +273,34 @@ impl<'a> Irregular<'a> {
 impl SpectralCurve for Irregular<'_> {
     fn value(&self, lambda_nm: f32) -> f32 {
         let n = self.lambdas.len();
-        if !(lambda_nm >= self.lambdas[0] && lambda_nm <= self.lambdas[n - 1]) {
+        let (lo, hi) = self.support();
+        if !(lambda_nm >= lo && lambda_nm <= hi) {
             return 0.0;
         }
-        // First node strictly above λ (binary search), clamped to a valid interval.
-        let hi = self.lambdas.partition_point(|&l| l <= lambda_nm).clamp(1, n - 1);
-        let (l0, l1) = (self.lambdas[hi - 1], self.lambdas[hi]);
+        // First node strictly above λ (binary search), clamped to a valid
+        // interval (`n ≥ 2` from `new`; checked reads: no panic path).
+        let hi = self
+            .lambdas
+            .partition_point(|&l| l <= lambda_nm)
+            .max(1)
+            .min(n - 1);
+        let lo = hi.wrapping_sub(1);
+        let (Some(&l0), Some(&l1), Some(&v0), Some(&v1)) = (
+            self.lambdas.get(lo),
+            self.lambdas.get(hi),
+            self.values.get(lo),
+            self.values.get(hi),
+        ) else {
+            return 0.0;
+        };
         let f = ((lambda_nm - l0) / (l1 - l0)).clamp(0.0, 1.0);
-        self.values[hi - 1] + (self.values[hi] - self.values[hi - 1]) * f
+        v0 + (v1 - v0) * f
     }
     fn support(&self) -> (f32, f32) {
-        (self.lambdas[0], self.lambdas[self.lambdas.len() - 1])
+        match (self.lambdas.first(), self.lambdas.last()) {
+            (Some(&lo), Some(&hi)) => (lo, hi),
+            _ => (0.0, 0.0),
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 // Link the library in every image (it provides the panic handler).
 use radiometry_ffi as _;
 
-#[cfg(any(feature = "als", feature = "brdf", feature = "material"))]
+#[cfg(any(feature = "als", feature = "brdf", feature = "material", feature = "others"))]
 use core::hint::black_box;
 
 /// The reset entry: calls the measured functions with opaque arguments so
@@ -18,6 +18,8 @@ pub extern "C" fn _start() -> ! {
     brdf();
     #[cfg(feature = "material")]
     material();
+    #[cfg(feature = "others")]
+    others();
     loop {
         core::hint::spin_loop();
     }
@@ -238,4 +240,64 @@ fn material() {
         ));
     }
     black_box((f, s));
+
+/// The C functions the other groups do not call: with `als`, `correction`, `brdf` and `material`, every exported function.
+#[cfg(feature = "others")]
+fn others() {
+    use radiometry_ffi::als::*;
+    use radiometry_ffi::irradiance::*;
+    use radiometry_ffi::spectrum::*;
+    use radiometry_ffi::{RadAlsCalibration, RadSpectrum, RadVec3, rad_status_message};
+    let mut cal = RadAlsCalibration::default();
+    let (mut f, mut n) = (0.0f32, 0u32);
+    let values = black_box([0.1f32, 0.5, 0.9, 0.4]);
+    let curve = |kind, values: &[f32]| RadSpectrum {
+        kind,
+        temperature_k: 5000.0,
+        start_nm: 400.0,
+        step_nm: 100.0,
+        values: values.as_ptr(),
+        len: values.len(),
+    };
+    let (tab, bb) = (
+        black_box(curve(RAD_SPECTRUM_TABULATED, &values)),
+        black_box(curve(RAD_SPECTRUM_BLACKBODY, &[])),
+    );
+    let axis = black_box(RadVec3 {
+        x: 0.3,
+        y: 0.0,
+        z: 1.0,
+    });
+    // SAFETY: valid, aligned, exclusive pointers to locals; `values` outlives the spectra.
+    unsafe {
+        black_box(rad_als_new(
+            black_box(16.0),
+            black_box(0.04),
+            black_box(1.0),
+            black_box(65535),
+            &mut cal,
+        ));
+        black_box(rad_source_lux(&bb, &mut f));
+        black_box(rad_als_simulate_counts(
+            &tab,
+            &bb,
+            black_box(1e3),
+            black_box(1.0),
+            black_box(0.1),
+            black_box(16.0),
+            black_box(65535),
+            &mut n,
+        ));
+        black_box(rad_irradiance_sky(black_box(1e3), &mut f));
+        black_box(rad_irradiance_directional(axis, black_box(10.0), &mut f));
+        black_box(rad_irradiance_cap(
+            axis,
+            black_box(0.00465),
+            black_box(2e7),
+            &mut f,
+        ));
+    }
+    black_box(rad_cap_solid_angle(black_box(0.3)));
+    black_box(rad_status_message(black_box(3)));
+    black_box((cal, f, n));
 }

@@ -147,7 +147,15 @@ impl PeakChart {
         let w2 = self.w2;
         let rho_h = sh * sh / m;
         let l = libm::log1p(rho_h / w2);
-        let rho = (w2 * libm::expm1(l * x * x)).clamp(0.0, rho_h);
+        // `clamp(0, ρ_h)` written out: `f64::clamp` asserts `min ≤ max` (a
+        // panic path for a NaN `ρ_h`); the same value otherwise.
+        let mut rho = w2 * libm::expm1(l * x * x);
+        if rho < 0.0 {
+            rho = 0.0;
+        }
+        if rho > rho_h {
+            rho = rho_h;
+        }
         let y = rho * m;
         let d = 1.0 + y;
         let (ct, st) = ((1.0 - y) / d, 2.0 * libm::sqrt(y) / d);
