@@ -247,9 +247,10 @@ where
         match (dilated(i), dilated(i + 1)) {
             (Some(a), Some(b)) => S::from_fn(|c| {
                 let (a, b) = (a.channel(c), b.channel(c));
-                // Written as a convex combination: stays within [min, max] of
-                // the two, so ≥ the larger table value as argued above.
-                (a + (b - a) * f).clamp(a.min(b), a.max(b))
+                // Kept within [min, max] of the two (rounding), so ≥ the
+                // larger table value as argued above. (`max`/`min` rather
+                // than `clamp`, which checks its bounds at run time.)
+                (a + (b - a) * f).max(a.min(b)).min(a.max(b))
             }),
             _ => S::zero(),
         }

@@ -240,6 +240,7 @@ fn material() {
         ));
     }
     black_box((f, s));
+}
 
 /// The C functions the other groups do not call: with `als`, `correction`, `brdf` and `material`, every exported function.
 #[cfg(feature = "others")]
