@@ -564,8 +564,11 @@ fn c_openpbr(p: &RadOpenPbrParams) -> RadOpenPbr {
 }
 
 fn c_defaults() -> RadOpenPbrParams {
-    let mut p = RadOpenPbrParams::default();
-    p.base_color = f32::NAN;
+    // Start from garbage: the call writes every field.
+    let mut p = RadOpenPbrParams {
+        base_color: f32::NAN,
+        ..RadOpenPbrParams::default()
+    };
     ok(unsafe { rad_openpbr_default_params(&mut p) });
     p
 }
@@ -708,7 +711,9 @@ fn openpbr_soa_batch_equals_single_calls() {
 }
 
 /// Every field of `RadOpenPbrParams`, by name, for the checks below.
-fn openpbr_fields() -> [(&'static str, fn(&mut RadOpenPbrParams) -> &mut f32); 15] {
+type Field = fn(&mut RadOpenPbrParams) -> &mut f32;
+
+fn openpbr_fields() -> [(&'static str, Field); 15] {
     [
         ("base_weight", |p| &mut p.base_weight),
         ("base_color", |p| &mut p.base_color),
