@@ -14,12 +14,13 @@ flash() { llvm-size "$img" 2>/dev/null | awk 'NR==2 {print $1 + $2}' || size "$i
 build
 base=$(flash)
 printf "%-58s %6s bytes flash (text + data)\n" "baseline image (empty reset handler)" "$base"
-for f in als correction brdf material; do
+for f in als correction brdf material openpbr; do
     case $f in
         als) what="ALS: from_reference + set_spectral_correction + lux" ;;
         correction) what="ALS + spectral correction (CIE V, D65, A; 1 nm integrals)" ;;
         brdf) what="every BRDF plugin: eval/pdf/sample, single + batched" ;;
         material) what="materials (sum, mix, coated) of every plugin, all calls" ;;
+        openpbr) what="OpenPBR reflection: defaults, new, all calls" ;;
     esac
     build --features "$f"
     size_f=$(flash)
@@ -29,5 +30,5 @@ for f in als correction brdf material; do
             "$( (llvm-nm "$img" 2>/dev/null || nm "$img") | grep -c '__aeabi_d' || true)"
     fi
 done
-build --features correction,brdf,material,prove-no-panic
+build --features correction,brdf,material,openpbr,prove-no-panic
 echo "prove-no-panic: the image calling every C API function links, so no panic path survives"
