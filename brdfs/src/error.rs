@@ -51,6 +51,17 @@ pub enum BrdfError {
         /// Largest tabulated wavelength, nm.
         max_nm: f32,
     },
+    /// A saved table of a layer's top albedo (e.g. one of
+    /// [`OpenPbrTables`](crate::openpbr::OpenPbrTables)) holds a value that
+    /// no top reports: a node outside `[0, 1]` or not finite, or a negative
+    /// or non-finite error. The table was not read from the layer it is
+    /// given back to, or was overwritten since.
+    AlbedoTable {
+        /// The table (the layer whose top it describes).
+        name: &'static str,
+        /// The rejected value.
+        value: f32,
+    },
 }
 
 impl fmt::Display for BrdfError {
@@ -77,6 +88,10 @@ impl fmt::Display for BrdfError {
             } => write!(
                 f,
                 "wavelength {lambda_nm} nm is outside the table's range [{min_nm}, {max_nm}] nm"
+            ),
+            BrdfError::AlbedoTable { name, value } => write!(
+                f,
+                "albedo table `{name}` holds {value}: a top's albedo is finite and in [0, 1], its error finite and ≥ 0"
             ),
         }
     }

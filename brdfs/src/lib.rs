@@ -115,7 +115,7 @@ pub use microfacet::{
 };
 // -- end microfacet
 // -- re-exports: OpenPBR
-pub use openpbr::{OpenPbr, OpenPbrParams};
+pub use openpbr::{OpenPbr, OpenPbrParams, OpenPbrTables};
 // -- end OpenPBR
 // -- re-exports: rough diffuse (keep this block for that module)
 pub use rough_diffuse::{Eon, Fon, OrenNayar};

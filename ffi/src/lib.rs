@@ -15,6 +15,9 @@
 //! * Materials ([`RadMaterial`]): a sum, a mix or a coat of two plugins
 //!   (a plastic, a coated metal), built once, evaluated like a plugin
 //!   ([`material`]).
+//! * OpenPBR Surface's reflection layer ([`RadOpenPbr`]): the 15 OpenPBR
+//!   parameters in [`RadOpenPbrParams`], built once (three albedo tables
+//!   kept in the struct), evaluated like a plugin ([`openpbr`]).
 //! * Ambient-light sensors: raw counts → lux with dark offset, calibration and
 //!   spectral mismatch correction ([`als`]).
 //! * Irradiance closed forms: uniform sky, directional light, spherical cap
@@ -41,6 +44,7 @@ pub mod als;
 pub mod brdf;
 pub mod irradiance;
 pub mod material;
+pub mod openpbr;
 mod ptr;
 pub mod spectrum;
 mod status;
@@ -48,6 +52,7 @@ mod status;
 pub use als::RadAlsCalibration;
 pub use brdf::{RadBrdf, RadBrdfSample};
 pub use material::RadMaterial;
+pub use openpbr::{RadOpenPbr, RadOpenPbrParams};
 pub use spectrum::RadSpectrum;
 pub use status::{RadStatus, rad_status_message};
 

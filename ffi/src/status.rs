@@ -50,6 +50,9 @@ impl From<BrdfError> for RadStatus {
             BrdfError::NotFinite { .. } => RadStatus::NotFinite,
             BrdfError::OutOfRange { .. } => RadStatus::OutOfRange,
             BrdfError::Constraint { .. } | BrdfError::EnergyGain { .. } => RadStatus::Constraint,
+            // A saved albedo table that fails its check was not written by
+            // `rad_openpbr_new` (or was overwritten since).
+            BrdfError::AlbedoTable { .. } => RadStatus::BadHandle,
             // The Rust error enums are #[non_exhaustive]: a variant added
             // later maps to the generic out-of-range status.
             _ => RadStatus::OutOfRange,

@@ -1,5 +1,5 @@
 //! The new plugins (EON, FON, classic Oren–Nayar, sheen, F82-tint and named
-//! metal Fresnel) and the materials (sum, mix, coated) of the C API, called
+//! metal Fresnel), the materials (sum, mix, coated) and OpenPBR of the C API, called
 //! as C would call them: every value equals the Rust plugin's or composite's
 //! bit for bit, `pdf(sample) == sample.pdf` bit for bit, batches equal single
 //! calls, bad parameters and scribbled handles are statuses.
@@ -12,12 +12,14 @@ use radiometry::compose::{Coated, Mix, Sum};
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample};
 use radiometry_brdfs::metals::Metal;
+use radiometry_brdfs::openpbr::{OpenPbr, OpenPbrParams};
 use radiometry_brdfs::{
     Conductor, Dielectric, Eon, F82Tint, Fon, Ggx, HeightCorrelated, Lambertian, Microfacet, OrenNayar, Sheen,
 };
 use radiometry_ffi::brdf::*;
 use radiometry_ffi::material::*;
-use radiometry_ffi::{RadBrdf, RadBrdfSample, RadMaterial, RadStatus, RadVec3};
+use radiometry_ffi::openpbr::*;
+use radiometry_ffi::{RadBrdf, RadBrdfSample, RadMaterial, RadOpenPbr, RadOpenPbrParams, RadStatus, RadVec3};
 
 type GgxHc<F> = Microfacet<Ggx, HeightCorrelated, F>;
 
@@ -162,6 +164,15 @@ c_handle!(
     rad_material_eval_batch,
     rad_material_pdf_batch,
     rad_material_sample_batch
+);
+c_handle!(
+    RadOpenPbr,
+    rad_openpbr_eval,
+    rad_openpbr_pdf,
+    rad_openpbr_sample,
+    rad_openpbr_eval_batch,
+    rad_openpbr_pdf_batch,
+    rad_openpbr_sample_batch
 );
 
 fn same_sample(c: RadBrdfSample, r: Option<BrdfSample<f32>>) -> bool {
@@ -542,6 +553,357 @@ fn scribbled_materials_are_reported() {
         assert_eq!(
             rad_material_eval(null(), wi, wo, out.as_mut_ptr()),
             RadStatus::NullPointer
+        );
+    }
+}
+
+fn c_openpbr(p: &RadOpenPbrParams) -> RadOpenPbr {
+    let mut m = RadOpenPbr::default();
+    ok(unsafe { rad_openpbr_new(p, &mut m) });
+    m
+}
+
+fn c_defaults() -> RadOpenPbrParams {
+    // Start from garbage: the call writes every field.
+    let mut p = RadOpenPbrParams {
+        base_color: f32::NAN,
+        ..RadOpenPbrParams::default()
+    };
+    ok(unsafe { rad_openpbr_default_params(&mut p) });
+    p
+}
+
+/// Parameter sets that turn each layer on (as the Rust unit tests do).
+fn openpbr_variety() -> Vec<RadOpenPbrParams> {
+    let d = c_defaults();
+    vec![
+        d,
+        RadOpenPbrParams {
+            base_metalness: 0.4,
+            base_diffuse_roughness: 0.7,
+            specular_roughness: 0.1,
+            ..d
+        },
+        // A coated metal.
+        RadOpenPbrParams {
+            base_metalness: 1.0,
+            base_color: 0.9,
+            specular_color: 0.8,
+            coat_weight: 1.0,
+            coat_roughness: 0.2,
+            coat_color: 0.7,
+            ..d
+        },
+        RadOpenPbrParams {
+            fuzz_weight: 0.8,
+            fuzz_roughness: 0.4,
+            fuzz_color: 0.9,
+            coat_weight: 0.5,
+            ..d
+        },
+        // Mirrors (roughness 0 raised to the floor) and fuzz roughness 0
+        // (raised to 0.07).
+        RadOpenPbrParams {
+            specular_roughness: 0.0,
+            coat_roughness: 0.0,
+            coat_weight: 0.3,
+            fuzz_weight: 1.0,
+            fuzz_roughness: 0.0,
+            specular_weight: 0.5,
+            ..d
+        },
+        // Every layer, away from the defaults.
+        RadOpenPbrParams {
+            base_weight: 0.7,
+            base_color: 0.5,
+            base_metalness: 0.5,
+            base_diffuse_roughness: 1.0,
+            specular_weight: 0.8,
+            specular_color: 0.9,
+            specular_roughness: 0.6,
+            specular_ior: 2.2,
+            coat_weight: 0.6,
+            coat_color: 0.3,
+            coat_roughness: 0.4,
+            coat_ior: 1.3,
+            fuzz_weight: 0.4,
+            fuzz_color: 0.6,
+            fuzz_roughness: 0.9,
+        },
+    ]
+}
+
+#[test]
+fn openpbr_defaults_are_openpbrs() {
+    let p = c_defaults();
+    let want = RadOpenPbrParams {
+        base_weight: 1.0,
+        base_color: 0.8,
+        base_metalness: 0.0,
+        base_diffuse_roughness: 0.0,
+        specular_weight: 1.0,
+        specular_color: 1.0,
+        specular_roughness: 0.3,
+        specular_ior: 1.5,
+        coat_weight: 0.0,
+        coat_color: 1.0,
+        coat_roughness: 0.0,
+        coat_ior: 1.6,
+        fuzz_weight: 0.0,
+        fuzz_color: 1.0,
+        fuzz_roughness: 0.5,
+    };
+    assert_eq!(p, want);
+    assert_eq!(OpenPbrParams::<f32>::from(p), OpenPbrParams::default());
+    assert_eq!(
+        unsafe { rad_openpbr_default_params(null_mut()) },
+        RadStatus::NullPointer
+    );
+}
+
+#[test]
+fn openpbr_equals_the_rust_plugin_bit_for_bit() {
+    for (k, p) in openpbr_variety().into_iter().enumerate() {
+        let c = c_openpbr(&p);
+        let r = OpenPbr::new(OpenPbrParams::from(p)).unwrap();
+        let t = r.tables();
+        assert_eq!(c.kind, RAD_OPENPBR_REFLECTION);
+        assert_eq!(c.params, p);
+        assert_eq!(
+            (c.specular_table, c.coat_table, c.fuzz_table),
+            (t.specular, t.coat, t.fuzz),
+            "{k}"
+        );
+        assert_eq!(
+            (c.specular_error, c.coat_error, c.fuzz_error),
+            (t.specular_error, t.coat_error, t.fuzz_error),
+            "{k}"
+        );
+        check_equal(&format!("openpbr {k}"), &c, &r);
+    }
+}
+
+#[test]
+fn openpbr_soa_batch_equals_single_calls() {
+    let m = c_openpbr(&openpbr_variety()[5]);
+    let n = 77;
+    let (wi, wo) = (directions(n, 0.1), directions(n, 0.6));
+    let comp = |d: &[RadVec3], c: usize| -> Vec<f32> { d.iter().map(|v| [v.x, v.y, v.z][c]).collect() };
+    let (ix, iy, iz) = (comp(&wi, 0), comp(&wi, 1), comp(&wi, 2));
+    let (ox, oy, oz) = (comp(&wo, 0), comp(&wo, 1), comp(&wo, 2));
+    let mut out = vec![0.0f32; n];
+    ok(unsafe {
+        rad_openpbr_eval_batch_soa(
+            &m,
+            ix.as_ptr(),
+            iy.as_ptr(),
+            iz.as_ptr(),
+            ox.as_ptr(),
+            oy.as_ptr(),
+            oz.as_ptr(),
+            out.as_mut_ptr(),
+            n,
+        )
+    });
+    for k in 0..n {
+        assert_eq!(out[k].to_bits(), m.eval(wi[k], wo[k]).to_bits(), "k={k}");
+    }
+}
+
+/// Every field of `RadOpenPbrParams`, by name, for the checks below.
+type Field = fn(&mut RadOpenPbrParams) -> &mut f32;
+
+fn openpbr_fields() -> [(&'static str, Field); 15] {
+    [
+        ("base_weight", |p| &mut p.base_weight),
+        ("base_color", |p| &mut p.base_color),
+        ("base_metalness", |p| &mut p.base_metalness),
+        ("base_diffuse_roughness", |p| &mut p.base_diffuse_roughness),
+        ("specular_weight", |p| &mut p.specular_weight),
+        ("specular_color", |p| &mut p.specular_color),
+        ("specular_roughness", |p| &mut p.specular_roughness),
+        ("specular_ior", |p| &mut p.specular_ior),
+        ("coat_weight", |p| &mut p.coat_weight),
+        ("coat_color", |p| &mut p.coat_color),
+        ("coat_roughness", |p| &mut p.coat_roughness),
+        ("coat_ior", |p| &mut p.coat_ior),
+        ("fuzz_weight", |p| &mut p.fuzz_weight),
+        ("fuzz_color", |p| &mut p.fuzz_color),
+        ("fuzz_roughness", |p| &mut p.fuzz_roughness),
+    ]
+}
+
+#[test]
+fn openpbr_rejects_bad_parameters_with_a_status() {
+    let d = c_defaults();
+    let mut m = RadOpenPbr::default();
+    for (name, field) in openpbr_fields() {
+        let ior = name.ends_with("_ior");
+        let (low, high) = if ior { (0.99, 1001.0) } else { (-0.01, 1.01) };
+        for (bad, want) in [
+            (low, RadStatus::OutOfRange),
+            (high, RadStatus::OutOfRange),
+            (f32::NAN, RadStatus::NotFinite),
+            (f32::INFINITY, RadStatus::NotFinite),
+            (f32::NEG_INFINITY, RadStatus::NotFinite),
+        ] {
+            let mut p = d;
+            *field(&mut p) = bad;
+            assert_eq!(unsafe { rad_openpbr_new(&p, &mut m) }, want, "{name} = {bad}");
+        }
+        // The ends of the domain are accepted.
+        let mut p = d;
+        *field(&mut p) = if ior { 1000.0 } else { 1.0 };
+        let mut good = RadOpenPbr::default();
+        assert_eq!(unsafe { rad_openpbr_new(&p, &mut good) }, RadStatus::Ok, "{name}");
+    }
+    unsafe {
+        assert_eq!(rad_openpbr_new(null(), &mut m), RadStatus::NullPointer);
+        assert_eq!(rad_openpbr_new(&d, null_mut()), RadStatus::NullPointer);
+    }
+    assert_eq!(m, RadOpenPbr::default(), "output untouched on error");
+}
+
+#[test]
+fn scribbled_openpbr_handles_are_reported() {
+    let good = c_openpbr(&openpbr_variety()[3]);
+    let (wi, wo) = (directions(3, 0.2)[2], directions(3, 0.5)[2]);
+    let status = |m: &RadOpenPbr| {
+        let mut f = 0.0;
+        unsafe { rad_openpbr_eval(m, wi, wo, &mut f) }
+    };
+    assert_eq!(status(&good), RadStatus::Ok);
+    assert_eq!(status(&RadOpenPbr::default()), RadStatus::BadHandle);
+    type Scribble = fn(&mut RadOpenPbr);
+    let cases: [(&str, Scribble, RadStatus); 14] = [
+        ("kind", |m| m.kind = 2, RadStatus::BadHandle),
+        (
+            "specular table above 1",
+            |m| m.specular_table[40] = 1.5,
+            RadStatus::BadHandle,
+        ),
+        (
+            "specular table NaN",
+            |m| m.specular_table[0] = f32::NAN,
+            RadStatus::BadHandle,
+        ),
+        (
+            "coat table negative",
+            |m| m.coat_table[127] = -0.1,
+            RadStatus::BadHandle,
+        ),
+        (
+            "coat table infinite",
+            |m| m.coat_table[3] = f32::INFINITY,
+            RadStatus::BadHandle,
+        ),
+        (
+            "fuzz table above 1",
+            |m| m.fuzz_table[64] = 2.0,
+            RadStatus::BadHandle,
+        ),
+        (
+            "fuzz table NaN",
+            |m| m.fuzz_table[1] = f32::NAN,
+            RadStatus::BadHandle,
+        ),
+        (
+            "specular error",
+            |m| m.specular_error = -1.0,
+            RadStatus::BadHandle,
+        ),
+        ("coat error", |m| m.coat_error = f32::NAN, RadStatus::BadHandle),
+        (
+            "fuzz error",
+            |m| m.fuzz_error = f32::INFINITY,
+            RadStatus::BadHandle,
+        ),
+        ("coat ior", |m| m.params.coat_ior = 0.0, RadStatus::OutOfRange),
+        (
+            "base colour",
+            |m| m.params.base_color = 1.5,
+            RadStatus::OutOfRange,
+        ),
+        (
+            "fuzz weight",
+            |m| m.params.fuzz_weight = f32::NAN,
+            RadStatus::NotFinite,
+        ),
+        (
+            "specular ior",
+            |m| m.params.specular_ior = f32::INFINITY,
+            RadStatus::NotFinite,
+        ),
+    ];
+    let d = directions(8, 0.0);
+    let u = [0.5f32; 16];
+    let mut out = [0.0f32; 8];
+    let mut samples = [RadBrdfSample::default(); 8];
+    for (what, scribble, want) in cases {
+        let mut m = good;
+        scribble(&mut m);
+        assert_eq!(status(&m), want, "{what}");
+        unsafe {
+            let mut f = 0.0;
+            assert_eq!(rad_openpbr_pdf(&m, wi, wo, &mut f), want, "{what} pdf");
+            let mut s = RadBrdfSample::default();
+            assert_eq!(
+                rad_openpbr_sample(&m, wo, 0.3, 0.6, &mut s),
+                want,
+                "{what} sample"
+            );
+            assert_eq!(
+                rad_openpbr_eval_batch(&m, d.as_ptr(), d.as_ptr(), out.as_mut_ptr(), 8),
+                want,
+                "{what} eval_batch"
+            );
+            assert_eq!(
+                rad_openpbr_pdf_batch(&m, d.as_ptr(), d.as_ptr(), out.as_mut_ptr(), 8),
+                want,
+                "{what} pdf_batch"
+            );
+            assert_eq!(
+                rad_openpbr_sample_batch(&m, d.as_ptr(), u.as_ptr(), samples.as_mut_ptr(), 8),
+                want,
+                "{what} sample_batch"
+            );
+        }
+    }
+    // A handle with another material's tables still evaluates (finite,
+    // reciprocal, pdf of a sample exact): only its energy bound is the
+    // tables' (see OpenPbr::from_tables).
+    let mut swapped = c_openpbr(&openpbr_variety()[2]);
+    swapped.specular_table = good.specular_table;
+    assert_eq!(status(&swapped), RadStatus::Ok);
+    // Pointer checks as for the other handles.
+    unsafe {
+        assert_eq!(
+            rad_openpbr_eval_batch(&good, d.as_ptr(), d.as_ptr(), d.as_ptr() as *mut f32, 8),
+            RadStatus::Overlap
+        );
+        assert_eq!(
+            rad_openpbr_pdf_batch(&good, null(), d.as_ptr(), out.as_mut_ptr(), 8),
+            RadStatus::NullPointer
+        );
+        assert_eq!(
+            rad_openpbr_eval_batch(&good, null(), null(), null_mut(), 0),
+            RadStatus::Ok
+        );
+        assert_eq!(
+            rad_openpbr_eval(null(), wi, wo, out.as_mut_ptr()),
+            RadStatus::NullPointer
+        );
+        assert_eq!(
+            rad_openpbr_eval(&good, wi, wo, null_mut()),
+            RadStatus::NullPointer
+        );
+        let misaligned = (&good as *const RadOpenPbr)
+            .cast::<u8>()
+            .wrapping_add(1)
+            .cast::<RadOpenPbr>();
+        assert_eq!(
+            rad_openpbr_eval(misaligned, wi, wo, out.as_mut_ptr()),
+            RadStatus::Misaligned
         );
     }
 }

@@ -1,3 +1,4 @@
+extern crate std;
 use super::*;
 use crate::Lambertian;
 use radiometry::integrator::{Auto, DEFAULT_MAX_BUDGET, DirectionalAlbedo, integrate_to_tolerance};
@@ -346,4 +347,123 @@ fn rgb_colours_are_per_channel() {
             f[c]
         );
     }
+}
+
+/// `eval`, `pdf`, `sample` and the batches of `a` and `b` give the same bits.
+fn same_bits<S: Spectrum + core::fmt::Debug>(a: &OpenPbr<S>, b: &OpenPbr<S>, what: &str) {
+    let bits = |s: S| {
+        (0..S::CHANNELS)
+            .map(|c| s.channel(c).to_bits())
+            .collect::<std::vec::Vec<_>>()
+    };
+    let mut wis = std::vec::Vec::new();
+    let mut wos = std::vec::Vec::new();
+    for i in 0..16 {
+        let wo = dir(6.0 * i as f32, 0.9 * i as f32);
+        for j in 0..16 {
+            let wi = dir(5.9 * j as f32 + 0.5, 2.1 * j as f32);
+            wis.push(wi);
+            wos.push(wo);
+            assert_eq!(bits(a.eval(wi, wo)), bits(b.eval(wi, wo)), "{what} eval");
+            assert_eq!(a.pdf(wi, wo).to_bits(), b.pdf(wi, wo).to_bits(), "{what} pdf");
+            let u = [(j as f32 + 0.5) / 16.0, (i as f32 * 0.618_034).fract()];
+            match (a.sample(wo, u), b.sample(wo, u)) {
+                (None, None) => {}
+                (Some(x), Some(y)) => {
+                    assert_eq!(
+                        x.wi.to_array().map(f32::to_bits),
+                        y.wi.to_array().map(f32::to_bits),
+                        "{what}"
+                    );
+                    assert_eq!(x.pdf.to_bits(), y.pdf.to_bits(), "{what} sample pdf");
+                    assert_eq!(bits(x.weight), bits(y.weight), "{what} sample weight");
+                }
+                other => panic!("{what}: {other:?}"),
+            }
+        }
+    }
+    let n = wis.len();
+    let (mut fa, mut fb) = (std::vec![S::zero(); n], std::vec![S::zero(); n]);
+    a.eval_batch(&wis, &wos, &mut fa);
+    b.eval_batch(&wis, &wos, &mut fb);
+    assert!(
+        fa.iter().zip(&fb).all(|(&x, &y)| bits(x) == bits(y)),
+        "{what} eval_batch"
+    );
+    let (mut pa, mut pb) = (std::vec![0.0f32; n], std::vec![0.0f32; n]);
+    a.pdf_batch(&wis, &wos, &mut pa);
+    b.pdf_batch(&wis, &wos, &mut pb);
+    assert!(
+        pa.iter().zip(&pb).all(|(x, y)| x.to_bits() == y.to_bits()),
+        "{what} pdf_batch"
+    );
+}
+
+#[test]
+fn from_tables_rebuilds_the_material_bit_for_bit() {
+    for (k, p) in variety().into_iter().enumerate() {
+        let m = OpenPbr::new(p).unwrap();
+        let t = m.tables();
+        // The tables vary with μ (they are the tops' albedos, not constants).
+        assert!(t.specular.iter().any(|&e| e != t.specular[127]), "{k}");
+        assert!(t.coat.iter().any(|&e| e != t.coat[127]), "{k}");
+        let again = OpenPbr::from_tables(p, &t).unwrap();
+        assert_eq!(again, m, "variety {k}");
+        assert_eq!(again.tables(), t);
+        same_bits(&m, &again, &std::format!("variety {k}"));
+    }
+    let p = OpenPbrParams::<Vec3> {
+        base_color: Vec3::new(0.9, 0.2, 0.05),
+        coat_weight: 0.7,
+        coat_color: Vec3::new(0.9, 0.8, 0.5),
+        fuzz_weight: 0.5,
+        fuzz_color: Vec3::new(0.2, 0.4, 1.0),
+        ..OpenPbrParams::default()
+    };
+    let m = OpenPbr::new(p).unwrap();
+    let again = OpenPbr::from_tables(p, &m.tables()).unwrap();
+    assert_eq!(again, m);
+    same_bits(&m, &again, "rgb");
+}
+
+#[test]
+fn from_tables_rejects_bad_tables_and_parameters() {
+    let p = variety()[3];
+    let t = OpenPbr::new(p).unwrap().tables();
+    type Scribble = fn(&mut OpenPbrTables<f32>, f32);
+    let cases: [(&str, Scribble); 6] = [
+        ("specular", |t, v| t.specular[5] = v),
+        ("coat", |t, v| t.coat[127] = v),
+        ("fuzz", |t, v| t.fuzz[0] = v),
+        ("specular", |t, v| t.specular_error = v),
+        ("coat", |t, v| t.coat_error = v),
+        ("fuzz", |t, v| t.fuzz_error = v),
+    ];
+    for (name, scribble) in cases {
+        for bad in [-0.1f32, f32::NAN, f32::NEG_INFINITY] {
+            let mut s = t;
+            scribble(&mut s, bad);
+            match OpenPbr::from_tables(p, &s) {
+                Err(BrdfError::AlbedoTable { name: n, value }) => {
+                    assert_eq!((n, value.to_bits()), (name, bad.to_bits()))
+                }
+                other => panic!("{name} = {bad}: {other:?}"),
+            }
+        }
+    }
+    for (name, scribble) in &cases[..3] {
+        let mut s = t;
+        scribble(&mut s, 1.5);
+        assert_eq!(
+            OpenPbr::from_tables(p, &s),
+            Err(BrdfError::AlbedoTable { name, value: 1.5 })
+        );
+    }
+    // The parameters are checked as `new` checks them, before the tables.
+    let bad = OpenPbrParams { coat_ior: 0.5, ..p };
+    assert_eq!(OpenPbr::from_tables(bad, &t), OpenPbr::new(bad));
+    assert!(matches!(
+        OpenPbr::from_tables(bad, &t),
+        Err(BrdfError::OutOfRange { name: "coat_ior", .. })
+    ));
 }

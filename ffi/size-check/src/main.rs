@@ -5,7 +5,13 @@
 // Link the library in every image (it provides the panic handler).
 use radiometry_ffi as _;
 
-#[cfg(any(feature = "als", feature = "brdf", feature = "material", feature = "others"))]
+#[cfg(any(
+    feature = "als",
+    feature = "brdf",
+    feature = "material",
+    feature = "openpbr",
+    feature = "others"
+))]
 use core::hint::black_box;
 
 /// The reset entry: calls the measured functions with opaque arguments so
@@ -20,6 +26,8 @@ pub extern "C" fn _start() -> ! {
     material();
     #[cfg(feature = "others")]
     others();
+    #[cfg(feature = "openpbr")]
+    openpbr();
     loop {
         core::hint::spin_loop();
     }
@@ -301,4 +309,68 @@ fn others() {
     black_box(rad_cap_solid_angle(black_box(0.3)));
     black_box(rad_status_message(black_box(3)));
     black_box((cal, f, n));
+}
+
+#[cfg(feature = "openpbr")]
+fn openpbr() {
+    use radiometry_ffi::openpbr::*;
+    use radiometry_ffi::{RadBrdfSample, RadOpenPbr, RadOpenPbrParams, RadVec3};
+    let mut p = RadOpenPbrParams::default();
+    let mut m = RadOpenPbr::default();
+    let v = |x: f32, y: f32, z: f32| black_box(RadVec3 { x, y, z });
+    let (wi, wo) = (v(0.1, 0.2, 0.9), v(-0.3, 0.1, 0.8));
+    let mut f = [0.0f32; 4];
+    let mut s = [RadBrdfSample::default(); 4];
+    let (wis, wos, u) = (black_box([wi; 4]), black_box([wo; 4]), black_box([0.5f32; 8]));
+    let n = black_box(4usize);
+    // SAFETY: valid, aligned, exclusive pointers to locals; `n` is their length.
+    unsafe {
+        black_box(rad_openpbr_default_params(&mut p));
+        let p = black_box(p);
+        black_box(rad_openpbr_new(&p, &mut m));
+        let m = black_box(m);
+        black_box(rad_openpbr_eval(&m, wi, wo, &mut f[0]));
+        black_box(rad_openpbr_pdf(&m, wi, wo, &mut f[1]));
+        black_box(rad_openpbr_sample(
+            &m,
+            wo,
+            black_box(0.3),
+            black_box(0.7),
+            &mut s[0],
+        ));
+        black_box(rad_openpbr_eval_batch(
+            &m,
+            wis.as_ptr(),
+            wos.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+        black_box(rad_openpbr_pdf_batch(
+            &m,
+            wis.as_ptr(),
+            wos.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+        black_box(rad_openpbr_sample_batch(
+            &m,
+            wos.as_ptr(),
+            u.as_ptr(),
+            s.as_mut_ptr(),
+            n,
+        ));
+        let c = black_box([0.5f32; 4]);
+        black_box(rad_openpbr_eval_batch_soa(
+            &m,
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            c.as_ptr(),
+            f.as_mut_ptr(),
+            n,
+        ));
+    }
+    black_box((f, s));
 }

@@ -1,0 +1,434 @@
+//! OpenPBR Surface's reflection layer behind one plain C struct,
+//! [`RadOpenPbr`]: the Rust `radiometry_brdfs::OpenPbr` (monochrome), with
+//! OpenPBR's parameter names and defaults in [`RadOpenPbrParams`].
+//!
+//! Building an `OpenPbr` reads the directional albedo of three layers' tops
+//! (the dielectric specular, the coat, the fuzz) at 128 directions each:
+//! the slow step (0.6 ms with every layer on, measured on a loaded 2-core
+//! Xeon). [`rad_openpbr_new`]
+//! does it once and keeps the three tables in the caller's `RadOpenPbr`
+//! (plain data: no pointers, no heap). Every call re-validates the struct
+//! (the 15 parameters as `rad_openpbr_new` checks them, each of the 384
+//! table values finite and in `[0, 1]`, the three errors finite and `≥ 0`)
+//! and rebuilds the material from it with `OpenPbr::from_tables`, bit for bit
+//! the material `OpenPbr::new` builds: the values are the Rust plugin's, and
+//! `rad_openpbr_pdf` at a sampled direction equals the sample's pdf, bit for
+//! bit. Batch calls rebuild once per batch.
+//!
+//! The rebuild costs about 53 µs per call (measured as above; the Rust
+//! `eval` itself is about 0.1 µs): mostly the metal lobe's Kulla–Conty
+//! compensation, which `from_tables` recomputes. Shade in batches: at a
+//! thousand elements the rebuild adds about 50 ns per element. During a call
+//! the rebuilt material (4,472 bytes) and a copy of the tables (1,548 bytes)
+//! live on the stack. See docs/materials.md for the measured costs.
+
+use crate::brdf::{DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch};
+use crate::material::RAD_MATERIAL_TABLE_NODES;
+use crate::ptr::{as_mut, as_ref};
+use crate::{RadBrdfSample, RadStatus, RadVec3};
+use radiometry_brdfs::openpbr::{OpenPbr, OpenPbrParams, OpenPbrTables};
+
+/// `RadOpenPbr::kind` of a handle filled in by [`rad_openpbr_new`]: OpenPBR
+/// Surface 1.1's reflection layer, monochrome.
+pub const RAD_OPENPBR_REFLECTION: u32 = 1;
+
+// The layouts the header documents.
+const _: () =
+    assert!(core::mem::size_of::<RadOpenPbrParams>() == 60 && core::mem::align_of::<RadOpenPbrParams>() == 4);
+const _: () = assert!(core::mem::size_of::<RadOpenPbr>() == 1612 && core::mem::align_of::<RadOpenPbr>() == 4);
+
+/// The parameters of OpenPBR Surface 1.1's reflection layer, with the
+/// specification's names (monochrome: every colour is one `float`). Plain
+/// data (60 bytes, 15 `float`s); `rad_openpbr_default_params` fills in
+/// OpenPBR's defaults. Domains: every weight, colour, roughness and
+/// `base_metalness` in `[0, 1]`; `specular_ior` and `coat_ior` in `[1,
+/// 1000]`. A roughness of 0 is raised to the microfacet floor `α = 10⁻⁴`,
+/// `fuzz_roughness` below 0.07 to 0.07 (the sheen tables' range).
+/// OpenPBR's other parameters (transmission, subsurface, thin film,
+/// anisotropy, emission, geometry, `coat_darkening`) are outside a
+/// reflection-only isotropic BRDF: the material behaves as if each were 0
+/// (opaque, one-sided; see docs/materials.md).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RadOpenPbrParams {
+    /// `base_weight` (default 1): scales `base_color`.
+    pub base_weight: f32,
+    /// `base_color` (default 0.8): the diffuse albedo and the metal's
+    /// reflectance at normal incidence.
+    pub base_color: f32,
+    /// `base_metalness` (default 0): the mix of metal and glossy-diffuse.
+    pub base_metalness: f32,
+    /// `base_diffuse_roughness` (default 0): the EON diffuse's `σ`.
+    pub base_diffuse_roughness: f32,
+    /// `specular_weight` (default 1): scales the dielectric's `F0` (through
+    /// its index) and the metal lobe.
+    pub specular_weight: f32,
+    /// `specular_color` (default 1): tints the dielectric's reflection; the
+    /// metal's F82 tint.
+    pub specular_color: f32,
+    /// `specular_roughness` (default 0.3): `α = r²`.
+    pub specular_roughness: f32,
+    /// `specular_ior` (default 1.5).
+    pub specular_ior: f32,
+    /// `coat_weight` (default 0).
+    pub coat_weight: f32,
+    /// `coat_color` (default 1): the coat's absorption (the square of its
+    /// transmittance at normal incidence).
+    pub coat_color: f32,
+    /// `coat_roughness` (default 0): `α = r²`.
+    pub coat_roughness: f32,
+    /// `coat_ior` (default 1.6).
+    pub coat_ior: f32,
+    /// `fuzz_weight` (default 0).
+    pub fuzz_weight: f32,
+    /// `fuzz_color` (default 1).
+    pub fuzz_color: f32,
+    /// `fuzz_roughness` (default 0.5).
+    pub fuzz_roughness: f32,
+}
+
+impl Default for RadOpenPbrParams {
+    /// OpenPBR Surface 1.1's defaults (those of `OpenPbrParams::default`).
+    fn default() -> Self {
+        OpenPbrParams::<f32>::default().into()
+    }
+}
+
+impl From<RadOpenPbrParams> for OpenPbrParams<f32> {
+    #[inline]
+    fn from(p: RadOpenPbrParams) -> Self {
+        OpenPbrParams {
+            base_weight: p.base_weight,
+            base_color: p.base_color,
+            base_metalness: p.base_metalness,
+            base_diffuse_roughness: p.base_diffuse_roughness,
+            specular_weight: p.specular_weight,
+            specular_color: p.specular_color,
+            specular_roughness: p.specular_roughness,
+            specular_ior: p.specular_ior,
+            coat_weight: p.coat_weight,
+            coat_color: p.coat_color,
+            coat_roughness: p.coat_roughness,
+            coat_ior: p.coat_ior,
+            fuzz_weight: p.fuzz_weight,
+            fuzz_color: p.fuzz_color,
+            fuzz_roughness: p.fuzz_roughness,
+        }
+    }
+}
+
+impl From<OpenPbrParams<f32>> for RadOpenPbrParams {
+    #[inline]
+    fn from(p: OpenPbrParams<f32>) -> Self {
+        RadOpenPbrParams {
+            base_weight: p.base_weight,
+            base_color: p.base_color,
+            base_metalness: p.base_metalness,
+            base_diffuse_roughness: p.base_diffuse_roughness,
+            specular_weight: p.specular_weight,
+            specular_color: p.specular_color,
+            specular_roughness: p.specular_roughness,
+            specular_ior: p.specular_ior,
+            coat_weight: p.coat_weight,
+            coat_color: p.coat_color,
+            coat_roughness: p.coat_roughness,
+            coat_ior: p.coat_ior,
+            fuzz_weight: p.fuzz_weight,
+            fuzz_color: p.fuzz_color,
+            fuzz_roughness: p.fuzz_roughness,
+        }
+    }
+}
+
+/// An OpenPBR Surface reflection material: its parameters and the three
+/// albedo tables [`rad_openpbr_new`] read. Plain data (1,612 bytes, 4-byte
+/// aligned: a `uint32_t`, 18 `float`s and three tables of 128 `float`s, no
+/// padding); copy it freely (it holds no pointers). Treat the fields as
+/// read-only; a zeroed struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`).
+/// Each call checks every field (the parameters as `rad_openpbr_new` does:
+/// `RAD_STATUS_NOT_FINITE` / `_OUT_OF_RANGE`; a table value or error that
+/// no top reports: `RAD_STATUS_BAD_HANDLE`) and rebuilds the material
+/// (about 53 µs; a batch call does it once per batch).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RadOpenPbr {
+    /// [`RAD_OPENPBR_REFLECTION`].
+    pub kind: u32,
+    /// The parameters it was built from.
+    pub params: RadOpenPbrParams,
+    /// The largest error the specular top stated at the table's nodes.
+    pub specular_error: f32,
+    /// The largest error the coat top stated at the table's nodes.
+    pub coat_error: f32,
+    /// The largest error the fuzz top stated at the table's nodes.
+    pub fuzz_error: f32,
+    /// The dielectric specular layer's directional albedo at `μ_k =
+    /// (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`), each in `[0, 1]`.
+    pub specular_table: [f32; RAD_MATERIAL_TABLE_NODES],
+    /// The coat's directional albedo at the same nodes.
+    pub coat_table: [f32; RAD_MATERIAL_TABLE_NODES],
+    /// The fuzz layer's (`fuzz_weight` times the sheen's) directional albedo
+    /// at the same nodes.
+    pub fuzz_table: [f32; RAD_MATERIAL_TABLE_NODES],
+}
+
+impl Default for RadOpenPbr {
+    /// A zeroed handle (invalid until [`rad_openpbr_new`] fills it in).
+    fn default() -> Self {
+        RadOpenPbr {
+            kind: 0,
+            params: RadOpenPbrParams {
+                base_weight: 0.0,
+                base_color: 0.0,
+                base_metalness: 0.0,
+                base_diffuse_roughness: 0.0,
+                specular_weight: 0.0,
+                specular_color: 0.0,
+                specular_roughness: 0.0,
+                specular_ior: 0.0,
+                coat_weight: 0.0,
+                coat_color: 0.0,
+                coat_roughness: 0.0,
+                coat_ior: 0.0,
+                fuzz_weight: 0.0,
+                fuzz_color: 0.0,
+                fuzz_roughness: 0.0,
+            },
+            specular_error: 0.0,
+            coat_error: 0.0,
+            fuzz_error: 0.0,
+            specular_table: [0.0; RAD_MATERIAL_TABLE_NODES],
+            coat_table: [0.0; RAD_MATERIAL_TABLE_NODES],
+            fuzz_table: [0.0; RAD_MATERIAL_TABLE_NODES],
+        }
+    }
+}
+
+impl RadOpenPbr {
+    /// The handle of a built material.
+    fn of(m: &OpenPbr<f32>) -> Self {
+        let t = m.tables();
+        RadOpenPbr {
+            kind: RAD_OPENPBR_REFLECTION,
+            params: (*m.params()).into(),
+            specular_error: t.specular_error,
+            coat_error: t.coat_error,
+            fuzz_error: t.fuzz_error,
+            specular_table: t.specular,
+            coat_table: t.coat,
+            fuzz_table: t.fuzz,
+        }
+    }
+
+    /// The tables as `OpenPbr::from_tables` takes them.
+    fn tables(&self) -> OpenPbrTables<f32> {
+        OpenPbrTables {
+            specular: self.specular_table,
+            specular_error: self.specular_error,
+            coat: self.coat_table,
+            coat_error: self.coat_error,
+            fuzz: self.fuzz_table,
+            fuzz_error: self.fuzz_error,
+        }
+    }
+}
+
+impl Handle for RadOpenPbr {
+    #[inline]
+    fn with<R>(&self, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+        if self.kind != RAD_OPENPBR_REFLECTION {
+            return Err(RadStatus::BadHandle);
+        }
+        let m = OpenPbr::from_tables(self.params.into(), &self.tables())?;
+        Ok(f(&m))
+    }
+}
+
+/// Writes OpenPBR Surface 1.1's default parameters to `*out`: a white-ish
+/// (`base_color` 0.8) dielectric base with a `specular_roughness` 0.3,
+/// `specular_ior` 1.5 specular layer, no coat (`coat_ior` 1.6,
+/// `coat_color` 1, `coat_roughness` 0), no fuzz (`fuzz_color` 1,
+/// `fuzz_roughness` 0.5); `base_weight`, `specular_weight`,
+/// `specular_color` 1, `base_metalness`, `base_diffuse_roughness` 0.
+///
+/// # Safety
+/// `out` is null or points to a writable `RadOpenPbrParams`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_default_params(out: *mut RadOpenPbrParams) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    match unsafe { as_mut(out) } {
+        Ok(out) => {
+            *out = RadOpenPbrParams::default();
+            RadStatus::Ok
+        }
+        Err(s) => s,
+    }
+}
+
+/// Builds OpenPBR Surface's reflection layer from `*params` into `*out`
+/// (`radiometry_brdfs::OpenPbr`: a metal, a dielectric specular layer over
+/// an EON diffuse, an optional absorbing coat and an optional fuzz, layered
+/// by albedo scaling; see docs/materials.md): checks the parameters (in the
+/// order of the struct's fields; the first bad one gives the status:
+/// `RAD_STATUS_NOT_FINITE` for NaN or ±∞, `RAD_STATUS_OUT_OF_RANGE` outside
+/// its domain) and reads the three layers' top albedos into the tables (the
+/// slow step: 0.6 ms with every layer on, on a loaded 2-core Xeon). Build
+/// once, call many times; prefer the batch calls (each single call rebuilds
+/// the material from the struct, about 53 µs).
+///
+/// # Safety
+/// `params` is null or points to a readable `RadOpenPbrParams`; `out` is
+/// null or points to a writable `RadOpenPbr` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_new(params: *const RadOpenPbrParams, out: *mut RadOpenPbr) -> RadStatus {
+    let r = (|| {
+        // SAFETY: forwarded caller contract; the parameters are copied out
+        // before `out` is borrowed (C may pass overlapping pointers).
+        let p = unsafe { *as_ref(params)? };
+        let m = OpenPbr::new(p.into())?;
+        // SAFETY: forwarded caller contract.
+        let out = unsafe { as_mut(out)? };
+        *out = RadOpenPbr::of(&m);
+        Ok(())
+    })();
+    r.err().unwrap_or(RadStatus::Ok)
+}
+
+/// `*out = f_r(wi → wo)` of the material, in 1/sr.
+///
+/// # Safety
+/// `material` is null or points to a readable `RadOpenPbr`; `out` is null or
+/// points to a writable `float`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_eval(
+    material: *const RadOpenPbr,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_one(material, wi, wo, out) }
+}
+
+/// `*out` = the solid-angle density with which [`rad_openpbr_sample`] draws
+/// `wi` given `wo` (the mixture density of the layers and lobes).
+///
+/// # Safety
+/// As [`rad_openpbr_eval`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_pdf(
+    material: *const RadOpenPbr,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { pdf_one(material, wi, wo, out) }
+}
+
+/// Importance-samples `wi` for `wo` from `(u0, u1) ∈ [0, 1)²`: layers and
+/// lobes picked in proportion to their directional albedos at `wo`, then
+/// the picked lobe's sample; the returned pdf is the mixture density, equal
+/// to [`rad_openpbr_pdf`] bit for bit. `pdf = 0` means no sample (see
+/// `RadBrdfSample`).
+///
+/// # Safety
+/// `material` is null or points to a readable `RadOpenPbr`; `out` is null or
+/// points to a writable `RadBrdfSample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_sample(
+    material: *const RadOpenPbr,
+    wo: RadVec3,
+    u0: f32,
+    u1: f32,
+    out: *mut RadBrdfSample,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_one(material, wo, [u0, u1], out) }
+}
+
+/// `out[k] = f_r(wi[k] → wo[k])` for `k < n`, through the layers' batch
+/// kernels (validates and rebuilds the material once per batch).
+///
+/// # Safety
+/// `material` points to a readable `RadOpenPbr`; `wi`, `wo` to `n` readable
+/// `RadVec3`; `out` to `n` writable `float`s not overlapping the inputs
+/// (checked: `RAD_STATUS_OVERLAP`). Null pointers are reported, not
+/// dereferenced; `n = 0` reads nothing.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_eval_batch(
+    material: *const RadOpenPbr,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+            b.eval_batch(wi, wo, out)
+        })
+    }
+}
+
+/// `out[k] = pdf(wi[k], wo[k])` for `k < n`.
+///
+/// # Safety
+/// As [`rad_openpbr_eval_batch`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_pdf_batch(
+    material: *const RadOpenPbr,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+            b.pdf_batch(wi, wo, out)
+        })
+    }
+}
+
+/// Structure-of-arrays form of [`rad_openpbr_eval_batch`]: direction `k` is
+/// `(wi_x[k], wi_y[k], wi_z[k])`.
+///
+/// # Safety
+/// Each of the six input pointers points to `n` readable `float`s, `out` to
+/// `n` writable `float`s overlapping none of them (checked).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn rad_openpbr_eval_batch_soa(
+    material: *const RadOpenPbr,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { soa_batch(material, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out, n) }
+}
+
+/// Samples for `n` pairs: `out[k]` from `wo[k]` and `u[2k], u[2k+1]`, each
+/// equal to [`rad_openpbr_sample`]'s.
+///
+/// # Safety
+/// `material` points to a readable `RadOpenPbr`, `wo` to `n` readable
+/// `RadVec3`, `u` to `2n` readable `float`s, `out` to `n` writable
+/// `RadBrdfSample`s overlapping neither input (checked).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_sample_batch(
+    material: *const RadOpenPbr,
+    wo: *const RadVec3,
+    u: *const f32,
+    out: *mut RadBrdfSample,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_batch(material, wo, u, out, n) }
+}
