@@ -8,6 +8,7 @@
 //! | [`Mix<A, B>`](Mix) | `w f_A + (1 − w) f_B`, `w ∈ [0, 1]` | lobe `A` with probability `w Ē_A / (w Ē_A + (1 − w) Ē_B)` |
 //! | [`Scaled<B, S>`](Scaled) | `s ⊙ f_B`, `s ≥ 0` per channel | that of `B` |
 //! | [`Coated<T, B>`](Coated) | `f_T + τ(ωi, ωo) ⊙ f_B`, `τ` what the top lets through, reciprocal | top or base, by their albedos |
+//! | [`Precomputed<B>`](Precomputed) | `f_B`, its albedo read once into a table | that of `B` |
 //!
 //! `Ē` is the channel average of a lobe's [directional
 //! albedo](Brdf::directional_albedo) at `ωo`: lobes are picked in proportion
@@ -38,12 +39,14 @@
 mod coated;
 mod error;
 mod mix;
+mod precomputed;
 mod scaled;
 mod sum;
 
 pub use coated::{COATED_TABLE_NODES, Coated};
 pub use error::ComposeError;
 pub use mix::Mix;
+pub use precomputed::Precomputed;
 pub use scaled::Scaled;
 pub use sum::Sum;
 

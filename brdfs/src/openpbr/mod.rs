@@ -92,7 +92,7 @@ use crate::microfacet::{
 };
 use crate::rough_diffuse::Eon;
 use crate::sheen::{MIN_SHEEN_ROUGHNESS, Sheen};
-use radiometry::compose::{COATED_TABLE_NODES, Coated, ComposeError, Mix, Scaled};
+use radiometry::compose::{COATED_TABLE_NODES, Coated, ComposeError, Mix, Precomputed, Scaled};
 use radiometry::glam::Vec3;
 use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
@@ -161,7 +161,7 @@ impl<S: Spectrum> Default for OpenPbrParams<S> {
 }
 
 type DielectricLobe<S> = Microfacet<Ggx, HeightCorrelated, Achromatic<Dielectric, S>>;
-type Metal<S> = Scaled<KullaConty<Ggx, HeightCorrelated, F82Tint<S>>, S>;
+type Metal<S> = Precomputed<Scaled<KullaConty<Ggx, HeightCorrelated, F82Tint<S>>, S>>;
 type Glossy<S> = Coated<DielectricLobe<S>, Eon<S>>;
 type Substrate<S> = Mix<Metal<S>, Glossy<S>>;
 type CoatMix<S> = Mix<Coated<DielectricLobe<S>, Substrate<S>>, Substrate<S>>;
@@ -341,11 +341,15 @@ impl<S: Spectrum> OpenPbr<S> {
 
         let rho = base_color * base_weight;
         let ggx_s = Ggx::new(alpha(r_s))?;
-        let metal = Scaled::new(
-            KullaConty::new(ggx_s, F82Tint::new(rho, spec_color)?),
-            S::splat(xi),
-        )
-        .map_err(composed)?;
+        // The metal's albedo (a Fresnel average over 20 visible normals)
+        // is read at every pick of every layer above it: tabulated once.
+        let metal = Precomputed::new(
+            Scaled::new(
+                KullaConty::new(ggx_s, F82Tint::new(rho, spec_color)?),
+                S::splat(xi),
+            )
+            .map_err(composed)?,
+        );
         let eta = ior / (1.0 + coat_weight * (coat_ior - 1.0));
         let specular = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(modulated_ior(eta, xi))?));
         let glossy = layer(
