@@ -193,6 +193,14 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
         self.lookup_cells(self.map.cells(theta_h, theta_d, phi_d))
     }
 
+    /// [`lookup`](Self::lookup) from `√θh` (the vector kernel's per-lane
+    /// reads; the same bits).
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    pub(crate) fn lookup_root(&self, root_theta_h: f32, theta_d: f32, phi_d: f32) -> S {
+        self.lookup_cells(self.map.cells_root(root_theta_h, theta_d, phi_d))
+    }
+
     /// The trilinear interpolation over the cells `c`.
     #[inline(always)]
     fn lookup_cells(&self, c: Cells) -> S {
