@@ -534,7 +534,7 @@ warm-up); single thread",
 const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf), / reference-ggx-soa (eval_batch, \
 eval_batch_soa, pdf_batch), / reference-ggx-sample-scalar (sample) or / reference-ggx-sample-soa (sample_batch) at the \
 same n; vs_stream = m_per_s / stream at the same n; vs_own_ref = m_per_s / the plain loop of the plugin's own formula \
-(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval) at the same n";
+(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval) at the same n; every ratio within one input set";
 
 const INPUTS_TEXT: &str = "every n is timed on two input sets of the same distribution: golden (golden-ratio \
 sequences, neighbouring pairs alike) and random (fixed-seed Pcg32 draws, in no order), each with its own references";
@@ -737,16 +737,8 @@ pub fn run(args: BenchArgs) -> ExitCode {
                     }
                     println!();
                     println!(
-                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9} {:>10}  {}",
-                        "plugin",
-                        "path",
-                        "n",
-                        "m_per_s",
-                        "ns_per_elem",
-                        "vs_ref",
-                        "vs_stream",
-                        "vs_own_ref",
-                        "inputs"
+                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9} {:>10}  inputs",
+                        "plugin", "path", "n", "m_per_s", "ns_per_elem", "vs_ref", "vs_stream", "vs_own_ref"
                     );
                     group = Some((r.n, r.inputs));
                 }
