@@ -105,31 +105,31 @@
 //! else `wide::f32x8` (one AVX register with `-C target-cpu=native` on an AVX
 //! CPU; two SSE `f32x4` halves on the x86_64 baseline; two NEON halves on
 //! aarch64). The results do not depend on the width (every lane is the
-//! scalar value). Sixteen lanes halve the instructions per element: on an
-//! AVX-512 CPU (AMD EPYC, Zen 4) the GGX `eval_batch_soa` went from about
-//! 0.6× to 0.9× of an auto-vectorised loop of the same formula (which LLVM
-//! compiles to 512-bit vectors there).
+//! scalar value). Sixteen lanes halve the instructions per element.
+//!
+//! Per-lane scalar code inside a kernel (the table reads of `Tabulated`)
+//! does not call `libm::sqrtf`: on x86 that is a legacy-SSE `sqrtss` in
+//! inline assembly, which between AVX instructions, with the upper register
+//! state dirty, pays an SSE/AVX transition on Intel cores. The kernels take
+//! those roots in vector form (the same correctly rounded values).
 //!
 //! No `unsafe` code: only `wide`'s safe API, so the crate keeps
 //! `#![forbid(unsafe_code)]`.
 //!
 //! # Throughput
 //!
-//! GGX height-correlated, `F = 1`, `α = 0.3`, n = 4096 pairs in cache, one
-//! thread of a shared AMD EPYC (Zen 4), best of 400 repetitions; the
-//! reference is a branch-free loop of the same formula over `&[f32]` slices
-//! that LLVM auto-vectorises (no input checks; same bits on these inputs):
-//!
-//! | build | `eval` loop | `eval_batch` | `eval_batch_soa` | reference | batch / ref | soa / ref |
-//! |---|---|---|---|---|---|---|
-//! | `-C target-cpu=native` (16 lanes) | 8.48 ns | 1.51 ns | 0.79–1.07 ns | 0.69–0.94 ns | 0.46–0.62 | 0.88 |
-//! | x86_64 baseline (SSE2, 8 lanes) | 9.66 ns | 3.42 ns | 2.33 ns | 1.59 ns | 0.47 | 0.68 |
-//!
-//! (Ratios are rates: reference time / kernel time, each pair from one run;
-//! the machine alternated between two speeds, which moved both columns
-//! together.) `eval_batch` pays for gathering `&[Vec3]` into vectors: `wide`
-//! has no shuffles, and LLVM builds the vectors with one insert per element;
-//! structure-of-arrays input is three plain loads per direction.
+//! GGX height-correlated, `F = 1`, `α = 0.3`, n = 4096 random pairs in
+//! cache, one thread of a shared Intel Xeon (Cascade Lake, AVX-512, 16
+//! lanes, `-C target-cpu=native`), example `ggx_guarantee_cost`: the
+//! `eval_batch_soa` kernel runs at 0.49× an auto-vectorised loop of the
+//! fewest-division formulation with no input checks (one division, two
+//! square roots), and a loop that adds the kernel's guarantees to that
+//! formulation at 0.41×; the half-vector length correction alone takes the
+//! plain loop to 0.54×. `eval_batch` pays for gathering `&[Vec3]` into
+//! vectors (0.22× in `radiometry bench`): `wide` has no shuffles, and LLVM
+//! builds the vectors with one insert per element; structure-of-arrays
+//! input is three plain loads per direction. Figures and the command:
+//! `docs/performance.md`.
 //!
 //! ```
 //! use radiometry::{Brdf, batch::Vec3Soa, glam::Vec3};

@@ -14,8 +14,8 @@ mod timing;
 
 use machine::{Feature, cpu_model, profile, simd_features};
 use timing::{
-    Inputs, MIN_REPS, REP_SLICES, measure, pass_eval, pass_eval_batch, pass_eval_batch_soa, pass_pdf,
-    pass_pdf_batch, pass_sample, pass_sample_batch,
+    InputSet, Inputs, MIN_REPS, REP_SLICES, measure, pass_eval, pass_eval_batch, pass_eval_batch_soa,
+    pass_pdf, pass_pdf_batch, pass_sample, pass_sample_batch,
 };
 
 use crate::{Format, json_num};
@@ -53,30 +53,38 @@ Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with
   pdf_batch       brdf.pdf_batch(&wi, &wo, &mut out)
   sample          for k { out[k] = brdf.sample(wo[k], u[k]) }      stores the Option<BrdfSample>
   sample_batch    brdf.sample_batch(&wo, &u, &mut out)             the same samples, batched
-Inputs: deterministic direction pairs spread over the upper hemisphere (θ < 88.8°, golden-ratio
-sequences), u in [0,1)².
+Inputs: deterministic direction pairs spread over the upper hemisphere (θ uniform in [0°, 88.8°),
+φ uniform), u in [0,1)², in two sets timed one after the other at every n (column inputs):
+  golden  golden-ratio (R2) sequences: neighbouring pairs alike, data-dependent branches regular
+  random  the same distribution from a fixed-seed Pcg32, in no order (as a renderer's directions)
+Every reference is timed on each set, and every ratio divides figures of the same set.
 
-This CPU's limits, timed in the same process on the same inputs:
+This CPU's limits, timed in the same process on the same inputs, each written in the formulation
+with the fewest divisions and square roots known for it (un-normalised half vector; Heitz 2014,
+Filament's V_SmithGGXCorrelated):
   reference-ggx-scalar  GGX α 0.3, height-correlated Smith, F = 1, as a plain scalar loop over
-                        AoS Vec3 with no input checks:  h = normalize(wi + wo);
-                        D = α²/(π(α²h_z² + h_x² + h_y²)²);  Λ(w) = (sqrt(1 + α² tan²θ) − 1)/2;
-                        f = D/(1 + Λi + Λo)/(4 z_i z_o)
+                        AoS Vec3 with no input checks but the horizon (a select):  h = wi + wo;
+                        L = |h|²;  d = h_z²(α² − 1) + L;  r(z) = sqrt(z²(1 − α²) + α²);
+                        f = (α²/2π) L² / (d² (z_o r(z_i) + z_i r(z_o)))   (1 division, 2 roots)
   reference-ggx-soa     the same formula over SoA &[f32] slices, a branch-free loop LLVM
                         auto-vectorises
   stream                out[k] = x_i + y_i + z_i + x_o + y_o + z_o over SoA slices
                         (reads 24 B, writes 4 B per element): the memory-stream bound
   reference-ggx-sample-scalar
                         GGX α 0.3 visible-normal sampling (spherical caps) with the sample's pdf
-                        and weight, F = 1, as a plain scalar loop with no input checks
-                        (sin/cos by a branch-free polynomial)
+                        and weight, F = 1, as a plain scalar loop with no input checks: every
+                        vector scaled by |stretched wo|, never normalised (2 divisions, 3 roots;
+                        sin/cos by a branch-free polynomial)
   reference-ggx-sample-soa
                         the same sampler over SoA slices (wo, u in; wi, pdf, weight out), a
                         branch-free loop LLVM auto-vectorises
 
 Plain loops of other plugins' own formulas (no input checks, libm for the special functions):
   reference-beckmann-scalar
-                        Beckmann α 0.3, height-correlated Smith, F = 1: D = exp(−tan²θh/α²)/(πα²h_z⁴);
-                        Λ = (exp(−a²)/(a√π) − erfc a)/2, a = z/(α sin θ); f = D/(1 + Λi + Λo)/(4 z_i z_o)
+                        Beckmann α 0.3, height-correlated Smith, F = 1, un-normalised h and
+                        projected areas: D = exp(−tan²θh/α²) L²/(πα²h_z⁴), a = z/(α sin θ),
+                        A = (z (1 + erf a) + α sin θ exp(−a²)/√π)/2,
+                        f = D/(4 (z_o A_i + z_i A_o − z_i z_o))   (libm expf, erff)
   reference-tabulated-scalar
                         the tabulated-merl-ggx-a0.3 table looked up the textbook way: θh = acos h_z,
                         d = R_y(−θh) R_z(−φh) wi, θd = acos d_z, φd = atan2(d_y, d_x) folded into [0, π),
@@ -85,15 +93,21 @@ Plain loops of other plugins' own formulas (no input checks, libm for the specia
 Columns:
   m_per_s      million elements (pairs, or samples) per second, single thread
   ns_per_elem  1000 / m_per_s
-  vs_ref       m_per_s / m_per_s of the reference at the same n: reference-ggx-scalar for eval
+  vs_ref       m_per_s / m_per_s of the reference at the same n and inputs: reference-ggx-scalar for eval
                and pdf, reference-ggx-soa for eval_batch, eval_batch_soa and pdf_batch,
                reference-ggx-sample-scalar for sample, reference-ggx-sample-soa for
                sample_batch; json key `ref` names it
   vs_stream    m_per_s / m_per_s of stream at the same n
-  vs_own_ref   m_per_s / m_per_s of the plain loop of the plugin's own formula at the same n, where
+  vs_own_ref   m_per_s / m_per_s of the plain loop of the plugin's own formula at the same n and
+               inputs, where
                there is one: ggx-hc-a0.3 (eval; eval_batch and eval_batch_soa vs reference-ggx-soa;
                sample, sample_batch vs the sampler references), beckmann-hc-a0.3 (eval) and
                tabulated-merl-ggx-a0.3 (eval); json key `own_ref` names it
+  inputs       the input set, golden or random
+
+A line \"warning: <plugin> <path> runs at <r>x its scalar path <path>\" follows the table of an
+(n, inputs) group for every batch path (eval_batch, eval_batch_soa vs eval; pdf_batch vs pdf;
+sample_batch vs sample) below 0.95x its scalar loop (json: \"warnings\").
 
 Timing: per measurement a warm-up, then repetitions of whole passes over the n elements (each
 repetition about a tenth of the minimum time, at least one pass) until at least 50 ms
@@ -113,13 +127,17 @@ pub struct BenchArgs {
     /// Only n = 4096, 10 ms per measurement (about 1 s in all; the full run takes about 20 s).
     #[arg(long)]
     quick: bool,
-    /// Output format (json: {"header": {...}, "rows": [{plugin, path, n, m_per_s, ns_per_elem, vs_ref,
-    /// vs_stream, ref}]}).
+    /// Output format (json: {"header": {...}, "rows": [{plugin, path, n, inputs, m_per_s, ns_per_elem, vs_ref,
+    /// vs_stream, ref, vs_own_ref, own_ref}], "warnings": [{plugin, path, scalar_path, n, inputs, vs_scalar}]}).
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
     /// Minimum timed milliseconds per measurement (overrides 50 / --quick 10; for tests).
     #[arg(long, hide = true)]
     min_time_ms: Option<f64>,
+    /// Time only the plugins whose name contains this string (the references are always timed), e.g.
+    /// `--only tabulated` to profile those rows.
+    #[arg(long, value_name = "SUBSTRING")]
+    only: Option<String>,
 }
 
 /// Whether a path is a batch call (compared with the SoA reference) rather
@@ -161,6 +179,8 @@ struct Row {
     plugin: &'static str,
     path: &'static str,
     n: usize,
+    /// The input set ([`InputSet::name`]).
+    inputs: &'static str,
     m_per_s: f64,
     /// The reference row `vs_ref` divides by (`None` for `stream`).
     reference: Option<&'static str>,
@@ -174,6 +194,9 @@ struct Row {
 /// Measurements at one `n`.
 struct Run<'a> {
     inputs: &'a Inputs,
+    set: InputSet,
+    /// Only the plugins whose name contains this.
+    only: Option<&'a str>,
     n: usize,
     min_time: Duration,
     progress: bool,
@@ -189,6 +212,7 @@ impl Run<'_> {
             plugin,
             path,
             n: self.n,
+            inputs: self.set.name(),
             m_per_s: 1e-6 / secs_per_elem,
             reference: None,
             vs_ref: None,
@@ -200,7 +224,11 @@ impl Run<'_> {
 
     fn note(&self, what: &str) {
         if self.progress {
-            eprint!("\r\x1b[2Kbench: n = {}: {what}", self.n);
+            eprint!(
+                "\r\x1b[2Kbench: n = {}, {} inputs: {what}",
+                self.n,
+                self.set.name()
+            );
         }
     }
 
@@ -267,6 +295,9 @@ impl Run<'_> {
 
     /// Times the seven paths of one plugin.
     fn plugin<B: Brdf>(&mut self, name: &'static str, brdf: &B) {
+        if !self.wanted(name) {
+            return;
+        }
         self.note(name);
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
         let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
@@ -340,6 +371,11 @@ impl Run<'_> {
         black_box((&out, &out_f, &out_s));
     }
 
+    /// Whether `--only` selects the plugin `name`.
+    fn wanted(&self, name: &str) -> bool {
+        self.only.is_none_or(|s| name.contains(s))
+    }
+
     /// Every plugin (see [`AFTER_HELP`] for the list).
     fn plugins(&mut self) {
         const BAD: &str = "bench plugin parameters are valid";
@@ -385,6 +421,9 @@ impl Run<'_> {
     /// The `Tabulated` rows: GGX α 0.3 (the reference's formula) on the MERL grid.
     fn tabulated(&mut self, ggx: Ggx) {
         use radiometry_brdfs::tabulated::{RusinkiewiczGrid, Tabulated};
+        if !self.wanted("tabulated-merl-ggx-a0.3") && !self.wanted("tabulated-merl-rgb-ggx-a0.3") {
+            return;
+        }
         const BAD: &str = "the MERL-grid table of a valid plugin is valid";
         let grid = RusinkiewiczGrid::MERL;
         let table =
@@ -442,7 +481,9 @@ impl Run<'_> {
         self.push(REF_SAMPLE_SCALAR, "sample", best(3));
         self.push(REF_SAMPLE_SOA, "sample_batch", best(4));
         self.push(REF_BECKMANN_SCALAR, "eval", best(5));
-        self.push(REF_TABULATED_SCALAR, "eval", self.tabulated_ref);
+        if !self.tabulated_ref.is_nan() {
+            self.push(REF_TABULATED_SCALAR, "eval", self.tabulated_ref);
+        }
         self.rows.extend(plugin_rows);
         let rate = |name: &str| {
             self.rows
@@ -493,7 +534,73 @@ warm-up); single thread",
 const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf), / reference-ggx-soa (eval_batch, \
 eval_batch_soa, pdf_batch), / reference-ggx-sample-scalar (sample) or / reference-ggx-sample-soa (sample_batch) at the \
 same n; vs_stream = m_per_s / stream at the same n; vs_own_ref = m_per_s / the plain loop of the plugin's own formula \
-(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval) at the same n";
+(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval) at the same n; every ratio within one input set";
+
+const INPUTS_TEXT: &str = "every n is timed on two input sets of the same distribution: golden (golden-ratio \
+sequences, neighbouring pairs alike) and random (fixed-seed Pcg32 draws, in no order), each with its own references";
+
+/// The batch paths and the scalar loop each is compared with.
+const BATCH_VS_SCALAR: [(&str, &str); 4] = [
+    ("eval_batch", "eval"),
+    ("eval_batch_soa", "eval"),
+    ("pdf_batch", "pdf"),
+    ("sample_batch", "sample"),
+];
+
+/// A batch path is reported when it runs below this fraction of its scalar
+/// path: best-of figures of the same code vary by a few per cent between
+/// measurements on a shared machine, so a batch path that is the scalar loop
+/// itself (a plugin without a kernel) must not be flagged by noise.
+const WARN_BELOW: f64 = 0.95;
+
+/// A batch path slower than its scalar path.
+#[derive(Debug)]
+struct SlowBatch {
+    plugin: &'static str,
+    path: &'static str,
+    scalar_path: &'static str,
+    n: usize,
+    inputs: &'static str,
+    /// Batch rate / scalar rate.
+    ratio: f64,
+}
+
+impl SlowBatch {
+    fn text(&self) -> String {
+        format!(
+            "warning: {} {} runs at {:.3}x its scalar path {} (n = {}, {} inputs)",
+            self.plugin, self.path, self.ratio, self.scalar_path, self.n, self.inputs
+        )
+    }
+}
+
+/// Every batch row of `rows` below [`WARN_BELOW`] times the scalar row of
+/// the same plugin, `n` and input set.
+fn slow_batches(rows: &[Row]) -> Vec<SlowBatch> {
+    let mut out = Vec::new();
+    for r in rows {
+        let Some(&(_, scalar_path)) = BATCH_VS_SCALAR.iter().find(|(b, _)| *b == r.path) else {
+            continue;
+        };
+        let scalar = rows
+            .iter()
+            .find(|s| s.plugin == r.plugin && s.n == r.n && s.inputs == r.inputs && s.path == scalar_path);
+        if let Some(s) = scalar {
+            let ratio = r.m_per_s / s.m_per_s;
+            if ratio < WARN_BELOW {
+                out.push(SlowBatch {
+                    plugin: r.plugin,
+                    path: r.path,
+                    scalar_path,
+                    n: r.n,
+                    inputs: r.inputs,
+                    ratio,
+                });
+            }
+        }
+    }
+    out
+}
 
 /// Runs the command.
 pub fn run(args: BenchArgs) -> ExitCode {
@@ -504,22 +611,28 @@ pub fn run(args: BenchArgs) -> ExitCode {
     }
     let min_time = Duration::from_secs_f64(min_ms * 1e-3);
     let ns: &[usize] = if args.quick { &[4096] } else { &[4096, 1 << 20] };
-    let inputs = Inputs::new(*ns.iter().max().unwrap_or(&4096));
+    let n_max = *ns.iter().max().unwrap_or(&4096);
+    let inputs = InputSet::ALL.map(|set| (set, Inputs::new(n_max, set)));
     let progress = std::io::stderr().is_terminal();
     let mut rows = Vec::new();
     for &n in ns {
-        rows.extend(
-            Run {
-                inputs: &inputs,
-                n,
-                min_time,
-                progress,
-                rows: Vec::new(),
-                tabulated_ref: f64::NAN,
-            }
-            .measure_all(),
-        );
+        for (set, inputs) in &inputs {
+            rows.extend(
+                Run {
+                    inputs,
+                    set: *set,
+                    only: args.only.as_deref(),
+                    n,
+                    min_time,
+                    progress,
+                    rows: Vec::new(),
+                    tabulated_ref: f64::NAN,
+                }
+                .measure_all(),
+            );
+        }
     }
+    let warnings = slow_batches(&rows);
     if progress {
         eprint!("\r\x1b[2K");
     }
@@ -545,6 +658,7 @@ pub fn run(args: BenchArgs) -> ExitCode {
                         "plugin": r.plugin,
                         "path": r.path,
                         "n": r.n,
+                        "inputs": r.inputs,
                         "m_per_s": json_num(r.m_per_s),
                         "ns_per_elem": json_num(1e3 / r.m_per_s),
                         "vs_ref": r.vs_ref.map(json_num),
@@ -568,8 +682,17 @@ pub fn run(args: BenchArgs) -> ExitCode {
                     "timing": timing_text(min_time),
                     "min_time_ms": json_num(min_ms),
                     "ratios": RATIO_TEXT,
+                    "inputs": INPUTS_TEXT,
                 },
                 "rows": rows,
+                "warnings": warnings.iter().map(|w| serde_json::json!({
+                    "plugin": w.plugin,
+                    "path": w.path,
+                    "scalar_path": w.scalar_path,
+                    "n": w.n,
+                    "inputs": w.inputs,
+                    "vs_scalar": json_num(w.ratio),
+                })).collect::<Vec<_>>(),
             });
             println!("{j}");
         }
@@ -600,19 +723,28 @@ pub fn run(args: BenchArgs) -> ExitCode {
             }
             println!("timing:   {}", timing_text(min_time));
             println!("ratios:   {RATIO_TEXT}");
-            let mut last_n = 0;
+            println!("inputs:   {INPUTS_TEXT}");
+            let mut group = None;
+            let print_warnings = |n: usize, inputs: &str| {
+                for w in warnings.iter().filter(|w| w.n == n && w.inputs == inputs) {
+                    println!("{}", w.text());
+                }
+            };
             for r in &rows {
-                if r.n != last_n {
+                if group != Some((r.n, r.inputs)) {
+                    if let Some((n, inputs)) = group {
+                        print_warnings(n, inputs);
+                    }
                     println!();
                     println!(
-                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9} {:>10}",
+                        "{:<26} {:<15} {:>8} {:>10} {:>11} {:>7} {:>9} {:>10}  inputs",
                         "plugin", "path", "n", "m_per_s", "ns_per_elem", "vs_ref", "vs_stream", "vs_own_ref"
                     );
-                    last_n = r.n;
+                    group = Some((r.n, r.inputs));
                 }
                 let ratio = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
                 println!(
-                    "{:<26} {:<15} {:>8} {:>10.1} {:>11.2} {:>7} {:>9.3} {:>10}",
+                    "{:<26} {:<15} {:>8} {:>10.1} {:>11.2} {:>7} {:>9.3} {:>10}  {}",
                     r.plugin,
                     r.path,
                     r.n,
@@ -620,10 +752,70 @@ pub fn run(args: BenchArgs) -> ExitCode {
                     1e3 / r.m_per_s,
                     ratio(r.vs_ref),
                     r.vs_stream,
-                    ratio(r.vs_own_ref)
+                    ratio(r.vs_own_ref),
+                    r.inputs
                 );
+            }
+            if let Some((n, inputs)) = group {
+                print_warnings(n, inputs);
             }
         }
     }
     ExitCode::SUCCESS
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(plugin: &'static str, path: &'static str, inputs: &'static str, m_per_s: f64) -> Row {
+        Row {
+            plugin,
+            path,
+            n: 4096,
+            inputs,
+            m_per_s,
+            reference: None,
+            vs_ref: None,
+            vs_stream: f64::NAN,
+            own_reference: None,
+            vs_own_ref: None,
+        }
+    }
+
+    /// A warning for each batch path below 0.95x the scalar path of the same
+    /// plugin and input set, none at or above it.
+    #[test]
+    fn slow_batches_are_found() {
+        let rows = [
+            row("a", "eval", "golden", 10.0),
+            row("a", "eval_batch", "golden", 9.0),
+            row("a", "eval_batch_soa", "golden", 9.6),
+            row("a", "eval", "random", 20.0),
+            row("a", "eval_batch", "random", 9.6),
+            row("a", "sample", "golden", 5.0),
+            row("a", "sample_batch", "golden", 4.0),
+            row("a", "pdf_batch", "golden", 1.0),
+            row("b", "pdf", "golden", 5.0),
+            row("b", "pdf_batch", "golden", 50.0),
+        ];
+        let w = slow_batches(&rows);
+        let got: Vec<_> = w
+            .iter()
+            .map(|w| (w.plugin, w.path, w.inputs, w.scalar_path))
+            .collect();
+        assert_eq!(
+            got,
+            [
+                ("a", "eval_batch", "golden", "eval"),
+                ("a", "eval_batch", "random", "eval"),
+                ("a", "sample_batch", "golden", "sample"),
+            ]
+        );
+        assert!((w[1].ratio - 0.48).abs() < 1e-12);
+        assert_eq!(
+            w[0].text(),
+            "warning: a eval_batch runs at 0.900x its scalar path eval (n = 4096, golden inputs)"
+        );
+    }
 }

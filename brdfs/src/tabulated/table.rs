@@ -43,16 +43,17 @@ use radiometry::{Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 ///
 /// # Speed
 ///
-/// `radiometry bench` (AMD EPYC, Zen 4, 2 shared cores, n = 4096 random
-/// pairs over the hemisphere, table of 5.8 MB), scalar `eval`: 28.3 M/s
-/// (0.23 × the in-run straight-line GGX reference) with default release
-/// flags, 30.8 M/s (0.25 ×) with `-C target-cpu=native`; `eval_batch_soa`
-/// with feature `simd`: 57 M/s with default flags, 77 M/s native. The
-/// scalar path is latency-bound: a chain of about 120 dependent cycles (the
-/// sums, one division and square root, the arctangent polynomial, the θh
-/// square-root mapping, the index arithmetic, a table read that usually
-/// misses L1, the trilinear sum) of which the out-of-order core overlaps
-/// little more than one evaluation with the next.
+/// `radiometry bench` (Intel Xeon, Cascade Lake, 2 shared cores, `-C
+/// target-cpu=native`, n = 4096 pairs over the hemisphere, table of 5.8 MB),
+/// scalar `eval`: 17.3 M/s (0.10 × the in-run fewest-division GGX
+/// reference); with feature `simd`, `eval_batch` 31.1 M/s and
+/// `eval_batch_soa` 34.3 M/s (16 lanes; the coordinates in vector form, the
+/// table reads per lane). The scalar path is latency-bound: one dependent
+/// chain (the sums, one division and square root, the arctangent
+/// polynomial, the θh square-root mapping, the index arithmetic, a table
+/// read that usually misses L1, the trilinear sum) of which the
+/// out-of-order core overlaps little more than one evaluation with the
+/// next.
 ///
 /// # Sampling
 ///
@@ -191,6 +192,14 @@ impl<'a, S: Spectrum> Tabulated<'a, S> {
     #[inline(always)]
     pub fn lookup(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> S {
         self.lookup_cells(self.map.cells(theta_h, theta_d, phi_d))
+    }
+
+    /// [`lookup`](Self::lookup) from `√θh` (the vector kernel's per-lane
+    /// reads; the same bits).
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    pub(crate) fn lookup_root(&self, root_theta_h: f32, theta_d: f32, phi_d: f32) -> S {
+        self.lookup_cells(self.map.cells_root(root_theta_h, theta_d, phi_d))
     }
 
     /// The trilinear interpolation over the cells `c`.

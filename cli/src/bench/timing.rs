@@ -37,26 +37,62 @@ pub(super) struct Inputs {
 const AOS_PAD: usize = 16;
 const SOA_PAD: usize = 16;
 
+/// How the direction pairs of an [`Inputs`] are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum InputSet {
+    /// Golden-ratio (R2) sequences: consecutive pairs are close to the
+    /// previous ones' neighbours, so data-dependent branches see long
+    /// regular runs.
+    Golden,
+    /// Independent uniform draws of a fixed-seed [`radiometry::rng::Pcg32`]
+    /// (the same distribution as [`Golden`](Self::Golden), in no order):
+    /// what a renderer's directions look like to the branch predictor.
+    Random,
+}
+
+impl InputSet {
+    /// Both sets, in the order the bench runs them.
+    pub(super) const ALL: [InputSet; 2] = [InputSet::Golden, InputSet::Random];
+
+    /// The name printed in the `inputs` column.
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            InputSet::Golden => "golden",
+            InputSet::Random => "random",
+        }
+    }
+}
+
+/// The seed of [`InputSet::Random`].
+const RANDOM_SEED: u64 = 0x5EED_0028;
+
 impl Inputs {
     /// Direction pairs spread over the upper hemisphere (θ uniform in
-    /// [0, 1.55) rad, φ in [0, 2π)) from golden-ratio (R2) sequences in f64,
-    /// which stay well spread for 2²⁰ points; `u` in [0,1)².
-    pub(super) fn new(n: usize) -> Self {
+    /// [0, 1.55) rad, φ in [0, 2π)) and `u` in [0,1)²: from golden-ratio
+    /// (R2) sequences in f64, which stay well spread for 2²⁰ points, or
+    /// from a fixed-seed random generator ([`InputSet`]).
+    pub(super) fn new(n: usize, set: InputSet) -> Self {
         let frac = |k: usize, g: f64| (k as f64 * g).fract();
         // Largest f32 below 1: a fraction just below 1 must not round up to 1.
         let below_one = |x: f64| (x as f32).min(1.0 - f32::EPSILON / 2.0);
+        let mut rng = radiometry::rng::Pcg32::new(RANDOM_SEED);
         let mut wi = Vec::with_capacity(n);
         let mut wo = Vec::with_capacity(n);
         let mut u = Vec::with_capacity(n);
         for k in 0..n {
-            let a = frac(k, 0.618_033_988_749_894_9);
-            let b = frac(k, 0.381_966_011_250_105_1);
-            let c = frac(k, 0.754_877_666_246_692_7);
-            let d = frac(k, 0.569_840_290_998_053_2);
+            let [a, b, c, d] = match set {
+                InputSet::Golden => [
+                    frac(k, 0.618_033_988_749_894_9),
+                    frac(k, 0.381_966_011_250_105_1),
+                    frac(k, 0.754_877_666_246_692_7),
+                    frac(k, 0.569_840_290_998_053_2),
+                ],
+                InputSet::Random => std::array::from_fn(|_| rng.next_f64()),
+            };
             let tau = std::f64::consts::TAU;
             wi.push(spherical_direction((a * 1.55) as f32, (b * tau) as f32));
             wo.push(spherical_direction((c * 1.55) as f32, (d * tau) as f32));
-            // u from wi's sequences: sampling uses wo and u only, so the two are independent.
+            // u from wi's numbers: sampling uses wo and u only, so the two are independent.
             u.push([below_one(a), below_one(b)]);
         }
         let mut aos = wi.clone();
