@@ -19,11 +19,12 @@ use timing::{
 };
 
 use crate::{Format, json_num};
+use radiometry::compose::Coated;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Ggx, HeightCorrelated, Lambertian, Microfacet, ModifiedPhong, NoFresnel,
-    Schlick, Separable,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, Ggx, HeightCorrelated, Lambertian, Microfacet,
+    ModifiedPhong, NoFresnel, OpenPbr, OpenPbrParams, Schlick, Separable,
 };
 use std::hint::black_box;
 use std::io::IsTerminal;
@@ -44,6 +45,9 @@ Plugins (F = 1 unless a Fresnel term is named):
   tabulated-merl-ggx-a0.3      Tabulated<f32>: ggx-hc-a0.3 tabulated on the MERL grid (90 x 90 x 180,
                                5.8 MB), trilinear, half-vector sampling (f32)
   tabulated-merl-rgb-ggx-a0.3  Tabulated<Vec3>: the same table in three channels (17.5 MB) (Vec3)
+  eon-s0.5                     Eon, ρ 0.8, σ 0.5 (f32)
+  plastic-ggx0.1-eon           coated(GGX α 0.1 dielectric η 1.5, Eon ρ 0.8 σ 0.5): radiometry::compose::Coated (f32)
+  openpbr-defaults             OpenPbr with OpenPBR Surface's default parameters (f32)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -89,6 +93,9 @@ Plain loops of other plugins' own formulas (no input checks, libm for the specia
                         the tabulated-merl-ggx-a0.3 table looked up the textbook way: θh = acos h_z,
                         d = R_y(−θh) R_z(−φh) wi, θd = acos d_z, φd = atan2(d_y, d_x) folded into [0, π),
                         the MERL index mappings, trilinear interpolation
+  reference-eon-scalar  EON ρ 0.8, σ 0.5 (Portsmouth, Kutz & Hill 2025, exact FON albedo):
+                        f = (ρ/π) A (1 + σ s/t) + (ρ_ms/π) A σ (c₁ − G(μi)/π)(c₁ − G(μo)/π)/(c₁ − c₂),
+                        G by libm acosf and two square roots per direction
 
 Columns:
   m_per_s      million elements (pairs, or samples) per second, single thread
@@ -156,6 +163,10 @@ const REF_SAMPLE_SOA: &str = "reference-ggx-sample-soa";
 const STREAM: &str = "stream";
 const REF_BECKMANN_SCALAR: &str = "reference-beckmann-scalar";
 const REF_TABULATED_SCALAR: &str = "reference-tabulated-scalar";
+const REF_EON_SCALAR: &str = "reference-eon-scalar";
+/// ρ and σ of the `eon-s0.5` plugin and its reference.
+const EON_RHO: f32 = 0.8;
+const EON_SIGMA: f32 = 0.5;
 
 /// The plain loop of the plugin's own formula for `(plugin, path)`, if the
 /// bench has one.
@@ -167,6 +178,7 @@ fn own_reference(plugin: &str, path: &str) -> Option<&'static str> {
         ("ggx-hc-a0.3", "sample_batch") => Some(REF_SAMPLE_SOA),
         ("beckmann-hc-a0.3", "eval") => Some(REF_BECKMANN_SCALAR),
         ("tabulated-merl-ggx-a0.3", "eval") => Some(REF_TABULATED_SCALAR),
+        ("eon-s0.5", "eval") => Some(REF_EON_SCALAR),
         _ => None,
     }
 }
@@ -234,7 +246,7 @@ impl Run<'_> {
 
     /// Seconds per element of the six reference kernels (eval scalar and
     /// SoA, stream, sample scalar and SoA, Beckmann scalar).
-    fn references(&self) -> [f64; 6] {
+    fn references(&self) -> [f64; 7] {
         self.note("references");
         let (n, mt) = (self.n, self.min_time);
         let (wi, wo) = (self.inputs.wi(n), self.inputs.wo(n));
@@ -289,8 +301,17 @@ impl Run<'_> {
                 black_box(&mut out[..]),
             )
         });
+        let eon = measure(n, mt, || {
+            reference::eon_scalar(
+                black_box(EON_RHO),
+                black_box(EON_SIGMA),
+                black_box(wi),
+                black_box(wo),
+                black_box(&mut out[..]),
+            )
+        });
         black_box((&out, &samples, &o));
-        [scalar, soa, stream, sample_scalar, sample_soa, beckmann]
+        [scalar, soa, stream, sample_scalar, sample_soa, beckmann, eon]
     }
 
     /// Times the seven paths of one plugin.
@@ -416,6 +437,21 @@ impl Run<'_> {
             &Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(0.3).expect(BAD), NoFresnel),
         );
         self.tabulated(ggx);
+        let eon = Eon::new(EON_RHO, EON_SIGMA).expect(BAD);
+        self.plugin("eon-s0.5", &eon);
+        if self.wanted("plastic-ggx0.1-eon") {
+            let coat = Microfacet::<_, HeightCorrelated, _>::new(
+                Ggx::new(0.1).expect(BAD),
+                Dielectric::new(1.5).expect(BAD),
+            );
+            self.plugin("plastic-ggx0.1-eon", &Coated::new(coat, eon));
+        }
+        if self.wanted("openpbr-defaults") {
+            self.plugin(
+                "openpbr-defaults",
+                &OpenPbr::new(OpenPbrParams::<f32>::default()).expect(BAD),
+            );
+        }
     }
 
     /// The `Tabulated` rows: GGX α 0.3 (the reference's formula) on the MERL grid.
@@ -481,6 +517,7 @@ impl Run<'_> {
         self.push(REF_SAMPLE_SCALAR, "sample", best(3));
         self.push(REF_SAMPLE_SOA, "sample_batch", best(4));
         self.push(REF_BECKMANN_SCALAR, "eval", best(5));
+        self.push(REF_EON_SCALAR, "eval", best(6));
         if !self.tabulated_ref.is_nan() {
             self.push(REF_TABULATED_SCALAR, "eval", self.tabulated_ref);
         }
@@ -494,6 +531,7 @@ impl Run<'_> {
         let (scalar, soa, stream) = (rate(REF_SCALAR), rate(REF_SOA), rate(STREAM));
         let (sample_scalar, sample_soa) = (rate(REF_SAMPLE_SCALAR), rate(REF_SAMPLE_SOA));
         let (beckmann, tabulated) = (rate(REF_BECKMANN_SCALAR), rate(REF_TABULATED_SCALAR));
+        let eon = rate(REF_EON_SCALAR);
         let own_rates = |name: &str| match name {
             REF_SCALAR => scalar,
             REF_SOA => soa,
@@ -501,6 +539,7 @@ impl Run<'_> {
             REF_SAMPLE_SOA => sample_soa,
             REF_BECKMANN_SCALAR => beckmann,
             REF_TABULATED_SCALAR => tabulated,
+            REF_EON_SCALAR => eon,
             _ => f64::NAN,
         };
         for r in &mut self.rows {
@@ -534,7 +573,7 @@ warm-up); single thread",
 const RATIO_TEXT: &str = "vs_ref = m_per_s / reference-ggx-scalar (eval, pdf), / reference-ggx-soa (eval_batch, \
 eval_batch_soa, pdf_batch), / reference-ggx-sample-scalar (sample) or / reference-ggx-sample-soa (sample_batch) at the \
 same n; vs_stream = m_per_s / stream at the same n; vs_own_ref = m_per_s / the plain loop of the plugin's own formula \
-(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval) at the same n; every ratio within one input set";
+(ggx-hc-a0.3, beckmann-hc-a0.3 eval, tabulated-merl-ggx-a0.3 eval, eon-s0.5 eval) at the same n; every ratio within one input set";
 
 const INPUTS_TEXT: &str = "every n is timed on two input sets of the same distribution: golden (golden-ratio \
 sequences, neighbouring pairs alike) and random (fixed-seed Pcg32 draws, in no order), each with its own references";

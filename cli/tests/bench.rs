@@ -15,7 +15,7 @@ fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-const PLUGINS: [&str; 10] = [
+const PLUGINS: [&str; 13] = [
     "lambertian",
     "modified-phong-n100",
     "blinn-phong-n100",
@@ -26,6 +26,9 @@ const PLUGINS: [&str; 10] = [
     "beckmann-hc-a0.3",
     "tabulated-merl-ggx-a0.3",
     "tabulated-merl-rgb-ggx-a0.3",
+    "eon-s0.5",
+    "plastic-ggx0.1-eon",
+    "openpbr-defaults",
 ];
 const PATHS: [&str; 7] = [
     "eval",
@@ -59,7 +62,7 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
     assert!(h["timing"].as_str().expect("timing").contains("best of"), "{h}");
 
     let all_rows = j["rows"].as_array().expect("rows");
-    assert_eq!(all_rows.len(), INPUTS.len() * (7 + PLUGINS.len() * PATHS.len()));
+    assert_eq!(all_rows.len(), INPUTS.len() * (8 + PLUGINS.len() * PATHS.len()));
     for set in INPUTS {
         let rows: Vec<&serde_json::Value> = all_rows.iter().filter(|r| r["inputs"] == set).collect();
         let get = |plugin: &str, path: &str| {
@@ -78,7 +81,8 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
         let ref_sample_soa = rate(get("reference-ggx-sample-soa", "sample_batch"));
         let ref_beckmann = rate(get("reference-beckmann-scalar", "eval"));
         let ref_tabulated = rate(get("reference-tabulated-scalar", "eval"));
-        assert_eq!(rows.len(), 7 + PLUGINS.len() * PATHS.len());
+        let ref_eon = rate(get("reference-eon-scalar", "eval"));
+        assert_eq!(rows.len(), 8 + PLUGINS.len() * PATHS.len());
         for &r in &rows {
             assert_eq!(r["n"], 4096, "--quick is n = 4096 only: {r}");
             let m = rate(r);
@@ -116,6 +120,7 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
                 ("ggx-hc-a0.3", "sample_batch") => Some(("reference-ggx-sample-soa", ref_sample_soa)),
                 ("beckmann-hc-a0.3", "eval") => Some(("reference-beckmann-scalar", ref_beckmann)),
                 ("tabulated-merl-ggx-a0.3", "eval") => Some(("reference-tabulated-scalar", ref_tabulated)),
+                ("eon-s0.5", "eval") => Some(("reference-eon-scalar", ref_eon)),
                 _ => None,
             };
             match own {
@@ -182,8 +187,8 @@ fn only_times_the_selected_plugins() {
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let j: serde_json::Value = serde_json::from_str(stdout(&o).trim()).expect("JSON");
     let rows = j["rows"].as_array().expect("rows");
-    // Per input set: the seven references and the seven paths of the one plugin.
-    assert_eq!(rows.len(), INPUTS.len() * (7 + PATHS.len()), "{rows:?}");
+    // Per input set: the eight references and the seven paths of the one plugin.
+    assert_eq!(rows.len(), INPUTS.len() * (8 + PATHS.len()), "{rows:?}");
     for r in rows {
         let p = r["plugin"].as_str().expect("plugin");
         assert!(
