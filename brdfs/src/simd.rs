@@ -163,6 +163,7 @@
 //! [`Brdf::pdf_batch`]: radiometry::Brdf::pdf_batch
 //! [`Brdf::sample_batch`]: radiometry::Brdf::sample_batch
 
+mod acosf;
 mod bits;
 mod expf;
 mod expm1f;
@@ -172,6 +173,7 @@ mod powf;
 mod sample;
 mod sincos;
 
+pub(crate) use acosf::acosf;
 use bits::{Vi, fmask, from_bits, int_to_float, to_bits};
 pub(crate) use expf::expf;
 pub(crate) use expm1f::expm1f;
