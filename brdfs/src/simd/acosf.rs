@@ -3,13 +3,13 @@
 use super::bits::clear_low;
 use super::{Vf, Vi, fmask, to_bits};
 
-// libm's constants of `acosf` (FreeBSD `e_acosf.c`), its decimal literals.
-const PIO2_HI: f32 = 1.570_796_251_3; // 0x3fc90fda
-const PIO2_LO: f32 = 7.549_789_415_9e-8; // 0x33a22168
-const P_S0: f32 = 1.666_658_669_7e-1;
-const P_S1: f32 = -4.274_342_209_1e-2;
-const P_S2: f32 = -8.656_363_003_0e-3;
-const Q_S1: f32 = -7.066_296_339_0e-1;
+// libm's constants of `acosf` (FreeBSD `e_acosf.c`), by their bits.
+const PIO2_HI: f32 = f32::from_bits(0x3fc9_0fda); // 1.5707962513e+00
+const PIO2_LO: f32 = f32::from_bits(0x33a2_2168); // 7.5497894159e-08
+const P_S0: f32 = f32::from_bits(0x3e2a_aa75); // 1.6666586697e-01
+const P_S1: f32 = f32::from_bits(0xbd2f_13ba); // -4.2743422091e-02
+const P_S2: f32 = f32::from_bits(0xbc0d_d36b); // -8.6563630030e-03
+const Q_S1: f32 = f32::from_bits(0xbf34_e5ae); // -7.0662963390e-01
 /// `2⁻¹²⁰`: added to the results `π/2` and `π` only to raise "inexact" in C;
 /// it does not change the rounded `f32` (kept for the same operations).
 const X1P_120: f32 = f32::from_bits(0x0380_0000);
@@ -27,7 +27,7 @@ fn r(z: Vf) -> Vf {
 /// FreeBSD `e_acosf.c` as musl and `libm` have it, the same operations in
 /// the same order; no FMA). With `R` the rational above:
 ///
-/// * `|x| > 1` or NaN: NaN (`0/(x − x)`); `x = 1`: `+0`; `x = −1`:
+/// * `|x| > 1` or NaN: NaN (libm: `0/(x − x)`); `x = 1`: `+0`; `x = −1`:
 ///   `2·pio2_hi + 2⁻¹²⁰`;
 /// * `|x| ≤ 2⁻²⁶` (bits `≤ 0x32800000`): `pio2_hi + 2⁻¹²⁰`;
 /// * `|x| < 1/2`: `pio2_hi − (x − (pio2_lo − x R(x²)))`;
@@ -72,7 +72,8 @@ pub(crate) fn acosf(x: Vf) -> Vf {
     let v_one = negative.select(two * Vf::splat(PIO2_HI) + Vf::splat(X1P_120), Vf::ZERO);
     let v = one.select(v_one, v);
     let out_of_range = fmask(ix.simd_gt(si(0x3f80_0000)));
-    out_of_range.select(Vf::ZERO / (x - x), v)
+    // libm's `0/(x − x)`: a NaN (its payload is not part of the contract).
+    out_of_range.select(Vf::splat(f32::NAN), v)
 }
 
 #[cfg(test)]
@@ -81,11 +82,16 @@ mod tests {
     use super::super::LANES;
     use super::*;
 
-    /// The two halves of π/2 by their bits (as libm's comments give them).
+    /// The constants are libm's decimal literals, rounded to `f32`.
     #[test]
-    fn pio2_halves_have_libm_bits() {
-        assert_eq!(PIO2_HI.to_bits(), 0x3fc9_0fda);
-        assert_eq!(PIO2_LO.to_bits(), 0x33a2_2168);
+    fn constants_are_libm_literals() {
+        let parse = |t: &str| t.parse::<f32>().unwrap();
+        assert_eq!(PIO2_HI, parse("1.5707962513e+00"));
+        assert_eq!(PIO2_LO, parse("7.5497894159e-08"));
+        assert_eq!(P_S0, parse("1.6666586697e-01"));
+        assert_eq!(P_S1, parse("-4.2743422091e-02"));
+        assert_eq!(P_S2, parse("-8.6563630030e-03"));
+        assert_eq!(Q_S1, parse("-7.0662963390e-01"));
     }
 
     /// Every 7th `f32` of `[−1, 1]` (about 304 million values with
