@@ -49,6 +49,11 @@
 //!   a linear `p_u` cost up to 16 % there). The paper's clipped-LTC sampler
 //!   fits the lobe shape more closely but needs a fitted table; the mixture
 //!   needs none, and its χ² tests pass (`tests/sampling.rs`).
+//! * **Batches**: with the `simd` feature, vector kernels behind
+//!   `eval_batch`, `eval_batch_soa`, `pdf_batch` and `sample_batch` of all
+//!   three plugins return exactly the bits of `eval`, `pdf` and `sample`
+//!   (EON's `G(μ)/π` with a bit-exact vector port of `libm`'s `acosf`; see
+//!   the `simd` module).
 //! * **Robustness**: one squared-length test per direction, a `#[cold]`
 //!   robust normalisation otherwise; `t` is bounded below by the smallest
 //!   normal `f32` (`f32::MIN_POSITIVE`), so `s/t` — which grows as
