@@ -17,16 +17,28 @@
 //!     --features simd -- 'brdf/eval'
 //! ```
 //!
+//! The `rough/` group times every path of the rough diffuse plugins (EON,
+//! FON, the classic Oren–Nayar): the scalar loops `eval`, `pdf`, `sample`
+//! (into an output slice, as a renderer writes them) against `eval_batch`,
+//! `eval_batch_soa`, `pdf_batch`, `sample_batch`, on the pairs above and, for
+//! EON, with one `ωo` for the whole batch (`eon-s0.5-one-wo`: an
+//! integrator's nodes; the kernel computes `ωo`'s factor once):
+//!
+//! ```text
+//! cargo bench -p radiometry-benches --bench throughput --features simd -- 'rough/'
+//! ```
+//!
 //! Without `target-cpu` flags the kernels' `wide::f32x8` runs as two SSE2
 //! halves on x86_64; with AVX-512 they use `wide::f32x16`. `radiometry bench`
 //! (the CLI) reports the same paths against reference kernels.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, frame::spherical_direction};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Ggx, HeightCorrelated, Lambertian, Microfacet, ModifiedPhong, NoFresnel, Schlick,
-    Separable,
+    Beckmann, BlinnPhong, Eon, Fon, Ggx, HeightCorrelated, Lambertian, Microfacet, ModifiedPhong, NoFresnel,
+    OrenNayar, Schlick, Separable,
 };
 use std::hint::black_box;
 
@@ -117,6 +129,88 @@ fn plugins(c: &mut Criterion) {
     );
 }
 
+/// Every scalar and batch path of one plugin, each writing its `n` results
+/// to a slice (group `rough/`); `one_wo` repeats the first `ωo`.
+fn bench_paths<B: Brdf>(c: &mut Criterion, name: &str, brdf: B, one_wo: bool)
+where
+    B::Spectrum: Default + Copy,
+{
+    let (wi, mut wo, u) = directions();
+    if one_wo {
+        wo = vec![wo[N / 3]; N];
+    }
+    let soa = |v: &[Vec3]| -> [Vec<f32>; 3] {
+        [
+            v.iter().map(|w| w.x).collect(),
+            v.iter().map(|w| w.y).collect(),
+            v.iter().map(|w| w.z).collect(),
+        ]
+    };
+    let (si, so) = (soa(&wi), soa(&wo));
+    let mut out = vec![B::Spectrum::default(); N];
+    let mut out_f = vec![0.0f32; N];
+    let mut out_s = vec![None; N];
+    let mut g = c.benchmark_group("rough");
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function(BenchmarkId::new("eval", name), |b| {
+        b.iter(|| {
+            for ((o, &a), &c) in out.iter_mut().zip(black_box(&wi)).zip(black_box(&wo)) {
+                *o = brdf.eval(a, c);
+            }
+        })
+    });
+    g.bench_function(BenchmarkId::new("eval_batch", name), |b| {
+        b.iter(|| brdf.eval_batch(black_box(&wi), black_box(&wo), &mut out))
+    });
+    g.bench_function(BenchmarkId::new("eval_batch_soa", name), |b| {
+        b.iter(|| {
+            let a = Vec3Soa::new(black_box(&si[0]), &si[1], &si[2]);
+            let c = Vec3Soa::new(black_box(&so[0]), &so[1], &so[2]);
+            brdf.eval_batch_soa(a, c, &mut out)
+        })
+    });
+    g.bench_function(BenchmarkId::new("pdf", name), |b| {
+        b.iter(|| {
+            for ((o, &a), &c) in out_f.iter_mut().zip(black_box(&wi)).zip(black_box(&wo)) {
+                *o = brdf.pdf(a, c);
+            }
+        })
+    });
+    g.bench_function(BenchmarkId::new("pdf_batch", name), |b| {
+        b.iter(|| brdf.pdf_batch(black_box(&wi), black_box(&wo), &mut out_f))
+    });
+    g.bench_function(BenchmarkId::new("sample", name), |b| {
+        b.iter(|| {
+            for ((o, &w), &v) in out_s.iter_mut().zip(black_box(&wo)).zip(black_box(&u)) {
+                *o = brdf.sample(w, v);
+            }
+        })
+    });
+    g.bench_function(BenchmarkId::new("sample_batch", name), |b| {
+        b.iter(|| brdf.sample_batch(black_box(&wo), black_box(&u), &mut out_s))
+    });
+    g.finish();
+}
+
+/// The rough diffuse plugins at mid roughness, every path.
+fn rough_diffuse(c: &mut Criterion) {
+    bench_paths(c, "eon-s0.5", Eon::new(0.8f32, 0.5).unwrap(), false);
+    bench_paths(c, "eon-s0.5-one-wo", Eon::new(0.8f32, 0.5).unwrap(), true);
+    bench_paths(
+        c,
+        "eon-rgb-s0.5",
+        Eon::new(Vec3::new(0.8, 0.5, 0.2), 0.5).unwrap(),
+        false,
+    );
+    bench_paths(c, "fon-s0.5", Fon::new(0.8f32, 0.5).unwrap(), false);
+    bench_paths(
+        c,
+        "oren-nayar-s0.5rad",
+        OrenNayar::new(0.8f32, 0.5).unwrap(),
+        false,
+    );
+}
+
 /// The unit-square point sets of the Monte Carlo integrators, 4096 points
 /// each: the crate's Owen-scrambled Sobol points (four dimensions per point,
 /// the `MonteCarlo` path; one dimension pair), PCG32 and the shifted
@@ -169,5 +263,5 @@ fn point_sets(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, plugins, point_sets);
+criterion_group!(benches, plugins, rough_diffuse, point_sets);
 criterion_main!(benches);

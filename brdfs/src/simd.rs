@@ -5,7 +5,7 @@
 //! This module holds the shared vector math ([`LANES`] directions in
 //! structure-of-arrays form, the chunk drivers for array-of-structures and
 //! structure-of-arrays input, bit-exact vector ports of `libm`'s `expf`,
-//! `log1pf`, `powf`, `logf` and `expm1f` and of the crate's own `sincos_turn`, `f32` ↔ `f64` lane conversions, spectrum
+//! `log1pf`, `powf`, `logf`, `expm1f` and `acosf` and of the crate's own `sincos_turn`, `f32` ↔ `f64` lane conversions, spectrum
 //! stores, the chunk driver of the sampling kernels); it imports nothing from
 //! the plugins. Each
 //! plugin's kernel lives next to its scalar code and follows its formula
@@ -26,6 +26,8 @@
 //! | `sample_batch` of [`ModifiedPhong<S>`](crate::ModifiedPhong) | one-sample mixture (Veach 1997, §9.2.4): Malley's cosine-weighted concentric map (Shirley & Chiu 1997) or `cos α = ξ^{1/(n+1)}`, `1 − cos α = −expm1(ln ξ/(n+1))` around `ωr` (Lafortune & Willems 1994), rotated by Duff et al. 2017; pdf and weight from one lobe evaluation | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | [`BlinnPhong<S>`](crate::BlinnPhong) | `kd/π + ks N(n) cos^n θh` (Blinn 1977) | `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` | 0 ulp |
 //! | `sample_batch` of [`BlinnPhong<S>`](crate::BlinnPhong) | the same mixture with the half vector `cos θh = ξ^{1/(n+1)}` reflected, `ωi = 2(ωo·h)h − ωo`, pdf `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` (the reflection Jacobian of Torrance & Sparrow 1967; Walter et al. 2007) | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
+//! | [`Eon<S>`](crate::Eon), [`Fon<S>`](crate::Fon), [`OrenNayar<S>`](crate::OrenNayar) | `(ρ/π) A (1 + σ s/t)` (Fujii 2012 in the form of Portsmouth, Kutz & Hill 2025; pbrt-v3's `A + B s/t` for the classic model); EON's lobe `k_ms (c₁ − G(μi)/π)⁺ (c₁ − G(μo)/π)⁺` with `G` from `acos` (Portsmouth, Kutz & Hill 2025, Listing 1, `E_FON_exact`); `ωo`'s factor computed once when every lane has the same `cos θo` | `(1 − p_u) cos θi/π + p_u/(2π)` | 0 ulp |
+//! | `sample_batch` of [`Eon<S>`](crate::Eon), [`Fon<S>`](crate::Fon), [`OrenNayar<S>`](crate::OrenNayar) | the cosine/uniform mixture: uniform hemisphere (`cos θ = u₀/p_u`) or Malley's cosine-weighted concentric map (Shirley & Chiu 1997; the Phong family's warp), pdf and `f_r cos θi/pdf` of the normalised `ωi` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //!
 //! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
 //!
@@ -37,7 +39,8 @@
 //! scalar `f32` / `libm::sqrtf`; no fused multiply–add, no reciprocal
 //! estimates. The transcendentals are bit-exact vector ports of the
 //! functions the scalar code calls — of `libm`: `expf` (FreeBSD `e_expf.c`), `log1pf`
-//! (`s_log1pf.c`), `powf` (`e_powf.c`), `logf` (`e_logf.c`) and `expm1f` (`s_expm1f.c`);
+//! (`s_log1pf.c`), `powf` (`e_powf.c`), `logf` (`e_logf.c`), `expm1f` (`s_expm1f.c`)
+//! and `acosf` (`e_acosf.c`; as musl has them all);
 //! of this project: [`radiometry::math::sincos_turn`] (the samplers' azimuths);
 //! with integer operations on the
 //! bits through `wide`'s integer vectors, checked against the scalar functions by this
@@ -57,7 +60,11 @@
 //! the same hard cases for each of a dozen `(kd, ks, n)` (`n` from 0 to
 //! 10⁷, `kd = 0`, `ks = 0`, both), RGB and 4-channel spectra, and proptest
 //! cases with random `(kd, ks, n)`; for Lambertian (`f32`, RGB, 4 channels)
-//! the same inputs.
+//! the same inputs; for EON, FON and the classic Oren–Nayar (`f32`, RGB, 4
+//! channels, `σ` from 0 to 1) 100 000 random `(ωo, u)` per roughness, the
+//! hard cases and proptest cases with random `σ`. EON's `G(μ)/π` (with the
+//! vector `acosf`) is also compared with the scalar function on every 7th
+//! `f32` of `[0, 1]` by its own unit test.
 //!
 //! # Special inputs
 //!
@@ -79,8 +86,12 @@
 //! and `ωi = −ωo` lanes stay in the kernel and give `0` exactly where `eval`
 //! does (masked selects replace the scalar early returns). The Lambertian and
 //! Phong-family kernels evaluate the scalar degenerate-input tests
-//! (finiteness; `try_normalize`'s `‖w‖² ∈ (0, ∞)`) lane-wise. A tail of
-//! `len % LANES` elements goes through the scalar `eval`/`pdf`.
+//! (finiteness; `try_normalize`'s `‖w‖² ∈ (0, ∞)`) lane-wise. The rough
+//! diffuse kernels normalise both directions lane-wise on the two hot
+//! branches of the scalar `unitize` (unit already, or `‖w‖² ∈ [10⁻³⁰,
+//! 10³⁰]`) and hand back the other lanes, in `eval`, `pdf` and `sample`
+//! alike. A tail of `len % LANES` elements goes through the scalar
+//! `eval`/`pdf`.
 //!
 //! # How the overrides reach only the supported types
 //!
@@ -163,6 +174,7 @@
 //! [`Brdf::pdf_batch`]: radiometry::Brdf::pdf_batch
 //! [`Brdf::sample_batch`]: radiometry::Brdf::sample_batch
 
+mod acosf;
 mod bits;
 mod expf;
 mod expm1f;
@@ -172,6 +184,7 @@ mod powf;
 mod sample;
 mod sincos;
 
+pub(crate) use acosf::acosf;
 use bits::{Vi, fmask, from_bits, int_to_float, to_bits};
 pub(crate) use expf::expf;
 pub(crate) use expm1f::expm1f;

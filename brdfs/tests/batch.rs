@@ -27,8 +27,8 @@ use radiometry::batch::Vec3Soa;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, SampledSpectrum, Spectrum};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet,
-    ModifiedPhong, NoFresnel, Schlick, Separable,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, Fon, Ggx, HeightCorrelated, Lambertian, Microfacet,
+    ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable,
 };
 use std::collections::BTreeMap;
 
@@ -276,9 +276,34 @@ fn compare_phong_family(n: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Res
     Ok(())
 }
 
+/// The rough diffuse family at roughness `sigma ∈ [0, 1]` (EON, FON; the
+/// classic Oren–Nayar at `σ = sigma · π/2` radians, with the largest `ρ` it
+/// allows): `f32`, RGB and 20 channels.
+fn compare_rough_diffuse(sigma: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
+    compare(&Eon::new(0.8f32, sigma).unwrap(), "eon", pairs, rep)?;
+    compare(&Eon::new(1.0f32, sigma).unwrap(), "eon-white", pairs, rep)?;
+    let rgb = Vec3::new(0.9, 0.2, 0.0);
+    compare(&Eon::new(rgb, sigma).unwrap(), "eon-rgb", pairs, rep)?;
+    compare(&Eon::new(s20(|t| t), sigma).unwrap(), "eon-s20", pairs, rep)?;
+    compare(&Fon::new(0.8f32, sigma).unwrap(), "fon", pairs, rep)?;
+    compare(&Fon::new(rgb, sigma).unwrap(), "fon-rgb", pairs, rep)?;
+    let sigma_rad = sigma * core::f32::consts::FRAC_PI_2;
+    let rho = OrenNayar::<f32>::max_rho(sigma_rad).min(1.0);
+    compare(&OrenNayar::new(rho, sigma_rad).unwrap(), "oren-nayar", pairs, rep)?;
+    compare(
+        &OrenNayar::new(Vec3::new(rho, 0.5 * rho, 0.0), sigma_rad).unwrap(),
+        "oren-nayar-rgb",
+        pairs,
+        rep,
+    )?;
+    Ok(())
+}
+
 fn compare_all(alpha: f32, n: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
     compare_microfacet(alpha, pairs, rep)?;
-    compare_phong_family(n, pairs, rep)
+    compare_phong_family(n, pairs, rep)?;
+    // The roughness range [10⁻⁴, 1] of α mapped onto σ ∈ [0, 1] (both ends).
+    compare_rough_diffuse(((alpha.log10() + 4.0) / 4.0).clamp(0.0, 1.0), pairs, rep)
 }
 
 /// Directions: mostly upper-hemisphere unit vectors (where the BRDFs are

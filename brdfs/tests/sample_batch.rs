@@ -2,7 +2,8 @@
 //! with the vector kernels of the `simd` feature (GGX and Beckmann, either
 //! shadowing–masking variant, every Fresnel term; modified Phong and
 //! Blinn–Phong for exponents from 0 to 10⁷ and diffuse/specular mixes
-//! including `kd = 0`, `ks = 0` and both; Lambertian) and with the default loop:
+//! including `kd = 0`, `ks = 0` and both; Lambertian; EON, FON and the classic
+//! Oren–Nayar for roughnesses from 0 to 1) and with the default loop:
 //!
 //! ```text
 //! cargo test -p radiometry-brdfs --test integration sample_batch:: -- --nocapture
@@ -25,8 +26,8 @@ use proptest::prelude::*;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample, SampledSpectrum, Spectrum};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet,
-    ModifiedPhong, NoFresnel, Schlick, Separable,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, Fon, Ggx, HeightCorrelated, Lambertian, Microfacet,
+    ModifiedPhong, NoFresnel, OrenNayar, Schlick, Separable,
 };
 
 const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
@@ -230,6 +231,41 @@ fn compare_phong(wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestCaseError> {
     Ok(some)
 }
 
+/// The roughnesses of the rough diffuse configurations (`σ` of EON and
+/// FON; the classic Oren–Nayar at `σ · π/2` radians).
+const ROUGH_SIGMAS: [f32; 5] = [0.0, 0.1, 0.5, 0.9, 1.0];
+
+/// EON (`f32`, white, RGB, 4 channels), FON and the classic Oren–Nayar
+/// (`f32`, RGB) at roughness `sigma`; returns the `Some` count of the
+/// `f32` EON.
+fn compare_rough(sigma: f32, wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestCaseError> {
+    let name = |m: &str| format!("{m} sigma={sigma}");
+    let some = compare(&Eon::new(0.8f32, sigma).unwrap(), &name("eon"), wo, u)?;
+    compare(&Eon::new(1.0f32, sigma).unwrap(), &name("eon-white"), wo, u)?;
+    let rgb = Vec3::new(0.9, 0.2, 0.0);
+    compare(&Eon::new(rgb, sigma).unwrap(), &name("eon-rgb"), wo, u)?;
+    let s4 = SampledSpectrum([0.0, 0.3, 0.6, 1.0]);
+    compare(&Eon::new(s4, sigma).unwrap(), &name("eon-s4"), wo, u)?;
+    compare(&Fon::new(0.8f32, sigma).unwrap(), &name("fon"), wo, u)?;
+    compare(&Fon::new(rgb, sigma).unwrap(), &name("fon-rgb"), wo, u)?;
+    let sigma_rad = sigma * core::f32::consts::FRAC_PI_2;
+    let rho = OrenNayar::<f32>::max_rho(sigma_rad);
+    compare(
+        &OrenNayar::new(rho, sigma_rad).unwrap(),
+        &name("oren-nayar"),
+        wo,
+        u,
+    )?;
+    let rgb = Vec3::new(rho, 0.5 * rho, 0.0);
+    compare(
+        &OrenNayar::new(rgb, sigma_rad).unwrap(),
+        &name("oren-nayar-rgb"),
+        wo,
+        u,
+    )?;
+    Ok(some)
+}
+
 fn hard_directions() -> Vec<Vec3> {
     vec![
         Vec3::ZERO,
@@ -343,6 +379,27 @@ fn phong_hard_cases_every_lane_and_tail() {
     }
 }
 
+/// The same for the rough diffuse family at each of [`ROUGH_SIGMAS`].
+#[test]
+fn rough_diffuse_hard_cases_every_lane_and_tail() {
+    let (dirs, us) = (hard_directions(), hard_us());
+    let mut all = Vec::new();
+    for &w in &dirs {
+        for &u in &us {
+            all.push((w, u));
+        }
+    }
+    for sigma in ROUGH_SIGMAS {
+        for len in 0..=35usize {
+            for start in (0..all.len()).step_by(37) {
+                let (wo, u): (Vec<Vec3>, Vec<[f32; 2]>) =
+                    (0..len).map(|j| all[(start + j) % all.len()]).unzip();
+                compare_rough(sigma, &wo, &u).unwrap();
+            }
+        }
+    }
+}
+
 /// 5,000 random `ωo` (drawn first), then 5,000 random `u` with a tenth of
 /// the coordinates at `0` or `1 − ε`: the inputs of one round of the sweeps.
 fn sweep_inputs(rng: &mut Rng) -> (Vec<Vec3>, Vec<[f32; 2]>) {
@@ -402,6 +459,36 @@ fn phong_sample_batch_sweep() {
     assert!(some > total / 3, "{some} of {total}");
 }
 
+/// 100 000 random `(wo, u)` for each rough diffuse configuration and
+/// roughness of [`ROUGH_SIGMAS`], as in [`sample_batch_sweep`]; counts the
+/// samples that took the uniform branch (`u₀ < p_u`).
+#[test]
+fn rough_diffuse_sample_batch_sweep() {
+    let mut rng = Rng(0x5EED_0009);
+    let (mut some, mut total, mut uniform) = (0, 0, 0);
+    for sigma in ROUGH_SIGMAS {
+        for _ in 0..20 {
+            let (wo, u) = sweep_inputs(&mut rng);
+            some += compare_rough(sigma, &wo, &u).unwrap();
+            total += wo.len();
+            uniform += wo
+                .iter()
+                .zip(&u)
+                .filter(|(w, u)| {
+                    let c = 1.0 - w.normalize_or_zero().z;
+                    w.z > 0.0 && u[0] < 0.5 * sigma * (c * c * c)
+                })
+                .count();
+        }
+    }
+    eprintln!(
+        "rough diffuse sample_batch vs sample: {total} EON samples ({uniform} uniform-branch), {some} Some, and as many for 7 more configurations; 0 ulp; simd feature: {}",
+        cfg!(feature = "simd")
+    );
+    assert!(some > total / 2, "{some} of {total}");
+    assert!(uniform > total / 100, "{uniform} of {total}");
+}
+
 fn direction() -> impl Strategy<Value = Vec3> {
     let unit = (0.0f32..1.0, 0.0f32..1.0).prop_map(|(u, v)| {
         let z = 1.0 - 2.0 * u;
@@ -455,5 +542,16 @@ proptest! {
         compare(&ModifiedPhong::new(kd, ks, n).unwrap(), "modified-phong", &wo, &u)?;
         compare(&BlinnPhong::new(kd, ks, n).unwrap(), "blinn-phong", &wo, &u)?;
         compare_phong(&wo[..wo.len().min(8)], &u[..wo.len().min(8)])?;
+    }
+
+    /// The rough diffuse family on the same inputs, with a random roughness.
+    #[test]
+    fn rough_diffuse_sample_batch_matches_sample(
+        wo in prop::collection::vec(direction(), 0..40),
+        u in prop::collection::vec((coordinate(), coordinate()), 40),
+        sigma in prop_oneof![8 => 0.0f32..1.0, 1 => prop::sample::select(vec![0.0f32, 1.0])],
+    ) {
+        let u: Vec<[f32; 2]> = u.iter().take(wo.len()).map(|&(a, b)| [a, b]).collect();
+        compare_rough(sigma, &wo, &u)?;
     }
 }

@@ -188,7 +188,7 @@ fn clamp_unit(x: Vf) -> Vf {
 
 /// `radiometry::math::clamp01`: `x > 0 ? min(x, 1) : 0` (NaN → 0).
 #[inline(always)]
-fn clamp01(x: Vf) -> Vf {
+pub(crate) fn clamp01(x: Vf) -> Vf {
     x.simd_gt(Vf::ZERO).select(x.min(Vf::ONE), Vf::ZERO)
 }
 

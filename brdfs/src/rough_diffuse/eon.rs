@@ -170,6 +170,28 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
     fn albedo_error(&self) -> f32 {
         2e-6 * self.rho.max_channel()
     }
+
+    /// `(max(1 + σ s/t, 0), (c₁ − G(μi)/π)⁺ (c₁ − G(μo)/π)⁺)`.
+    #[cfg(feature = "simd")]
+    type Lanes = (crate::simd::Vf, crate::simd::Vf);
+
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn unit_lanes(&self, wi: crate::simd::Dirs, wo: crate::simd::Dirs) -> Self::Lanes {
+        use super::batch::{fon_deficit, max0, s_over_t};
+        use crate::simd::Vf;
+        let (pos, s, q) = s_over_t(wi, wo);
+        let s_over_t = pos.select(q, s);
+        let ms = fon_deficit(wi.z) * fon_deficit(wo.z);
+        (max0(Vf::ONE + Vf::splat(self.sigma) * s_over_t), ms)
+    }
+
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn channel_lanes(&self, c: usize, t: &Self::Lanes) -> crate::simd::Vf {
+        use crate::simd::Vf;
+        Vf::splat(self.k_ss.channel(c)) * t.0 + Vf::splat(self.k_ms.channel(c)) * t.1
+    }
 }
 
 impl<S: Spectrum> Brdf for Eon<S> {
@@ -208,6 +230,8 @@ impl<S: Spectrum> Brdf for Eon<S> {
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         super::pdf(self, wi, wo)
     }
+
+    rough_batch_methods!();
 }
 
 impl<S: Spectrum> IsotropicBrdf for Eon<S> {}

@@ -139,6 +139,25 @@ impl<S: Spectrum> RoughLobe for Fon<S> {
     fn albedo_error(&self) -> f32 {
         2e-6 * self.rho.max_channel()
     }
+
+    /// `max(1 + σ s/t, 0)`.
+    #[cfg(feature = "simd")]
+    type Lanes = crate::simd::Vf;
+
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn unit_lanes(&self, wi: crate::simd::Dirs, wo: crate::simd::Dirs) -> crate::simd::Vf {
+        use crate::simd::Vf;
+        let (pos, s, q) = super::batch::s_over_t(wi, wo);
+        let s_over_t = pos.select(q, s);
+        super::batch::max0(Vf::ONE + Vf::splat(self.sigma) * s_over_t)
+    }
+
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn channel_lanes(&self, c: usize, x: &crate::simd::Vf) -> crate::simd::Vf {
+        crate::simd::Vf::splat(self.k.channel(c)) * *x
+    }
 }
 
 impl<S: Spectrum> Brdf for Fon<S> {
@@ -176,6 +195,8 @@ impl<S: Spectrum> Brdf for Fon<S> {
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         super::pdf(self, wi, wo)
     }
+
+    rough_batch_methods!();
 }
 
 impl<S: Spectrum> IsotropicBrdf for Fon<S> {}

@@ -49,6 +49,11 @@
 //!   a linear `p_u` cost up to 16 % there). The paper's clipped-LTC sampler
 //!   fits the lobe shape more closely but needs a fitted table; the mixture
 //!   needs none, and its χ² tests pass (`tests/sampling.rs`).
+//! * **Batches**: with the `simd` feature, vector kernels behind
+//!   `eval_batch`, `eval_batch_soa`, `pdf_batch` and `sample_batch` of all
+//!   three plugins return exactly the bits of `eval`, `pdf` and `sample`
+//!   (EON's `G(μ)/π` with a bit-exact vector port of `libm`'s `acosf`; see
+//!   the `simd` module).
 //! * **Robustness**: one squared-length test per direction, a `#[cold]`
 //!   robust normalisation otherwise; `t` is bounded below by the smallest
 //!   normal `f32` (`f32::MIN_POSITIVE`), so `s/t` — which grows as
@@ -80,6 +85,54 @@
 //! # Ok::<(), radiometry_brdfs::BrdfError>(())
 //! ```
 
+/// The batch methods of a rough diffuse plugin: with the `simd` feature,
+/// the vector kernels of [`batch`] (lane for lane equal to the scalar
+/// methods, bit for bit); without it, the trait's scalar loops.
+macro_rules! rough_batch_methods {
+    () => {
+        /// With the `simd` feature a vector kernel ([`crate::simd`]);
+        /// results equal [`Brdf::eval`] bit for bit.
+        #[cfg(feature = "simd")]
+        #[inline]
+        fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+            crate::simd::Batch::Aos(wi, wo, out).run(&super::batch::Eval(self))
+        }
+
+        /// With the `simd` feature the kernel of
+        /// [`eval_batch`](Brdf::eval_batch) on plain vector loads; results
+        /// equal [`Brdf::eval`] bit for bit.
+        #[cfg(feature = "simd")]
+        #[inline]
+        fn eval_batch_soa(
+            &self,
+            wi: radiometry::batch::Vec3Soa<'_>,
+            wo: radiometry::batch::Vec3Soa<'_>,
+            out: &mut [S],
+        ) {
+            crate::simd::Batch::Soa(wi, wo, out).run(&super::batch::Eval(self))
+        }
+
+        /// With the `simd` feature a vector kernel for the mixture density;
+        /// results equal [`Brdf::pdf`] bit for bit.
+        #[cfg(feature = "simd")]
+        #[inline]
+        fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+            crate::simd::Batch::Aos(wi, wo, out).run(&super::batch::Pdf(self))
+        }
+
+        /// With the `simd` feature a vector kernel for the cosine/uniform
+        /// mixture sampler; results (`None`s included) equal
+        /// [`Brdf::sample`] bit for bit.
+        #[cfg(feature = "simd")]
+        #[inline]
+        fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+            crate::simd::run_samples(&super::batch::Sample(self), wo, u, out)
+        }
+    };
+}
+
+#[cfg(feature = "simd")]
+pub(crate) mod batch;
 pub mod eon;
 pub mod fon;
 pub mod oren_nayar;
@@ -208,6 +261,19 @@ pub(crate) trait RoughLobe {
     fn albedo_at(&self, mu_o: f32) -> Self::S;
     /// The stated error of [`RoughLobe::albedo_at`] (absolute, a bound).
     fn albedo_error(&self) -> f32;
+    /// What [`RoughLobe::eval_unit`] shares between channels, for
+    /// [`LANES`](crate::simd::LANES) pairs.
+    #[cfg(feature = "simd")]
+    type Lanes;
+    /// [`RoughLobe::eval_unit`]'s channel-independent part, lane-wise, for
+    /// unit directions (the lanes with a cosine `≤ 0` are masked by the
+    /// caller).
+    #[cfg(feature = "simd")]
+    fn unit_lanes(&self, wi: crate::simd::Dirs, wo: crate::simd::Dirs) -> Self::Lanes;
+    /// Channel `c` of [`RoughLobe::eval_unit`] from
+    /// [`unit_lanes`](RoughLobe::unit_lanes), bit for bit.
+    #[cfg(feature = "simd")]
+    fn channel_lanes(&self, c: usize, t: &Self::Lanes) -> crate::simd::Vf;
 }
 
 /// `f_r(wi, wo)`: zero unless both (normalised) directions are above the

@@ -198,6 +198,25 @@ impl<S: Spectrum> RoughLobe for OrenNayar<S> {
     fn albedo_error(&self) -> f32 {
         2e-6 * self.rho.max_channel()
     }
+
+    /// `(s > 0, s/t)`.
+    #[cfg(feature = "simd")]
+    type Lanes = (crate::simd::Vf, crate::simd::Vf);
+
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn unit_lanes(&self, wi: crate::simd::Dirs, wo: crate::simd::Dirs) -> Self::Lanes {
+        let (pos, _, q) = super::batch::s_over_t(wi, wo);
+        (pos, q)
+    }
+
+    #[cfg(feature = "simd")]
+    #[inline(always)]
+    fn channel_lanes(&self, c: usize, t: &Self::Lanes) -> crate::simd::Vf {
+        use crate::simd::Vf;
+        let k_a = Vf::splat(self.k_a.channel(c));
+        t.0.select(k_a + Vf::splat(self.k_b.channel(c)) * t.1, k_a)
+    }
 }
 
 impl<S: Spectrum> Brdf for OrenNayar<S> {
@@ -236,6 +255,8 @@ impl<S: Spectrum> Brdf for OrenNayar<S> {
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         super::pdf(self, wi, wo)
     }
+
+    rough_batch_methods!();
 }
 
 impl<S: Spectrum> IsotropicBrdf for OrenNayar<S> {}

@@ -1,5 +1,5 @@
 //! Bit-level helpers of the vector `libm` ports (`expf`, `log1pf`, `powf`,
-//! `expm1f`, `logf`, `sincos_turn`): the integer vectors of the width of
+//! `expm1f`, `logf`, `acosf`, `sincos_turn`): the integer vectors of the width of
 //! [`Vf`], conversions between lanes and their bits, and `scalbnf`.
 
 use super::Vf;
