@@ -1,7 +1,7 @@
 //! Prints, for every BRDF plugin, a few values of `f_r` and the directional
 //! albedo `ρ(θo)` at several viewing angles.
 //!
-//! `cargo run --release --example plugin_values`
+//! `cargo run --release --features examples --example plugin_values`
 
 use radiometry::frame::spherical_direction;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};

@@ -8,7 +8,7 @@
 //! in golden-ratio order and in random order. Best of 40 rounds.
 //!
 //! ```sh
-//! RUSTFLAGS="-C target-cpu=native" cargo run --release -p radiometry-brdfs --features simd --example ggx_guarantee_cost
+//! RUSTFLAGS="-C target-cpu=native" cargo run --release -p radiometry-brdfs --features simd,examples --example ggx_guarantee_cost
 //! ```
 
 use radiometry::Brdf;

@@ -5,7 +5,7 @@
 //! the compensated BRDF never reflects more than it receives: this is the evidence behind
 //! `LOSS_MARGIN`. Prints the largest and smallest excess per variant.
 //!
-//! Run: `cargo run --release -p radiometry-brdfs --example kulla_conty_excess` (≈ 2 min per variant).
+//! Run: `cargo run --release -p radiometry-brdfs --features examples --example kulla_conty_excess` (≈ 2 min per variant).
 use radiometry::glam::Vec3;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
 use radiometry_brdfs::microfacet::*;
