@@ -1,4 +1,5 @@
-//! Every plugin: any finite parameters (invalid ones must be rejected at
+//! Every plugin (the rough diffuse lobes, sheen, a coated plastic and OpenPBR
+//! included): any finite parameters (invalid ones must be rejected at
 //! construction), any finite directions and samples: eval / pdf / sample are
 //! finite and non-negative, and never panic; `sample_batch` equals `sample`
 //! bit for bit.
@@ -72,7 +73,7 @@ fuzz_target!(|data: &[u8]| {
     let mut f = Floats(data);
     let which = f.byte();
     let (a, b, c) = (f.f32(), f.f32(), f.f32());
-    match which % 13 {
+    match which % 19 {
         0 => {
             if let Ok(x) = Lambertian::new(a) {
                 check(&x, &mut f)
@@ -126,6 +127,54 @@ fuzz_target!(|data: &[u8]| {
         10 => {
             if let (Ok(d), Ok(fr)) = (Beckmann::new(a), Schlick::new(b)) {
                 check(&KullaConty::<_, Separable, _>::new(d, fr), &mut f)
+            }
+        }
+        13 => {
+            if let Ok(x) = Eon::new(a, b) {
+                check(&x, &mut f)
+            }
+        }
+        14 => {
+            if let Ok(x) = Fon::new(a, b) {
+                check(&x, &mut f)
+            }
+        }
+        15 => {
+            if let Ok(x) = OrenNayar::new(a, b) {
+                check(&x, &mut f)
+            }
+        }
+        16 => {
+            if let Ok(x) = Sheen::new(a, b) {
+                check(&x, &mut f)
+            }
+        }
+        17 => {
+            // A plastic: a GGX dielectric coat over EON (radiometry::compose::Coated).
+            if let (Ok(d), Ok(fr), Ok(base)) = (Ggx::new(a), Dielectric::new(b), Eon::new(c, f.unit())) {
+                let coat = Microfacet::<_, HeightCorrelated, _>::new(d, fr);
+                check(&radiometry::compose::Coated::new(coat, base), &mut f)
+            }
+        }
+        18 => {
+            // OpenPBR with fuzzed parameters (invalid ones rejected by the constructor).
+            let p = OpenPbrParams::<f32> {
+                base_color: a,
+                base_metalness: f.unit(),
+                base_diffuse_roughness: f.unit(),
+                specular_roughness: b,
+                specular_ior: c,
+                specular_color: f.unit(),
+                coat_weight: f.unit(),
+                coat_roughness: f.unit(),
+                coat_color: f.unit(),
+                coat_ior: 1.0 + 2.0 * f.unit(),
+                fuzz_weight: f.unit(),
+                fuzz_roughness: f.unit(),
+                ..OpenPbrParams::default()
+            };
+            if let Ok(x) = OpenPbr::new(p) {
+                check(&x, &mut f)
             }
         }
         12 => {
