@@ -39,6 +39,21 @@ pub fn clamp01(u: f32) -> f32 {
     if u > 0.0 { u.min(1.0) } else { 0.0 }
 }
 
+/// `x.clamp(lo, hi)` without its `lo ≤ hi` assertion: the same two comparisons, so the same result
+/// (NaN stays NaN, a signed zero is kept) whenever `lo ≤ hi`, and no panic path when the bounds are
+/// run-time values. For `lo > hi` it returns `hi` or `x` (never panics).
+#[inline]
+pub(crate) fn clamp_to(x: f32, lo: f32, hi: f32) -> f32 {
+    let mut x = x;
+    if x < lo {
+        x = lo;
+    }
+    if x > hi {
+        x = hi;
+    }
+    x
+}
+
 /// `x²`.
 #[inline]
 pub(crate) fn sqr(x: f32) -> f32 {

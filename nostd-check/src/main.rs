@@ -87,8 +87,27 @@ fn run() -> i32 {
     if let Some(g) = cap_integrand() {
         acc += each_integrator(&g, budget);
     }
+    // The light / BRDF / MIS integrand of a cap (the strategy is a run-time value).
+    for s in [CapStrategy::Light, CapStrategy::Brdf, CapStrategy::Mis] {
+        if let Some(g) = cap_sampled(black_box(s)) {
+            acc += each_integrator(&g, budget);
+        }
+    }
+    // The full-hemisphere reflection integrand of an environment light.
+    let env = Environment::new(|w: Vec3| 1.0 + black_box(0.5) * w.z);
+    if let Ok(d) = Ggx::new(black_box(0.3)) {
+        let g = EnvironmentIntegrand {
+            brdf: Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel),
+            wo: black_box(Vec3::new(0.3, 0.1, 0.9)),
+            light: &env,
+        };
+        acc += each_integrator(&g, budget);
+    }
     acc += lights(budget);
+    acc += light_sums(budget);
     acc += sensors();
+    acc += colour();
+    acc += calibration();
     acc += spectral();
     if acc.is_finite() { 0 } else { 1 }
 }
@@ -214,6 +233,7 @@ use radiometry::integrator::{
     Adaptive, Auto, DirectionalAlbedo, GaussLegendre, Heuristic, MonteCarlo, PointSet, Strategy,
     WarpedGaussLegendre, integrate_to_tolerance,
 };
+use radiometry::light::{Cap, CapSampled, CapStrategy, Environment, EnvironmentIntegrand};
 use radiometry::spectrum::WideSpectrum;
 use radiometry::{Estimate, Integrand, IntegrateError, Integrator};
 use radiometry_brdfs::{Ggx, HeightCorrelated, Microfacet, NoFresnel};
@@ -229,9 +249,22 @@ fn albedo() -> Option<DirectionalAlbedo<Ggx02>> {
     })
 }
 
+/// The cap light's integrand with a sampling strategy, under a GGX lobe.
+fn cap_sampled(strategy: CapStrategy) -> Option<CapSampled<Ggx02>> {
+    let d = Ggx::new(black_box(0.2)).ok()?;
+    let cap = Cap::new(black_box(Vec3::new(0.4, 0.0, 1.0)), black_box(0.05), 1.0f32).ok()?;
+    let g = CapSampled::new(
+        Microfacet::new(d, NoFresnel),
+        black_box(Vec3::new(-0.4, 0.0, 1.0).normalize()),
+        &cap,
+        strategy,
+    );
+    (g.strategy() == strategy).then_some(g)
+}
+
 /// A small cap light through a sharp GGX lobe.
 fn cap_integrand() -> Option<radiometry::light::CapIntegrand<Ggx02>> {
-    use radiometry::light::{Cap, CapIntegrand};
+    use radiometry::light::CapIntegrand;
     let d = Ggx::new(black_box(0.05)).ok()?;
     let cap = Cap::new(black_box(Vec3::new(1.0, 0.0, 0.02)), black_box(0.01), 1.0f32).ok()?;
     let b = Microfacet::new(d, NoFresnel);
@@ -388,13 +421,56 @@ fn lights(budget: u32) -> f32 {
     acc
 }
 
+/// Sums of lights as arrays, slices and `dyn` arrays, an environment light, and the cap's other
+/// constructor and accessors.
+#[inline(never)]
+fn light_sums(budget: u32) -> f32 {
+    use radiometry::light::{self, Directional, Light, LightIntegrals, UniformSky};
+    let mut acc = 0.0;
+    let gl = GaussLegendre::new();
+    let (Ok(a), Ok(b), Ok(sky), Ok(lamp), Ok(d)) = (
+        Cap::new(black_box(Vec3::new(0.3, 0.0, 1.0)), black_box(0.1), 5.0f32),
+        Cap::from_normal_irradiance(black_box(Vec3::new(-0.5, 0.2, 1.0)), black_box(0.2), 3.0f32),
+        UniformSky::new(black_box(2.0f32)),
+        Directional::new(black_box(Vec3::new(0.0, 0.6, 0.8)), black_box(10.0f32)),
+        Ggx::new(black_box(0.3)),
+    ) else {
+        return acc;
+    };
+    acc += b.axis().x + b.half_angle() + b.cap_radiance() + b.radiance(black_box(Vec3::Z));
+    acc += a.has_delta() as u8 as f32 + lamp.has_delta() as u8 as f32;
+    acc += sky.sky_radiance() + lamp.direction().y + lamp.normal_irradiance();
+    let brdf = Microfacet::<_, HeightCorrelated, _>::new(d, NoFresnel);
+    let wo = black_box(Vec3::new(0.3, 0.1, 0.9));
+    // An array and a slice of caps.
+    let caps = [a, b];
+    acc += caps.closed_form_irradiance().unwrap_or(0.0) + caps.radiance(black_box(Vec3::Z));
+    acc += value(light::irradiance(&caps, &gl, budget));
+    acc += value(light::reflected_radiance(&brdf, &caps, wo, &gl, budget));
+    let slice: &[Cap<f32>] = black_box(&caps[..]);
+    acc += value(slice.irradiance_estimate(&gl, budget));
+    acc += value(slice.reflected_radiance(&brdf, wo, &Auto::new(), budget));
+    // Lights chosen at run time, behind `&dyn Light`, with an environment.
+    let env = Environment::new(|w: Vec3| 1.0 + black_box(0.5) * w.z);
+    acc += env.radiance(black_box(Vec3::new(0.0, 0.0, 2.0))) + env.function()(Vec3::Z);
+    let mixed: [&dyn Light<Spectrum = f32>; 4] = [&sky, &lamp, &a, &env];
+    acc += value(mixed.irradiance_estimate(&gl, budget));
+    acc += value(mixed.reflected_radiance(&brdf, wo, &gl, budget));
+    acc += value(light::irradiance(&env, &Auto::new(), budget));
+    acc += value(light::reflected_radiance(&brdf, &env, wo, &Auto::new(), budget));
+    acc
+}
+
 /// The sensor models: ALS, response curves, noise, the EMVA 1288 camera, colour filter arrays.
 #[inline(never)]
 fn sensors() -> f32 {
     use radiometry::sensor::als::{self, AlsCalibration};
     use radiometry::sensor::color::{self, BayerPattern};
-    use radiometry::sensor::response::{Gamma, Response, Srgb, TabulatedResponse};
-    use radiometry::sensor::{Emva1288, FillFactor, Pcg32, Pixel, Sampling, UniformSpectral, noise};
+    use radiometry::sensor::response::{Gamma, Linear, Response, Srgb, TabulatedResponse};
+    use radiometry::sensor::{
+        Emva1288, FillFactor, FnAperture, FnField, Full, Monochromatic, Pcg32, Pixel, Sampling, Sensor,
+        UniformSpectral, noise,
+    };
     use radiometry::spectral::{self, FnCurve, Scaled};
     let mut acc = 0.0;
     if let Ok(cal) = AlsCalibration::from_reference(
@@ -410,6 +486,7 @@ fn sensors() -> f32 {
             .lux(black_box(3016), black_box(4.0), black_box(0.025))
             .unwrap_or(0.0);
         acc += cal.dark_counts() + cal.lux_per_count_s() + cal.max_count() as f32;
+        acc += cal.spectral_correction();
     }
     if let Ok(cal) = AlsCalibration::new(
         black_box(16.0),
@@ -427,7 +504,7 @@ fn sensors() -> f32 {
     acc += als::source_lux(&Scaled::new(spectral::d65(), black_box(0.01)));
     // Response curves.
     let x = black_box(0.3);
-    acc += Srgb.apply(x) + Srgb.inverse(x);
+    acc += Srgb.apply(x) + Srgb.inverse(x) + Linear.apply(x) + Linear.inverse(x);
     if let Ok(g) = Gamma::new(black_box(2.2)) {
         acc += g.apply(x) + g.inverse(x);
     }
@@ -437,6 +514,8 @@ fn sensors() -> f32 {
     }
     // Noise.
     let mut rng = Pcg32::new(black_box(1));
+    let mut stream = Pcg32::with_stream(black_box(3), black_box(5));
+    acc += stream.next_u32() as f32 + stream.next_f32() + stream.next_f64() as f32;
     acc += noise::uniform(&mut rng) + noise::standard_normal(&mut rng);
     acc += noise::poisson(&mut rng, black_box(3.0)) + noise::poisson(&mut rng, black_box(300.0));
     // The EMVA 1288 camera.
@@ -462,6 +541,39 @@ fn sensors() -> f32 {
         }
         acc += radiometry::sensor::Aperture::mean(&black_box(ff), 1);
     }
+    // A camera with a non-uniform aperture, fixed-pattern noise and a dark offset, reading fields
+    // that vary in space, time and wavelength (small sample counts: the hosted build also runs).
+    let sampling = Sampling {
+        space: black_box(3),
+        time: black_box(2),
+        wavelength_step_nm: black_box(10.0),
+    };
+    let corner = FnAperture(|x: f32, y: f32| if x < 0.5 && y < black_box(0.7) { 1.0 } else { 0.2 });
+    acc += radiometry::sensor::Aperture::mean(&corner, black_box(4));
+    if let Ok(px) = Pixel::new(
+        corner,
+        FnCurve::new(380.0, 780.0, |l| 0.6 - 1e-4 * (l - 550.0)),
+        black_box(16e-12),
+        black_box(1e-3),
+        sampling,
+    ) {
+        let px = px.with_exposure(black_box(2e-3)).unwrap_or(px);
+        acc += px.exposure();
+        let mono = Monochromatic::new(black_box(532.0), black_box(0.1));
+        let moving = FnField::new(400.0, 700.0, |x, y, _l, t| black_box(1e-3) * (1.0 + x - y + t));
+        acc += px.mean_electrons(&mono).unwrap_or(0.0);
+        acc += px.mean_electrons(&Full::new(mono, black_box(0.5))).unwrap_or(0.0);
+        acc += px.mean_electrons(&moving).unwrap_or(0.0);
+        if let Ok(cam) = Emva1288::ideal(px, black_box(0.5), black_box(8_000.0), black_box(10))
+            .and_then(|c| c.with_dark_offset(black_box(20.0)))
+            .and_then(|c| c.with_fixed_pattern(black_box(1.5), black_box(0.01), 7))
+        {
+            acc += cam.gain() + cam.saturation() + cam.max_dn() + cam.mean_dn(black_box(1e3));
+            acc += cam.digitize(black_box(500.0), black_box(9), &mut rng);
+            acc += cam.read(&mono, &mut rng).unwrap_or(0.0);
+            acc += cam.read_pixel(&moving, black_box(4), &mut rng).unwrap_or(0.0);
+        }
+    }
     // Colour filter arrays.
     let rgb = black_box([[0.2f32, 0.5, 0.7]; 16]);
     let mut raw = [0.0f32; 16];
@@ -475,18 +587,106 @@ fn sensors() -> f32 {
     acc
 }
 
+/// The colour architectures: the slanted-edge chart, Bayer mosaic and Malvar demosaicing, the
+/// false-colour energy, the dichroic prism, the filter wheel and stacked layers.
+#[inline(never)]
+fn colour() -> f32 {
+    use radiometry::sensor::color::*;
+    use radiometry::spectral::{self, FnCurve, Scaled, SpectralCurve};
+    let mut acc = 0.0;
+    let (w, h) = (black_box(4), black_box(4));
+    let mut img = [[0.0f32; 3]; 16];
+    let mut raw = [0.0f32; 16];
+    let mut out = [[0.0f32; 3]; 16];
+    let pattern = BayerPattern::ALL[black_box(1usize) % BayerPattern::ALL.len()];
+    if slanted_edge(w, h, black_box(0.2), black_box(1.5), &mut img).is_ok()
+        && mosaic(&img, w, h, pattern, &mut raw).is_ok()
+        && demosaic_malvar(&raw, w, h, pattern, &mut out).is_ok()
+    {
+        acc += false_colour_energy(&out) + out[5][1];
+    }
+    let light = Scaled::new(spectral::d65(), black_box(1e-3));
+    let qe = FnCurve::new(400.0, 700.0, |_| black_box(0.6));
+    if let Ok(p) = DichroicPrism::new(black_box(490.0), black_box(590.0), black_box(5.0)) {
+        let s = p.split(&light, &qe);
+        acc += s[0] + s[1] + s[2] + p.transmittances(black_box(520.0))[1];
+    }
+    if let Ok(wheel) = FilterWheel::new(black_box(3), black_box(0.01), black_box(4)) {
+        let mut frames = [0.0f32; 3 * 16];
+        if wheel
+            .capture(|x, y, t, k| x - y + 10.0 * t + k as f32, w, h, &mut frames)
+            .is_ok()
+        {
+            acc += frames[20] + wheel.slot_start(black_box(2));
+        }
+    }
+    let l = black_box(550.0);
+    acc += silicon_absorption().value(l);
+    let f = StackedLayers::foveon();
+    acc += f.fractions(l)[1] + f.transmitted(l) + f.respond(&light)[2];
+    if let Ok(s) = StackedLayers::new(black_box([0.3f32, 0.9, 2.5, 5.0])) {
+        acc += s.fractions(l)[3] + s.transmitted(l) + s.respond(&light)[0];
+    }
+    acc
+}
+
+/// The radiometric calibration fits (Mitsunaga–Nayar, Debevec–Malik), the linear solver and the
+/// fitted responses.
+#[inline(never)]
+fn calibration() -> f32 {
+    use radiometry::sensor::calibration::*;
+    use radiometry::sensor::response::{Gamma, Response};
+    let mut acc = 0.0;
+    // Six pixels at three exposures through a γ = 2.2 response.
+    let exposures = black_box([0.1f32, 0.3, 1.0]);
+    let mut readings = [0.0f32; 6 * 3];
+    let mut levels = [0u16; 6 * 3];
+    if let Ok(r) = Gamma::new(black_box(2.2)) {
+        for (p, (px, lv)) in readings
+            .chunks_exact_mut(3)
+            .zip(levels.chunks_exact_mut(3))
+            .enumerate()
+        {
+            let e = 0.1 + 0.17 * p as f32;
+            for ((m, z), &t) in px.iter_mut().zip(lv.iter_mut()).zip(&exposures) {
+                *m = r.apply(e * t);
+                *z = (*m * 7.0 + 0.5) as u16;
+            }
+        }
+    }
+    let (readings, levels) = (black_box(readings), black_box(levels));
+    if let Ok(g) = mitsunaga_nayar::<4>(&readings, &exposures, black_box(0.02), black_box(0.98)) {
+        let x = black_box(0.4);
+        acc += g.apply(x) + g.inverse(x) + g.eval(black_box(0.01)) + g.m_lo() + g.coeffs()[1];
+    }
+    if let Ok(g) = PolynomialInverseResponse::new(black_box([0.0f32, 0.6, 0.4]), black_box(0.0)) {
+        acc += g.apply(black_box(0.5)) + g.inverse(black_box(0.5));
+    }
+    if let Ok(g) = debevec_malik::<8, 16>(&levels, &exposures, black_box(2.0)) {
+        let x = black_box(0.4);
+        acc += g.apply(x) + g.inverse(x) + g.exposures()[3];
+    }
+    let mut a = black_box([[4.0f64, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 2.0]]);
+    let mut b = black_box([1.0f64, 2.0, 3.0]);
+    if let Ok(x) = solve::<3>(&mut a, &mut b, black_box(3)) {
+        acc += x[0] as f32;
+    }
+    acc
+}
+
 /// Spectral curves, photometry and colorimetry.
 #[inline(never)]
 fn spectral() -> f32 {
     use radiometry::spectral::photometry::*;
-    use radiometry::spectral::{self, Blackbody, Irregular, SpectralCurve, Tabulated};
+    use radiometry::spectral::{self, Blackbody, FnCurve, Irregular, Scaled, SpectralCurve, Tabulated};
     let mut acc = 0.0;
     let l = black_box(555.5);
     acc += spectral::x_bar().value(l) + spectral::y_bar().value(l) + spectral::z_bar().value(l);
     acc += spectral::d65().try_value(l).unwrap_or(0.0) + spectral::IlluminantA.value(l);
     let v = black_box([0.1f32, 0.5, 0.9, 0.4]);
     if let Ok(t) = Tabulated::new(black_box(400.0), black_box(100.0), &v) {
-        acc += t.value(l) + t.end();
+        acc += t.value(l) + t.end() + t.start() + t.step() + t.values().len() as f32;
+        acc += t.try_value(black_box(1000.0)).unwrap_or(0.0);
     }
     let lambdas = black_box([400.0f32, 450.0, 600.0, 700.0]);
     if let Ok(t) = Irregular::new(&lambdas, &v) {
@@ -500,5 +700,10 @@ fn spectral() -> f32 {
     }
     acc += illuminance_monochromatic(l, black_box(1.0));
     acc += spectral::integrate_product(&spectral::d65(), &spectral::photopic_v(), black_box(5.0));
+    let curve = FnCurve::new(black_box(400.0), black_box(700.0), |x| 1e-3 * x);
+    acc += curve.value(l) + Scaled::new(curve, black_box(2.0)).support().1;
+    acc += spectral::integrate_fn(black_box(380.0), black_box(780.0), black_box(2.0), |x| {
+        spectral::IlluminantA.value(x) * 1e-2
+    });
     acc
 }

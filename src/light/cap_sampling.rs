@@ -134,26 +134,31 @@ impl<B: Brdf> CapSampled<B> {
 
     /// `out[k] = unmasked(w)` where `dirs[k]` is `Some(w)`, zero elsewhere:
     /// one [`Brdf::eval_batch`] over the directions above the horizon, then
-    /// `f_r · L · cos θ` in the order of `unmasked`.
+    /// `f_r · L · cos θ` in the order of `unmasked`. (Buffers through
+    /// iterators and `get`: no panic path.)
     fn unmasked_where(&self, dirs: &[Option<Vec3>], out: &mut [B::Spectrum]) {
         let wos = [self.wo; CHUNK];
         let mut dense = [Vec3::ZERO; CHUNK];
         let mut index = [0usize; CHUNK];
         let mut vals = [B::Spectrum::zero(); CHUNK];
-        let n = dirs.len().min(out.len()).min(CHUNK);
         let mut m = 0;
-        for k in 0..n {
-            out[k] = B::Spectrum::zero();
-            if let Some(w) = dirs[k].filter(|w| w.z > 0.0) {
-                dense[m] = w;
-                index[m] = k;
+        for (k, (o, d)) in out.iter_mut().zip(dirs).take(CHUNK).enumerate() {
+            *o = B::Spectrum::zero();
+            if let Some(w) = d.filter(|w| w.z > 0.0)
+                && let (Some(dw), Some(ix)) = (dense.get_mut(m), index.get_mut(m))
+            {
+                (*dw, *ix) = (w, k);
                 m += 1;
             }
         }
-        self.brdf.eval_batch(&dense[..m], &wos[..m], &mut vals[..m]);
+        if let (Some(d), Some(wv), Some(v)) = (dense.get(..m), wos.get(..m), vals.get_mut(..m)) {
+            self.brdf.eval_batch(d, wv, v);
+        }
         let l = self.cap.cap_radiance();
-        for j in 0..m {
-            out[index[j]] = vals[j] * l * dense[j].z;
+        for ((&k, w), &v) in index.iter().zip(&dense).zip(&vals).take(m) {
+            if let Some(o) = out.get_mut(k) {
+                *o = v * l * w.z;
+            }
         }
     }
 
@@ -239,10 +244,12 @@ impl<B: Brdf> Integrand for CapSampled<B> {
         let mut dirs = [None; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = w.len().min(out.len());
-            for (d, &w) in dirs[..n].iter_mut().zip(w) {
+            for (d, &w) in dirs.iter_mut().zip(w) {
                 *d = self.cap.contains(w).then_some(w);
             }
-            self.unmasked_where(&dirs[..n], &mut out[..n]);
+            if let (Some(d), Some(o)) = (dirs.get(..n), out.get_mut(..n)) {
+                self.unmasked_where(d, o);
+            }
         }
     }
 
@@ -252,27 +259,30 @@ impl<B: Brdf> Integrand for CapSampled<B> {
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
         crate::batch::zero_tail(out, u.len());
         let wos = [self.wo; CHUNK];
+        // Per chunk of `n ≤ CHUNK` points; the buffers are read and written through
+        // iterators and `get` (no panic path).
         for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = u.len().min(out.len());
-            let (u, out) = (&u[..n], &mut out[..n]);
             // 1. Directions and densities, as `sample` draws them.
             let mut dirs = [None; CHUNK];
             let mut pdfs = [0.0f32; CHUNK];
             let mut s = [None; CHUNK];
             match self.strategy {
                 CapStrategy::Light => {
-                    for k in 0..n {
-                        let w = self.cone_sample(u[k]);
+                    for ((d, p), &uk) in dirs.iter_mut().zip(pdfs.iter_mut()).zip(u).take(n) {
+                        let w = self.cone_sample(uk);
                         if w.z > 0.0 && self.cone_pdf != 0.0 {
-                            (dirs[k], pdfs[k]) = (Some(w), self.cone_pdf);
+                            (*d, *p) = (Some(w), self.cone_pdf);
                         }
                     }
                 }
                 CapStrategy::Brdf => {
-                    self.brdf.sample_batch(&wos[..n], u, &mut s[..n]);
-                    for k in 0..n {
-                        if let Some(s) = s[k] {
-                            (dirs[k], pdfs[k]) = (Some(s.wi), s.pdf);
+                    if let (Some(wv), Some(uv), Some(sv)) = (wos.get(..n), u.get(..n), s.get_mut(..n)) {
+                        self.brdf.sample_batch(wv, uv, sv);
+                    }
+                    for ((d, p), sk) in dirs.iter_mut().zip(pdfs.iter_mut()).zip(&s).take(n) {
+                        if let Some(sk) = sk {
+                            (*d, *p) = (Some(sk.wi), sk.pdf);
                         }
                     }
                 }
@@ -282,42 +292,49 @@ impl<B: Brdf> Integrand for CapSampled<B> {
                     let mut ub = [[0.0f32; 2]; CHUNK];
                     let mut index = [0usize; CHUNK];
                     let mut m = 0;
-                    for k in 0..n {
-                        let u0 = u[k][0].clamp(0.0, 1.0);
+                    for (k, (d, &uk)) in dirs.iter_mut().zip(u).take(n).enumerate() {
+                        let u0 = uk[0].clamp(0.0, 1.0);
                         if u0 < 0.5 {
-                            let w = self.cone_sample([2.0 * u0, u[k][1]]);
+                            let w = self.cone_sample([2.0 * u0, uk[1]]);
                             if w.z > 0.0 && self.cone_pdf != 0.0 {
-                                dirs[k] = Some(w);
+                                *d = Some(w);
                             }
-                        } else {
+                        } else if let (Some(b), Some(ix)) = (ub.get_mut(m), index.get_mut(m)) {
                             let v = (2.0 * u0 - 1.0).min(crate::math::ONE_MINUS_EPSILON);
-                            ub[m] = [v, u[k][1]];
-                            index[m] = k;
+                            (*b, *ix) = ([v, uk[1]], k);
                             m += 1;
                         }
                     }
-                    self.brdf.sample_batch(&wos[..m], &ub[..m], &mut s[..m]);
-                    for (&k, s) in index[..m].iter().zip(&s[..m]) {
-                        dirs[k] = s.map(|s| s.wi);
+                    if let (Some(wv), Some(uv), Some(sv)) = (wos.get(..m), ub.get(..m), s.get_mut(..m)) {
+                        self.brdf.sample_batch(wv, uv, sv);
+                    }
+                    for (&k, sk) in index.iter().zip(&s).take(m) {
+                        if let Some(d) = dirs.get_mut(k) {
+                            *d = sk.map(|s| s.wi);
+                        }
                     }
                     let mut dense = [Vec3::ZERO; CHUNK];
                     let mut bp = [0.0f32; CHUNK];
                     let mut m = 0;
-                    for (k, d) in dirs[..n].iter().enumerate() {
-                        if let Some(w) = *d {
-                            dense[m] = w;
-                            index[m] = k;
+                    for (k, d) in dirs.iter().take(n).enumerate() {
+                        if let Some(w) = *d
+                            && let (Some(dw), Some(ix)) = (dense.get_mut(m), index.get_mut(m))
+                        {
+                            (*dw, *ix) = (w, k);
                             m += 1;
                         }
                     }
-                    self.brdf.pdf_batch(&dense[..m], &wos[..m], &mut bp[..m]);
-                    for j in 0..m {
-                        let (k, w, b) = (index[j], dense[j], bp[j]);
+                    if let (Some(dv), Some(wv), Some(bv)) = (dense.get(..m), wos.get(..m), bp.get_mut(..m)) {
+                        self.brdf.pdf_batch(dv, wv, bv);
+                    }
+                    for ((&k, &w), &b) in index.iter().zip(&dense).zip(&bp).take(m) {
                         let pdf = 0.5 * (self.light_pdf(w) + b);
                         if pdf.is_nan() || pdf <= 0.0 {
-                            dirs[k] = None;
-                        } else {
-                            pdfs[k] = pdf;
+                            if let Some(d) = dirs.get_mut(k) {
+                                *d = None;
+                            }
+                        } else if let Some(p) = pdfs.get_mut(k) {
+                            *p = pdf;
                         }
                     }
                 }
@@ -325,20 +342,18 @@ impl<B: Brdf> Integrand for CapSampled<B> {
             // 2. Values: `unmasked` for the cone technique (its draws are in
             // the cap by construction), `eval` (cap test first) otherwise.
             let mut masked = [None; CHUNK];
-            for k in 0..n {
-                masked[k] = match self.strategy {
-                    CapStrategy::Light => dirs[k],
-                    _ => dirs[k].filter(|&w| self.cap.contains(w)),
+            for (mk, &d) in masked.iter_mut().zip(&dirs).take(n) {
+                *mk = match self.strategy {
+                    CapStrategy::Light => d,
+                    _ => d.filter(|&w| self.cap.contains(w)),
                 };
             }
             let mut vals = [B::Spectrum::zero(); CHUNK];
-            self.unmasked_where(&masked[..n], &mut vals[..n]);
-            for k in 0..n {
-                out[k] = dirs[k].map(|w| IntegrandSample {
-                    w,
-                    pdf: pdfs[k],
-                    value: vals[k],
-                });
+            if let (Some(mv), Some(vv)) = (masked.get(..n), vals.get_mut(..n)) {
+                self.unmasked_where(mv, vv);
+            }
+            for (((o, &d), &pdf), &value) in out.iter_mut().zip(&dirs).zip(&pdfs).zip(&vals).take(n) {
+                *o = d.map(|w| IntegrandSample { w, pdf, value });
             }
         }
     }
@@ -350,16 +365,19 @@ impl<B: Brdf> Integrand for CapSampled<B> {
         let wos = [self.wo; CHUNK];
         for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let n = w.len().min(out.len());
+            let (Some(w), Some(out), Some(wos)) = (w.get(..n), out.get_mut(..n), wos.get(..n)) else {
+                continue;
+            };
             match self.strategy {
                 CapStrategy::Light => {
-                    for (o, &w) in out[..n].iter_mut().zip(w) {
+                    for (o, &w) in out.iter_mut().zip(w) {
                         *o = self.light_pdf(w);
                     }
                 }
-                CapStrategy::Brdf => self.brdf.pdf_batch(&w[..n], &wos[..n], &mut out[..n]),
+                CapStrategy::Brdf => self.brdf.pdf_batch(w, wos, out),
                 CapStrategy::Mis => {
-                    self.brdf.pdf_batch(&w[..n], &wos[..n], &mut out[..n]);
-                    for (o, &w) in out[..n].iter_mut().zip(w) {
+                    self.brdf.pdf_batch(w, wos, out);
+                    for (o, &w) in out.iter_mut().zip(w) {
                         *o = 0.5 * (self.light_pdf(w) + *o);
                     }
                 }

@@ -215,7 +215,7 @@ pub fn simulate_counts(
     if c.is_nan() {
         0
     } else {
-        libm::roundf(c.clamp(0.0, max_count as f32)) as u32
+        libm::roundf(crate::math::clamp_to(c, 0.0, max_count as f32)) as u32
     }
 }
 

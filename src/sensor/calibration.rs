@@ -49,6 +49,7 @@
 
 use super::SensorError;
 use super::response::Response;
+use crate::math::clamp_to;
 
 /// A polynomial inverse response `g(M) = Σ c_n Mⁿ` (`N` coefficients) on
 /// the calibrated range `[m_lo, 1]`, where it is strictly increasing and
@@ -130,7 +131,8 @@ impl<const N: usize> Response for PolynomialInverseResponse<N> {
     /// `[g(0), g(1)]`, NaN → `g(0)`.
     fn apply(&self, x: f32) -> f32 {
         let (g0, g1) = (self.eval(0.0), self.eval(1.0));
-        let x = if x.is_nan() { g0 } else { x.clamp(g0, g1) };
+        // `g0 < g1` (checked by `new`); `clamp_to` is `clamp` without its assertion.
+        let x = if x.is_nan() { g0 } else { clamp_to(x, g0, g1) };
         let (mut lo, mut hi) = (0.0f32, 1.0f32);
         for _ in 0..40 {
             let mid = 0.5 * (lo + hi);
@@ -195,13 +197,16 @@ pub fn mitsunaga_nayar<const N: usize>(
     let mut ata = [[0.0f64; MAX_COEFFS]; MAX_COEFFS];
     let mut atb = [0.0f64; MAX_COEFFS];
     let mut pairs = 0usize;
+    // Consecutive exposures `(j, j + 1)` as pairs of windows (no indexing: no panic path).
     for px in readings.chunks_exact(q) {
-        for j in 0..q - 1 {
-            let (m0, m1) = (px[j], px[j + 1]);
+        for (m, t) in px.windows(2).zip(exposures.windows(2)) {
+            let (&[m0, m1], &[t0, t1]) = (m, t) else {
+                continue;
+            };
             if !(m0 >= lo && m0 <= hi && m1 >= lo && m1 <= hi) {
                 continue;
             }
-            let r = exposures[j] as f64 / exposures[j + 1] as f64;
+            let r = t0 as f64 / t1 as f64;
             // a_n = M0ⁿ − r M1ⁿ; residual = Σ_{n<k} c_n (a_n − a_k) + a_k.
             let mut a = [0.0f64; MAX_COEFFS];
             let (mut p0, mut p1) = (1.0f64, 1.0f64);
@@ -210,13 +215,15 @@ pub fn mitsunaga_nayar<const N: usize>(
                 p0 *= m0 as f64;
                 p1 *= m1 as f64;
             }
-            let ak = a[k];
-            for i in 1..k {
-                let di = a[i] - ak;
-                for jj in 1..k {
-                    ata[i - 1][jj - 1] += di * (a[jj] - ak);
+            // Unknown `i − 1` is the coefficient of `Mⁱ`, `1 ≤ i < k`.
+            let ak = a.get(k).copied().unwrap_or(0.0);
+            let unknowns = a.get(1..k).unwrap_or(&[]);
+            for ((row, b), &ai) in ata.iter_mut().zip(atb.iter_mut()).zip(unknowns) {
+                let di = ai - ak;
+                for (cell, &aj) in row.iter_mut().zip(unknowns) {
+                    *cell += di * (aj - ak);
                 }
-                atb[i - 1] -= di * ak;
+                *b -= di * ak;
             }
             pairs += 1;
         }
@@ -229,13 +236,16 @@ pub fn mitsunaga_nayar<const N: usize>(
     } else {
         [0.0; MAX_COEFFS]
     };
+    // `c_0 = 0`, `c_1..c_{k−1}` solved, `c_k = 1 − Σ` (`k = N − 1`, the last).
     let mut coeffs = [0.0f32; N];
     let mut sum = 0.0f64;
-    for i in 1..k {
-        coeffs[i] = c[i - 1] as f32;
-        sum += c[i - 1];
+    for (ci, &v) in coeffs.iter_mut().skip(1).take(k - 1).zip(&c) {
+        *ci = v as f32;
+        sum += v;
     }
-    coeffs[k] = (1.0 - sum) as f32;
+    if let Some(last) = coeffs.last_mut() {
+        *last = (1.0 - sum) as f32;
+    }
     PolynomialInverseResponse::new(coeffs, lo)
 }
 
@@ -243,48 +253,80 @@ pub fn mitsunaga_nayar<const N: usize>(
 /// with partial pivoting (Golub & Van Loan, *Matrix Computations*, 4th
 /// ed., Alg. 3.4.1), in place, without allocation. Relative pivot
 /// threshold 1e-14 → [`SensorError::Singular`].
-#[allow(clippy::needless_range_loop)]
 pub fn solve<const M: usize>(
     a: &mut [[f64; M]; M],
     b: &mut [f64; M],
     n: usize,
 ) -> Result<[f64; M], SensorError> {
+    // Rows and columns through iterators, `get` and `split_*_mut`: no panic path for any `n`.
     let n = n.min(M);
-    let scale = (0..n)
-        .flat_map(|i| (0..n).map(move |j| (i, j)))
-        .fold(0.0f64, |m, (i, j)| m.max(a[i][j].abs()));
+    let scale = a
+        .iter()
+        .take(n)
+        .flat_map(|row| row.iter().take(n))
+        .fold(0.0f64, |m, v| m.max(v.abs()));
     if !(scale.is_finite() && scale > 0.0) {
         return Err(SensorError::Singular);
     }
+    let at = |row: &[f64; M], c: usize| row.get(c).copied().unwrap_or(0.0);
     for col in 0..n {
-        let piv = (col..n)
-            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
-            .unwrap_or(col);
-        if a[piv][col].abs() <= 1e-14 * scale {
+        let (Some(rows), Some(rhs)) = (a.get_mut(col..n), b.get_mut(col..n)) else {
+            break;
+        };
+        // The last row of largest |a[r][col]| (as `max_by`), as an offset from `col`.
+        let piv = rows
+            .iter()
+            .enumerate()
+            .max_by(|(_, x), (_, y)| at(x, col).abs().total_cmp(&at(y, col).abs()))
+            .map_or(0, |(i, _)| i);
+        if rows.get(piv).map_or(0.0, |r| at(r, col)).abs() <= 1e-14 * scale {
             return Err(SensorError::Singular);
         }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for r in col + 1..n {
-            let f = a[r][col] / a[col][col];
-            for c in col..n {
-                a[r][c] -= f * a[col][c];
+        swap_first(rows, piv);
+        swap_first(rhs, piv);
+        let (Some((prow, below)), Some((&mut pb, rhs_below))) =
+            (rows.split_first_mut(), rhs.split_first_mut())
+        else {
+            break;
+        };
+        let p = at(prow, col);
+        for (row, br) in below.iter_mut().zip(rhs_below) {
+            let f = at(row, col) / p;
+            for (v, &pv) in row.iter_mut().zip(prow.iter()).take(n).skip(col) {
+                *v -= f * pv;
             }
-            b[r] -= f * b[col];
+            *br -= f * pb;
         }
     }
     let mut x = [0.0f64; M];
     for r in (0..n).rev() {
-        let mut s = b[r];
-        for c in r + 1..n {
-            s -= a[r][c] * x[c];
+        let (Some(row), Some(&br)) = (a.get(r), b.get(r)) else {
+            continue;
+        };
+        let Some((done, after)) = x.split_at_mut_checked(r + 1) else {
+            continue;
+        };
+        let mut s = br;
+        for (&arc, &xc) in row.iter().skip(r + 1).take(n - r - 1).zip(after.iter()) {
+            s -= arc * xc;
         }
-        x[r] = s / a[r][r];
+        if let Some(xr) = done.last_mut() {
+            *xr = s / at(row, r);
+        }
     }
     if x.iter().any(|v| !v.is_finite()) {
         return Err(SensorError::Singular);
     }
     Ok(x)
+}
+
+/// Swaps `s[0]` and `s[j]` (nothing when `j` is 0 or out of range).
+fn swap_first<T>(s: &mut [T], j: usize) {
+    if let Some((first, rest)) = s.split_first_mut()
+        && let Some(other) = rest.get_mut(j.wrapping_sub(1))
+    {
+        core::mem::swap(first, other);
+    }
 }
 
 /// A tabulated inverse response from [`debevec_malik`]: `g(z) = ln X(z)`
@@ -323,22 +365,36 @@ impl<const Z: usize> LogExposureTable<Z> {
 
 impl<const Z: usize> Response for LogExposureTable<Z> {
     fn apply(&self, x: f32) -> f32 {
-        let x = if x.is_nan() {
-            self.x[0]
-        } else {
-            x.clamp(self.x[0], self.x[Z - 1])
+        // `Z ≥ 3` and `x` strictly increasing (from `debevec_malik`, the only constructor); checked
+        // reads and `clamp_to` (`clamp` without its assertion) keep no panic path.
+        let (Some(&first), Some(&last)) = (self.x.first(), self.x.last()) else {
+            return 0.0;
         };
-        let hi = self.x.partition_point(|&v| v <= x).clamp(1, Z - 1);
-        let (a, b) = (self.x[hi - 1], self.x[hi]);
+        let x = if x.is_nan() {
+            first
+        } else {
+            clamp_to(x, first, last)
+        };
+        let hi = self
+            .x
+            .partition_point(|&v| v <= x)
+            .min(Z.saturating_sub(1))
+            .max(1);
+        let (Some(&a), Some(&b)) = (self.x.get(hi - 1), self.x.get(hi)) else {
+            return 0.0;
+        };
         let f = ((x - a) / (b - a)).clamp(0.0, 1.0);
         ((hi - 1) as f32 + f) / (Z - 1) as f32
     }
     fn inverse(&self, y: f32) -> f32 {
         let y = if y.is_nan() { 0.0 } else { y.clamp(0.0, 1.0) };
-        let t = y * (Z - 1) as f32;
-        let i = (t as usize).min(Z - 2);
+        let t = y * Z.saturating_sub(1) as f32;
+        let i = (t as usize).min(Z.saturating_sub(2));
         let f = t - i as f32;
-        self.x[i] + (self.x[i + 1] - self.x[i]) * f
+        match (self.x.get(i), self.x.get(i + 1)) {
+            (Some(&a), Some(&b)) => a + (b - a) * f,
+            _ => 0.0,
+        }
     }
 }
 
@@ -384,9 +440,15 @@ pub fn debevec_malik<const Z: usize, const U: usize>(
             "exposures must be > 0 and smoothness ≥ 0",
         ));
     }
-    let w = |z: usize| z.min(Z - 1 - z) as f64;
+    let w = |z: usize| z.min((Z - 1).saturating_sub(z)) as f64;
     let mut ata = [[0.0f64; U]; U];
     let mut atb = [0.0f64; U];
+    // Indices are below `Z + p_count ≤ U` (checked above); checked writes keep no panic path.
+    let add = |m: &mut [[f64; U]; U], i: usize, j: usize, v: f64| {
+        if let Some(c) = m.get_mut(i).and_then(|r| r.get_mut(j)) {
+            *c += v;
+        }
+    };
     // Data rows: w (g[z] − lnE[p]) = w ln t.
     for (p, px) in levels.chunks_exact(q).enumerate() {
         for (&z, &t) in px.iter().zip(exposures) {
@@ -397,41 +459,47 @@ pub fn debevec_malik<const Z: usize, const U: usize>(
             }
             let (i, j) = (z, Z + p);
             let lt = libm::log(t as f64);
-            ata[i][i] += wz2;
-            ata[j][j] += wz2;
-            ata[i][j] -= wz2;
-            ata[j][i] -= wz2;
-            atb[i] += wz2 * lt;
-            atb[j] -= wz2 * lt;
+            add(&mut ata, i, i, wz2);
+            add(&mut ata, j, j, wz2);
+            add(&mut ata, i, j, -wz2);
+            add(&mut ata, j, i, -wz2);
+            if let Some(b) = atb.get_mut(i) {
+                *b += wz2 * lt;
+            }
+            if let Some(b) = atb.get_mut(j) {
+                *b -= wz2 * lt;
+            }
         }
     }
     // Scale fixing: g(Z/2) = 0.
-    ata[Z / 2][Z / 2] += 1.0;
+    add(&mut ata, Z / 2, Z / 2, 1.0);
     // Smoothness rows: λ w(z) (g[z−1] − 2 g[z] + g[z+1]) = 0.
     let lam = smoothness as f64;
     for z in 1..Z - 1 {
         let c = lam * w(z);
         let idx = [z - 1, z, z + 1];
         let coef = [c, -2.0 * c, c];
-        for a in 0..3 {
-            for b in 0..3 {
-                ata[idx[a]][idx[b]] += coef[a] * coef[b];
+        for (&ia, &ca) in idx.iter().zip(&coef) {
+            for (&ib, &cb) in idx.iter().zip(&coef) {
+                add(&mut ata, ia, ib, ca * cb);
             }
         }
     }
     // Pixels that never produced a weighted sample would leave a zero row: pin them.
     for (j, row) in ata.iter_mut().enumerate().take(Z + p_count).skip(Z) {
-        if row[j] == 0.0 {
-            row[j] = 1.0;
+        if let Some(d) = row.get_mut(j)
+            && *d == 0.0
+        {
+            *d = 1.0;
         }
     }
     let sol = solve::<U>(&mut ata, &mut atb, Z + p_count)?;
-    let top = sol[Z - 1];
+    let top = sol.get(Z - 1).copied().unwrap_or(0.0);
     let mut x = [0.0f32; Z];
-    for (z, xz) in x.iter_mut().enumerate() {
-        *xz = libm::exp(sol[z] - top) as f32;
+    for (xz, &g) in x.iter_mut().zip(&sol) {
+        *xz = libm::exp(g - top) as f32;
     }
-    if x.windows(2).any(|v| v[1] <= v[0]) || x.iter().any(|v| !v.is_finite()) {
+    if x.iter().zip(x.iter().skip(1)).any(|(a, b)| b <= a) || x.iter().any(|v| !v.is_finite()) {
         return Err(SensorError::NotMonotonic);
     }
     Ok(LogExposureTable { x })

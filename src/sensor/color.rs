@@ -194,8 +194,12 @@ fn apply5(raw: &[f32], w: usize, h: usize, x: usize, y: usize, k: &[[f32; 5]; 5]
     for (j, row) in k.iter().enumerate() {
         let yy = reflect(y as isize + j as isize - 2, h);
         for (i, &kv) in row.iter().enumerate() {
-            if kv != 0.0 {
-                s += kv * raw[yy * w + reflect(x as isize + i as isize - 2, w)];
+            // The index is in bounds for a `w × h` image (`reflect` maps into `0..w`, `0..h`);
+            // the checked read keeps no panic path.
+            if kv != 0.0
+                && let Some(&r) = raw.get(yy * w + reflect(x as isize + i as isize - 2, w))
+            {
+                s += kv * r;
             }
         }
     }
@@ -219,23 +223,33 @@ pub fn demosaic_malvar(
     out: &mut [[f32; 3]],
 ) -> Result<(), SensorError> {
     check_dims(raw.len(), out.len(), w, h)?;
-    for y in 0..h {
-        for x in 0..w {
-            let own = pattern.channel_at(x, y);
-            let v = raw[y * w + x];
-            let mut px = [0.0f32; 3];
-            px[own] = v;
-            if own == 1 {
-                let ch = pattern.channel_at(x + 1, y);
-                let cv = pattern.channel_at(x, y + 1);
-                px[ch] = apply5(raw, w, h, x, y, &MHC_ROW);
-                px[cv] = apply5(raw, w, h, x, y, &MHC_COL);
-            } else {
-                px[1] = apply5(raw, w, h, x, y, &MHC_G_AT_RB);
-                px[2 - own] = apply5(raw, w, h, x, y, &MHC_DIAG);
-            }
-            out[y * w + x] = px;
+    // Row-major: pixel `k = y·w + x`; channels through `get_mut` (no panic path).
+    for (k, (o, &v)) in out.iter_mut().zip(raw).enumerate() {
+        let (x, y) = (k % w.max(1), k / w.max(1));
+        let own = pattern.channel_at(x, y);
+        let mut px = [0.0f32; 3];
+        if let Some(p) = px.get_mut(own) {
+            *p = v;
         }
+        let (c0, k0, c1, k1) = if own == 1 {
+            // Green: the chroma of the horizontal neighbours by rows, the other by columns.
+            (
+                pattern.channel_at(x + 1, y),
+                &MHC_ROW,
+                pattern.channel_at(x, y + 1),
+                &MHC_COL,
+            )
+        } else {
+            // Red or blue: green, and the opposite chroma (`2 − own`) diagonally.
+            (1, &MHC_G_AT_RB, if own == 0 { 2 } else { 0 }, &MHC_DIAG)
+        };
+        if let Some(p) = px.get_mut(c0) {
+            *p = apply5(raw, w, h, x, y, k0);
+        }
+        if let Some(p) = px.get_mut(c1) {
+            *p = apply5(raw, w, h, x, y, k1);
+        }
+        *o = px;
     }
     Ok(())
 }
@@ -317,7 +331,8 @@ impl DichroicPrism {
         let (lo, hi) = (a0.max(b0), a1.min(b1));
         core::array::from_fn(|c| {
             integrate_fn(lo, hi, 1.0, |l| {
-                spectrum.value(l) * qe.value(l) * self.transmittances(l)[c]
+                let t = self.transmittances(l).get(c).copied().unwrap_or(0.0);
+                spectrum.value(l) * qe.value(l) * t
             })
         })
     }
@@ -389,20 +404,20 @@ impl FilterWheel {
             return Err(SensorError::BadBuffer);
         }
         let m = self.samples_per_slot;
-        for k in 0..self.filters {
-            for y in 0..h {
-                for x in 0..w {
-                    let mut acc = 0.0f32;
-                    for s in 0..m {
-                        let t = self.slot_start(k) + (s as f32 + 0.5) / m as f32 * self.slot_s;
-                        let v = scene(x as f32 + 0.5, y as f32 + 0.5, t, k);
-                        if v.is_finite() {
-                            acc += v;
-                        }
-                    }
-                    out[k * w * h + y * w + x] = acc / m as f32;
+        // `out[k·w·h + y·w + x]` in order (`w·h ≥ 1`): filter, row, column.
+        let plane = (w * h).max(1);
+        for (i, o) in out.iter_mut().enumerate() {
+            let (k, p) = (i / plane, i % plane);
+            let (x, y) = (p % w.max(1), p / w.max(1));
+            let mut acc = 0.0f32;
+            for s in 0..m {
+                let t = self.slot_start(k) + (s as f32 + 0.5) / m as f32 * self.slot_s;
+                let v = scene(x as f32 + 0.5, y as f32 + 0.5, t, k);
+                if v.is_finite() {
+                    acc += v;
                 }
             }
+            *o = acc / m as f32;
         }
         Ok(())
     }
@@ -490,22 +505,19 @@ impl<const N: usize> StackedLayers<N> {
     pub fn fractions(&self, lambda_nm: f32) -> [f32; N] {
         let a = silicon_absorption().value(lambda_nm);
         let mut top = 1.0f32;
-        core::array::from_fn(|i| {
-            let below = libm::expf(-a * self.bottoms_um[i]);
-            let f = if a > 0.0 { top - below } else { 0.0 };
+        let mut out = [0.0f32; N];
+        for (f, &z) in out.iter_mut().zip(&self.bottoms_um) {
+            let below = libm::expf(-a * z);
+            *f = if a > 0.0 { top - below } else { 0.0 };
             top = below;
-            f
-        })
+        }
+        out
     }
 
     /// Fraction transmitted below the last layer (1 where α is unknown).
     pub fn transmitted(&self, lambda_nm: f32) -> f32 {
         let a = silicon_absorption().value(lambda_nm);
-        if N == 0 {
-            1.0
-        } else {
-            libm::expf(-a * self.bottoms_um[N - 1])
-        }
+        self.bottoms_um.last().map_or(1.0, |&z| libm::expf(-a * z))
     }
 
     /// Per-layer photo-electron rate for a spectral photon irradiance
@@ -516,7 +528,9 @@ impl<const N: usize> StackedLayers<N> {
         let (a0, a1) = photon_spectrum.support();
         let (lo, hi) = (a0.max(400.0), a1.min(1100.0));
         core::array::from_fn(|i| {
-            integrate_fn(lo, hi, 1.0, |l| photon_spectrum.value(l) * self.fractions(l)[i])
+            integrate_fn(lo, hi, 1.0, |l| {
+                photon_spectrum.value(l) * self.fractions(l).get(i).copied().unwrap_or(0.0)
+            })
         })
     }
 }
@@ -548,20 +562,20 @@ pub fn slanted_edge(
     if w.checked_mul(h) != Some(out.len()) {
         return Err(SensorError::BadBuffer);
     }
-    for y in 0..h {
-        for x in 0..w {
-            let mut n = 0u32;
-            for sy in 0..16 {
-                for sx in 0..16 {
-                    let px = x as f32 + (sx as f32 + 0.5) / 16.0;
-                    let py = y as f32 + (sy as f32 + 0.5) / 16.0;
-                    if px > slope * py + offset {
-                        n += 1;
-                    }
+    // Row-major: pixel `k = y·w + x` (no panic path).
+    for (k, o) in out.iter_mut().enumerate() {
+        let (x, y) = (k % w.max(1), k / w.max(1));
+        let mut n = 0u32;
+        for sy in 0..16 {
+            for sx in 0..16 {
+                let px = x as f32 + (sx as f32 + 0.5) / 16.0;
+                let py = y as f32 + (sy as f32 + 0.5) / 16.0;
+                if px > slope * py + offset {
+                    n += 1;
                 }
             }
-            out[y * w + x] = [n as f32 / 256.0; 3];
         }
+        *o = [n as f32 / 256.0; 3];
     }
     Ok(())
 }

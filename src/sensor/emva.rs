@@ -37,6 +37,7 @@
 
 use super::noise::{Pcg32, poisson, standard_normal};
 use super::{Aperture, IrradianceField, Pixel, Sensor, SensorError};
+use crate::math::clamp_to;
 use crate::spectral::SpectralCurve;
 use rand_core::Rng;
 
@@ -315,9 +316,9 @@ impl<A: Aperture, Q: SpectralCurve, S: ShotNoise, D: DarkNoise, P: FixedPattern>
         let e = if mu_e.is_nan() {
             0.0
         } else {
-            mu_e.clamp(0.0, self.saturation_e)
+            clamp_to(mu_e, 0.0, self.saturation_e)
         };
-        (self.dark_offset_dn + self.gain_k * e).clamp(0.0, self.max_dn)
+        clamp_to(self.dark_offset_dn + self.gain_k * e, 0.0, self.max_dn)
     }
 
     /// One digital value for a mean of `mu_e` photo-electrons at pixel
@@ -338,7 +339,7 @@ impl<A: Aperture, Q: SpectralCurve, S: ShotNoise, D: DarkNoise, P: FixedPattern>
         let ne = self.shot.electrons(mu, rng).min(self.saturation_e);
         let nd = self.dark.sample(rng);
         let y = self.dark_offset_dn + off + self.gain_k * (ne + nd);
-        libm::roundf(y).clamp(0.0, self.max_dn)
+        clamp_to(libm::roundf(y), 0.0, self.max_dn)
     }
 
     /// One reading of `field` at pixel `pixel_index`: [`Pixel::mean_electrons`]
