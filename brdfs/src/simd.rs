@@ -118,6 +118,13 @@
 //! aarch64). The results do not depend on the width (every lane is the
 //! scalar value). Sixteen lanes halve the instructions per element.
 //!
+//! CI runs this crate's unit tests (every plugin's batch = scalar checks,
+//! the sweeps of the vector `libm` ports) in both widths: 8 lanes in the
+//! default build, and 16 lanes with `RUSTFLAGS="-C
+//! target-feature=+avx512f,+avx512bw"` where the CPU has AVX-512 (`wide`
+//! 1.7 needs `avx512bw` beside `avx512f`). A unit test asserts that
+//! [`LANES`] is 16 exactly when `avx512f` is compiled in, else 8.
+//!
 //! Per-lane scalar code inside a kernel (the table reads of `Tabulated`)
 //! does not call `libm::sqrtf`: on x86 that is a legacy-SSE `sqrtss` in
 //! inline assembly, which between AVX instructions, with the upper register
@@ -666,5 +673,37 @@ pub(crate) fn assert_lanes_match(
             "{name}({x:e} = {:#x}): libm {want:e}, vector {g:e}",
             x.to_bits()
         );
+    }
+}
+
+/// The kernel selection: the lane width follows the build's target features.
+#[cfg(test)]
+mod lane_width {
+    use super::{HALF, LANES, Vd, Vf, bits, narrow, widen};
+    use core::mem::size_of;
+
+    /// 16 lanes exactly when the build enables AVX-512 (`avx512f`), else 8;
+    /// `Vf`, its integer views and the two `f64` halves have that width, and
+    /// every lane holds its own value through the vector and `f64` round trips.
+    /// CI runs the library tests in both builds (`.ci/run`).
+    #[test]
+    fn lanes_follow_avx512f() {
+        extern crate std;
+        let avx512 = cfg!(target_feature = "avx512f");
+        let want = if avx512 { 16 } else { 8 };
+        std::println!("target_feature avx512f: {avx512}; LANES = {LANES}");
+        assert_eq!(LANES, want, "avx512f = {avx512}");
+        assert_eq!(size_of::<Vf>(), 4 * want);
+        assert_eq!(size_of::<bits::Vi>(), 4 * want);
+        assert_eq!(size_of::<bits::Vu>(), 4 * want);
+        assert_eq!(HALF, want / 2);
+        assert_eq!(size_of::<Vd>(), 8 * (want / 2));
+        let xs: [f32; LANES] = core::array::from_fn(|k| k as f32 + 0.25);
+        let v = Vf::new(xs);
+        assert_eq!(v.to_array(), xs);
+        assert_eq!(narrow(widen(v)).to_array(), xs);
+        let ints = bits::to_bits(v).to_array();
+        assert!((0..LANES).all(|k| ints[k] == xs[k].to_bits() as i32));
+        assert_eq!(bits::from_bits(bits::to_bits(v)).to_array(), xs);
     }
 }

@@ -89,6 +89,9 @@ impl F32Arith for f32 {
 type Vi = wide::i32x16;
 #[cfg(all(feature = "simd", not(target_feature = "avx512f")))]
 type Vi = wide::i32x8;
+// The two widths are chosen by separate `cfg`s: the build fails if they disagree.
+#[cfg(feature = "simd")]
+const _: () = assert!(core::mem::size_of::<Vi>() == core::mem::size_of::<crate::simd::Vf>());
 
 #[cfg(feature = "simd")]
 impl F32Arith for crate::simd::Vf {

@@ -191,6 +191,8 @@ pub(crate) mod lanes {
     type Vi = wide::i32x16;
     #[cfg(not(target_feature = "avx512f"))]
     type Vi = wide::i32x8;
+    // The two widths are chosen by separate `cfg`s: the build fails if they disagree.
+    const _: () = assert!(core::mem::size_of::<Vi>() == core::mem::size_of::<Vf>());
 
     /// [`log2_pos`] lane-wise.
     #[inline(always)]

@@ -320,6 +320,9 @@ pub(crate) fn exp_neg64_v(x: Vd) -> Vd {
 type VdBits = wide::u64x8;
 #[cfg(all(feature = "simd", not(target_feature = "avx512f")))]
 type VdBits = wide::u64x4;
+// The two widths are chosen by separate `cfg`s: the build fails if they disagree.
+#[cfg(feature = "simd")]
+const _: () = assert!(core::mem::size_of::<VdBits>() == core::mem::size_of::<Vd>());
 
 /// `ln(1 + f)/f ≈ P(f)` on `f ∈ [√½ − 1, √2 − 1]`, degree 9. Own fit (Remez,
 /// `fit_beckmann.py`): max relative error 4.1·10⁻⁹.

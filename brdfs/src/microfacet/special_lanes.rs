@@ -21,6 +21,8 @@ fn via64(x: Vf, f: impl Fn(Vd) -> Vd) -> Vf {
 type Vu64 = wide::u64x8;
 #[cfg(not(target_feature = "avx512f"))]
 type Vu64 = wide::u64x4;
+// The two widths are chosen by separate `cfg`s: the build fails if they disagree.
+const _: () = assert!(core::mem::size_of::<Vu64>() == core::mem::size_of::<Vd>());
 
 /// `ln64` lane-wise: the split `x = 2^k m` of the scalar `ln64` in integer
 /// vector operations, then the shared polynomial. With `t = bits(x) −

@@ -14,6 +14,9 @@ pub(super) type Vi = wide::i32x8;
 pub(super) type Vu = wide::u32x16;
 #[cfg(not(target_feature = "avx512f"))]
 pub(super) type Vu = wide::u32x8;
+// The widths are chosen by separate `cfg`s: the build fails if they disagree.
+const _: () = assert!(core::mem::size_of::<Vi>() == core::mem::size_of::<Vf>());
+const _: () = assert!(core::mem::size_of::<Vu>() == core::mem::size_of::<Vf>());
 
 /// `i32` lanes to `f32` (exact for `|k| < 2²⁴`).
 #[inline(always)]
