@@ -375,7 +375,7 @@ fn chi2_plugin_at(k: Kind, p: &Params, thetas: &[f32], seed: u64, alpha: f64) ->
         let cfg = ChiSquare::for_lobe(wo, lobe_width(k, p), seed * 100 + i as u64);
         let r = chi_square(b.as_ref(), wo, &cfg);
         eprintln!(
-            "χ² {k:?} n={} α={} kd={} σ={} θo={deg}°: χ²={:.1} dof={} p={:.4} mass={:.6}±{:.1e} None {} vs {:.1} | pdf rel {:.1e} weight rel {:.1e}",
+            "χ² {k:?} n={} α={} kd={} σ={} θo={deg}°: χ²={:.1} dof={} p={:.4} mass={:.6}±{:.1e} None {} vs {:.1} | pdf rel {:.1e} weight rel {:.1e} | quadrature χ² {:.1e}",
             p.n,
             p.alpha,
             p.kd,
@@ -388,17 +388,19 @@ fn chi2_plugin_at(k: Kind, p: &Params, thetas: &[f32], seed: u64, alpha: f64) ->
             r.none_observed,
             r.none_expected,
             r.worst_pdf_rel,
-            r.worst_weight_rel
+            r.worst_weight_rel,
+            r.quadrature_chi2
         );
         let mass_ok = r.mass.value <= 1.0 + r.mass.err + 1e-5;
         if !r.passes(alpha) || !mass_ok {
             fails.push(format!(
-                "{k:?} {p:?} θo={deg}°: p={:e} (α={:e}), bad samples {} ({:?}), zero-pdf hits {}, mass {:?}, top cells {:?}",
+                "{k:?} {p:?} θo={deg}°: p={:e} (α={:e}), bad samples {} ({:?}), zero-pdf hits {}, quadrature χ² {:.1e}, mass {:?}, top cells {:?}",
                 r.p_value,
                 alpha,
                 r.bad_samples,
                 r.first_bad,
                 r.zero_pdf_hits,
+                r.quadrature_chi2,
                 r.mass,
                 r.top_cells
             ));

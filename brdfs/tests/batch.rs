@@ -39,11 +39,13 @@ fn ulp(a: f32, b: f32) -> u32 {
 
 /// Compares one channel: bit-identical, finite and `≥ 0`; returns the ulp
 /// distance (0, or the assertion fails).
-fn check(scalar: f32, batch: f32, what: &str) -> Result<f64, TestCaseError> {
-    prop_assert!(batch.is_finite() && batch >= 0.0, "{what}: batch {batch}");
+/// The description `what` is built only when the check fails.
+fn check(scalar: f32, batch: f32, what: impl Fn() -> String) -> Result<f64, TestCaseError> {
+    prop_assert!(batch.is_finite() && batch >= 0.0, "{}: batch {batch}", what());
     prop_assert!(
         scalar.to_bits() == batch.to_bits(),
-        "{what}: scalar {scalar} batch {batch} ({} ulp)",
+        "{}: scalar {scalar} batch {batch} ({} ulp)",
+        what(),
         ulp(scalar, batch)
     );
     Ok(ulp(scalar, batch) as f64)
@@ -124,13 +126,13 @@ fn compare<B: Brdf>(
     for (k, &(a, c)) in pairs.iter().enumerate() {
         let s = b.eval(a, c);
         for ch in 0..B::Spectrum::CHANNELS {
-            let what = format!("{name} k={k} ch={ch} wi={a:?} wo={c:?}");
+            let what = |m: &str| format!("{m} {name} k={k} ch={ch} wi={a:?} wo={c:?}");
             let x = s.channel(ch);
-            w_aos = w_aos.max(check(x, aos[k].channel(ch), &format!("eval_batch {what}"))?);
-            w_soa = w_soa.max(check(x, soa[k].channel(ch), &format!("eval_batch_soa {what}"))?);
+            w_aos = w_aos.max(check(x, aos[k].channel(ch), || what("eval_batch"))?);
+            w_soa = w_soa.max(check(x, soa[k].channel(ch), || what("eval_batch_soa"))?);
         }
-        let what = format!("pdf_batch {name} k={k} wi={a:?} wo={c:?}");
-        w_pdf = w_pdf.max(check(b.pdf(a, c), pdf[k], &what)?);
+        let what = || format!("pdf_batch {name} k={k} wi={a:?} wo={c:?}");
+        w_pdf = w_pdf.max(check(b.pdf(a, c), pdf[k], what)?);
     }
     for k in n..n + 3 {
         prop_assert!(
