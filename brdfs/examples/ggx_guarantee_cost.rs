@@ -3,7 +3,8 @@
 //! starting from the fewest-division formulation (un-normalised half vector,
 //! one division, two square roots; Heitz 2014, Filament) and adding one
 //! guarantee of `Microfacet::eval` at a time, timed interleaved with the
-//! plugin's `eval_batch_soa` and its scalar `eval` loop, on n = 4096 pairs
+//! plugin's `eval_batch_soa` and its scalar `eval` loop — each level once as
+//! an auto-vectorised loop and once one pair at a time — on n = 4096 pairs
 //! (the `radiometry bench` distribution: θ uniform in [0, 1.55), φ uniform)
 //! in golden-ratio order and in random order. Best of 40 rounds.
 //!
@@ -103,13 +104,39 @@ fn pass<const LV: u32>(wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [f32]) -> boo
     cold
 }
 
-const NAMES: [&str; 7] = [
+/// The same levels one pair at a time: an opaque index keeps LLVM from
+/// vectorising across pairs (as the bench's `reference-ggx-scalar` does), so
+/// each row is the scalar limit of its level.
+#[inline(never)]
+#[allow(clippy::needless_range_loop)] // the opaque index is the point
+fn pass_scalar<const LV: u32>(wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [f32]) -> bool {
+    let n = out.len();
+    let (xi, yi, zi) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+    let (xo, yo, zo) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+    let mut cold = false;
+    for k in 0..n {
+        let k = black_box(k);
+        let p = Pair {
+            i: [xi[k], yi[k], zi[k]],
+            o: [xo[k], yo[k], zo[k]],
+        };
+        out[k] = level::<LV>(p, &mut cold);
+    }
+    cold
+}
+
+const NAMES: [&str; 12] = [
     "L0 fewest-division loop",
     "L1 + unit checks",
     "L2 + half-vector length correction",
     "L3 + projected-area form",
     "L4 + masks, rescaling, finite_nonneg",
     "Microfacet eval_batch_soa",
+    "scalar L0 fewest-division loop",
+    "scalar L1 + unit checks",
+    "scalar L2 + half-vector length correction",
+    "scalar L3 + projected-area form",
+    "scalar L4 + masks, rescaling, finite_nonneg",
     "Microfacet eval (scalar loop)",
 ];
 
@@ -140,7 +167,7 @@ fn main() {
         let (ox, oy, oz) = (comp(&wo, 0), comp(&wo, 1), comp(&wo, 2));
         let (si, so) = (Vec3Soa::new(&ix, &iy, &iz), Vec3Soa::new(&ox, &oy, &oz));
         let mut out = vec![0.0f32; n];
-        let mut best = [f64::INFINITY; 7];
+        let mut best = [f64::INFINITY; 12];
         for _ in 0..40 {
             for (lv, b) in best.iter_mut().enumerate() {
                 let t = Instant::now();
@@ -156,6 +183,11 @@ fn main() {
                             plugin.eval_batch_soa(a, c, o);
                             false
                         }
+                        6 => black_box(pass_scalar::<0>(a, c, o)),
+                        7 => black_box(pass_scalar::<1>(a, c, o)),
+                        8 => black_box(pass_scalar::<2>(a, c, o)),
+                        9 => black_box(pass_scalar::<3>(a, c, o)),
+                        10 => black_box(pass_scalar::<4>(a, c, o)),
                         _ => {
                             let (x, y) = black_box((&wi, &wo));
                             for ((o, &x), &y) in o.iter_mut().zip(x).zip(y) {
@@ -172,11 +204,17 @@ fn main() {
             "{} directions, n = {n}:",
             if random { "random" } else { "golden-ratio" }
         );
-        for (name, b) in NAMES.iter().zip(best) {
+        for (i, (name, b)) in NAMES.iter().zip(best).enumerate() {
+            // Vector rows against the vector L0, scalar rows against the scalar L0.
+            let (base, l0) = if i < 6 {
+                (best[0], "L0")
+            } else {
+                (best[6], "scalar L0")
+            };
             println!(
-                "  {name:<38} {:8.1} M/s  {:.3}x L0",
+                "  {name:<44} {:8.1} M/s  {:.3}x {l0}",
                 n as f64 / b * 1e-6,
-                best[0] / b
+                base / b
             );
         }
     }
