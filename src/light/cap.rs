@@ -6,8 +6,8 @@ use super::{
 };
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
-use crate::integrator::chunk::brdf_eval_where;
-use crate::integrator::{CHUNK, Integrand, IntegrandSample, IntegrateError, Integrator};
+use crate::integrator::chunk::{head, head_mut};
+use crate::integrator::{Integrand, IntegrandSample, IntegrateError, Integrator};
 use crate::math::safe_sqrt;
 use crate::radiometric;
 use crate::spectrum::Spectrum;
@@ -502,20 +502,48 @@ impl<B: Brdf> CapIntegrand<B> {
         self.finish(f, p)
     }
 
-    /// `out[k] = g'(p[k])` with one [`Brdf::eval_batch`] over the points
-    /// that need the BRDF (`p.len() ≤ CHUNK`).
+    /// `out[k] = g'(p[k])` for `k < min(p.len(), out.len(), SUB)`, with
+    /// one [`Brdf::eval_batch`] over the points that need the BRDF
+    /// (compacted; the others are zero). Never inlined: its buffers
+    /// ([`SUB`] points) stay out of the integrator's frame.
+    #[inline(never)]
     fn values(&self, p: &[CapPoint], out: &mut [B::Spectrum]) {
-        let mut wi = [None; CHUNK];
-        let n = p.len().min(out.len()).min(CHUNK);
-        for (d, p) in wi[..n].iter_mut().zip(p) {
-            *d = p.w.map(|(w, _)| w);
+        let wos = [self.wo; SUB];
+        let mut dense = [Vec3::ZERO; SUB];
+        let mut index = [0u8; SUB];
+        let mut vals = [B::Spectrum::zero(); SUB];
+        let n = p.len().min(out.len()).min(SUB);
+        // Checked writes: `m ≤ k < SUB` by construction, and the code keeps
+        // no panic path for it.
+        let mut m = 0;
+        for (k, p) in head(p, n).iter().enumerate() {
+            if let (Some((w, _)), Some(d), Some(i)) = (p.w, dense.get_mut(m), index.get_mut(m)) {
+                *d = w;
+                *i = k as u8;
+                m += 1;
+            }
         }
-        brdf_eval_where(&self.brdf, self.wo, &wi[..n], &mut out[..n]);
-        for (o, p) in out[..n].iter_mut().zip(p) {
+        let m = m.min(SUB);
+        self.brdf
+            .eval_batch(head(&dense, m), head(&wos, m), head_mut(&mut vals, m));
+        for (&k, &v) in head(&index, m).iter().zip(head(&vals, m)) {
+            if let Some(o) = out.get_mut(k as usize) {
+                *o = v;
+            }
+        }
+        for (o, p) in head_mut(out, n).iter_mut().zip(head(p, n)) {
             *o = self.finish(*o, p);
         }
     }
 }
+
+/// Points per call of the cap integrand's BRDF batch: each chunk of the
+/// integrators ([`CHUNK`](crate::integrator::CHUNK) points) is evaluated
+/// [`SUB`] points at a time, so the integrand's own buffers (points,
+/// compacted directions, values) stay small (≈ 0.5 KB for `f32`) on top of
+/// the integrator's. Batch kernels are bit-identical to [`Brdf::eval`], so
+/// the values do not depend on it.
+const SUB: usize = 8;
 
 /// Where the cap integrand needs the BRDF: the direction with the factor
 /// `cos θ · (ψ_hi − ψ_lo)` (`None`: zero), and `dy/dφ'`.
@@ -555,32 +583,33 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
         if w.z >= 0.0 { 0.5 * FRAC_1_PI } else { 0.0 }
     }
 
-    /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per chunk over
-    /// the points inside the visible cap.
+    /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per [`SUB`]
+    /// points over those inside the visible cap.
     fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
         crate::batch::zero_tail(out, w.len());
-        let mut p = [CapPoint { w: None, dy: 0.0 }; CHUNK];
-        for (w, out) in w.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
-            let n = w.len().min(out.len());
-            for (p, &w) in p[..n].iter_mut().zip(w) {
+        let mut p = [CapPoint { w: None, dy: 0.0 }; SUB];
+        for (w, out) in w.chunks(SUB).zip(out.chunks_mut(SUB)) {
+            let n = w.len().min(out.len()).min(SUB);
+            for (p, &w) in head_mut(&mut p, n).iter_mut().zip(w) {
                 *p = self.point(w);
             }
-            self.values(&p[..n], &mut out[..n]);
+            self.values(head(&p, n), out);
         }
     }
 
-    /// As [`Integrand::sample`], with one [`Brdf::eval_batch`] per chunk.
+    /// As [`Integrand::sample`], with one [`Brdf::eval_batch`] per [`SUB`]
+    /// points.
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
         crate::batch::zero_tail(out, u.len());
-        let mut p = [CapPoint { w: None, dy: 0.0 }; CHUNK];
-        let mut v = [B::Spectrum::zero(); CHUNK];
-        for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
-            let n = u.len().min(out.len());
-            for (p, u) in p[..n].iter_mut().zip(u) {
+        let mut p = [CapPoint { w: None, dy: 0.0 }; SUB];
+        let mut v = [B::Spectrum::zero(); SUB];
+        for (u, out) in u.chunks(SUB).zip(out.chunks_mut(SUB)) {
+            let n = u.len().min(out.len()).min(SUB);
+            for (p, u) in head_mut(&mut p, n).iter_mut().zip(u) {
                 *p = self.point_at(u[0].clamp(0.0, 1.0), TAU * u[1].clamp(0.0, 1.0));
             }
-            self.values(&p[..n], &mut v[..n]);
-            for ((o, u), &value) in out[..n].iter_mut().zip(u).zip(&v[..n]) {
+            self.values(head(&p, n), &mut v);
+            for ((o, u), &value) in out.iter_mut().zip(u).zip(head(&v, n)) {
                 let u0 = u[0].clamp(0.0, 1.0);
                 *o = Some(IntegrandSample {
                     w: square_to_uniform_hemisphere([1.0 - u0, u[1]]),
