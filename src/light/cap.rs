@@ -505,7 +505,7 @@ impl<B: Brdf> CapIntegrand<B> {
     /// `out[k] = g'(p[k])` for `k < min(p.len(), out.len(), SUB)`, with
     /// one [`Brdf::eval_batch`] over the points that need the BRDF
     /// (compacted; the others are zero). Never inlined: its buffers
-    /// ([`SUB`] points) stay out of the integrator's frame.
+    /// (`SUB` points) stay out of the integrator's frame.
     #[inline(never)]
     fn values(&self, p: &[CapPoint], out: &mut [B::Spectrum]) {
         let wos = [self.wo; SUB];
@@ -539,7 +539,7 @@ impl<B: Brdf> CapIntegrand<B> {
 
 /// Points per call of the cap integrand's BRDF batch: each chunk of the
 /// integrators ([`CHUNK`](crate::integrator::CHUNK) points) is evaluated
-/// [`SUB`] points at a time, so the integrand's own buffers (points,
+/// `SUB` points at a time, so the integrand's own buffers (points,
 /// compacted directions, values) stay small (≈ 0.5 KB for `f32`) on top of
 /// the integrator's. Batch kernels are bit-identical to [`Brdf::eval`], so
 /// the values do not depend on it.
@@ -583,7 +583,7 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
         if w.z >= 0.0 { 0.5 * FRAC_1_PI } else { 0.0 }
     }
 
-    /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per [`SUB`]
+    /// As [`Integrand::eval`], with one [`Brdf::eval_batch`] per `SUB`
     /// points over those inside the visible cap.
     fn eval_batch(&self, w: &[Vec3], out: &mut [B::Spectrum]) {
         crate::batch::zero_tail(out, w.len());
@@ -597,7 +597,7 @@ impl<B: Brdf> Integrand for CapIntegrand<B> {
         }
     }
 
-    /// As [`Integrand::sample`], with one [`Brdf::eval_batch`] per [`SUB`]
+    /// As [`Integrand::sample`], with one [`Brdf::eval_batch`] per `SUB`
     /// points.
     fn sample_batch(&self, u: &[[f32; 2]], out: &mut [Option<IntegrandSample<B::Spectrum>>]) {
         crate::batch::zero_tail(out, u.len());
