@@ -184,11 +184,17 @@ pub(crate) fn e_ref_fresnel(
 /// `10⁻⁶`, a tenth of the convergence the tests require of the reference (`10⁻⁵`) and a hundredth of the
 /// table's stated error.
 fn e_ref_err(d: Dist, hc: bool, alpha: f64, mu: f64) -> (f64, f64) {
-    let mut coarse = e_ref(d, hc, alpha, mu, 1);
+    refine_panels(8, 1e-6, |panels| e_ref(d, hc, alpha, mu, panels))
+}
+
+/// `rule(panels)` for 1, 2, 4, … panels until two successive values agree to `agree` or `max_panels` is
+/// reached: the last value and its difference to the one before (an over-estimate of its error).
+pub(crate) fn refine_panels(max_panels: usize, agree: f64, rule: impl Fn(usize) -> f64) -> (f64, f64) {
+    let mut coarse = rule(1);
     let mut panels = 2;
     loop {
-        let fine = e_ref(d, hc, alpha, mu, panels);
-        if (fine - coarse).abs() < 1e-6 || panels >= 8 {
+        let fine = rule(panels);
+        if (fine - coarse).abs() < agree || panels >= max_panels {
             return (fine, (fine - coarse).abs());
         }
         (coarse, panels) = (fine, 2 * panels);

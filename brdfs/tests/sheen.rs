@@ -12,6 +12,7 @@
 //! * `uniform_sampling_beats_cosine`: the variance of the one-sample albedo estimate under uniform and
 //!   cosine-weighted hemisphere sampling, by quadrature of the second moments.
 
+use super::kulla_conty::{gauss_legendre, refine_panels};
 use core::f64::consts::PI;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, IsotropicBrdf};
@@ -85,31 +86,6 @@ impl Reference {
     }
 }
 
-/// Gauss–Legendre nodes and weights on `[0, 1]` (Newton on `P_n`, A&S 25.4.29).
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (0..n)
-        .map(|i| {
-            let mut z = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-            let mut dp = 1.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0f64, z);
-                for k in 1..n {
-                    let p2 = ((2 * k + 1) as f64 * z * p1 - k as f64 * p0) / (k + 1) as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
-                let dz = p1 / dp;
-                z -= dz;
-                if dz.abs() < 1e-16 {
-                    break;
-                }
-            }
-            ((1.0 - z) / 2.0, 1.0 / ((1.0 - z * z) * dp * dp))
-        })
-        .collect()
-}
-
 /// `∫ f` over the pieces between sorted `cuts`, each piece split into `panels` equal panels of `g`.
 fn pieces(g: &[(f64, f64)], cuts: &[f64], panels: usize, f: &mut dyn FnMut(f64) -> f64) -> f64 {
     let mut s = 0.0;
@@ -153,15 +129,7 @@ fn albedo_ref(m: &Reference, mu_o: f64, panels: usize) -> f64 {
 /// until two rules agree to `2·10⁻⁷`, a tenth of the convergence the tests require (`2·10⁻⁶`).
 fn albedo_ref_err(r: f64, mu_o: f64) -> (f64, f64) {
     let m = Reference::new(r);
-    let mut coarse = albedo_ref(&m, mu_o, 1);
-    let mut panels = 2;
-    loop {
-        let fine = albedo_ref(&m, mu_o, panels);
-        if (fine - coarse).abs() < 2e-7 || panels >= 4 {
-            return (fine, (fine - coarse).abs());
-        }
-        (coarse, panels) = (fine, 2 * panels);
-    }
+    refine_panels(4, 2e-7, |panels| albedo_ref(&m, mu_o, panels))
 }
 
 fn dir(theta: f64, phi: f64) -> [f64; 3] {
