@@ -115,7 +115,7 @@ pub use microfacet::{
 };
 // -- end microfacet
 // -- re-exports: OpenPBR
-pub use openpbr::{OpenPbr, OpenPbrParams, OpenPbrTables};
+pub use openpbr::{Layering, OpenPbr, OpenPbrParams, OpenPbrView};
 // -- end OpenPBR
 // -- re-exports: rough diffuse (keep this block for that module)
 pub use rough_diffuse::{Eon, Fon, OrenNayar};
