@@ -106,7 +106,7 @@ pub use error::BrdfError;
 pub use blinn_phong::BlinnPhong;
 pub use lambertian::Lambertian;
 pub use phong::ModifiedPhong;
-pub use sheen::Sheen;
+pub use sheen::{LtcSheen, Sheen};
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 pub use microfacet::{
