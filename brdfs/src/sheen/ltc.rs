@@ -257,7 +257,7 @@ impl<S: Spectrum> Brdf for LtcSheen<S> {
     /// below the horizon or degenerate, where the table has no lobe, or on the horizon.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         let wo_unit = if is_unit(wo) { wo } else { unitize(wo)? };
-        if !(wo_unit.z > 0.0) {
+        if wo_unit.z.is_nan() || wo_unit.z <= 0.0 {
             return None;
         }
         let c = self.coefficients(wo_unit.z);
@@ -273,11 +273,11 @@ impl<S: Spectrum> Brdf for LtcSheen<S> {
         let v = Vec3::new(cos_o * x - sin_o * y, sin_o * x + cos_o * y, z);
         // |v|² ≥ (a z')² + … ≥ 10⁻²⁴ unless z' = 0 (then z = 0: rejected below).
         let l2 = v.length_squared();
-        if !(l2 > 0.0) {
+        if l2.is_nan() || l2 <= 0.0 {
             return None;
         }
         let wi = v * (1.0 / libm::sqrtf(l2));
-        if !(wi.z > 0.0) {
+        if wi.z.is_nan() || wi.z <= 0.0 {
             return None;
         }
         let pdf = self.pdf(wi, wo);

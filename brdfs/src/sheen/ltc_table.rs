@@ -92,7 +92,7 @@ impl LtcCoeffs {
             )
         };
         let a = v(0);
-        if !(a >= LTC_MIN_A) {
+        if a.is_nan() || a < LTC_MIN_A {
             return LtcCoeffs::ZERO;
         }
         LtcCoeffs { a, b: v(1), r: v(2) }
