@@ -81,6 +81,8 @@ impl LtcCoeffs {
     #[inline]
     pub(crate) fn in_rows(k: usize, rf: f32, mu: f32) -> LtcCoeffs {
         let (j, cf) = cell(mu);
+        // `k ≤ 30` from `cell`; the `min` lets the compiler drop the bounds checks.
+        let k = k.min(LTC_N - 2);
         let lo = &LTC_SHEEN_VOLUME[k];
         let hi = &LTC_SHEEN_VOLUME[k + 1];
         let lerp = |x: f32, y: f32, t: f32| x * (1.0 - t) + y * t;
