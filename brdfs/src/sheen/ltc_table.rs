@@ -21,7 +21,7 @@ pub fn ltc_sheen_node(i: usize) -> f32 {
 /// Smallest interpolated `a` for which the lobe is kept. Below it — only within `10⁻¹⁰` above
 /// the roughness nodes `0, 1/31, 2/31, 3/31`, where the rows below are all zero — `(a, b, R)` is
 /// set to `(0, 0, 0)`: the density `a²/(π |M⁻¹ω|⁴)` would exceed the `f32` range there, and the
-/// `R` dropped is below `10⁻⁹` (`R/a` of the table's nonzero entries is at most `54`).
+/// `R` dropped is below `3·10⁻¹⁰` (`R/a` of the table's nonzero entries is at most `20.2`).
 pub const LTC_MIN_A: f32 = 1e-11;
 
 /// `1 − 2⁻²⁴`: the largest `f32` below 1. Coordinates are clamped to it so that the cell index
@@ -160,7 +160,7 @@ mod tests {
                 }
             }
         }
-        assert!(worst < 54.0, "R/a up to {worst}");
+        assert!(worst < 20.2, "R/a up to {worst}");
         // Just above roughness 0, away from grazing: the row-1 weight is 10⁻³⁰.
         assert_eq!(LtcCoeffs::at(0.1, 1e-30 / 31.0), LtcCoeffs::ZERO);
         let c = LtcCoeffs::at(0.1, 1e-5);
