@@ -6,6 +6,7 @@
 
 mod batch;
 mod kulla_conty;
+mod ltc_sheen;
 mod microfacet_albedo;
 mod sample_batch;
 mod sheen;

@@ -1,5 +1,5 @@
 //! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`,
-//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, `sheen(...)`, and their compositions `A + B`, `mix(W, A, B)` and
+//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, `sheen(...)`, `ltc-sheen(...)`, and their compositions `A + B`, `mix(W, A, B)` and
 //! `coated(TOP, BASE)`.
 
 use crate::SpecError;
@@ -155,6 +155,14 @@ pub enum BrdfSpec {
         /// Roughness `r ∈ [MIN_SHEEN_ROUGHNESS, 1]`.
         roughness: f64,
     },
+    /// `ltc-sheen(color=1, roughness=0.5)`: the LTC sheen of Zeltner, Burley & Chiang 2022
+    /// (OpenPBR's recommended fuzz lobe; `radiometry_brdfs::LtcSheen`).
+    LtcSheen {
+        /// Colour (one number: the run-time BRDF is monochrome), in `[0, 1]` (default 1).
+        color: f64,
+        /// Roughness `r ∈ [0, 1]` (default 0.5).
+        roughness: f64,
+    },
     /// `openpbr(base_color=…, specular_roughness=…, …)`: the reflection layer of OpenPBR Surface
     /// (`radiometry_brdfs::OpenPbr`), OpenPBR's parameter names and defaults.
     OpenPbr(OpenPbrSpec),
@@ -307,7 +315,8 @@ the run-time BRDF is monochrome: a colour is one number or rgb(R, G, B), which e
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
 `oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
-cloth sheen; roughness ∈ [0.07, 1] is required), \
+cloth sheen; roughness ∈ [0.07, 1] is required), `ltc-sheen(color=1, roughness=0.5)` (Zeltner, Burley & Chiang \
+2022 LTC sheen, OpenPBR's fuzz; roughness ∈ [0, 1], its defaults shown; not reciprocal), \
 `openpbr(base_weight=1, base_color=0.8, base_metalness=0, base_diffuse_roughness=0, specular_weight=1, \
 specular_color=1, specular_roughness=0.3, specular_ior=1.5, coat_weight=0, coat_color=1, coat_roughness=0, \
 coat_ior=1.6, fuzz_weight=0, fuzz_color=1, fuzz_roughness=0.5)` (OpenPBR Surface's reflection layer, its defaults shown); \
@@ -592,11 +601,17 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             let roughness = a.num("roughness", None, MIN_SHEEN_ROUGHNESS, 1.0, false)?;
             Ok(BrdfSpec::Sheen { color, roughness })
         }
+        "ltc-sheen" => {
+            let mut a = Args::new(spec, call, &["color", "roughness"])?;
+            let color = luminance(a.colour("color", Some(1.0))?);
+            let roughness = a.num("roughness", Some(0.5), 0.0, 1.0, false)?;
+            Ok(BrdfSpec::LtcSheen { color, roughness })
+        }
         other => Err(err_span(
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, openpbr, tabulated, mix or coated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, ltc-sheen, openpbr, tabulated, mix or coated)"
             ),
         )),
     }
@@ -981,6 +996,39 @@ mod tests {
             ("sheen(color=1.5, roughness=0.5)", "1.5"),
             ("sheen(colour=1, roughness=0.5)", "colour"),
             ("sheen(roughness=0.5, alpha=0.1)", "alpha"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn ltc_sheen_spec() {
+        assert_eq!(
+            parse_brdf("ltc-sheen(color=0.8, roughness=0.3)").unwrap(),
+            BrdfSpec::LtcSheen {
+                color: 0.8,
+                roughness: 0.3
+            }
+        );
+        assert_eq!(
+            parse_brdf("ltc-sheen()").unwrap(),
+            BrdfSpec::LtcSheen {
+                color: 1.0,
+                roughness: 0.5
+            }
+        );
+        // Both ends of the roughness are accepted.
+        for r in ["0", "1"] {
+            assert!(parse_brdf(&format!("ltc-sheen(roughness={r})")).is_ok(), "{r}");
+        }
+        for (spec, bad) in [
+            ("ltc-sheen(roughness=1.5)", "1.5"),
+            ("ltc-sheen(roughness=-0.1)", "-0.1"),
+            ("ltc-sheen(color=1.5)", "1.5"),
+            ("ltc-sheen(colour=1)", "colour"),
+            ("ltc-sheen(roughness=0.5, alpha=0.1)", "alpha"),
+            ("ltc_sheen(roughness=0.5)", "ltc_sheen"),
         ] {
             let e = parse_brdf(spec).expect_err(spec);
             assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");

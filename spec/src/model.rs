@@ -19,8 +19,9 @@ use radiometry::integrator::{
 use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx,
-    HeightCorrelated, KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel,
-    OpenPbr, OpenPbrParams, OrenNayar, Schlick, Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
+    HeightCorrelated, KullaConty, Lambertian, LtcSheen, Microfacet, MicrofacetDistribution, ModifiedPhong,
+    NoFresnel, OpenPbr, OpenPbrParams, OrenNayar, Schlick, Separable, ShadowingMasking, Sheen,
+    microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -204,6 +205,7 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
         BrdfSpec::Eon { rho, sigma } => Eon::new(rho as f32, sigma as f32).map(boxed),
         BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(rho as f32, sigma_rad as f32).map(boxed),
         BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
+        BrdfSpec::LtcSheen { color, roughness } => LtcSheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::OpenPbr(ref p) => {
             let c = |v: [f64; 3]| crate::brdf::luminance(v) as f32;
             OpenPbr::new(OpenPbrParams {
@@ -490,6 +492,18 @@ mod tests {
         };
         let e = build_brdf(text, &spec).err().expect("energy gain rejected");
         assert_eq!(&text[e.start..e.end], "1", "{e}");
+    }
+
+    /// `ltc-sheen(...)` builds `LtcSheen`: the same values as the plugin, its closed-form albedo.
+    #[test]
+    fn ltc_sheen_spec_builds() {
+        let text = "ltc-sheen(color=0.5, roughness=0.3)";
+        let b = build_brdf(text, &parse_brdf(text).unwrap()).unwrap();
+        let direct = LtcSheen::new(0.5f32, 0.3).unwrap();
+        let (wi, wo) = (Vec3::new(-0.6, 0.0, 0.8), Vec3::new(0.8, 0.0, 0.6));
+        assert_eq!(b.eval(wi, wo), direct.eval(wi, wo));
+        assert_eq!(b.directional_albedo(wo), direct.directional_albedo(wo));
+        assert!(b.directional_albedo(wo).is_bound);
     }
 
     /// The rough diffuse specs build the plugins: EON's white furnace through
