@@ -324,7 +324,9 @@ where
             return Albedo::zero();
         }
         let top = self.top.directional_albedo(wo);
-        let et = top.value.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
+        let et = top
+            .value
+            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
         let eb = self.base.directional_albedo(wo);
         let upper = et.map(|e| 1.0 - e) * eb.value;
         let est = upper * self.absorption(mu, mu);
@@ -379,7 +381,11 @@ mod tests {
         }
         /// `ρ (1 + μo/2)/2` (closed form: `∫ μi dω/(2π) = ½`, `∫ μi² dω/(2π) = ⅓`).
         fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
-            if wo.z > 0.0 { Albedo::bounded(self.0 * 0.5 * (1.0 + wo.z * 2.0 / 3.0), 0.0) } else { Albedo::zero() }
+            if wo.z > 0.0 {
+                Albedo::bounded(self.0 * 0.5 * (1.0 + wo.z * 2.0 / 3.0), 0.0)
+            } else {
+                Albedo::zero()
+            }
         }
     }
 

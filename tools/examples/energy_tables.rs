@@ -247,17 +247,12 @@ fn mu_in(x: f64, mc: f64) -> f64 {
 
 const MU_FLOOR: f64 = 1e-6;
 
-/// `(E_F, E₁)` at `μ` with `p` panels.
-fn pair(alpha: f64, eta: f64, mu: f64, p: usize) -> [f64; 2] {
-    if eta == 1.0 {
-        let e1 = integrate(alpha, mu, p, |_| [1.0])[0];
-        return [0.0, e1];
-    }
-    integrate(alpha, mu, p, |c| [fresnel(eta, c), 1.0])
-}
-
 fn ratio(v: [f64; 2]) -> f64 {
-    if v[1] > 0.0 { (v[0] / v[1]).clamp(0.0, 1.0) } else { 0.0 }
+    if v[1] > 0.0 {
+        (v[0] / v[1]).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
 }
 
 fn print_u16(name: &str, doc: &str, vals: &[f64]) {
@@ -311,7 +306,17 @@ fn main() {
     let mut m6 = vec![0.0; NA * NX];
     let mut worst_m = 0.0f64;
     // Rows of α in parallel (two threads), each returning its slices.
-    type Row = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, (f64, String), (f64, String), f64);
+    type Row = (
+        Vec<f64>,
+        Vec<f64>,
+        Vec<f64>,
+        Vec<f64>,
+        Vec<f64>,
+        Vec<f64>,
+        (f64, String),
+        (f64, String),
+        f64,
+    );
     let row = |k: usize| -> Row {
         let alpha = alpha_node(k);
         let mut out = vec![0.0; NZ * NX];
@@ -367,7 +372,10 @@ fn main() {
         }
         for l in 0..NZ {
             let eo = eta_out(z_node(l));
-            avg_out[l] = avg_nodes.iter().map(|(mu, w, n)| w * 2.0 * mu * pair_nodes(n, eo)[0]).sum();
+            avg_out[l] = avg_nodes
+                .iter()
+                .map(|(mu, w, n)| w * 2.0 * mu * pair_nodes(n, eo)[0])
+                .sum();
         }
         // Inside: μ nodes depend on the index through μc.
         for l in 0..NZ {
@@ -434,10 +442,17 @@ fn main() {
         if quick { " -- --quick" } else { "" }
     );
     println!("//! the Fresnel-weighted albedo ratios of GGX (height-correlated G2), their averages and the");
-    println!("//! metal moments, on the grids of `fresnel_table.rs`. Each entry: product Gauss–Legendre on the");
-    println!("//! VNDF square with {pf} × {pf} panels of 8 × 8 nodes ({pi} × {pi} for η < 1); largest difference");
+    println!(
+        "//! metal moments, on the grids of `fresnel_table.rs`. Each entry: product Gauss–Legendre on the"
+    );
+    println!(
+        "//! VNDF square with {pf} × {pf} panels of 8 × 8 nodes ({pi} × {pi} for η < 1); largest difference"
+    );
     println!("//! to half as many panels per side:");
-    println!("//! outside {:.1e} ({}), inside {:.1e} ({}), moments {:.1e}.", worst_out.0, worst_out.1, worst_in.0, worst_in.1, worst_m);
+    println!(
+        "//! outside {:.1e} ({}), inside {:.1e} ({}), moments {:.1e}.",
+        worst_out.0, worst_out.1, worst_in.0, worst_in.1, worst_m
+    );
     println!("#![allow(clippy::excessive_precision, clippy::unreadable_literal)]");
     println!();
     print_u16(
@@ -450,8 +465,24 @@ fn main() {
         "/// `E_F/E₁` for `η < 1`, `[z][α][x]`, `x` split at the critical cosine, as `u16`.",
         &inn,
     );
-    print_f32("AVERAGE_OUT", "/// `Ē = 2∫E_F μ dμ` for `η > 1`, `[z][α]`.", &avg_out);
-    print_f32("AVERAGE_IN", "/// `Ē = 2∫E_F μ dμ` for `η < 1`, `[z][α]`.", &avg_in);
-    print_f32("MOMENT5", "/// `M5/E₁` (`F = (1 − c)⁵`), `[α][x]`, `x = √μ`.", &m5);
-    print_f32("MOMENT6", "/// `M6/E₁` (`F = c (1 − c)⁶`), `[α][x]`, `x = √μ`.", &m6);
+    print_f32(
+        "AVERAGE_OUT",
+        "/// `Ē = 2∫E_F μ dμ` for `η > 1`, `[z][α]`.",
+        &avg_out,
+    );
+    print_f32(
+        "AVERAGE_IN",
+        "/// `Ē = 2∫E_F μ dμ` for `η < 1`, `[z][α]`.",
+        &avg_in,
+    );
+    print_f32(
+        "MOMENT5",
+        "/// `M5/E₁` (`F = (1 − c)⁵`), `[α][x]`, `x = √μ`.",
+        &m5,
+    );
+    print_f32(
+        "MOMENT6",
+        "/// `M6/E₁` (`F = c (1 − c)⁶`), `[α][x]`, `x = √μ`.",
+        &m6,
+    );
 }

@@ -102,7 +102,10 @@ impl<S: Spectrum> Fresnel for F82Tint<S> {
     /// Linear in the moments where no channel reaches the clamp at 0.
     fn form(&self) -> super::FresnelForm<S> {
         if self.smooth {
-            super::FresnelForm::Linear { f0: self.f0, a: self.a }
+            super::FresnelForm::Linear {
+                f0: self.f0,
+                a: self.a,
+            }
         } else {
             super::FresnelForm::Other
         }

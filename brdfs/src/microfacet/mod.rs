@@ -565,9 +565,9 @@ where
         let alpha = self.distribution.alpha();
         match self.fresnel.form() {
             FresnelForm::One => Some(F::Spectrum::splat(1.0)),
-            FresnelForm::Dielectric(eta) => {
-                Some(F::Spectrum::splat(fresnel_table::dielectric_ratio(mu, alpha, eta)))
-            }
+            FresnelForm::Dielectric(eta) => Some(F::Spectrum::splat(fresnel_table::dielectric_ratio(
+                mu, alpha, eta,
+            ))),
             FresnelForm::Linear { f0, a } => {
                 let m = fresnel_table::fresnel_moments(mu, alpha);
                 Some(F::Spectrum::from_fn(|c| {
@@ -582,12 +582,17 @@ where
     /// from the global tables, for a GGX (height-correlated) dielectric
     /// interface; `None` for other lobes.
     pub fn tabulated_average_albedo(&self) -> Option<f32> {
-        let table = self.distribution.energy_tables().and_then(|t| G::select_table(&t))?;
+        let table = self
+            .distribution
+            .energy_tables()
+            .and_then(|t| G::select_table(&t))?;
         if !core::ptr::eq(table, &albedo_data::GGX_HEIGHT_CORRELATED) {
             return None;
         }
         match self.fresnel.form() {
-            FresnelForm::Dielectric(eta) => Some(fresnel_table::dielectric_average(self.distribution.alpha(), eta)),
+            FresnelForm::Dielectric(eta) => {
+                Some(fresnel_table::dielectric_average(self.distribution.alpha(), eta))
+            }
             _ => None,
         }
     }

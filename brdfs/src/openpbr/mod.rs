@@ -17,7 +17,7 @@
 //!
 //! | lobe | model |
 //! |---|---|
-//! | `f_fuzz` | the sheen of `fuzz_color`, `fuzz_roughness` ([`Sheen`]) |
+//! | `f_fuzz` | the LTC sheen of Zeltner et al. 2022 ([`LtcSheen`], OpenPBR's recommendation); Charlie ([`Sheen`]) in the reciprocal mode |
 //! | `f_coat` | GGX (`α_c = r_c²`), dielectric Fresnel of `coat_ior` |
 //! | `f_metal` | GGX (`α_s = r_s²`), F82-tint (`f0 = w_B C_B`, tint `C_s`), Kulla–Conty compensated |
 //! | `f_spec` | GGX (`α_s`), dielectric Fresnel of the specular index ratio `η_s` |
@@ -43,9 +43,11 @@
 //! one-sided factor `t(μo) = 1 − E(μo)` of the coat and the fuzz by the
 //! symmetric `τ = min(t(μi) t(μo)/(1 − Ē), t(μi), t(μo))`
 //! ([`reciprocal_through`](radiometry::compose::reciprocal_through)): the
-//! Kelemen form, exact for a Lambertian body wherever `E(μo) ≥ Ē`, capped so
-//! that no base reflects more than the one-sided form lets through (energy
-//! ≤ 1 for every base); the darkening uses `K_s = F0` instead of `F(μo)`.
+//! Kelemen form, capped under the specular lobes so that no base reflects
+//! more than the one-sided form lets through (energy ≤ 1 for any lobe shape),
+//! uncapped under the diffuse lobe (exact for a Lambertian body); the
+//! darkening uses `K_s = F0` instead of `F(μo)`, and the fuzz is the
+//! reciprocal Charlie sheen.
 //!
 //! `E_s`, `E_C` (directional albedos) and `Ē_s`, `Ē_C` (hemispherical
 //! averages) of the dielectric lobes come from the crate's global tables
@@ -116,11 +118,11 @@ mod tests;
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::fresnel_table::{dielectric_albedo, dielectric_average};
 use crate::microfacet::{
-    Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, KullaConty, MAX_ETA,
-    MIN_ALPHA, Microfacet,
+    Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, KullaConty,
+    MAX_ETA, MIN_ALPHA, Microfacet,
 };
 use crate::rough_diffuse::Eon;
-use crate::sheen::{MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
+use crate::sheen::{LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
 pub use radiometry::compose::Layering;
 use radiometry::glam::Vec3;
 use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
@@ -220,7 +222,11 @@ fn e1_table() -> &'static AlbedoTable {
 pub struct OpenPbr<S: Spectrum = f32> {
     params: OpenPbrParams<S>,
     layering: Layering,
-    fuzz: Sheen<S>,
+    /// The fuzz lobe of the energy-conserving mode (LTC sheen, OpenPBR's
+    /// recommendation) and of the reciprocal mode (Charlie: the LTC sheen is
+    /// not reciprocal).
+    fuzz: LtcSheen<S>,
+    fuzz_reciprocal: Sheen<S>,
     coat: DielectricLobe<S>,
     metal: Metal<S>,
     spec: DielectricLobe<S>,
@@ -338,8 +344,9 @@ impl<S: Spectrum> OpenPbr<S> {
         let diffuse = Eon::new(rho, sigma)?;
         let a_c = alpha(r_c);
         let coat = Microfacet::new(Ggx::new(a_c)?, Achromatic::new(Dielectric::new(coat_ior)?));
+        let fuzz = LtcSheen::new(fuzz_color, r_f)?;
         let r_f = r_f.max(MIN_SHEEN_ROUGHNESS);
-        let fuzz = Sheen::new(fuzz_color, r_f)?;
+        let fuzz_reciprocal = Sheen::new(fuzz_color, r_f)?;
 
         let spec_avg = dielectric_average(a_s, eta_s);
         let reciprocal = layering == Layering::Reciprocal;
@@ -369,6 +376,7 @@ impl<S: Spectrum> OpenPbr<S> {
             params: p,
             layering,
             fuzz,
+            fuzz_reciprocal,
             coat,
             metal,
             spec,
@@ -412,7 +420,42 @@ impl<S: Spectrum> OpenPbr<S> {
     /// `w_F E_F(μ)`: the fuzz's untinted albedo, weighted.
     #[inline]
     fn e_fuzz(&self, mu: f32) -> f32 {
-        self.params.fuzz_weight * SheenAlbedoTable::get().albedo(mu, self.fuzz.roughness())
+        self.params.fuzz_weight
+            * match self.layering {
+                Layering::EnergyConserving => self.fuzz.albedo_untinted(mu),
+                Layering::Reciprocal => SheenAlbedoTable::get().albedo(mu, self.fuzz_reciprocal.roughness()),
+            }
+    }
+
+    /// The fuzz lobe's value, density, sample and albedo in this mode.
+    #[inline]
+    fn fuzz_eval(&self, wi: Vec3, wo: Vec3) -> S {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.eval(wi, wo),
+            Layering::Reciprocal => self.fuzz_reciprocal.eval(wi, wo),
+        }
+    }
+
+    #[inline]
+    fn fuzz_pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.pdf(wi, wo),
+            Layering::Reciprocal => self.fuzz_reciprocal.pdf(wi, wo),
+        }
+    }
+
+    fn fuzz_sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.sample(wo, u),
+            Layering::Reciprocal => self.fuzz_reciprocal.sample(wo, u),
+        }
+    }
+
+    fn fuzz_albedo(&self, wo: Vec3) -> S {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.directional_albedo(wo).value,
+            Layering::Reciprocal => self.fuzz_reciprocal.directional_albedo(wo).value,
+        }
     }
 
     /// The coat's absorption `A(μi, μo)` per channel.
@@ -484,7 +527,7 @@ impl<S: Spectrum> OpenPbr<S> {
         // Pick probabilities ∝ each lobe's share of the layered albedo at ωo.
         let mut share = [0.0f32; LOBES];
         if self.on[FUZZ] {
-            share[FUZZ] = p.fuzz_weight * self.fuzz.directional_albedo(wo).value.average();
+            share[FUZZ] = p.fuzz_weight * self.fuzz_albedo(wo).average();
         }
         let a_f = view.fuzz_factor_o(Leaf::Specular);
         if self.on[COAT] {
@@ -493,7 +536,8 @@ impl<S: Spectrum> OpenPbr<S> {
         let under = |leaf| (view.coat_factor(mu, leaf) * view.fuzz_factor_o(leaf)).average();
         let u_s = under(Leaf::Specular);
         if self.on[METAL] {
-            share[METAL] = u_s * p.base_metalness * self.xi * self.metal.directional_albedo(wo).value.average();
+            share[METAL] =
+                u_s * p.base_metalness * self.xi * self.metal.directional_albedo(wo).value.average();
         }
         if self.on[SPEC] {
             share[SPEC] = u_s * (1.0 - p.base_metalness) * p.specular_color.average() * view.spec_o;
@@ -502,7 +546,10 @@ impl<S: Spectrum> OpenPbr<S> {
                 * (1.0 - view.spec_o)
                 * self.diffuse.directional_albedo(wo).value.average();
         }
-        let total: f32 = share.iter().map(|s| if s.is_finite() { s.max(0.0) } else { 0.0 }).sum();
+        let total: f32 = share
+            .iter()
+            .map(|s| if s.is_finite() { s.max(0.0) } else { 0.0 })
+            .sum();
         let mut acc = 0.0f32;
         for (c, s) in view.cdf.iter_mut().zip(share) {
             if total > 0.0 && total.is_finite() {
@@ -525,7 +572,11 @@ impl<S: Spectrum> OpenPbr<S> {
 #[inline]
 fn unit(w: Vec3) -> Vec3 {
     let l2 = w.length_squared();
-    if (l2 - 1.0).abs() <= 1e-5 { w } else { renormalise(w, l2) }
+    if (l2 - 1.0).abs() <= 1e-5 {
+        w
+    } else {
+        renormalise(w, l2)
+    }
 }
 
 #[cold]
@@ -556,6 +607,22 @@ fn gauss_legendre_average(e: impl Fn(f32) -> f32) -> f32 {
         }
     }
     s.clamp(0.0, 1.0)
+}
+
+/// The reciprocal mode's through-factor of a layer for a base lobe: the
+/// Kelemen form `ti to/(1 − Ē)` under the diffuse lobe (exact for a
+/// Lambertian body, which cannot concentrate light where the form would
+/// overshoot), capped by `ti` and `to` under the specular lobes
+/// ([`reciprocal_through`](radiometry::compose::reciprocal_through)).
+#[inline]
+fn through(leaf: Leaf, ti: f32, to: f32, inv_avg: f32) -> f32 {
+    match leaf {
+        Leaf::Diffuse => {
+            let v = ti * to * inv_avg;
+            if v.is_finite() { v.max(0.0) } else { 0.0 }
+        }
+        Leaf::Specular => radiometry::compose::reciprocal_through(ti, to, inv_avg),
+    }
 }
 
 /// The two kinds of base lobe the reciprocal mode normalises apart.
@@ -598,9 +665,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         match self.m.layering {
             Layering::EnergyConserving => 1.0 - self.fuzz_o,
             Layering::Reciprocal => {
-                let _ = leaf;
-                let ti = if mu_i == self.mu_o { 1.0 - self.fuzz_o } else { 1.0 - self.m.e_fuzz(mu_i) };
-                radiometry::compose::reciprocal_through(ti, 1.0 - self.fuzz_o, self.m.fuzz_norm)
+                let ti = if mu_i == self.mu_o {
+                    1.0 - self.fuzz_o
+                } else {
+                    1.0 - self.m.e_fuzz(mu_i)
+                };
+                through(leaf, ti, 1.0 - self.fuzz_o, self.m.fuzz_norm)
             }
         }
     }
@@ -616,9 +686,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let t = match m.layering {
             Layering::EnergyConserving => 1.0 - self.coat_o,
             Layering::Reciprocal => {
-                let _ = leaf;
-                let ti = if mu_i == self.mu_o { 1.0 - self.coat_o } else { 1.0 - m.e_coat(mu_i) };
-                radiometry::compose::reciprocal_through(ti, 1.0 - self.coat_o, m.coat_norm)
+                let ti = if mu_i == self.mu_o {
+                    1.0 - self.coat_o
+                } else {
+                    1.0 - m.e_coat(mu_i)
+                };
+                through(leaf, ti, 1.0 - self.coat_o, m.coat_norm)
             }
         };
         let a = m.absorption(mu_i, self.mu_o);
@@ -645,10 +718,10 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         };
         if m.on[FUZZ] {
             if want_value {
-                f += m.fuzz.eval(wi, wo) * p.fuzz_weight;
+                f += m.fuzz_eval(wi, wo) * p.fuzz_weight;
             }
             if want_pdf {
-                pdf += prob(FUZZ) * m.fuzz.pdf(wi, wo);
+                pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
             }
         }
         if m.on[COAT] {
@@ -677,7 +750,11 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             if want_value {
                 f += m.spec.eval(wi, wo) * p.specular_color * under_s * dielectric;
                 // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
-                let es_i = if mu_i == self.mu_o { self.spec_o } else { m.e_spec(mu_i) };
+                let es_i = if mu_i == self.mu_o {
+                    self.spec_o
+                } else {
+                    m.e_spec(mu_i)
+                };
                 let k = (1.0 - es_i) * (1.0 - self.spec_o) * m.inv_spec_avg;
                 let under_d = self.coat_factor(mu_i, Leaf::Diffuse) * self.fuzz_factor(mu_i, Leaf::Diffuse);
                 f += m.diffuse.eval(wi, wo) * under_d * (dielectric * k);
@@ -708,7 +785,11 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             return None;
         }
         let m = self.m;
-        let u0 = if u[0].is_finite() { u[0].clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
+        let u0 = if u[0].is_finite() {
+            u[0].clamp(0.0, 1.0 - f32::EPSILON / 2.0)
+        } else {
+            0.0
+        };
         let mut k = LOBES - 1;
         for (i, &c) in self.cdf.iter().enumerate() {
             if u0 < c {
@@ -718,11 +799,15 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
         let width = self.cdf[k] - lo;
-        let v = if width > 0.0 { ((u0 - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
+        let v = if width > 0.0 {
+            ((u0 - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
+        } else {
+            0.0
+        };
         let uu = [v, u[1]];
         let wo = self.wo;
         let s = match k {
-            FUZZ => m.fuzz.sample(wo, uu),
+            FUZZ => m.fuzz_sample(wo, uu),
             COAT => m.coat.sample(wo, uu),
             METAL => m.metal.sample(wo, uu),
             SPEC => m.spec.sample(wo, uu),
@@ -736,7 +821,11 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         if !weight.is_finite() {
             return None;
         }
-        Some(BrdfSample { wi: s.wi, pdf, weight })
+        Some(BrdfSample {
+            wi: s.wi,
+            pdf,
+            weight,
+        })
     }
 
     /// The material's directional albedo at `ωo`, estimated from the lobes'
@@ -752,7 +841,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let mu = self.mu_o;
         let mut e = S::zero();
         if m.on[FUZZ] {
-            e += m.fuzz.directional_albedo(wo).value * p.fuzz_weight;
+            e += m.fuzz_albedo(wo) * p.fuzz_weight;
         }
         if m.on[COAT] {
             e += S::splat(self.fuzz_factor(mu, Leaf::Specular) * p.coat_weight * self.coat_o);
