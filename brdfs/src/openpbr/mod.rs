@@ -713,8 +713,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let mut f = S::zero();
         let mut pdf = 0.0f32;
         let prob = |k: usize| {
-            let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
-            (self.cdf[k] - lo).max(0.0)
+            let lo = k
+                .checked_sub(1)
+                .and_then(|i| self.cdf.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
         };
         if m.on[FUZZ] {
             if want_value {
@@ -797,8 +801,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 break;
             }
         }
-        let lo = if k == 0 { 0.0 } else { self.cdf[k - 1] };
-        let width = self.cdf[k] - lo;
+        let lo = k
+            .checked_sub(1)
+            .and_then(|i| self.cdf.get(i))
+            .copied()
+            .unwrap_or(0.0);
+        let width = self.cdf.get(k).copied().unwrap_or(1.0) - lo;
         let v = if width > 0.0 {
             ((u0 - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
         } else {

@@ -19,6 +19,20 @@ fn integrated_albedo<B: Brdf<Spectrum = f32>>(b: &B, wo: Vec3, tol: f64) -> (f64
     (out.estimate.value, out.estimate.error)
 }
 
+/// `∫ f cos θi dωi` by plain (unwarped) adaptive cubature at 2¹⁷ and 2¹⁸
+/// evaluations: the finer value, after checking that the two agree to
+/// `2·10⁻⁴` (the layered materials have kinks and mixture seams that the
+/// warped rules of `auto` can misjudge; plain subdivision converges on them).
+fn robust_albedo<B: Brdf<Spectrum = f32>>(b: &B, wo: Vec3) -> f64 {
+    use radiometry::integrator::{Adaptive, Integrator};
+    let g = DirectionalAlbedo { brdf: b, wo };
+    let a = Adaptive::new(0.0, 0.0).unwrap();
+    let coarse = a.integrate(&g, 1 << 17).unwrap().value;
+    let fine = a.integrate(&g, 1 << 18).unwrap().value;
+    assert!((coarse - fine).abs() < 2e-4, "{wo:?}: {coarse} vs {fine}");
+    fine
+}
+
 const THETAS: [f32; 9] = [0.0, 20.0, 40.0, 60.0, 70.0, 80.0, 85.0, 89.0, 89.9];
 
 #[test]
@@ -33,13 +47,13 @@ fn defaults_are_openpbr_defaults_and_keep_albedo_below_one() {
     let m = OpenPbr::new(p).unwrap();
     for t in THETAS {
         let wo = dir(t, 0.4);
-        let (e, err) = integrated_albedo(&m, wo, 1e-3);
-        assert!(e + err <= 1.0, "θo = {t}°: albedo {e} ± {err}");
+        let e = robust_albedo(&m, wo);
+        assert!(e <= 1.0, "θo = {t}°: albedo {e}");
         assert!(e > 0.5, "θo = {t}°: albedo {e} (a white-ish base)");
         // The reported albedo is close to the integral.
         let r = m.directional_albedo(wo);
         assert!(
-            (f64::from(r.value) - e).abs() <= f64::from(r.error) + err,
+            (f64::from(r.value) - e).abs() <= f64::from(r.error),
             "{t}: {r:?} vs {e}"
         );
     }
@@ -426,8 +440,8 @@ fn white_furnace_holds_in_the_energy_conserving_mode() {
     for p in configs {
         let m = OpenPbr::new(p).unwrap();
         for t in [0.0f32, 45.0, 75.0, 85.0] {
-            let (e, err) = integrated_albedo(&m, dir(t, 0.3), 1e-4);
-            assert!((e - 1.0).abs() + err <= 2e-3, "{p:?} θo = {t}°: {e} ± {err}");
+            let e = robust_albedo(&m, dir(t, 0.3));
+            assert!((e - 1.0).abs() <= 2e-3, "{p:?} θo = {t}°: {e}");
         }
     }
 }
@@ -483,10 +497,10 @@ fn reciprocal_mode_is_reciprocal_and_keeps_energy_bounded() {
             }
         }
         for t in [0.0f32, 45.0, 75.0, 85.0] {
-            let (e, err) = integrated_albedo(&m, dir(t, 0.3), 1e-4);
-            assert!(e - err <= 1.0 + 2e-3, "{p:?} θo = {t}°: {e} ± {err}");
+            let e = robust_albedo(&m, dir(t, 0.3));
+            assert!(e <= 1.0 + 2e-3, "{p:?} θo = {t}°: {e}");
             if tight {
-                assert!((e - 1.0).abs() + err <= 2e-3, "{p:?} θo = {t}°: {e} ± {err}");
+                assert!((e - 1.0).abs() <= 2e-3, "{p:?} θo = {t}°: {e}");
             }
         }
     }
