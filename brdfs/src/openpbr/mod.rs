@@ -63,6 +63,8 @@
 //!   `η = (1 + ε)/(1 − ε)`).
 //! * **Coat absorption** `A(μi, μo) = C_c^{(1/μᵗi + 1/μᵗo)/2}`, `μᵗ = √(1 − (1 −
 //!   μ²)/η_c²)` (§"View-dependent absorption").
+//! * **Coat roughening** (§"Roughening"): under a coat the base lobes use
+//!   `r'_s = lerp(r_s, min(1, r_s⁴ + 2 r_c⁴)^¼, w_C)`.
 //! * **Coat darkening** (§"Darkening"): the coated base is scaled by `D =
 //!   lerp(1, Δ, δ)`, `Δ = (1 − K)/(1 − E_b K)` per channel, `K = lerp(K_s,
 //!   K_r, r_b)`, `K_r = 1 − (1 − Ē_F(η_c))/η_c²`, `K_s = F(μo, η_c)`, `r_b =
@@ -83,7 +85,7 @@
 //! in brackets): `transmission_weight`, `subsurface_weight` (0: the
 //! dielectric body is the EON diffuse), `*_anisotropy` (0),
 //! `thin_film_weight` (0), `geometry_*` (opaque, one-sided), `emission_*`
-//! (0), and the coat's roughening of the base lobes (not applied).
+//! (0).
 //!
 //! # Cost
 //!
@@ -243,6 +245,10 @@ pub struct OpenPbr<S: Spectrum = f32> {
     /// Reciprocal mode: `1/(1 − Ē_C)`; the same for the fuzz (`w_F E_F`).
     coat_norm: f32,
     fuzz_norm: f32,
+    /// Reciprocal mode, the diffuse lobe: `1/(2∫ t_F t_s μ dμ)` for the
+    /// uncoated part and `1/(2∫ t_F t_C t_s μ dμ)` for the coated part
+    /// (`t = 1 − E` of each layer present; `t_F = 1` without fuzz).
+    joint_norm: [f32; 2],
     /// `Δ − 1` per channel with `K_s` left out: `(E_b, K_r, r_b)` to finish it
     /// per view.
     base_albedo_normal: S,
@@ -336,6 +342,15 @@ impl<S: Spectrum> OpenPbr<S> {
         let r_f = unit("fuzz_roughness", p.fuzz_roughness)?;
 
         let rho = base_color * base_weight;
+        // The coat's roughening of the base lobes (§"Coat — Roughening"):
+        // r'_s = lerp(r_s, min(1, r_s⁴ + 2 r_c⁴)^¼, w_C).
+        let r_s = if w_c > 0.0 {
+            let q = |r: f32| (r * r) * (r * r);
+            let rough = libm::sqrtf(libm::sqrtf((q(r_s) + 2.0 * q(r_c)).min(1.0)));
+            r_s + w_c * (rough - r_s)
+        } else {
+            r_s
+        };
         let a_s = alpha(r_s);
         let ggx_s = Ggx::new(a_s)?;
         let metal = KullaConty::new(ggx_s, F82Tint::from_valid(rho, spec_color));
@@ -361,6 +376,30 @@ impl<S: Spectrum> OpenPbr<S> {
             inv(1.0 - gauss_legendre_average(|mu| w_f * t.albedo(mu, r_f)))
         } else {
             1.0
+        };
+        let joint_norm = if reciprocal {
+            let t = SheenAlbedoTable::get();
+            let t_f = |mu: f32| {
+                if w_f > 0.0 {
+                    1.0 - w_f * t.albedo(mu, r_f)
+                } else {
+                    1.0
+                }
+            };
+            let t_s = |mu: f32| 1.0 - dielectric_albedo(e1_table(), mu, a_s, eta_s);
+            let t_c = |mu: f32| {
+                if w_c > 0.0 {
+                    1.0 - dielectric_albedo(e1_table(), mu, a_c, coat_ior)
+                } else {
+                    1.0
+                }
+            };
+            [
+                inv(gauss_legendre_average(|mu| t_f(mu) * t_s(mu))),
+                inv(gauss_legendre_average(|mu| t_f(mu) * t_c(mu) * t_s(mu))),
+            ]
+        } else {
+            [1.0, 1.0]
         };
         // Coat darkening (§"Darkening"): E_b at normal incidence, K_r, r_b.
         let n = Vec3::Z;
@@ -388,6 +427,7 @@ impl<S: Spectrum> OpenPbr<S> {
             inv_spec_avg: inv(1.0 - spec_avg),
             coat_norm,
             fuzz_norm,
+            joint_norm,
             base_albedo_normal,
             k_r,
             r_b,
@@ -675,6 +715,42 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
     }
 
+    /// What the layers pass to the diffuse lobe, per channel. Energy mode:
+    /// `a_F(μo) U(μi, μo) K(μi, μo)`. Reciprocal mode: the product of every
+    /// layer's `t(μi) t(μo)` over the joint normalisation `2∫ Π t μ dμ`, per
+    /// coverage part — exact for a Lambertian body under any stack of clear
+    /// layers (`∫ Π t(μi) t(μo)/N · ρ/π · μi dωi = ρ Π t(μo)`).
+    #[inline]
+    fn diffuse_factor(&self, mu_i: f32, es_i: f32) -> S {
+        let m = self.m;
+        let ts = (1.0 - es_i) * (1.0 - self.spec_o);
+        match m.layering {
+            Layering::EnergyConserving => {
+                self.coat_factor(mu_i, Leaf::Diffuse)
+                    * (self.fuzz_factor(mu_i, Leaf::Diffuse) * ts * m.inv_spec_avg)
+            }
+            Layering::Reciprocal => {
+                let same = mu_i == self.mu_o;
+                let tf = if m.on[FUZZ] {
+                    let fi = if same { self.fuzz_o } else { m.e_fuzz(mu_i) };
+                    (1.0 - fi) * (1.0 - self.fuzz_o)
+                } else {
+                    1.0
+                };
+                let bare = S::splat(ts * tf * m.joint_norm[0]);
+                if !m.on[COAT] {
+                    return bare;
+                }
+                let w_c = m.params.coat_weight;
+                let ci = if same { self.coat_o } else { m.e_coat(mu_i) };
+                let tc = (1.0 - ci) * (1.0 - self.coat_o);
+                let coated =
+                    m.absorption(mu_i, self.mu_o) * self.darkening * (ts * tf * tc * m.joint_norm[1] * w_c);
+                coated + bare * (1.0 - w_c)
+            }
+        }
+    }
+
     /// `U = (1 − w_C) + w_C D A(μi, μo) T_C(μi, μo)` per channel.
     #[inline]
     fn coat_factor(&self, mu_i: f32, leaf: Leaf) -> S {
@@ -759,9 +835,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 } else {
                     m.e_spec(mu_i)
                 };
-                let k = (1.0 - es_i) * (1.0 - self.spec_o) * m.inv_spec_avg;
-                let under_d = self.coat_factor(mu_i, Leaf::Diffuse) * self.fuzz_factor(mu_i, Leaf::Diffuse);
-                f += m.diffuse.eval(wi, wo) * under_d * (dielectric * k);
+                f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
             }
             if want_pdf {
                 pdf += prob(SPEC) * m.spec.pdf(wi, wo) + prob(DIFFUSE) * m.diffuse.pdf(wi, wo);
