@@ -49,19 +49,24 @@ def run(cmd, **kw):
 
 
 def cpu_model():
+    name = "unknown"
     with open("/proc/cpuinfo") as f:
         for line in f:
             if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    return "unknown"
+                name = line.split(":", 1)[1].strip()
+                break
+    lscpu = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+    fields = dict(l.split(":", 1) for l in lscpu.splitlines() if ":" in l)
+    fam, mod, hyp = (fields.get(k, "?").strip() for k in ("CPU family", "Model", "Hypervisor vendor"))
+    return f"{name} (/proc/cpuinfo); lscpu: family {fam}, model {mod}, {os.cpu_count()} vCPU, hypervisor {hyp}"
 
 
 def fmt(v, indent=0):
-    """JSON with one key per line down to the per-build objects, arrays compact."""
+    """JSON with one key per line in every object, arrays of numbers compact."""
     pad = " " * indent
-    if isinstance(v, dict) and (indent < 6 or any(isinstance(x, dict) for x in v.values())):
-        if not v:
-            return "{}"
+    if isinstance(v, dict):
+        if not v or indent >= 4 and all(not isinstance(x, (dict, list)) for x in v.values()):
+            return json.dumps(v, separators=(", ", ": "), ensure_ascii=False)
         items = [f'{pad}  {json.dumps(k)}: {fmt(x, indent + 2)}' for k, x in v.items()]
         return "{\n" + ",\n".join(items) + "\n" + pad + "}"
     if isinstance(v, list) and v and isinstance(v[0], dict):
@@ -132,8 +137,8 @@ def main():
         cases.append(case)
 
     tim = {
-        "method": "ns per call, one thread, nice -n 10; 2^21 calls per repetition, 7 repetitions, "
-                  "median (min alongside); view/light directions cosine-distributed and random numbers "
+        "method": "ns per call, one thread, nice -n 10; 2^20 calls per repetition, 15 repetitions, "
+                  "thread CPU time (CLOCK_THREAD_CPUTIME_ID), median and min, wall-clock median alongside; view/light directions cosine-distributed and random numbers "
                   "precomputed (4096 of each, cycled), eval/sample/pdf over 64 prepared BSDFs; "
                   "hit = prepare + eval + sample + pdf at the sampled direction; results summed into a "
                   "volatile sink, prepare's result also escaped with an empty asm",
@@ -143,15 +148,18 @@ def main():
     for build in BUILDS:
         tim[build] = {"loadavg_before": timing[build]["loadavg_before"], **timing[build]["cases"]}
 
-    cmd_build = [" ".join(shlex.quote(c) for c in build_cmd("$ADOBE", b, f"/tmp/adobe_{b}"))
+    cmd_build = ["g++ -std=c++17 -O2 " + " ".join(BUILDS[b] + [""]) + '-I "$ADOBE" '
+                 f"tools/scripts/adobe_openpbr_measure.cpp -o /tmp/adobe_openpbr_build/adobe_{b}"
                  for b in BUILDS]
     doc = {
         "source": f"adobe/openpbr-bsdf {commit}",
-        "command": (f"ADOBE=/path/to/openpbr-bsdf (checkout of {commit}); "
-                    "python3 tools/scripts/adobe_openpbr_measure.py \"$ADOBE\" — which builds "
-                    + " and ".join(cmd_build)
-                    + ", then runs `nice -n 10 /tmp/adobe_<build> case <name>` per case and build and "
-                    "`nice -n 10 /tmp/adobe_<build> timing` (GLM 0.9.9.8 from Debian libglm-dev, g++ 12.2)"),
+        "command": (f"ADOBE=/path/to/openpbr-bsdf  # a checkout of {commit}\n"
+                    'python3 tools/scripts/adobe_openpbr_measure.py "$ADOBE"\n'
+                    "# which runs, from the repository root (g++ 12.2, GLM 0.9.9.8 from Debian libglm-dev):\n"
+                    + "\n".join(f"nice -n 10 {c}" for c in cmd_build)
+                    + "\nfor b in energy reciprocal; do for c in $(/tmp/adobe_openpbr_build/adobe_energy list); do "
+                    "nice -n 10 /tmp/adobe_openpbr_build/adobe_$b case $c; done; "
+                    "nice -n 10 /tmp/adobe_openpbr_build/adobe_$b timing; done"),
         "harness": "tools/scripts/adobe_openpbr_measure.cpp (+ adobe_openpbr_measure.py)",
         "cpu": cpu_model() + f" ({os.cpu_count()} vCPU, family/model from lscpu)",
         "frame": "normal +Z; wo = (sin θo, 0, cos θo); wi = (sin θi cos Δφ, sin θi sin Δφ, cos θi); "
@@ -175,6 +183,7 @@ def main():
         "cases": cases,
         "timing": tim,
     }
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w") as f:
         f.write(fmt(doc) + "\n")
     print("wrote", args.out, file=sys.stderr)
