@@ -30,8 +30,10 @@
 //                time the core spends on other processes is not counted; median and min reported,
 //                wall-clock median alongside), inputs precomputed, results summed into a volatile sink.
 //
-// The two builds: default = Adobe's energy-conserving layering (one-sided coat and fuzz);
-// -DOPENPBR_RECIPROCAL_COAT_AND_FUZZ=1 = reciprocal coat (the fuzz stays one-sided).
+// The two builds: default = Adobe's energy-conserving layering (the coat's and the fuzz's attenuation
+// of the layers beneath applied on the view side only); -DOPENPBR_RECIPROCAL_COAT_AND_FUZZ=1 = that
+// attenuation on both sides, for the coat and for the fuzz (white-fuzz-over-white drops from 1.0000
+// to 0.884 at θo = 0); only the fuzz lobe itself (its LTC fit) stays non-reciprocal.
 //
 // Build (GLM 0.9.9 headers from Debian's libglm-dev; ADOBE = a checkout of adobe/openpbr-bsdf):
 //   g++ -std=c++17 -O2 -I "$ADOBE" tools/scripts/adobe_openpbr_measure.cpp -o /tmp/adobe_energy
