@@ -48,6 +48,10 @@ Plugins (F = 1 unless a Fresnel term is named):
   eon-s0.5                     Eon, ρ 0.8, σ 0.5 (f32)
   plastic-ggx0.1-eon           coated(GGX α 0.1 dielectric η 1.5, Eon ρ 0.8 σ 0.5): radiometry::compose::Coated (f32)
   openpbr-defaults             OpenPbr with OpenPBR Surface's default parameters (f32)
+  openpbr-all-layers           OpenPbr, every layer on: metalness 0.5, coat 1 (r 0.2), fuzz 1 (f32)
+  (both OpenPbr rows also time the paths construct — OpenPbr::new with a roughness from u per
+  element — and hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
+  hit with textured parameters; and the plastic's row construct for Coated::new)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -446,12 +450,72 @@ impl Run<'_> {
             );
             self.plugin("plastic-ggx0.1-eon", &Coated::new(coat, eon));
         }
-        if self.wanted("openpbr-defaults") {
-            self.plugin(
-                "openpbr-defaults",
-                &OpenPbr::new(OpenPbrParams::<f32>::default()).expect(BAD),
-            );
+        if self.wanted("plastic-ggx0.1-eon") {
+            let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
+            let u = &inputs.u[..n];
+            let mut sink = 0.0f32;
+            let t = measure(n, mt, || {
+                for uk in u {
+                    let coat = Microfacet::<_, HeightCorrelated, _>::new(
+                        Ggx::new(0.01 + 0.5 * black_box(uk[0])).expect(BAD),
+                        Dielectric::new(1.5).expect(BAD),
+                    );
+                    let c = Coated::new(coat, eon);
+                    sink += black_box(&c).pick_probability(Vec3::Z);
+                }
+            });
+            black_box(sink);
+            self.push("plastic-ggx0.1-eon", "construct", t);
         }
+        let all_layers = OpenPbrParams::<f32> {
+            base_metalness: 0.5,
+            coat_weight: 1.0,
+            coat_roughness: 0.2,
+            fuzz_weight: 1.0,
+            ..OpenPbrParams::default()
+        };
+        for (name, params) in [
+            ("openpbr-defaults", OpenPbrParams::<f32>::default()),
+            ("openpbr-all-layers", all_layers),
+        ] {
+            if self.wanted(name) {
+                self.plugin(name, &OpenPbr::new(params).expect(BAD));
+                self.material_hit(name, params);
+            }
+        }
+    }
+
+    /// The construct and hit paths of an `OpenPbr` (see [`AFTER_HELP`]): a
+    /// renderer that builds the material at every hit from textured
+    /// parameters (here `specular_roughness` from `u[k][0]`).
+    fn material_hit(&mut self, name: &'static str, params: OpenPbrParams<f32>) {
+        const BAD: &str = "bench plugin parameters are valid";
+        let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
+        let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
+        let with = |k: usize| OpenPbrParams {
+            specular_roughness: 0.1 + 0.5 * u.get(k).map_or(0.5, |x| x[0]),
+            ..params
+        };
+        let mut sink = 0.0f32;
+        let t = measure(n, mt, || {
+            for k in 0..n {
+                let m = OpenPbr::new(black_box(with(k))).expect(BAD);
+                sink += black_box(&m).params().specular_roughness;
+            }
+        });
+        self.push(name, "construct", t);
+        let t = measure(n, mt, || {
+            for k in 0..n {
+                let m = OpenPbr::new(black_box(with(k))).expect(BAD);
+                let (i, o) = (wi[k], wo[k]);
+                sink += m.eval(i, o);
+                if let Some(s) = m.sample(o, u[k]) {
+                    sink += s.weight + m.pdf(s.wi, o);
+                }
+            }
+        });
+        self.push(name, "hit", t);
+        black_box(sink);
     }
 
     /// The `Tabulated` rows: GGX α 0.3 (the reference's formula) on the MERL grid.

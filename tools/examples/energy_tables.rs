@@ -19,8 +19,9 @@
 //!   (light arriving from the rarer side), `x = √μ`;
 //! * `DIELECTRIC_IN[z][a][x]`: the same for `η < 1` (total internal reflection
 //!   beyond the critical cosine `μc = √(1 − η²)`), with `x` split at `μc`:
-//!   `x = ½ − ½√((μc − μ)/μc)` below, `x = ½ + ½√((μ − μc)/(1 − μc))` above
-//!   (the Fresnel factor is linear in `√(μ − μc)` there);
+//!   `x = ½ ∓ ½ s(|μ − μc|)`, `s(d) = ½√(d/span) + ½ asinh(d/w)/asinh(span/w)`,
+//!   `w = max(α η, 10⁻⁴)` (nodes as fine as the roughness rounds the kink
+//!   near it, `√`-spaced far from it);
 //! * the averages `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ` of both (not ratios);
 //! * the metal moments `M5 / E₁` and `M6 / E₁` with `F = (1 − c)⁵` and
 //!   `F = c(1 − c)⁶`, `c = ωo·m`: every Fresnel term linear in these
@@ -32,8 +33,7 @@
 //! # Error
 //!
 //! Each entry is a product Gauss–Legendre rule (8 nodes per panel) on the
-//! unit square of the VNDF map, computed with two panel counts (`η > 1` and
-//! the moments: 16 × 16 and 32 × 32 panels; `η < 1`: 8 × 8 and 16 × 16); the
+//! unit square of the VNDF map, computed with 16 × 16 and 32 × 32 panels; the
 //! finer value is written and the largest difference of the two is stated in
 //! the header.
 //!
@@ -156,7 +156,7 @@ fn main() {
             let mc = (1.0 - ei * ei).max(0.0).sqrt();
             for j in 0..NX {
                 let x = j as f64 / (NX - 1) as f64;
-                let mu = mu_in(x, mc).max(MU_FLOOR);
+                let mu = mu_in(x, mc, alpha, ei).max(MU_FLOOR);
                 let f = ratio(pair_nodes(&nodes(alpha, mu, pi), ei));
                 let c = ratio(pair_nodes(&nodes(alpha, mu, pi / 2), ei));
                 if (f - c).abs() > worst_in.0 {

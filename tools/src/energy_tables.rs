@@ -214,15 +214,47 @@ pub fn eta_out(z: f64) -> f64 {
     if r >= 1.0 { 1e3 } else { (1.0 + r) / (1.0 - r) }
 }
 
-/// `μ` of node coordinate `x` on the inside table (critical cosine `mc`).
-pub fn mu_in(x: f64, mc: f64) -> f64 {
-    if x <= 0.5 {
-        let t = (0.5 - x) / 0.5;
-        mc * (1.0 - t * t)
-    } else {
-        let t = (x - 0.5) / 0.5;
-        mc + (1.0 - mc) * t * t
+/// `μ` of node coordinate `x` on the inside table (critical cosine `mc`,
+/// roughness `alpha`, index `eta < 1`): `x = ½ ∓ ½ s(|μ − μc|)` below and above
+/// `μc`, with the side coordinate [`side_coord`].
+pub fn mu_in(x: f64, mc: f64, alpha: f64, eta: f64) -> f64 {
+    let w = kink_width(alpha, eta);
+    let (span, sign) = if x <= 0.5 { (mc, -1.0) } else { (1.0 - mc, 1.0) };
+    let target = ((x - 0.5).abs() / 0.5).clamp(0.0, 1.0);
+    if span <= 0.0 {
+        return mc;
     }
+    // Bisection of the monotone side coordinate s(d) = target, d ∈ [0, span].
+    let (mut lo, mut hi) = (0.0f64, span);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if side_coord(mid, span, w) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (mc + sign * 0.5 * (lo + hi)).clamp(0.0, 1.0)
+}
+
+/// The width in `μ` over which roughness smooths the onset of total internal
+/// reflection: `w = max(α η, 10⁻⁴)` (`sin θc = η`, the lobe spreads by about
+/// `α` in angle).
+pub fn kink_width(alpha: f64, eta: f64) -> f64 {
+    (alpha * eta).max(1e-4)
+}
+
+/// The side coordinate `s ∈ [0, 1]` of a distance `d ∈ [0, span]` from the
+/// critical cosine: `½ √(d/span) + ½ asinh(d/w)/asinh(span/w)` — fine (about
+/// `w`) near the kink, where roughness rounds it, and `√`-spaced far from it,
+/// where the Fresnel factor goes like `√d` (`f32` reader:
+/// `radiometry_brdfs::microfacet::fresnel_table`).
+pub fn side_coord(d: f64, span: f64, w: f64) -> f64 {
+    if span <= 0.0 {
+        return 0.0;
+    }
+    let d = d.clamp(0.0, span);
+    0.5 * (d / span).sqrt() + 0.5 * (d / w).asinh() / (span / w).asinh()
 }
 
 /// Smallest `μ` at which a node is computed.
@@ -284,7 +316,7 @@ mod tests {
             // Inside.
             let ei = 1.0 / eta;
             let mc = (1.0 - ei * ei).max(0.0).sqrt();
-            let mu = mu_in(x, mc).max(MU_FLOOR);
+            let mu = mu_in(x, mc, alpha, ei).max(MU_FLOOR);
             let want = ratio(pair_nodes(&nodes(alpha, mu, 16), ei));
             let got = f64::from(dielectric_ratio(mu as f32, alpha as f32, ei as f32));
             assert!(

@@ -18,9 +18,12 @@
 //!   relative index `η`): [`dielectric_albedo`] `= E₁ · R`, with `R` read
 //!   from `33 × 32 × 32` `u16` nodes per side of `η = 1` (67.6 KB each):
 //!   `x = √μ` for `η > 1`; for `η < 1` the `μ` axis is split at the critical
-//!   cosine `μc = √(1 − η²)`, `x = ½ ∓ ½√(|μ − μc| / span)`, so that total
-//!   internal reflection starts on a node line for every `η` and the
-//!   Fresnel factor, linear in `√(μ − μc)` above it, is linear in `x`.
+//!   cosine `μc = √(1 − η²)`, `x = ½ ∓ ½ s(|μ − μc|)` with `s(d) = ½√(d/span)
+//!   + ½ asinh(d/w)/asinh(span/w)`, `w = max(α η, 10⁻⁴)`: total internal
+//!   reflection starts on a node line for every `η`, the nodes near it are
+//!   as fine as the roughness rounds it (each roughness row read in its own
+//!   units of `w`), and far from it `√`-spaced, where the Fresnel factor goes
+//!   like `√(μ − μc)`.
 //!   Roughness nodes `√α_k = 0.01 + 0.99 k/31`; index nodes `z_l = l/31`,
 //!   `z = F0^¼`, `F0 = ((η − 1)/(η + 1))²` (as Cycles and Adobe's OpenPBR
 //!   BSDF parameterise theirs). Trilinear interpolation.
@@ -70,6 +73,13 @@ fn alpha_coord(alpha: f32) -> (usize, f32) {
     cell_of((t - 0.01) / 0.99 * (FT_NA - 1) as f32, FT_NA)
 }
 
+/// The roughness node `α_k = (0.01 + 0.99 k/31)²`.
+#[inline(always)]
+fn alpha_node_f32(k: usize) -> f32 {
+    let t = 0.01 + 0.99 * k as f32 / (FT_NA - 1) as f32;
+    t * t
+}
+
 /// `z = F0^¼ = √|(η − 1)/(η + 1)|` and whether `η < 1`.
 #[inline(always)]
 fn index_coord(eta: f32) -> (usize, f32, bool) {
@@ -81,23 +91,24 @@ fn index_coord(eta: f32) -> (usize, f32, bool) {
 
 /// The `μ` coordinate `x ∈ [0, 1]` of a table (see the module docs).
 #[inline(always)]
-fn mu_coord(mu: f32, inside: bool, eta: f32) -> f32 {
+fn mu_coord(mu: f32, inside: bool, eta: f32, alpha: f32) -> f32 {
     let mu = mu.clamp(0.0, 1.0);
     if !inside {
         return libm::sqrtf(mu);
     }
     let mc = libm::sqrtf((1.0 - eta * eta).max(0.0));
-    if mu <= mc {
-        if mc <= 0.0 {
-            return 0.5;
-        }
-        0.5 - 0.5 * libm::sqrtf(((mc - mu) / mc).clamp(0.0, 1.0))
-    } else {
-        let span = 1.0 - mc;
+    let w = (alpha * eta).max(1e-4);
+    let side = |d: f32, span: f32| {
         if span <= 0.0 {
-            return 1.0;
+            return 0.0;
         }
-        0.5 + 0.5 * libm::sqrtf(((mu - mc) / span).clamp(0.0, 1.0))
+        let d = d.clamp(0.0, span);
+        0.5 * libm::sqrtf(d / span) + 0.5 * libm::asinhf(d / w) / libm::asinhf(span / w)
+    };
+    if mu <= mc {
+        0.5 - 0.5 * side(mc - mu, mc)
+    } else {
+        0.5 + 0.5 * side(mu - mc, 1.0 - mc)
     }
 }
 
@@ -115,9 +126,13 @@ pub fn dielectric_ratio(mu: f32, alpha: f32, eta: f32) -> f32 {
     // Each `z` slice at its own x: the inside table's x depends on η only
     // through μc, which is the η of the query for both slices (nodes on a
     // line of constant x share the critical point).
-    let x = mu_coord(mu, inside, eta);
-    let (j, fx) = cell_of(x * (FT_NX - 1) as f32, FT_NX);
+    // The inside table's x depends on α (the width of the rounded kink):
+    // each roughness row is read at its own node α, so that rows align in
+    // units of that width.
     let at = |l: usize, k: usize| -> f32 {
+        let a_k = if inside { alpha_node_f32(k) } else { alpha };
+        let x = mu_coord(mu, inside, eta, a_k);
+        let (j, fx) = cell_of(x * (FT_NX - 1) as f32, FT_NX);
         let base = (l * FT_NA + k) * FT_NX + j;
         let a = table.get(base).copied().unwrap_or(0) as f32;
         let b = table.get(base + 1).copied().unwrap_or(0) as f32;
