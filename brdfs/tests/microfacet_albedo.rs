@@ -222,3 +222,39 @@ fn albedo_is_zero_below_the_horizon_and_finite_at_grazing() {
         }
     }
 }
+
+/// A clear `η < 1` interface (total internal reflection from 42°) over a
+/// white Lambertian base keeps its energy in the energy-conserving layering:
+/// `E = E_T + (1 − E_T,table)` stays at or above 0.998 at every θo, and at
+/// most `1 + 2.5·10⁻³` — the tabulated albedo of the top tracks its true
+/// albedo across the rounded critical angle (measured at α = 0.01: 0.9987 at
+/// 25.5°, 1.0022 at 43°, where the table's `E_T` is 2.2·10⁻³ low on the
+/// steep rise). `E` by plain adaptive cubature of the layer's `eval` at
+/// 2¹⁷ and 2¹⁸ evaluations (which must agree to 2·10⁻⁴).
+#[test]
+fn a_clear_interface_with_total_internal_reflection_keeps_a_white_base_white() {
+    use radiometry::compose::Coated;
+    use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
+    use radiometry_brdfs::Lambertian;
+    for alpha in [0.01f32] {
+        let top = Microfacet::<_, HeightCorrelated, _>::new(
+            Ggx::new(alpha).unwrap(),
+            Dielectric::new(0.67).unwrap(),
+        );
+        let layer = Coated::new(top, Lambertian::new(1.0f32).unwrap());
+        let mut thetas: Vec<f32> = (0..=88).step_by(4).map(|t| t as f32).collect();
+        thetas.extend((76..=92).map(|k| k as f32 * 0.5)); // 38°–46°, around the critical angle
+        for t in thetas {
+            let wo = spherical_direction(t.to_radians(), 0.3);
+            let g = DirectionalAlbedo { brdf: &layer, wo };
+            let a = Adaptive::new(0.0, 0.0).unwrap();
+            let coarse = a.integrate(&g, 1 << 17).unwrap().value;
+            let fine = a.integrate(&g, 1 << 18).unwrap().value;
+            assert!(
+                (coarse - fine).abs() < 2e-4,
+                "α {alpha} θo {t}: {coarse} vs {fine}"
+            );
+            assert!((0.998..=1.0025).contains(&fine), "α {alpha} θo {t}°: E = {fine}");
+        }
+    }
+}

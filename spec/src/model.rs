@@ -154,6 +154,38 @@ where
     }
 }
 
+/// The monochrome `OpenPbr` parameters and layering of an `openpbr(...)`
+/// spec (each colour by its Rec. 709 luminance).
+pub fn openpbr_params(p: &crate::brdf::OpenPbrSpec) -> (OpenPbrParams<f32>, Layering) {
+    let c = |v: [f64; 3]| crate::brdf::luminance(v) as f32;
+    let layering = if p.reciprocal {
+        Layering::Reciprocal
+    } else {
+        Layering::EnergyConserving
+    };
+    (
+        OpenPbrParams {
+            base_weight: p.base_weight as f32,
+            base_color: c(p.base_color),
+            base_metalness: p.base_metalness as f32,
+            base_diffuse_roughness: p.base_diffuse_roughness as f32,
+            specular_weight: p.specular_weight as f32,
+            specular_color: c(p.specular_color),
+            specular_roughness: p.specular_roughness as f32,
+            specular_ior: p.specular_ior as f32,
+            coat_weight: p.coat_weight as f32,
+            coat_color: c(p.coat_color),
+            coat_roughness: p.coat_roughness as f32,
+            coat_ior: p.coat_ior as f32,
+            coat_darkening: p.coat_darkening as f32,
+            fuzz_weight: p.fuzz_weight as f32,
+            fuzz_color: c(p.fuzz_color),
+            fuzz_roughness: p.fuzz_roughness as f32,
+        },
+        layering,
+    )
+}
+
 /// Builds the plugin BRDF for a parsed spec. A constructor's [`BrdfError`]
 /// is reported as a [`SpecError`] pointing at the parameter it names (or at
 /// the whole spec).
@@ -213,34 +245,8 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
         BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::LtcSheen { color, roughness } => LtcSheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::OpenPbr(ref p) => {
-            let c = |v: [f64; 3]| crate::brdf::luminance(v) as f32;
-            let layering = if p.reciprocal {
-                Layering::Reciprocal
-            } else {
-                Layering::EnergyConserving
-            };
-            OpenPbr::with_layering(
-                OpenPbrParams {
-                    base_weight: p.base_weight as f32,
-                    base_color: c(p.base_color),
-                    base_metalness: p.base_metalness as f32,
-                    base_diffuse_roughness: p.base_diffuse_roughness as f32,
-                    specular_weight: p.specular_weight as f32,
-                    specular_color: c(p.specular_color),
-                    specular_roughness: p.specular_roughness as f32,
-                    specular_ior: p.specular_ior as f32,
-                    coat_weight: p.coat_weight as f32,
-                    coat_color: c(p.coat_color),
-                    coat_roughness: p.coat_roughness as f32,
-                    coat_ior: p.coat_ior as f32,
-                    fuzz_weight: p.fuzz_weight as f32,
-                    fuzz_color: c(p.fuzz_color),
-                    fuzz_roughness: p.fuzz_roughness as f32,
-                    coat_darkening: p.coat_darkening as f32,
-                },
-                layering,
-            )
-            .map(boxed)
+            let (params, layering) = openpbr_params(p);
+            OpenPbr::with_layering(params, layering).map(boxed)
         }
         BrdfSpec::Phong { exponent, ks, kd } => {
             ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)

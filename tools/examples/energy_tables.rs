@@ -19,7 +19,7 @@
 //!   (light arriving from the rarer side), `x = √μ`;
 //! * `DIELECTRIC_IN[z][a][x]`: the same for `η < 1` (total internal reflection
 //!   beyond the critical cosine `μc = √(1 − η²)`), with `x` split at `μc`:
-//!   `x = ½ ∓ ½ s(|μ − μc|)`, `s(d) = ½√(d/span) + ½ asinh(d/w)/asinh(span/w)`,
+//!   `x = ½ ∓ ½ s(|μ − μc|)`, `s(d) = 0.3√(d/span) + 0.7 asinh(d/w)/asinh(span/w)`,
 //!   `w = max(α η, 10⁻⁴)` (nodes as fine as the roughness rounds the kink
 //!   near it, `√`-spaced far from it);
 //! * the averages `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ` of both (not ratios);
@@ -27,8 +27,9 @@
 //!   `F = c(1 − c)⁶`, `c = ωo·m`: every Fresnel term linear in these
 //!   (Schlick, F82-tint) has an exact albedo per channel from them.
 //!
-//! Nodes: `x_j = j/32` (`j = 0..33`), `√α_k = 0.01 + 0.99 k/31` (`k = 0..32`),
-//! `z_l = l/31` with `z = F0^¼`, `F0 = ((η − 1)/(η + 1))²` (`l = 0..32`).
+//! Nodes: `x_j = j/32` (`j = 0..33`; `η < 1`: `j/64`, `j = 0..65`), `√α_k = 0.01 +
+//! 0.99 k/31` (`k = 0..32`), `z_l = l/31` with `z = F0^¼`, `F0 = ((η − 1)/(η + 1))²`
+//! (`l = 0..32`; `η < 1`: `l/15`, `l = 0..16`).
 //!
 //! # Error
 //!
@@ -72,9 +73,9 @@ fn main() {
     let mut worst_out = (0.0f64, String::new());
     let mut worst_in = (0.0f64, String::new());
     let mut out = vec![0.0; NZ * NA * NX];
-    let mut inn = vec![0.0; NZ * NA * NX];
+    let mut inn = vec![0.0; NZ_IN * NA * NX_IN];
     let mut avg_out = vec![0.0; NZ * NA];
-    let mut avg_in = vec![0.0; NZ * NA];
+    let mut avg_in = vec![0.0; NZ_IN * NA];
     let mut m5 = vec![0.0; NA * NX];
     let mut m6 = vec![0.0; NA * NX];
     let mut worst_m = 0.0f64;
@@ -93,9 +94,9 @@ fn main() {
     let row = |k: usize| -> Row {
         let alpha = alpha_node(k);
         let mut out = vec![0.0; NZ * NX];
-        let mut inn = vec![0.0; NZ * NX];
+        let mut inn = vec![0.0; NZ_IN * NX_IN];
         let mut avg_out = vec![0.0; NZ];
-        let mut avg_in = vec![0.0; NZ];
+        let mut avg_in = vec![0.0; NZ_IN];
         let mut m5 = vec![0.0; NX];
         let mut m6 = vec![0.0; NX];
         let mut worst_out = (0.0f64, String::new());
@@ -151,18 +152,18 @@ fn main() {
                 .sum();
         }
         // Inside: μ nodes depend on the index through μc.
-        for l in 0..NZ {
-            let ei = 1.0 / eta_out(z_node(l));
+        for l in 0..NZ_IN {
+            let ei = 1.0 / eta_out(z_node_in(l));
             let mc = (1.0 - ei * ei).max(0.0).sqrt();
-            for j in 0..NX {
-                let x = j as f64 / (NX - 1) as f64;
+            for j in 0..NX_IN {
+                let x = j as f64 / (NX_IN - 1) as f64;
                 let mu = mu_in(x, mc, alpha, ei).max(MU_FLOOR);
                 let f = ratio(pair_nodes(&nodes(alpha, mu, pi), ei));
                 let c = ratio(pair_nodes(&nodes(alpha, mu, pi / 2), ei));
                 if (f - c).abs() > worst_in.0 {
                     worst_in = ((f - c).abs(), format!("α = {alpha:.6}, η = {ei:.6}, μ = {mu:.6}"));
                 }
-                inn[l * NX + j] = f;
+                inn[l * NX_IN + j] = f;
             }
             let mut lower = |t: f64| {
                 let mu = mc * (1.0 - t * t);
@@ -193,9 +194,13 @@ fn main() {
         for l in 0..NZ {
             for j in 0..NX {
                 out[(l * NA + k) * NX + j] = o[l * NX + j];
-                inn[(l * NA + k) * NX + j] = i[l * NX + j];
             }
             avg_out[l * NA + k] = ao[l];
+        }
+        for l in 0..NZ_IN {
+            for j in 0..NX_IN {
+                inn[(l * NA + k) * NX_IN + j] = i[l * NX_IN + j];
+            }
             avg_in[l * NA + k] = ai[l];
         }
         for j in 0..NX {
@@ -235,7 +240,7 @@ fn main() {
     );
     print_u16(
         "DIELECTRIC_IN",
-        "/// `E_F/E₁` for `η < 1`, `[z][α][x]`, `x` split at the critical cosine, as `u16`.",
+        "/// `E_F/E₁` for `η < 1`, `[z][α][x]` (16 × 32 × 65), `x` split at the critical cosine, as `u16`.",
         &inn,
     );
     print_f32(
@@ -245,7 +250,7 @@ fn main() {
     );
     print_f32(
         "AVERAGE_IN",
-        "/// `Ē = 2∫E_F μ dμ` for `η < 1`, `[z][α]`.",
+        "/// `Ē = 2∫E_F μ dμ` for `η < 1`, `[z][α]` (16 × 32).",
         &avg_in,
     );
     print_f32(

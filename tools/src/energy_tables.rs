@@ -21,6 +21,10 @@ pub const NX: usize = 33;
 pub const NA: usize = 32;
 /// Index nodes.
 pub const NZ: usize = 32;
+/// `μ` nodes per row of the `η < 1` table (its rounded kink needs more).
+pub const NX_IN: usize = 65;
+/// Index nodes of the `η < 1` table.
+pub const NZ_IN: usize = 16;
 
 /// 8-point Gauss–Legendre nodes and weights on `[0, 1]`.
 pub fn gl8() -> ([f64; 8], [f64; 8]) {
@@ -208,6 +212,11 @@ pub fn z_node(l: usize) -> f64 {
     l as f64 / (NZ - 1) as f64
 }
 
+/// Index node of the `η < 1` table, `z_l = l/15`.
+pub fn z_node_in(l: usize) -> f64 {
+    l as f64 / (NZ_IN - 1) as f64
+}
+
 /// `η > 1` with `F0^¼ = z`.
 pub fn eta_out(z: f64) -> f64 {
     let r = z * z;
@@ -247,6 +256,7 @@ pub fn kink_width(alpha: f64, eta: f64) -> f64 {
 /// The side coordinate `s ∈ [0, 1]` of a distance `d ∈ [0, span]` from the
 /// critical cosine: `½ √(d/span) + ½ asinh(d/w)/asinh(span/w)` — fine (about
 /// `w`) near the kink, where roughness rounds it, and `√`-spaced far from it,
+/// with weights 0.3 and 0.7,
 /// where the Fresnel factor goes like `√d` (`f32` reader:
 /// `radiometry_brdfs::microfacet::fresnel_table`).
 pub fn side_coord(d: f64, span: f64, w: f64) -> f64 {
@@ -254,7 +264,7 @@ pub fn side_coord(d: f64, span: f64, w: f64) -> f64 {
         return 0.0;
     }
     let d = d.clamp(0.0, span);
-    0.5 * (d / span).sqrt() + 0.5 * (d / w).asinh() / (span / w).asinh()
+    0.3 * (d / span).sqrt() + 0.7 * (d / w).asinh() / (span / w).asinh()
 }
 
 /// Smallest `μ` at which a node is computed.

@@ -70,6 +70,7 @@ use radiometry::math::ONE_MINUS_EPSILON;
 use radiometry::rng::Pcg32;
 use radiometry::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use radiometry::{Brdf, Frame};
+use radiometry_brdfs::openpbr::{Layering, OpenPbr, OpenPbrParams};
 use std::f32::consts::{PI, TAU};
 use std::fmt;
 use std::sync::Mutex;
@@ -150,6 +151,8 @@ pub enum PreviewError {
     Light(LightError),
     /// Writing the image failed.
     Io(std::io::Error),
+    /// The textured ball's base parameters were rejected by `OpenPbr`.
+    Material(radiometry_brdfs::BrdfError),
 }
 
 impl fmt::Display for PreviewError {
@@ -160,6 +163,7 @@ impl fmt::Display for PreviewError {
             PreviewError::Angle(name, v) => write!(f, "{name} {v} is out of range"),
             PreviewError::Light(e) => write!(f, "{e}"),
             PreviewError::Io(e) => write!(f, "{e}"),
+            PreviewError::Material(e) => write!(f, "textured ball: {e}"),
         }
     }
 }
@@ -448,6 +452,116 @@ pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(
     });
     progress.finish();
     Ok(Image::new(opt.size, radiance, coverage))
+}
+
+/// The parameters of the textured ball at the point `p` of the unit ball
+/// (`radiometry preview … --textured`): from the base parameters `base`,
+/// `specular_roughness` ramps from 0.05 at the bottom to 0.8 at the top,
+/// `base_metalness` from 0 on the left to 1 on the right, and a checker of
+/// 8 × 4 squares in longitude and latitude toggles a clear coat
+/// (`coat_weight` 1, `coat_roughness` 0.05) on and off.
+pub fn textured_params(base: OpenPbrParams<f32>, p: Vec3) -> OpenPbrParams<f32> {
+    let up = (0.5 * (p.y + 1.0)).clamp(0.0, 1.0);
+    let right = (0.5 * (p.x + 1.0)).clamp(0.0, 1.0);
+    let lon = p.x.atan2(p.z);
+    let lat = p.y.clamp(-1.0, 1.0).asin();
+    let cell = ((lon / PI * 4.0).floor() as i32) + ((lat / PI * 4.0).floor() as i32);
+    let coat = cell.rem_euclid(2) == 0;
+    OpenPbrParams {
+        specular_roughness: 0.05 + 0.75 * up,
+        base_metalness: right,
+        coat_weight: if coat { 1.0 } else { 0.0 },
+        coat_roughness: if coat { 0.05 } else { base.coat_roughness },
+        ..base
+    }
+}
+
+/// What [`render_textured`] measured: hits shaded and the time spent in
+/// `OpenPbr::new` (one construction per hit).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TexturedStats {
+    /// Camera samples that hit the ball (each built its own material).
+    pub hits: u64,
+    /// Seconds spent constructing materials, summed over the threads.
+    pub construct_secs: f64,
+}
+
+/// Renders the textured ball: an `OpenPbr` built at every hit from
+/// [`textured_params`] (a renderer with textured parameters), in the given
+/// layering; otherwise as [`render`].
+pub fn render_textured(
+    base: OpenPbrParams<f32>,
+    layering: Layering,
+    opt: &Options,
+) -> Result<(Image, TexturedStats), PreviewError> {
+    if opt.size == 0 || opt.size > MAX_SIZE {
+        return Err(PreviewError::Size(opt.size));
+    }
+    if opt.samples == 0 || opt.samples > MAX_SAMPLES {
+        return Err(PreviewError::Samples(opt.samples));
+    }
+    OpenPbr::with_layering(textured_params(base, Vec3::Z), layering).map_err(PreviewError::Material)?;
+    let lighting = Lighting::new(opt)?;
+    let n = opt.size as usize;
+    let mut radiance = vec![0.0f32; n * n];
+    let mut coverage = vec![0.0f32; n * n];
+    let threads = if opt.threads == 0 {
+        std::thread::available_parallelism().map_or(1, |t| t.get())
+    } else {
+        opt.threads
+    }
+    .clamp(1, n);
+    let progress = Progress::new(opt.progress, n);
+    let stats = Mutex::new(TexturedStats::default());
+    let rows = Mutex::new(radiance.chunks_mut(n).zip(coverage.chunks_mut(n)).enumerate());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                let mut local = TexturedStats::default();
+                loop {
+                    let next = rows.lock().map(|mut r| r.next()).unwrap_or(None);
+                    let Some((y, (lrow, crow))) = next else { break };
+                    let t = half_fov_tan();
+                    for (x, (l, c)) in lrow.iter_mut().zip(crow.iter_mut()).enumerate() {
+                        let mut rng = Pcg32::with_stream(opt.seed, (y * n + x) as u64);
+                        let (mut sum, mut hits) = (0.0f64, 0u32);
+                        for _ in 0..opt.samples {
+                            let (px, py) = (x as f32 + rng.next_f32(), y as f32 + rng.next_f32());
+                            let (o, d) = camera_ray_with(t, px, py, opt.size);
+                            let u = [
+                                rng.next_f32(),
+                                rng.next_f32(),
+                                rng.next_f32(),
+                                rng.next_f32(),
+                                rng.next_f32(),
+                            ];
+                            sum += match hit_ball(o, d) {
+                                Some(p) => {
+                                    hits += 1;
+                                    let t0 = std::time::Instant::now();
+                                    let m = OpenPbr::with_layering(textured_params(base, p), layering);
+                                    local.construct_secs += t0.elapsed().as_secs_f64();
+                                    local.hits += 1;
+                                    m.map_or(0.0, |m| lighting.shade(&m, p, -d, u) as f64)
+                                }
+                                None => lighting.radiance(d) as f64,
+                            };
+                        }
+                        *l = (sum / opt.samples as f64) as f32;
+                        *c = hits as f32 / opt.samples as f32;
+                    }
+                    progress.tick(&format!("row {}", y + 1));
+                }
+                if let Ok(mut s) = stats.lock() {
+                    s.hits += local.hits;
+                    s.construct_secs += local.construct_secs;
+                }
+            });
+        }
+    });
+    progress.finish();
+    let stats = stats.into_inner().unwrap_or_default();
+    Ok((Image::new(opt.size, radiance, coverage), stats))
 }
 
 fn render_row<B: Brdf<Spectrum = f32> + ?Sized>(

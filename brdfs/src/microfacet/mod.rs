@@ -51,6 +51,7 @@ mod beckmann_lanes;
 mod beckmann_slope;
 mod beckmann_slope_table;
 mod beckmann_tail;
+mod e1_average_data;
 pub(crate) mod f82;
 mod fresnel;
 pub mod fresnel_table;
@@ -555,8 +556,9 @@ where
     /// The lobe's mean Fresnel factor `E_F/E₁` at `μo` from the global
     /// tables ([`fresnel_table`]) when they cover this lobe: GGX with the
     /// height-correlated `G2` (`table` is its `F = 1` table) and a Fresnel
-    /// term whose [`form`](Fresnel::form) they read (`F = 1`, a real
-    /// dielectric index, or linear in the moments). `None` otherwise.
+    /// term whose [`form`](Fresnel::form) they read (a real dielectric
+    /// index, or linear in the moments). `None` otherwise (and for `F = 1`,
+    /// whose albedo is the `F = 1` table itself, with its bound).
     #[inline]
     pub(crate) fn tabulated_fresnel_ratio(&self, table: &AlbedoTable, mu: f32) -> Option<F::Spectrum> {
         if !core::ptr::eq(table, &albedo_data::GGX_HEIGHT_CORRELATED) {
@@ -564,7 +566,8 @@ where
         }
         let alpha = self.distribution.alpha();
         match self.fresnel.form() {
-            FresnelForm::One => Some(F::Spectrum::splat(1.0)),
+            // F = 1: the F = 1 table itself, with its bound (the caller's other path).
+            FresnelForm::One => None,
             FresnelForm::Dielectric(eta) => Some(F::Spectrum::splat(fresnel_table::dielectric_ratio(
                 mu, alpha, eta,
             ))),

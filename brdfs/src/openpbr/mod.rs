@@ -19,7 +19,7 @@
 //! |---|---|
 //! | `f_fuzz` | the LTC sheen of Zeltner et al. 2022 ([`LtcSheen`], OpenPBR's recommendation); Charlie ([`Sheen`]) in the reciprocal mode |
 //! | `f_coat` | GGX (`α_c = r_c²`), dielectric Fresnel of `coat_ior` |
-//! | `f_metal` | GGX (`α_s = r_s²`), F82-tint (`f0 = w_B C_B`, tint `C_s`), Kulla–Conty compensated |
+//! | `f_metal` | GGX (`α_s = r_s²`), F82-tint (`f0 = w_B C_B`, tint `C_s`), and Kulla & Conty's multiple-scattering lobe from global tables |
 //! | `f_spec` | GGX (`α_s`), dielectric Fresnel of the specular index ratio `η_s` |
 //! | `f_EON` | energy-preserving Oren–Nayar, `ρ = w_B C_B`, `σ = r_D` |
 //!
@@ -120,8 +120,8 @@ mod tests;
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::fresnel_table::{dielectric_albedo, dielectric_average};
 use crate::microfacet::{
-    Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, KullaConty,
-    MAX_ETA, MIN_ALPHA, Microfacet,
+    Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
+    MIN_ALPHA, Microfacet, MicrofacetDistribution,
 };
 use crate::rough_diffuse::Eon;
 use crate::sheen::{LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
@@ -198,15 +198,63 @@ impl<S: Spectrum> Default for OpenPbrParams<S> {
 }
 
 type DielectricLobe<S> = Microfacet<Ggx, HeightCorrelated, Achromatic<Dielectric, S>>;
-type Metal<S> = KullaConty<Ggx, HeightCorrelated, F82Tint<S>>;
+type MetalSingle<S> = Microfacet<Ggx, HeightCorrelated, F82Tint<S>>;
+
+/// The metal: single scattering (GGX, F82-tint) and the multiple-scattering
+/// lobe of Kulla & Conty (2017) built in O(1) from global tables:
+/// `f_ms = F_ms (1 − E₁(μi))(1 − E₁(μo)) / (π (1 − Ē₁))`, `F_ms = F̄² Ē₁ /
+/// (1 − F̄ (1 − Ē₁))`, `F̄ = f0 + (1 − f0)/21 − a/126` (the hemispherical
+/// average of the F82-tint polynomial, in closed form).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Metal<S: Spectrum> {
+    single: MetalSingle<S>,
+    /// `F_ms / (π (1 − Ē₁))` per channel (0 when `Ē₁` is 1 to `10⁻⁶`).
+    ms_scale: S,
+    alpha: f32,
+}
+
+impl<S: Spectrum> Metal<S> {
+    fn new(ggx: Ggx, f0: S, tint: S) -> Self {
+        let fresnel = F82Tint::from_valid(f0, tint);
+        let alpha = ggx.alpha();
+        let e_avg = crate::microfacet::fresnel_table::e1_average(alpha);
+        let loss = 1.0 - e_avg;
+        // F82-tint's a per channel: F(μ̄) = t F_S(μ̄) at μ̄ = 1/7.
+        let w_bar = 7_776.0 / 16_807.0;
+        let g_bar = 46_656.0 / 823_543.0;
+        let ms_scale = S::from_fn(|c| {
+            let (f0, t) = (f0.channel(c), tint.channel(c));
+            let a = (f0 + (1.0 - f0) * w_bar) * (1.0 - t) / g_bar;
+            let f_avg = (f0 + (1.0 - f0) / 21.0 - a / 126.0).clamp(0.0, 1.0);
+            if loss > 1e-6 {
+                let f_ms = f_avg * f_avg * e_avg / (1.0 - f_avg * loss);
+                f_ms * core::f32::consts::FRAC_1_PI / loss
+            } else {
+                0.0
+            }
+        });
+        Self {
+            single: Microfacet::new(ggx, fresnel),
+            ms_scale,
+            alpha,
+        }
+    }
+
+    /// `1 − E₁(μ)`.
+    #[inline]
+    fn loss(&self, mu: f32) -> f32 {
+        (1.0 - e1_table().albedo(mu, self.alpha)).clamp(0.0, 1.0)
+    }
+}
 
 /// Number of leaf lobes.
-const LOBES: usize = 5;
+const LOBES: usize = 6;
 const FUZZ: usize = 0;
 const COAT: usize = 1;
 const METAL: usize = 2;
-const SPEC: usize = 3;
-const DIFFUSE: usize = 4;
+const METAL_MS: usize = 3;
+const SPEC: usize = 4;
+const DIFFUSE: usize = 5;
 
 /// The `F = 1` albedo table of GGX with the height-correlated `G2`.
 fn e1_table() -> &'static AlbedoTable {
@@ -227,10 +275,12 @@ pub struct OpenPbr<S: Spectrum = f32> {
     /// The fuzz lobe of the energy-conserving mode (LTC sheen, OpenPBR's
     /// recommendation) and of the reciprocal mode (Charlie: the LTC sheen is
     /// not reciprocal).
-    fuzz: LtcSheen<S>,
-    fuzz_reciprocal: Sheen<S>,
+    fuzz: Option<LtcSheen<S>>,
+    fuzz_reciprocal: Option<Sheen<S>>,
     coat: DielectricLobe<S>,
-    metal: Metal<S>,
+    /// The metal lobe, built only when `base_metalness` and `specular_weight`
+    /// are above 0 (its Kulla–Conty compensation reads a table row).
+    metal: Option<Metal<S>>,
     spec: DielectricLobe<S>,
     diffuse: Eon<S>,
     /// Which lobes are on (weight > 0).
@@ -353,18 +403,27 @@ impl<S: Spectrum> OpenPbr<S> {
         };
         let a_s = alpha(r_s);
         let ggx_s = Ggx::new(a_s)?;
-        let metal = KullaConty::new(ggx_s, F82Tint::from_valid(rho, spec_color));
+        let metal = (m > 0.0 && xi > 0.0).then(|| Metal::new(ggx_s, rho, spec_color));
         let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
         let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?));
         let diffuse = Eon::new(rho, sigma)?;
         let a_c = alpha(r_c);
         let coat = Microfacet::new(Ggx::new(a_c)?, Achromatic::new(Dielectric::new(coat_ior)?));
-        let fuzz = LtcSheen::new(fuzz_color, r_f)?;
+        let reciprocal = layering == Layering::Reciprocal;
+        // Only the fuzz lobe of this mode, and only when the fuzz is on.
+        let fuzz = if w_f > 0.0 && !reciprocal {
+            Some(LtcSheen::new(fuzz_color, r_f)?)
+        } else {
+            None
+        };
         let r_f = r_f.max(MIN_SHEEN_ROUGHNESS);
-        let fuzz_reciprocal = Sheen::new(fuzz_color, r_f)?;
+        let fuzz_reciprocal = if w_f > 0.0 && reciprocal {
+            Some(Sheen::new(fuzz_color, r_f)?)
+        } else {
+            None
+        };
 
         let spec_avg = dielectric_average(a_s, eta_s);
-        let reciprocal = layering == Layering::Reciprocal;
         let coat_norm = if reciprocal && w_c > 0.0 {
             inv(1.0 - dielectric_average(a_c, coat_ior))
         } else {
@@ -401,16 +460,33 @@ impl<S: Spectrum> OpenPbr<S> {
         } else {
             [1.0, 1.0]
         };
-        // Coat darkening (§"Darkening"): E_b at normal incidence, K_r, r_b.
-        let n = Vec3::Z;
-        let e_s1 = dielectric_albedo(e1_table(), 1.0, a_s, eta_s);
-        let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
-        let base_albedo_normal = metal.directional_albedo(n).value * (m * xi) + glossy * (1.0 - m);
-        let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
-        let k_r = 1.0 - (1.0 - e_f_avg) / (coat_ior * coat_ior);
+        // Coat darkening (§"Darkening"): E_b at normal incidence, K_r, r_b
+        // (only read under a coat).
+        let (base_albedo_normal, k_r) = if w_c > 0.0 {
+            let n = Vec3::Z;
+            let e_s1 = dielectric_albedo(e1_table(), 1.0, a_s, eta_s);
+            let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
+            let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
+                x.single.directional_albedo(n).value + x.ms_scale * (core::f32::consts::PI * x.loss(1.0))
+            });
+            let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
+            (
+                metal_normal * (m * xi) + glossy * (1.0 - m),
+                1.0 - (1.0 - e_f_avg) / (coat_ior * coat_ior),
+            )
+        } else {
+            (S::zero(), 0.0)
+        };
         let r_d = 1.0 + (r_s - 1.0) * (xi * f0_of(ior)).clamp(0.0, 1.0);
         let r_b = r_d + m * (r_s - r_d);
-        let on = [w_f > 0.0, w_c > 0.0, m > 0.0 && xi > 0.0, m < 1.0, m < 1.0];
+        let on = [
+            w_f > 0.0,
+            w_c > 0.0,
+            m > 0.0 && xi > 0.0,
+            m > 0.0 && xi > 0.0,
+            m < 1.0,
+            m < 1.0,
+        ];
         Ok(Self {
             params: p,
             layering,
@@ -462,8 +538,11 @@ impl<S: Spectrum> OpenPbr<S> {
     fn e_fuzz(&self, mu: f32) -> f32 {
         self.params.fuzz_weight
             * match self.layering {
-                Layering::EnergyConserving => self.fuzz.albedo_untinted(mu),
-                Layering::Reciprocal => SheenAlbedoTable::get().albedo(mu, self.fuzz_reciprocal.roughness()),
+                Layering::EnergyConserving => self.fuzz.as_ref().map_or(0.0, |f| f.albedo_untinted(mu)),
+                Layering::Reciprocal => self
+                    .fuzz_reciprocal
+                    .as_ref()
+                    .map_or(0.0, |f| SheenAlbedoTable::get().albedo(mu, f.roughness())),
             }
     }
 
@@ -471,30 +550,39 @@ impl<S: Spectrum> OpenPbr<S> {
     #[inline]
     fn fuzz_eval(&self, wi: Vec3, wo: Vec3) -> S {
         match self.layering {
-            Layering::EnergyConserving => self.fuzz.eval(wi, wo),
-            Layering::Reciprocal => self.fuzz_reciprocal.eval(wi, wo),
+            Layering::EnergyConserving => self.fuzz.as_ref().map_or(S::zero(), |f| f.eval(wi, wo)),
+            Layering::Reciprocal => self
+                .fuzz_reciprocal
+                .as_ref()
+                .map_or(S::zero(), |f| f.eval(wi, wo)),
         }
     }
 
     #[inline]
     fn fuzz_pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         match self.layering {
-            Layering::EnergyConserving => self.fuzz.pdf(wi, wo),
-            Layering::Reciprocal => self.fuzz_reciprocal.pdf(wi, wo),
+            Layering::EnergyConserving => self.fuzz.as_ref().map_or(0.0, |f| f.pdf(wi, wo)),
+            Layering::Reciprocal => self.fuzz_reciprocal.as_ref().map_or(0.0, |f| f.pdf(wi, wo)),
         }
     }
 
     fn fuzz_sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         match self.layering {
-            Layering::EnergyConserving => self.fuzz.sample(wo, u),
-            Layering::Reciprocal => self.fuzz_reciprocal.sample(wo, u),
+            Layering::EnergyConserving => self.fuzz.as_ref().and_then(|f| f.sample(wo, u)),
+            Layering::Reciprocal => self.fuzz_reciprocal.as_ref().and_then(|f| f.sample(wo, u)),
         }
     }
 
     fn fuzz_albedo(&self, wo: Vec3) -> S {
         match self.layering {
-            Layering::EnergyConserving => self.fuzz.directional_albedo(wo).value,
-            Layering::Reciprocal => self.fuzz_reciprocal.directional_albedo(wo).value,
+            Layering::EnergyConserving => self
+                .fuzz
+                .as_ref()
+                .map_or(S::zero(), |f| f.directional_albedo(wo).value),
+            Layering::Reciprocal => self
+                .fuzz_reciprocal
+                .as_ref()
+                .map_or(S::zero(), |f| f.directional_albedo(wo).value),
         }
     }
 
@@ -575,9 +663,10 @@ impl<S: Spectrum> OpenPbr<S> {
         }
         let under = |leaf| (view.coat_factor(mu, leaf) * view.fuzz_factor_o(leaf)).average();
         let u_s = under(Leaf::Specular);
-        if self.on[METAL] {
-            share[METAL] =
-                u_s * p.base_metalness * self.xi * self.metal.directional_albedo(wo).value.average();
+        if let Some(metal) = &self.metal {
+            let w = u_s * p.base_metalness * self.xi;
+            share[METAL] = w * metal.single.directional_albedo(wo).value.average();
+            share[METAL_MS] = w * metal.ms_scale.average() * core::f32::consts::PI * metal.loss(mu);
         }
         if self.on[SPEC] {
             share[SPEC] = u_s * (1.0 - p.base_metalness) * p.specular_color.average() * view.spec_o;
@@ -599,7 +688,7 @@ impl<S: Spectrum> OpenPbr<S> {
         }
         if !(total > 0.0 && total.is_finite()) {
             // Nothing reflects: the diffuse lobe's sampler (its value is 0).
-            view.cdf = [0.0, 0.0, 0.0, 0.0, 1.0];
+            view.cdf = [0.0, 0.0, 0.0, 0.0, 0.0, 1.0];
         }
         view.cdf[LOBES - 1] = 1.0;
         view
@@ -817,12 +906,14 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         } else {
             S::zero()
         };
-        if m.on[METAL] {
+        if let Some(metal) = &m.metal {
             if want_value {
-                f += m.metal.eval(wi, wo) * under_s * (p.base_metalness * m.xi);
+                let ms = metal.ms_scale * (metal.loss(mu_i) * metal.loss(self.mu_o));
+                f += (metal.single.eval(wi, wo) + ms) * under_s * (p.base_metalness * m.xi);
             }
             if want_pdf {
-                pdf += prob(METAL) * m.metal.pdf(wi, wo);
+                pdf += prob(METAL) * metal.single.pdf(wi, wo)
+                    + prob(METAL_MS) * radiometry::warp::cosine_hemisphere_pdf(wi);
             }
         }
         if m.on[SPEC] {
@@ -891,7 +982,15 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let s = match k {
             FUZZ => m.fuzz_sample(wo, uu),
             COAT => m.coat.sample(wo, uu),
-            METAL => m.metal.sample(wo, uu),
+            METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
+            METAL_MS => {
+                let wi = radiometry::warp::square_to_cosine_hemisphere(uu);
+                (wi.z > 0.0).then(|| BrdfSample {
+                    wi,
+                    pdf: radiometry::warp::cosine_hemisphere_pdf(wi),
+                    weight: S::zero(),
+                })
+            }
             SPEC => m.spec.sample(wo, uu),
             _ => m.diffuse.sample(wo, uu),
         }?;
@@ -930,7 +1029,10 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
         if m.on[METAL] {
-            e += m.metal.directional_albedo(wo).value * under_s * (p.base_metalness * m.xi);
+            if let Some(metal) = &m.metal {
+                let ms = metal.ms_scale * (core::f32::consts::PI * metal.loss(mu));
+                e += (metal.single.directional_albedo(wo).value + ms) * under_s * (p.base_metalness * m.xi);
+            }
         }
         if m.on[SPEC] {
             let d = 1.0 - p.base_metalness;
