@@ -210,6 +210,8 @@ struct Metal<S: Spectrum> {
     single: MetalSingle<S>,
     /// `F_ms / (π (1 − Ē₁))` per channel (0 when `Ē₁` is 1 to `10⁻⁶`).
     ms_scale: S,
+    /// `F_ms` per channel (0 likewise): the lobe's albedo is `F_ms (1 − E₁(μo))`.
+    f_ms: S,
     alpha: f32,
 }
 
@@ -222,20 +224,25 @@ impl<S: Spectrum> Metal<S> {
         // F82-tint's a per channel: F(μ̄) = t F_S(μ̄) at μ̄ = 1/7.
         let w_bar = 7_776.0 / 16_807.0;
         let g_bar = 46_656.0 / 823_543.0;
-        let ms_scale = S::from_fn(|c| {
+        let f_ms = S::from_fn(|c| {
             let (f0, t) = (f0.channel(c), tint.channel(c));
             let a = (f0 + (1.0 - f0) * w_bar) * (1.0 - t) / g_bar;
             let f_avg = (f0 + (1.0 - f0) / 21.0 - a / 126.0).clamp(0.0, 1.0);
             if loss > 1e-6 {
-                let f_ms = f_avg * f_avg * e_avg / (1.0 - f_avg * loss);
-                f_ms * core::f32::consts::FRAC_1_PI / loss
+                f_avg * f_avg * e_avg / (1.0 - f_avg * loss)
             } else {
                 0.0
             }
         });
+        let ms_scale = if loss > 1e-6 {
+            f_ms * (core::f32::consts::FRAC_1_PI / loss)
+        } else {
+            S::zero()
+        };
         Self {
             single: Microfacet::new(ggx, fresnel),
             ms_scale,
+            f_ms,
             alpha,
         }
     }
@@ -666,7 +673,7 @@ impl<S: Spectrum> OpenPbr<S> {
         if let Some(metal) = &self.metal {
             let w = u_s * p.base_metalness * self.xi;
             share[METAL] = w * metal.single.directional_albedo(wo).value.average();
-            share[METAL_MS] = w * metal.ms_scale.average() * core::f32::consts::PI * metal.loss(mu);
+            share[METAL_MS] = w * metal.f_ms.average() * metal.loss(mu);
         }
         if self.on[SPEC] {
             share[SPEC] = u_s * (1.0 - p.base_metalness) * p.specular_color.average() * view.spec_o;
@@ -1030,7 +1037,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
         if m.on[METAL] {
             if let Some(metal) = &m.metal {
-                let ms = metal.ms_scale * (core::f32::consts::PI * metal.loss(mu));
+                let ms = metal.f_ms * metal.loss(mu);
                 e += (metal.single.directional_albedo(wo).value + ms) * under_s * (p.base_metalness * m.xi);
             }
         }

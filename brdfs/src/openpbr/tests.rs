@@ -76,7 +76,8 @@ fn white_metal_loses_less_than_one_percent_up_to_alpha_half() {
                 e - err >= 0.99,
                 "r = {r}, θo = {t}°: white metal albedo {e} ± {err}"
             );
-            assert!(e - err <= 1.0, "r = {r}, θo = {t}°: albedo {e} ± {err} above 1");
+            // The tables' consistency, not a margin, bounds the excess.
+            assert!(e - err <= 1.0 + 2e-3, "r = {r}, θo = {t}°: albedo {e} ± {err} above 1 + 2e-3");
         }
     }
 }
@@ -215,7 +216,9 @@ fn layers_reduce_to_their_pieces() {
     for wi in dirs {
         assert_eq!(m.eval(wi, wo), eon.eval(wi, wo));
     }
-    // base_metalness 1: the Kulla–Conty F82-tint metal scaled by ξ_s.
+    // base_metalness 1: the F82-tint metal with Kulla & Conty's multiple
+    // scattering, scaled by ξ_s — the crate's `KullaConty` plugin (the same
+    // lobe shape, its normalisation integrated per instance) to 1 %.
     let d = OpenPbrParams::<f32> {
         base_metalness: 1.0,
         specular_weight: 0.7,
@@ -223,12 +226,13 @@ fn layers_reduce_to_their_pieces() {
         ..OpenPbrParams::default()
     };
     let m = OpenPbr::new(d).unwrap();
-    let metal = KullaConty::<_, HeightCorrelated, _>::new(
+    let metal = crate::KullaConty::<_, HeightCorrelated, _>::new(
         Ggx::new(0.09).unwrap(),
         F82Tint::new(0.8f32, 0.9).unwrap(),
     );
     for wi in dirs {
-        assert_eq!(m.eval(wi, wo), metal.eval(wi, wo) * 0.7);
+        let (a, b) = (m.eval(wi, wo), metal.eval(wi, wo) * 0.7);
+        assert!((a - b).abs() <= 1e-2 * b + 1e-4, "{wi:?}: {a} vs {b}");
     }
     // A coat of index 1 reflects nothing and lets everything through.
     let base = OpenPbrParams::<f32>::default();
