@@ -15,7 +15,7 @@ fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-const PLUGINS: [&str; 13] = [
+const PLUGINS: [&str; 14] = [
     "lambertian",
     "modified-phong-n100",
     "blinn-phong-n100",
@@ -29,7 +29,19 @@ const PLUGINS: [&str; 13] = [
     "eon-s0.5",
     "plastic-ggx0.1-eon",
     "openpbr-defaults",
+    "openpbr-all-layers",
 ];
+/// The materials' extra paths (construction at every hit, a whole hit).
+const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
+    ("plastic-ggx0.1-eon", &["construct"]),
+    ("openpbr-defaults", &["construct", "hit"]),
+    ("openpbr-all-layers", &["construct", "hit"]),
+];
+
+/// Extra paths of plugin `p`.
+fn extra_paths(p: &str) -> usize {
+    MATERIAL_PATHS.iter().find(|m| m.0 == p).map_or(0, |m| m.1.len())
+}
 const PATHS: [&str; 7] = [
     "eval",
     "eval_batch",
@@ -62,7 +74,11 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
     assert!(h["timing"].as_str().expect("timing").contains("best of"), "{h}");
 
     let all_rows = j["rows"].as_array().expect("rows");
-    assert_eq!(all_rows.len(), INPUTS.len() * (8 + PLUGINS.len() * PATHS.len()));
+    let extra: usize = MATERIAL_PATHS.iter().map(|m| m.1.len()).sum();
+    assert_eq!(
+        all_rows.len(),
+        INPUTS.len() * (8 + PLUGINS.len() * PATHS.len() + extra)
+    );
     for set in INPUTS {
         let rows: Vec<&serde_json::Value> = all_rows.iter().filter(|r| r["inputs"] == set).collect();
         let get = |plugin: &str, path: &str| {
@@ -82,7 +98,7 @@ fn quick_json_has_every_plugin_and_path_with_consistent_ratios() {
         let ref_beckmann = rate(get("reference-beckmann-scalar", "eval"));
         let ref_tabulated = rate(get("reference-tabulated-scalar", "eval"));
         let ref_eon = rate(get("reference-eon-scalar", "eval"));
-        assert_eq!(rows.len(), 8 + PLUGINS.len() * PATHS.len());
+        assert_eq!(rows.len(), 8 + PLUGINS.len() * PATHS.len() + extra);
         for &r in &rows {
             assert_eq!(r["n"], 4096, "--quick is n = 4096 only: {r}");
             let m = rate(r);
@@ -230,7 +246,7 @@ fn quick_table_has_the_header_and_ratio_columns() {
             .lines()
             .filter(|l| l.split_whitespace().next() == Some(p))
             .count();
-        assert_eq!(lines, INPUTS.len() * PATHS.len(), "{p}:\n{s}");
+        assert_eq!(lines, INPUTS.len() * (PATHS.len() + extra_paths(p)), "{p}:\n{s}");
     }
 }
 

@@ -87,15 +87,30 @@ pub enum Comp {
     CoatedMetal,
     /// `OpenPbr` with every layer on: see [`openpbr_params`].
     OpenPbr,
+    /// `Plastic` in the default, energy-conserving layering (not reciprocal).
+    PlasticEnergy,
+    /// `OpenPbr` in the default, energy-conserving layering (not reciprocal).
+    OpenPbrEnergy,
+}
+
+impl Kind {
+    /// Whether the kind promises reciprocity (every plugin and the
+    /// reciprocal layerings; not the energy-conserving layerings, which pass
+    /// `1 − E(ωo)` of the light to the base, nor the LTC sheen).
+    pub fn reciprocal(self) -> bool {
+        !matches!(self, Kind::Composite(Comp::PlasticEnergy | Comp::OpenPbrEnergy))
+    }
 }
 
 /// The composite configurations in [`all_kinds`].
-pub const COMPOSITE_KINDS: [Kind; 5] = [
+pub const COMPOSITE_KINDS: [Kind; 7] = [
     Kind::Composite(Comp::Plastic),
     Kind::Composite(Comp::SumDiffuseSpecular),
     Kind::Composite(Comp::MixMetalDiffuse),
     Kind::Composite(Comp::CoatedMetal),
     Kind::Composite(Comp::OpenPbr),
+    Kind::Composite(Comp::PlasticEnergy),
+    Kind::Composite(Comp::OpenPbrEnergy),
 ];
 
 /// The OpenPBR parameters of `Comp::OpenPbr` from a parameter set: base colour ρ, metalness `f0`,
@@ -126,17 +141,19 @@ pub fn openpbr_params(p: &Params) -> radiometry_brdfs::OpenPbrParams<f32> {
 /// the layer can exceed an albedo of 1 (`radiometry::compose::Coated`).
 pub fn coat_top(k: Kind, p: &Params) -> Option<Dyn> {
     Some(match k {
-        Kind::Composite(Comp::Plastic) => Box::new(Microfacet::<_, HeightCorrelated, _>::new(
-            Ggx::new(p.alpha).ok()?,
-            Dielectric::new(p.eta_d).ok()?,
-        )),
+        Kind::Composite(Comp::Plastic | Comp::PlasticEnergy) => {
+            Box::new(Microfacet::<_, HeightCorrelated, _>::new(
+                Ggx::new(p.alpha).ok()?,
+                Dielectric::new(p.eta_d).ok()?,
+            ))
+        }
         Kind::Composite(Comp::CoatedMetal) => Box::new(Microfacet::<_, HeightCorrelated, _>::new(
             Beckmann::new(p.alpha).ok()?,
             Dielectric::new(p.eta_d).ok()?,
         )),
         // Three tops (the specular layer, the coat, the fuzz): their errors add up (a `Sum`'s albedo
         // error is the sum of its lobes'), each through the layering below it.
-        Kind::Composite(Comp::OpenPbr) => {
+        Kind::Composite(Comp::OpenPbr | Comp::OpenPbrEnergy) => {
             use radiometry::compose::Sum;
             let o = openpbr_params(p);
             let alpha = (o.specular_roughness * o.specular_roughness).max(1e-4);
@@ -165,8 +182,16 @@ fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
     let conductor = Conductor::new(p.eta_c, p.k_c)?;
     let unwrap =
         |e: radiometry::compose::ComposeError| -> BrdfError { panic!("valid composite parameters: {e}") };
+    use radiometry::compose::Layering;
     Ok(match c {
-        Comp::Plastic => Box::new(Coated::new(
+        Comp::Plastic => Box::new(
+            Coated::new(
+                Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(p.eta_d)?),
+                Lambertian::new(p.rho)?,
+            )
+            .with_layering(Layering::Reciprocal),
+        ),
+        Comp::PlasticEnergy => Box::new(Coated::new(
             Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(p.eta_d)?),
             Lambertian::new(p.rho)?,
         )),
@@ -182,7 +207,11 @@ fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
             )
             .map_err(unwrap)?,
         ),
-        Comp::OpenPbr => Box::new(radiometry_brdfs::OpenPbr::new(openpbr_params(p))?),
+        Comp::OpenPbr => Box::new(radiometry_brdfs::OpenPbr::with_layering(
+            openpbr_params(p),
+            Layering::Reciprocal,
+        )?),
+        Comp::OpenPbrEnergy => Box::new(radiometry_brdfs::OpenPbr::new(openpbr_params(p))?),
         Comp::CoatedMetal => Box::new(
             Coated::with_absorption(
                 Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(p.alpha)?, Dielectric::new(p.eta_d)?),
@@ -190,7 +219,8 @@ fn composite(c: Comp, p: &Params) -> Result<Dyn, BrdfError> {
                 p.rho,
                 p.eta_d.max(1.0),
             )
-            .map_err(unwrap)?,
+            .map_err(unwrap)?
+            .with_layering(Layering::Reciprocal),
         ),
     })
 }

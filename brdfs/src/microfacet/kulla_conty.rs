@@ -450,9 +450,9 @@ where
             .energy_tables()
             .and_then(|t| G::select_table(&t));
         let single = match table.and_then(|t| self.single.tabulated_fresnel_ratio(t, w.z)) {
-            Some(ratio) => Albedo {
+            Some((ratio, error)) => Albedo {
                 value: (ratio * e1).map(|v| v.clamp(0.0, 1.0)),
-                error: super::fresnel_table::FRESNEL_TABLE_ERROR,
+                error,
                 is_bound: false,
             },
             None => super::fresnel_albedo(e1, self.single.fresnel_spread(w)),

@@ -560,7 +560,7 @@ where
     /// index, or linear in the moments). `None` otherwise (and for `F = 1`,
     /// whose albedo is the `F = 1` table itself, with its bound).
     #[inline]
-    pub(crate) fn tabulated_fresnel_ratio(&self, table: &AlbedoTable, mu: f32) -> Option<F::Spectrum> {
+    pub(crate) fn tabulated_fresnel_ratio(&self, table: &AlbedoTable, mu: f32) -> Option<(F::Spectrum, f32)> {
         if !core::ptr::eq(table, &albedo_data::GGX_HEIGHT_CORRELATED) {
             return None;
         }
@@ -568,14 +568,18 @@ where
         match self.fresnel.form() {
             // F = 1: the F = 1 table itself, with its bound (the caller's other path).
             FresnelForm::One => None,
-            FresnelForm::Dielectric(eta) => Some(F::Spectrum::splat(fresnel_table::dielectric_ratio(
-                mu, alpha, eta,
-            ))),
+            FresnelForm::Dielectric(eta) => Some((
+                F::Spectrum::splat(fresnel_table::dielectric_ratio(mu, alpha, eta)),
+                fresnel_table::dielectric_error(alpha, eta),
+            )),
             FresnelForm::Linear { f0, a } => {
                 let m = fresnel_table::fresnel_moments(mu, alpha);
-                Some(F::Spectrum::from_fn(|c| {
-                    fresnel_table::linear_fresnel_ratio(f0.channel(c), a.channel(c), m)
-                }))
+                Some((
+                    F::Spectrum::from_fn(|c| {
+                        fresnel_table::linear_fresnel_ratio(f0.channel(c), a.channel(c), m)
+                    }),
+                    FRESNEL_TABLE_ERROR,
+                ))
             }
             FresnelForm::Other => None,
         }
@@ -923,9 +927,9 @@ where
             Some(w) if w.z > 0.0 => {
                 let e1 = table.albedo(w.z, self.distribution.alpha());
                 match self.tabulated_fresnel_ratio(table, w.z) {
-                    Some(ratio) => Albedo {
+                    Some((ratio, error)) => Albedo {
                         value: (ratio * e1).map(clamp01),
-                        error: FRESNEL_TABLE_ERROR,
+                        error,
                         is_bound: false,
                     },
                     None => fresnel_albedo(e1, self.fresnel_spread(w)),

@@ -77,7 +77,10 @@ fn white_metal_loses_less_than_one_percent_up_to_alpha_half() {
                 "r = {r}, θo = {t}°: white metal albedo {e} ± {err}"
             );
             // The tables' consistency, not a margin, bounds the excess.
-            assert!(e - err <= 1.0 + 2e-3, "r = {r}, θo = {t}°: albedo {e} ± {err} above 1 + 2e-3");
+            assert!(
+                e - err <= 1.0 + 2e-3,
+                "r = {r}, θo = {t}°: albedo {e} ± {err} above 1 + 2e-3"
+            );
         }
     }
 }
