@@ -954,7 +954,7 @@ mod tests {
             ("openpbr(base_weight=rgb(1, 1, 1))", "rgb(1, 1, 1)"),
             ("openpbr(specular_ior=0.5)", "0.5"),
             ("openpbr(transmission_weight=1)", "transmission_weight"),
-            ("openpbr(coat_darkening=1)", "coat_darkening"),
+            ("openpbr(reciprocal=2)", "2"),
             ("openpbr(base_colour=0.5)", "base_colour"),
             ("openpbr(fuzz_weight=2)", "2"),
         ] {

@@ -299,9 +299,10 @@ mod tests {
         dielectric_average, dielectric_ratio, fresnel_moments,
     };
 
-    /// A sample of the written nodes, recomputed with 16 × 16 panels (32 for
-    /// the written `η > 1` and moment nodes, 16 for `η < 1`): they agree to
-    /// the generator's stated convergence plus the `u16` rounding.
+    /// A sample of the written nodes, recomputed (16 × 16 panels for `η > 1`
+    /// and the moments, 32 × 32 for `η < 1`; the generator wrote 32 × 32):
+    /// they agree to the generator's stated convergence plus the `u16`
+    /// rounding.
     #[test]
     fn a_sample_of_nodes_regenerates() {
         for &(k, l, j) in &[
@@ -323,11 +324,12 @@ mod tests {
                 (want - got).abs() < 1e-3,
                 "out α {alpha} η {eta} μ {mu}: {want} vs {got}"
             );
-            // Inside.
-            let ei = 1.0 / eta;
+            // Inside (its own grid: 16 indices, 65 μ nodes).
+            let ei = 1.0 / eta_out(z_node_in(l % NZ_IN));
             let mc = (1.0 - ei * ei).max(0.0).sqrt();
+            let x = (2 * j) as f64 / (NX_IN - 1) as f64;
             let mu = mu_in(x, mc, alpha, ei).max(MU_FLOOR);
-            let want = ratio(pair_nodes(&nodes(alpha, mu, 16), ei));
+            let want = ratio(pair_nodes(&nodes(alpha, mu, 32), ei));
             let got = f64::from(dielectric_ratio(mu as f32, alpha as f32, ei as f32));
             assert!(
                 (want - got).abs() < 2e-3,
