@@ -18,9 +18,10 @@ pub enum ComposeError {
     /// A [`Coated`](super::Coated) top tint channel outside `[0, 1]` or not
     /// finite.
     TopTint(f32),
-    /// A value of a [`Coated::from_table`](super::Coated::from_table) albedo
-    /// table outside `[0, 1]` or not finite, or a negative or non-finite
-    /// table error (the offending value).
+    /// A value of an albedo table outside `[0, 1]` or not finite, or a
+    /// negative or non-finite table error (the offending value). No
+    /// constructor of this crate returns it (`Coated` reads its
+    /// top's albedo per call); kept for callers that match on it.
     AlbedoTable(f32),
 }
 

@@ -9,6 +9,8 @@
 //!
 //! Run: `cargo run --release -p radiometry-tools --example e1_average > brdfs/src/microfacet/e1_average_data.rs`
 
+#![allow(clippy::needless_range_loop)] // index arithmetic of the tables' layouts reads as the math
+
 use radiometry_brdfs::microfacet::{EnergyTable, Ggx, HeightCorrelated, N_ALPHA, alpha_node};
 use radiometry_tools::energy_tables::gl_interval;
 

@@ -40,6 +40,8 @@
 //!
 //! Run: `cargo run --release -p radiometry-tools --example energy_tables > brdfs/src/microfacet/fresnel_table_data.rs`
 
+#![allow(clippy::needless_range_loop)] // index arithmetic of the tables' layouts reads as the math
+
 use radiometry_tools::energy_tables::*;
 
 fn print_u16(name: &str, doc: &str, vals: &[f64]) {

@@ -15,6 +15,8 @@
 //! or `… -- 10000 --vndf` (prints the worst and the 99th-percentile error per
 //! side of η = 1).
 
+#![allow(clippy::needless_range_loop)] // index arithmetic of the tables' layouts reads as the math
+
 use radiometry_brdfs::microfacet::fresnel_table::dielectric_albedo;
 use radiometry_brdfs::microfacet::{EnergyTable, Ggx, HeightCorrelated};
 use radiometry_tools::energy_tables::{nodes, pair_nodes};

@@ -13,6 +13,8 @@
 //! E_F(μo, α) = ∫∫_[0,1]² F(ωo·m(u)) G2(ωi(u), ωo) / G1(ωo) du,   R = E_F / E₁
 //! ```
 
+#![allow(clippy::needless_range_loop)] // index arithmetic of the tables' layouts reads as the math
+
 use std::f64::consts::PI;
 
 /// `μ` nodes per row.

@@ -6,7 +6,7 @@
 //!
 //! # What the tables hold
 //!
-//! With `E₁(μ, α)` the albedo with `F = 1` ([`AlbedoTable`](super::AlbedoTable))
+//! With `E₁(μ, α)` the albedo with `F = 1` ([`AlbedoTable`])
 //! and `c = ωo·h`,
 //!
 //! ```text

@@ -876,7 +876,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     fn eval_inner(&self, wi: Vec3, want_value: bool, want_pdf: bool) -> (S, f32) {
         let m = self.m;
         let wi = unit(wi);
-        if !self.valid || !(wi.z > 0.0) || !wi.is_finite() {
+        if !self.valid || wi.z.is_nan() || wi.z <= 0.0 || !wi.is_finite() {
             return (S::zero(), 0.0);
         }
         let wo = self.wo;
@@ -1002,7 +1002,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             _ => m.diffuse.sample(wo, uu),
         }?;
         let (f, pdf) = self.eval_inner(s.wi, true, true);
-        if !(pdf > 0.0) {
+        if pdf.is_nan() || pdf <= 0.0 {
             return None;
         }
         let weight = f * (s.wi.z.max(0.0) / pdf);
@@ -1035,11 +1035,9 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             e += S::splat(self.fuzz_factor(mu, Leaf::Specular) * p.coat_weight * self.coat_o);
         }
         let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
-        if m.on[METAL] {
-            if let Some(metal) = &m.metal {
-                let ms = metal.f_ms * metal.loss(mu);
-                e += (metal.single.directional_albedo(wo).value + ms) * under_s * (p.base_metalness * m.xi);
-            }
+        if let Some(metal) = m.metal.as_ref().filter(|_| m.on[METAL]) {
+            let ms = metal.f_ms * metal.loss(mu);
+            e += (metal.single.directional_albedo(wo).value + ms) * under_s * (p.base_metalness * m.xi);
         }
         if m.on[SPEC] {
             let d = 1.0 - p.base_metalness;

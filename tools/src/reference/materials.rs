@@ -445,9 +445,9 @@ pub fn albedo_with(p: &Prepared, theta_o: f64, coarse: f64, fine: f64) -> Refere
 }
 
 /// The reflected radiance of `layer` under a uniform cap light of radiance
-/// 1 (as [`super::cap_radiance`]), with break points where `cos θi` crosses
-/// a [`node_boundaries`] level inside the cap; the table's effect is added
-/// to the bound relative to the whole value.
+/// 1 (as [`super::cap_radiance`]) — the energy-conserving layer's base term
+/// depends on `ωo` alone, so no break points in `cos θi` are needed; the
+/// table's effect is added to the bound relative to the whole value.
 pub fn cap_radiance(layer: &Layer, wo: [f64; 3], axis: [f64; 3], sigma: f64) -> Reference {
     cap_radiance_with(prepared(layer), wo, axis, sigma)
 }
