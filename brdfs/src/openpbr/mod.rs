@@ -620,6 +620,14 @@ impl<S: Spectrum> OpenPbr<S> {
     /// pick probabilities, for any number of [`OpenPbrView::eval`],
     /// [`OpenPbrView::pdf`] and [`OpenPbrView::sample`] calls.
     pub fn prepare(&self, wo: Vec3) -> OpenPbrView<'_, S> {
+        self.prepare_with(wo, true)
+    }
+
+    /// [`prepare`](Self::prepare), with the pick probabilities only when
+    /// `picks` (the value alone does not need them: `eval` skips the lobes'
+    /// albedos).
+    #[inline]
+    fn prepare_with(&self, wo: Vec3, picks: bool) -> OpenPbrView<'_, S> {
         let wo = unit(wo);
         let mu_o = wo.z;
         let valid = mu_o.is_finite() && mu_o > 0.0 && wo.is_finite();
@@ -632,6 +640,7 @@ impl<S: Spectrum> OpenPbr<S> {
             coat_o: 0.0,
             spec_o: 0.0,
             darkening: S::splat(1.0),
+            metal_loss_o: 0.0,
             cdf: [0.0; LOBES],
         };
         if !valid {
@@ -659,6 +668,12 @@ impl<S: Spectrum> OpenPbr<S> {
         if self.on[SPEC] {
             view.spec_o = self.e_spec(mu);
         }
+        if let Some(metal) = &self.metal {
+            view.metal_loss_o = metal.loss(mu);
+        }
+        if !picks {
+            return view;
+        }
         // Pick probabilities ∝ each lobe's share of the layered albedo at ωo.
         let mut share = [0.0f32; LOBES];
         if self.on[FUZZ] {
@@ -673,7 +688,7 @@ impl<S: Spectrum> OpenPbr<S> {
         if let Some(metal) = &self.metal {
             let w = u_s * p.base_metalness * self.xi;
             share[METAL] = w * metal.single.directional_albedo(wo).value.average();
-            share[METAL_MS] = w * metal.f_ms.average() * metal.loss(mu);
+            share[METAL_MS] = w * metal.f_ms.average() * view.metal_loss_o;
         }
         if self.on[SPEC] {
             share[SPEC] = u_s * (1.0 - p.base_metalness) * p.specular_color.average() * view.spec_o;
@@ -781,6 +796,8 @@ pub struct OpenPbrView<'a, S: Spectrum> {
     spec_o: f32,
     /// The coat darkening `D` per channel.
     darkening: S,
+    /// `1 − E₁(μo)` of the metal's multiple-scattering lobe.
+    metal_loss_o: f32,
     /// Cumulative pick probabilities of the lobes.
     cdf: [f32; LOBES],
 }
@@ -915,7 +932,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         };
         if let Some(metal) = &m.metal {
             if want_value {
-                let ms = metal.ms_scale * (metal.loss(mu_i) * metal.loss(self.mu_o));
+                let ms = metal.ms_scale * (metal.loss(mu_i) * self.metal_loss_o);
                 f += (metal.single.eval(wi, wo) + ms) * under_s * (p.base_metalness * m.xi);
             }
             if want_pdf {
@@ -1036,7 +1053,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
         if let Some(metal) = m.metal.as_ref().filter(|_| m.on[METAL]) {
-            let ms = metal.f_ms * metal.loss(mu);
+            let ms = metal.f_ms * self.metal_loss_o;
             e += (metal.single.directional_albedo(wo).value + ms) * under_s * (p.base_metalness * m.xi);
         }
         if m.on[SPEC] {
@@ -1059,7 +1076,7 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
 
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
-        self.prepare(wo).eval(wi)
+        self.prepare_with(wo, false).eval(wi)
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
