@@ -3,6 +3,7 @@
 
 use super::acc::{self, F32_FLOOR, WideSum, nonzero};
 use super::chunk::{self, BatchFn, head, head_mut};
+use super::confirm;
 use super::tolerance::{by_doubling, check_tolerance_args};
 use super::{
     Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome, Unresolved,
@@ -52,6 +53,12 @@ const PHI_OFFSET: f64 = 0.618_033_988_749_894_9;
 
 /// Position of the first cut of `[0,1]` on both axes (`(√5 − 1)/2`).
 const FIRST_CUT: f64 = 0.618_033_988_749_894_9;
+
+/// [`FIRST_CUT`] of the shifted rule ([`Adaptive::shifted`]): `√2 − 1`.
+const SHIFTED_CUT: f64 = 0.414_213_562_373_095_03;
+
+/// [`PHI_OFFSET`] of the shifted rule: `(3 − √5)/2`.
+const SHIFTED_PHI_OFFSET: f64 = 0.381_966_011_250_105_1;
 
 /// Staged mode: the first checkpoint is taken when `Σ errors ≤ STAGE_K ·
 /// tol` — the regions' `|I₇ − I₅|` estimates the error of the embedded
@@ -603,6 +610,9 @@ pub struct Adaptive {
     rel_tol: f64,
     abs_tol: f64,
     warped: bool,
+    /// The shifted plain square of the confirmation runs (see
+    /// [`Adaptive::shifted`]).
+    shifted: bool,
 }
 
 impl Adaptive {
@@ -641,12 +651,26 @@ impl Adaptive {
             rel_tol,
             abs_tol,
             warped: false,
+            shifted: false,
         })
     }
 
     /// The same rule applied on the integrand's sampling-map square.
     pub const fn warped(mut self) -> Self {
         self.warped = true;
+        self
+    }
+
+    /// The same rule on the plain square with other cuts: the first cut of
+    /// both axes at `√2 − 1` instead of `(√5 − 1)/2` and the azimuth offset
+    /// `(3 − √5)/2` turns instead of `(√5 − 1)/2`, so that no region
+    /// boundary and no node of the two rules coincide (after the first cut
+    /// every cut halves a region, so the boundaries are `x₀ 2⁻ᵏ`-grids of
+    /// the two first cuts, whose ratio is irrational). Used by the
+    /// tolerance driver as an independent confirmation of the plain rule
+    /// (crate-internal: the report's `adaptive` is the unshifted rule).
+    pub(crate) const fn shifted(mut self) -> Self {
+        self.shifted = true;
         self
     }
 
@@ -729,13 +753,8 @@ impl Adaptive {
         // Initial cut at `FIRST_CUT` (not ½) on both axes, so later
         // midpoint cuts do not fall on the symmetry lines ¼, ½, ¾ of
         // typical integrands (see the type's docs).
-        let span = |i: usize| {
-            if i == 0 {
-                (0.0, FIRST_CUT)
-            } else {
-                (FIRST_CUT, 1.0)
-            }
-        };
+        let cut = if self.shifted { SHIFTED_CUT } else { FIRST_CUT };
+        let span = |i: usize| if i == 0 { (0.0, cut) } else { (cut, 1.0) };
         let (mut c0, mut h0) = ([[0.0; 2]; 4], [[0.0; 2]; 4]);
         for (k, (i, j)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
             let ((x0, x1), (y0, y1)) = (span(i), span(j));
@@ -917,6 +936,18 @@ impl Adaptive {
         ))
     }
 
+    /// The staged mode of [`Adaptive::run`] to `tol` with at most `budget`
+    /// evaluations: the estimate and, when a refinement that doubled the
+    /// evaluations moved the value by `≤ tol`, that difference.
+    pub(crate) fn staged<I: Integrand>(
+        &self,
+        g: &I,
+        budget: u32,
+        tol: f64,
+    ) -> Result<Staged<WideOf<I>>, IntegrateError> {
+        self.integrate_impl(g, budget, Some(tol))
+    }
+
     /// [`Integrator::integrate`], and in the staged mode (`confirm`) the
     /// difference to the confirming checkpoint (see [`Adaptive::run`]).
     fn integrate_impl<I: Integrand>(
@@ -949,8 +980,13 @@ impl Adaptive {
         budget: u32,
         confirm: Option<f64>,
     ) -> Result<Staged<WideOf<I>>, IntegrateError> {
+        let offset = if self.shifted {
+            SHIFTED_PHI_OFFSET
+        } else {
+            PHI_OFFSET
+        };
         let turn = |b: f64| {
-            let s = b + PHI_OFFSET;
+            let s = b + offset;
             if s >= 1.0 { s - 1.0 } else { s }
         };
         // In the staged mode the rule's size is not known in advance:
@@ -968,7 +1004,7 @@ impl Adaptive {
         if probing {
             for &(w, v) in probe::Probe::take(g)?.points() {
                 let phi = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
-                let b = phi - PHI_OFFSET;
+                let b = phi - offset;
                 let b = b - libm::floor(b);
                 if let Some(p) = pts.get_mut(n) {
                     *p = ([w.z as f64, b], v * core::f64::consts::TAU);
@@ -1066,6 +1102,7 @@ impl Integrator for Adaptive {
             rel_tol: 0.0,
             abs_tol: 0.0,
             warped: self.warped,
+            shifted: self.shifted,
         };
         if confirmed.is_none() || !e.is_resolved() {
             return Ok(ToleranceOutcome {
@@ -1076,6 +1113,26 @@ impl Integrator for Adaptive {
                 confirmation: None,
                 runs: 1,
             });
+        }
+        // On the warped square, the candidate's stages and a run from
+        // scratch share the sampling map, and with it the map's seams (a
+        // mixture map steps at `u₀ = p`) and kinks: they can converge to the
+        // same wrong value. The confirmation comes from the plain square
+        // (see `confirm::cross_confirm`).
+        if self.warped {
+            let first = confirm::Candidate {
+                estimate: e,
+                family: confirm::Family::Warped,
+            };
+            let spent = confirm::Spent {
+                evaluations: e.evaluations,
+                runs: 1,
+            };
+            let mut out = confirm::cross_confirm(g, tol, max_budget, Some(first), Some(e), spent)?;
+            if out.stop == StopReason::MaxBudget {
+                out.stop = cap_stop;
+            }
+            return Ok(out);
         }
         // The staged run's confirmation compares it with its own earlier
         // stage, whose regions it shares: a feature neither stage's nodes

@@ -5,10 +5,11 @@ use super::acc::{self, F32_FLOOR};
 use super::chart::peak::ASPECT_RANGE;
 use super::chart::{Chart, PeakChart, ProductChart};
 use super::chunk::{self, CHUNK, head, head_mut};
+use super::confirm;
 use super::probe::{self, Probe};
 use super::{
-    Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome,
-    Unresolved, WideOf, check_tolerance_args,
+    Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, ToleranceOutcome, Unresolved, WideOf,
+    check_tolerance_args,
 };
 use crate::spectrum::{Spectrum as _, WideSpectrum};
 
@@ -876,32 +877,32 @@ impl Integrator for Auto {
 
         let mut spent = p.evals;
         let chart = chart_for(&p, g.is_smooth());
+        let mut first = None;
+        let mut last = None;
         if !p.narrow || chart.is_some() {
             // The grid may use a quarter of the budget before the fallback.
-            let (mut e, end) = grid(g, tol, max_budget as u64 / 4, &p.probe, false, chart)?;
+            let (e, end) = grid(g, tol, max_budget as u64 / 4, &p.probe, false, chart)?;
             spent += e.evaluations;
+            last = Some(e);
             if end == GridEnd::Met {
-                let confirmation = e.error;
-                e.evaluations = spent;
-                return Ok(ToleranceOutcome {
+                // The grid's own confirmation (two coarser rules made of its
+                // nodes) is a candidate only: a kink or a lobe cut by the
+                // horizon fools its nested estimate at every level alike.
+                first = Some(confirm::Candidate {
                     estimate: e,
-                    budget: max_budget,
-                    stop: StopReason::ToleranceReached,
-                    total_evaluations: spent,
-                    confirmation: Some(confirmation),
-                    runs: 1,
+                    family: if chart.is_some() {
+                        confirm::Family::Chart
+                    } else {
+                        confirm::Family::Grid
+                    },
                 });
             }
         }
-        let a = Adaptive::new(0.0, 0.0)?;
-        let a = if g.has_sampling_map() { a.warped() } else { a };
-        let left = (max_budget as u64)
-            .saturating_sub(spent)
-            .max(a.min_budget() as u64);
-        let mut out = a.to_tolerance(g, tol, a.min_budget(), left.min(u32::MAX as u64) as u32)?;
-        out.total_evaluations += spent;
-        out.runs += 1;
-        Ok(out)
+        let spent = confirm::Spent {
+            evaluations: spent,
+            runs: u32::from(last.is_some()),
+        };
+        confirm::cross_confirm(g, tol, max_budget, first, last, spent)
     }
 }
 

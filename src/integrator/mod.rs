@@ -408,6 +408,7 @@ pub(crate) fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
 
 mod acc;
 pub(crate) mod chunk;
+mod confirm;
 pub mod gauss_legendre;
 pub mod points;
 mod sobol;

@@ -1,0 +1,251 @@
+//! Confirmation of a to-tolerance candidate by an unrelated rule on another
+//! parameterisation ([`cross_confirm`]).
+//!
+//! A candidate that confirms itself — a nested grid whose coarser levels
+//! agree, a staged adaptive run whose later stage agrees with an earlier one,
+//! a run from scratch on the same square — can be fooled alike by every one
+//! of its stages where the integrand is not what the rule's error estimate
+//! assumes: a kink (the Oren–Nayar family at `μi = μo` and `cos Δφ = 0`, a
+//! dielectric's critical angle, a table's cells), a lobe cut by the horizon,
+//! or the seam of a mixture sampling map (a composite picks its lobe by
+//! `u₀ < p`, so the warped integrand steps at `u₀ = p`). The stages converge
+//! to the same wrong value and agree with each other.
+//!
+//! The evidence accepted here comes from a second method whose errors do not
+//! follow the first one's: the staged [`Adaptive`] Genz–Malik rule on the
+//! *plain* `(μ, φ)` square (no seams: the plain square does not go through
+//! the sampling map; the kinks of isotropic lobes lie along its axes, where
+//! its bisection refines) against a candidate of the warped square or of the
+//! global Clenshaw–Curtis × trapezoid grid, or the staged rule on the
+//! *warped* square (a smooth map for a single lobe) against a candidate of a
+//! chart on which a peaked lobe is analytic. A candidate stands when the two
+//! values differ by at most `tol` (every channel); a wrong candidate stands
+//! only if an unrelated rule makes the same error to within `tol`.
+
+use super::acc;
+use super::adaptive::{Adaptive, MAX_ADAPTIVE_EVALUATIONS};
+use super::{Estimate, Integrand, IntegrateError, StopReason, ToleranceOutcome, WideOf, probe};
+use crate::spectrum::WideSpectrum;
+
+/// The parameterisation (and rule) a candidate came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Family {
+    /// The nested Clenshaw–Curtis × trapezoid grid on the plain square.
+    Grid,
+    /// A grid on a chart centred on the lobe's peak.
+    Chart,
+    /// The staged Genz–Malik rule on the plain `(μ, φ)` square.
+    Plain,
+    /// The same on the plain square with other cuts and azimuth offset
+    /// ([`Adaptive::shifted`]).
+    Shifted,
+    /// The staged Genz–Malik rule on the sampling map's square.
+    Warped,
+}
+
+impl Family {
+    /// Whether a candidate of `self` may be confirmed by one of `other`:
+    /// different rules that do not share nodes or a parameterisation's
+    /// failure mode (the plain grid and the plain adaptive rule share the
+    /// square but not the rule: the grid's estimate assumes global
+    /// smoothness, the adaptive rule's refines locally).
+    fn independent_of(self, other: Family) -> bool {
+        self != other
+    }
+}
+
+/// Most candidates kept (two methods × the rounds).
+const MAX_CANDIDATES: usize = 16;
+
+/// Most staged runs of [`cross_confirm`].
+const MAX_ATTEMPTS: u32 = 16;
+
+/// How much tighter a method's next staged run refines after one that
+/// produced a value (a candidate or not).
+const ROUND_FACTOR: f64 = 4.0;
+
+/// The evaluations the first attempt may spend at least (else four times
+/// the first candidate's).
+const FIRST_CAP: u64 = 4096;
+
+/// A candidate: a resolved estimate with error `≤ tol`, confirmed by its
+/// own method.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Candidate<W> {
+    pub(crate) estimate: Estimate<W>,
+    pub(crate) family: Family,
+}
+
+/// Bookkeeping of a to-tolerance run: evaluations and runs so far.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Spent {
+    pub(crate) evaluations: u64,
+    pub(crate) runs: u32,
+}
+
+/// Confirms `first` (if any) or finds and confirms a candidate: staged
+/// [`Adaptive`] runs to `t = tol, tol/4, tol/16, …` (at most
+/// [`MAX_ROUNDS`] rounds), on the plain square and — with a sampling map —
+/// on the warped one, each round in the order `order` names (the first
+/// method whose family differs from `first`'s runs first). Every resolved
+/// run confirmed by its own stages with error `≤ tol` becomes a candidate;
+/// the outcome is [`StopReason::ToleranceReached`] as soon as two candidates
+/// of [independent](Family::independent_of) families differ by `≤ tol`
+/// (every channel) and — with a sampling map — an importance-sampled mean
+/// check through the map does not contradict the later one (see
+/// [`probe::MeanCheck`]). The later candidate is returned, its error the
+/// larger of its own and the difference, `confirmation` the difference.
+/// Runs spend at most `max_budget` evaluations in all (each at most
+/// [`MAX_ADAPTIVE_EVALUATIONS`]); when the budget is spent without two
+/// agreeing candidates, the stop is [`StopReason::MaxBudget`] (or
+/// [`StopReason::IntegratorCap`] when a run was capped below the budget
+/// left) with the last estimate.
+pub(crate) fn cross_confirm<I: Integrand>(
+    g: &I,
+    tol: f64,
+    max_budget: u32,
+    first: Option<Candidate<WideOf<I>>>,
+    last: Option<Estimate<WideOf<I>>>,
+    mut spent: Spent,
+) -> Result<ToleranceOutcome<WideOf<I>>, IntegrateError> {
+    let plain = Adaptive::new(0.0, 0.0)?;
+    let warped = g.has_sampling_map().then(|| plain.warped());
+    let mut cands: [Option<Candidate<WideOf<I>>>; MAX_CANDIDATES] = [None; MAX_CANDIDATES];
+    let mut n = 0usize;
+    if let Some(c) = first {
+        cands[0] = Some(c);
+        n = 1;
+    }
+    // The methods, in the order they are tried when they have spent
+    // alike: the warped rule first after a chart's candidate (the plain
+    // rule meets a peaked lobe late) or with no candidate yet (narrow
+    // lobes), the plain rule first otherwise.
+    let warped_first = matches!(first.map(|c| c.family), Some(Family::Chart) | None);
+    let w = warped.map(|w| (w, Family::Warped));
+    let p = Some((plain, Family::Plain));
+    let q = Some((plain.shifted(), Family::Shifted));
+    let methods: [Option<(Adaptive, Family)>; 3] = if warped_first { [w, p, q] } else { [p, q, w] };
+    let mut last = last;
+    let mut capped = false;
+    // Per method: its next tolerance, the evaluations it spent, whether it
+    // can do no better.
+    let mut t = [tol; 3];
+    let mut used = [0u64; 3];
+    let mut exhausted = [false; 3];
+    // Each attempt spends at most `cap` evaluations (quadrupled whenever an
+    // attempt ran out of it): a method that stalls (a warped rule on a
+    // seam) does not take the budget from one that converges.
+    let mut cap = first.map_or(0, |c| 4 * c.estimate.evaluations).max(FIRST_CAP);
+    for _attempt in 0..MAX_ATTEMPTS {
+        // The method that spent least so far (ties: `methods` order).
+        let Some(k) = (0..3)
+            .filter(|&k| methods[k].is_some() && !exhausted[k])
+            .min_by_key(|&k| used[k])
+        else {
+            break;
+        };
+        let Some((rule, family)) = methods[k] else { break };
+        let left = (max_budget as u64).saturating_sub(spent.evaluations);
+        if left < rule.min_budget() as u64 {
+            break;
+        }
+        let limit = left.min(MAX_ADAPTIVE_EVALUATIONS as u64);
+        capped |= limit < left;
+        let budget = limit.min(cap).max(rule.min_budget() as u64) as u32;
+        let (e, confirmed) = rule.staged(g, budget, t[k])?;
+        spent.evaluations += e.evaluations;
+        spent.runs += 1;
+        used[k] += e.evaluations;
+        last = Some(e);
+        let own = confirmed.is_some() && e.is_resolved() && acc::max_abs(e.error) <= tol;
+        if !own {
+            if confirmed.is_none() {
+                // Out of evaluations before meeting `t`: with a larger cap,
+                // or, at the limit, never.
+                if budget as u64 >= limit {
+                    exhausted[k] = true;
+                } else {
+                    cap = cap.saturating_mul(4);
+                }
+            } else {
+                t[k] /= ROUND_FACTOR;
+            }
+            continue;
+        }
+        t[k] /= ROUND_FACTOR;
+        for c in cands.iter().take(n).flatten() {
+            if !c.family.independent_of(family) {
+                continue;
+            }
+            let d = acc::abs_diff(e.value, c.estimate.value);
+            if acc::max_abs(d) > tol {
+                continue;
+            }
+            if !mean_check_agrees(g, &e, tol, &mut spent)? {
+                continue;
+            }
+            let mut est = e;
+            est.error = est.error.zip(d, |a, b| a.max(b));
+            est.evaluations = spent.evaluations;
+            return Ok(ToleranceOutcome {
+                estimate: est,
+                budget: max_budget,
+                stop: StopReason::ToleranceReached,
+                total_evaluations: spent.evaluations,
+                confirmation: Some(d),
+                runs: spent.runs,
+            });
+        }
+        let cand = Candidate { estimate: e, family };
+        if n < MAX_CANDIDATES {
+            cands[n] = Some(cand);
+            n += 1;
+        } else if let Some(slot) = cands.get_mut(MAX_CANDIDATES - 1) {
+            *slot = Some(cand);
+        }
+    }
+    let zero = WideOf::<I>::splat(0.0);
+    let e = last.unwrap_or(Estimate {
+        value: zero,
+        error: zero,
+        evaluations: 0,
+        status: super::Status::Unresolved(super::Unresolved::NoSupportSeen),
+    });
+    Ok(ToleranceOutcome {
+        estimate: e,
+        budget: max_budget,
+        stop: if capped {
+            StopReason::IntegratorCap
+        } else {
+            StopReason::MaxBudget
+        },
+        total_evaluations: spent.evaluations,
+        confirmation: None,
+        runs: spent.runs,
+    })
+}
+
+/// Most draws of the mean check of an agreeing pair.
+const CONFIRM_MAX_DRAWS: u32 = 65_536;
+
+/// With a sampling map: an importance-sampled estimate through the map (a
+/// quarter of the evaluations spent, between 64 and 65,536 lattice draws)
+/// does not contradict `e` by more than `tol + 4σ + |P|/n` (see
+/// [`probe::MeanCheck::judge`]). Without a map: `true`.
+fn mean_check_agrees<I: Integrand>(
+    g: &I,
+    e: &Estimate<WideOf<I>>,
+    tol: f64,
+    spent: &mut Spent,
+) -> Result<bool, IntegrateError> {
+    if !g.has_sampling_map() {
+        return Ok(true);
+    }
+    let n = u32::try_from(spent.evaluations / 4)
+        .unwrap_or(u32::MAX)
+        .clamp(probe::MEAN_CHECK_MIN_POINTS, CONFIRM_MAX_DRAWS);
+    let m = probe::MeanCheck::take(g, n)?;
+    spent.evaluations += n as u64;
+    Ok(m.judge(super::Status::Resolved, e.value, WideOf::<I>::splat(tol))
+        .is_resolved())
+}
