@@ -81,6 +81,12 @@ enum Command {
         /// summary (e.g. SciPy's nquad for the to-tolerance comparison).
         #[arg(long)]
         peers: Option<std::path::PathBuf>,
+        /// Also run the random-material honesty check: N random specs of the grammar (sums, mixes and coats nested
+        /// up to depth 3), random θo (a third grazing), tolerances 1e-6..1e-3, a random integrator (half `auto`),
+        /// each to its tolerance, judged against an independent f64 quadrature; writes honesty.csv and the count of
+        /// claims and lies to summary.md. `--cases honesty` runs only this check.
+        #[arg(long, default_value_t = 0)]
+        honesty: usize,
     },
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi of a BRDF.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
@@ -372,6 +378,7 @@ fn main() -> ExitCode {
             cases,
             integrators,
             peers,
+            honesty,
         } => {
             let external = match peers {
                 None => Vec::new(),
@@ -396,6 +403,7 @@ fn main() -> ExitCode {
                 cases,
                 integrators,
                 external,
+                honesty,
             }) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {
