@@ -57,6 +57,9 @@ const FIRST_CUT: f64 = 0.618_033_988_749_894_9;
 /// [`FIRST_CUT`] of the shifted rule ([`Adaptive::shifted`]): `√2 − 1`.
 const SHIFTED_CUT: f64 = 0.414_213_562_373_095_03;
 
+/// The bend `κ` of the shifted rule's pieces (see `PlainMap`).
+const SHIFTED_BEND: f64 = 0.5;
+
 /// [`PHI_OFFSET`] of the shifted rule: `(3 − √5)/2`.
 const SHIFTED_PHI_OFFSET: f64 = 0.381_966_011_250_105_1;
 
@@ -985,10 +988,9 @@ impl Adaptive {
         } else {
             PHI_OFFSET
         };
-        let turn = |b: f64| {
-            let s = b + offset;
-            if s >= 1.0 { s - 1.0 } else { s }
-        };
+        let cut = if self.shifted { SHIFTED_CUT } else { FIRST_CUT };
+        let bend = if self.shifted { SHIFTED_BEND } else { 0.0 };
+        let map = PlainMap::new(g.kinks(), cut, offset, bend);
         // In the staged mode the rule's size is not known in advance:
         // the mean check is sized by the evaluations the rule spent.
         let check = if confirm.is_some() {
@@ -1003,11 +1005,9 @@ impl Adaptive {
         let mut n = 0;
         if probing {
             for &(w, v) in probe::Probe::take(g)?.points() {
-                let phi = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
-                let b = phi - offset;
-                let b = b - libm::floor(b);
+                let (x, b, j) = map.inverse(w);
                 if let Some(p) = pts.get_mut(n) {
-                    *p = ([w.z as f64, b], v * core::f64::consts::TAU);
+                    *p = ([x, b], v * j);
                     n += 1;
                 }
             }
@@ -1015,7 +1015,9 @@ impl Adaptive {
         let (mut e, confirmed) = self.run(
             rule_budget,
             pts.get(..n).unwrap_or_default(),
-            |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::hemisphere_values(g, p, turn, out),
+            |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+                chunk::mapped_hemisphere_values(g, p, |x, b| map.forward(x, b), out)
+            },
             confirm,
         )?;
         if probing {
@@ -1032,6 +1034,145 @@ impl Adaptive {
             e.evaluations += check as u64;
         }
         Ok((e, confirmed))
+    }
+}
+
+/// The plain square `(x, b) ∈ [0,1]²` of [`Adaptive`] mapped to the
+/// hemisphere `(μ, φ)`, piecewise linearly so that the integrand's kink
+/// lines ([`Integrand::kinks`]) fall on the first cuts `x = c`, `b = c` of
+/// the rule (`c` the rule's first cut):
+/// * `μ`: `[0, c] → [0, μk]` and `[c, 1] → [μk, 1]` (with a kink
+///   `0 < μk < 1`), else `μ = x`;
+/// * `φ` (in turns): `[0, c] → φk + [¼, ¾]` (the half turn about the
+///   mirror azimuth `φk + ½`) and `[c, 1] → φk + [¾, 5/4]`, so that
+///   `cos(φ − φk) = 0` at `b = 0` and `b = c`; else `φ = b + offset`.
+///
+/// Within each piece, the fraction `u ∈ [0, 1]` is bent to
+/// `s(u) = u + κ u (1 − u)` (`κ = 0` for the plain rule,
+/// [`SHIFTED_BEND`] for the shifted one), so that the two rules' nodes
+/// differ inside the pieces as well (a linear map would send both rules'
+/// regions, and nodes, to the same directions).
+///
+/// The value is `g` times the Jacobian `2π (dμ/dx)(dφ/db)` (φ in turns).
+#[derive(Clone, Copy, Debug)]
+struct PlainMap {
+    cut: f64,
+    bend: f64,
+    /// `μk`, when strictly inside `(0, 1)`.
+    mu: Option<f64>,
+    /// `φk` in turns, or `None` (then `offset`).
+    phi: Option<f64>,
+    offset: f64,
+}
+
+impl PlainMap {
+    /// Kinks closer than this to `μ = 0` or `1` are not split at (no
+    /// region could hold the sliver).
+    const MU_MARGIN: f64 = 1e-9;
+
+    fn new(k: Option<super::Kinks>, cut: f64, offset: f64, bend: f64) -> Self {
+        let mu = k
+            .map(|k| k.mu)
+            .filter(|&m| m.is_finite() && m > Self::MU_MARGIN && m < 1.0 - Self::MU_MARGIN);
+        let phi = k
+            .map(|k| k.phi / core::f64::consts::TAU)
+            .filter(|p| p.is_finite())
+            .map(|p| p - libm::floor(p));
+        PlainMap {
+            cut,
+            bend,
+            mu,
+            phi,
+            offset,
+        }
+    }
+
+    /// `(s(u), s'(u))` of the bend.
+    fn bent(&self, u: f64) -> (f64, f64) {
+        let k = self.bend;
+        (u + k * u * (1.0 - u), 1.0 + k * (1.0 - 2.0 * u))
+    }
+
+    /// `(u, s'(u))` with `s(u) = s`.
+    fn unbent(&self, s: f64) -> (f64, f64) {
+        let k = self.bend;
+        if k == 0.0 {
+            return (s, 1.0);
+        }
+        let d = ((1.0 + k) * (1.0 + k) - 4.0 * k * s).max(0.0);
+        let u = (((1.0 + k) - libm::sqrt(d)) / (2.0 * k)).clamp(0.0, 1.0);
+        (u, 1.0 + k * (1.0 - 2.0 * u))
+    }
+
+    /// `(μ, φ [radians], Jacobian)` at `(x, b)`.
+    fn forward(&self, x: f64, b: f64) -> (f64, f64, f64) {
+        let c = self.cut;
+        let (mu, jm) = match self.mu {
+            Some(m) if x < c => {
+                let (u, d) = self.bent(x / c);
+                (m * u, d * m / c)
+            }
+            Some(m) => {
+                let (u, d) = self.bent((x - c) / (1.0 - c));
+                (m + (1.0 - m) * u, d * (1.0 - m) / (1.0 - c))
+            }
+            None => (x, 1.0),
+        };
+        let (t, jt) = match self.phi {
+            Some(p) if b < c => {
+                let (u, d) = self.bent(b / c);
+                (p + 0.25 + 0.5 * u, d * 0.5 / c)
+            }
+            Some(p) => {
+                let (u, d) = self.bent((b - c) / (1.0 - c));
+                (p + 0.75 + 0.5 * u, d * 0.5 / (1.0 - c))
+            }
+            None => (b + self.offset, 1.0),
+        };
+        let t = t - libm::floor(t);
+        let tau = core::f64::consts::TAU;
+        (mu.clamp(0.0, 1.0), tau * t, tau * jm * jt)
+    }
+
+    /// `(x, b, Jacobian)` of the direction `w` (the inverse of
+    /// [`PlainMap::forward`]).
+    fn inverse(&self, w: glam::Vec3) -> (f64, f64, f64) {
+        let c = self.cut;
+        let mu = (w.z as f64).clamp(0.0, 1.0);
+        let (x, jm) = match self.mu {
+            Some(m) if mu < m => {
+                let (u, d) = self.unbent(mu / m);
+                (c * u, d * m / c)
+            }
+            Some(m) => {
+                let (u, d) = self.unbent((mu - m) / (1.0 - m));
+                (c + (1.0 - c) * u, d * (1.0 - m) / (1.0 - c))
+            }
+            None => (mu, 1.0),
+        };
+        let t = libm::atan2(w.y as f64, w.x as f64) / core::f64::consts::TAU;
+        let (b, jt) = match self.phi {
+            Some(p) => {
+                let s = t - p - 0.25;
+                let s = s - libm::floor(s);
+                if s < 0.5 {
+                    let (u, d) = self.unbent(s / 0.5);
+                    (c * u, d * 0.5 / c)
+                } else {
+                    let (u, d) = self.unbent((s - 0.5) / 0.5);
+                    (c + (1.0 - c) * u, d * 0.5 / (1.0 - c))
+                }
+            }
+            None => {
+                let b = t - self.offset;
+                (b - libm::floor(b), 1.0)
+            }
+        };
+        (
+            x.clamp(0.0, 1.0),
+            b.clamp(0.0, 1.0),
+            core::f64::consts::TAU * jm * jt,
+        )
     }
 }
 

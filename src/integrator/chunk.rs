@@ -104,6 +104,33 @@ pub(crate) fn hemisphere_values<I: Integrand>(
     Ok(())
 }
 
+/// The plain square through a map: `out[k] = J_k g(ω_k)` where
+/// `(μ_k, φ_k, J_k) = map(a_k, b_k)` and `ω_k = ω(μ_k, φ_k)`, for
+/// `k < min(p.len(), out.len())`.
+pub(crate) fn mapped_hemisphere_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    map: impl Fn(f64, f64) -> (f64, f64, f64),
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut dirs = [Vec3::ZERO; CHUNK];
+    let mut jac = [0.0f64; CHUNK];
+    let mut vals = [I::Spectrum::zero(); CHUNK];
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for ((d, j), &[a, b]) in head_mut(&mut dirs, n).iter_mut().zip(jac.iter_mut()).zip(p) {
+            let (mu, phi, jj) = map(a, b);
+            *d = direction(mu, phi);
+            *j = jj;
+        }
+        g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
+        for ((o, v), &j) in out.iter_mut().zip(head(&vals, n)).zip(jac.iter()) {
+            *o = check_finite(v.to_wide())?.map(|x| x * j);
+        }
+    }
+    Ok(())
+}
+
 /// The sampling-map square: `out[k] = g(ω)/p(ω)` at `u = (a_k, b_k)`
 /// (rounded to `f32` in `[0, 1)`), zero where the map has no direction
 /// (see [`sample_weight`]), for `k < min(p.len(), out.len())`.

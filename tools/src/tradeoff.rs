@@ -782,7 +782,10 @@ fn honesty_section(opt: &Options) -> Result<(String, String), String> {
     let line = honesty::summary_line(&rows, t0.elapsed().as_secs_f64());
     Ok((
         format!("\n{line}\n"),
-        format!("\n### Honesty on random materials (`--honesty {}`)\n\n{line}\n", opt.honesty),
+        format!(
+            "\n### Honesty on random materials (`--honesty {}`)\n\n{line}\n",
+            opt.honesty
+        ),
     ))
 }
 
