@@ -107,7 +107,9 @@ enum Command {
         budget: Option<u32>,
         /// Absolute error tolerance. Refines until the estimate is resolved, its error estimate is ≤ X and it is
         /// confirmed beyond one run: the budget is doubled from 64 until two successive runs agree within X (the
-        /// adaptive rules and `auto` instead refine their own work and confirm against a coarser stage), with at
+        /// adaptive rules and `auto` instead refine their own work, and `auto` and `adaptive-warped` then need a
+        /// run of an unrelated rule on another parameterisation to agree: the plain (μ, φ) square split at μi = μo
+        /// and cos Δφ = 0, its shifted twin, or the sampling map's square), with at
         /// most 4194304 (2^22) evaluations in the last run. The output says what happened ("stopped": "tolerance
         /// reached" | "max budget reached" | "integrator cap reached" | "out of reach": Monte Carlo whose N^-1/2
         /// projection needs more than 4 × the maximum budget), and "confirmation": how far the answer moved from

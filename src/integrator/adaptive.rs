@@ -1218,10 +1218,17 @@ impl Integrator for Adaptive {
     /// `min(max_budget, MAX_ADAPTIVE_EVALUATIONS)`: the rule refines until its
     /// error estimate is `≤ 8 tol` (its `|I₇ − I₅|` overstates the degree-7
     /// value's error), then goes on until the evaluations have doubled and
-    /// proposes the value if it moved by `≤ tol`. The candidate stands only
-    /// if a run from scratch at twice its evaluations agrees within `tol`
-    /// and an importance-sampled mean check does not contradict it;
-    /// otherwise budget doubling from scratch takes over. `start_budget` is
+    /// proposes the value if it moved by `≤ tol`. On the plain square the
+    /// candidate stands only if a run from scratch at twice its evaluations
+    /// agrees within `tol` and an importance-sampled mean check does not
+    /// contradict it; otherwise budget doubling from scratch takes over. On
+    /// the warped square (whose stages and fresh runs share the map's seams
+    /// and kinks) it stands only if a staged run on the plain square (split
+    /// at the integrand's [kinks](Integrand::kinks)) or on its shifted twin
+    /// agrees within `tol`, with the mean check; the driver alternates such
+    /// runs, each staged to a tolerance four times tighter than the method's
+    /// last, until two of different parameterisations agree or `max_budget`
+    /// evaluations are spent in all. `start_budget` is
     /// not used (the staged run starts at the rule's minimum); the
     /// configured tolerances are ignored.
     fn to_tolerance<I: Integrand>(

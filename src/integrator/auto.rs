@@ -201,15 +201,23 @@ fn median(v: &[f64]) -> Option<f64> {
 ///    more than [`probe::PEAK_RATIO`] × the largest node value: a peak
 ///    between the nodes; no support seen; too few effective nodes): the
 ///    staged [`Adaptive`] rule on the sampling-map square (or the plain
-///    square without a map), which refines its own regions and confirms
-///    its value by a refinement of itself (see
-///    [`Integrator::to_tolerance`]).
+///    square without a map), which refines its own regions; to a tolerance
+///    its value is confirmed as below.
 ///
 /// To a tolerance ([`integrate_to_tolerance`](super::integrate_to_tolerance)),
 /// the grid stops when `d_μ + d_φ + floor ≤ tol` at a level reached by
 /// refinement (not the first one) and the status is resolved: the value
 /// agrees within `tol` with two coarser rules made of a subset of its own
-/// nodes (the confirmation). With a fixed budget
+/// nodes. That value is a *candidate* only: a kink (the Oren–Nayar family at
+/// `μi = μo`), a lobe cut by the horizon or the step of a mixture map fools
+/// every level of a nested rule alike. It stands when a staged [`Adaptive`]
+/// run from scratch on another parameterisation agrees within `tol` — the
+/// plain `(μ, φ)` square split at the integrand's
+/// [kinks](super::Integrand::kinks) after the plain grid, the sampling map's
+/// square after a chart — or, if it does not, when any two such runs of
+/// different parameterisations (plain, shifted plain, warped) agree, each
+/// method refining four times tighter on its next run (the narrow-lobe path
+/// starts there with the warped rule). With a fixed budget
 /// ([`Integrator::integrate`]) it refines until the budget cannot pay for
 /// the next level.
 ///
@@ -861,10 +869,11 @@ impl Integrator for Auto {
         "auto"
     }
 
-    /// The pilot, the grid to `tol` (broad lobes), and if it does not get
-    /// there, the staged [`Adaptive`] rule (warped when the integrand has a
-    /// sampling map) with the budget left; evaluations of every stage are
-    /// counted.
+    /// The pilot, the grid to `tol` (broad lobes and peaked smooth ones),
+    /// whose value is a candidate, then staged [`Adaptive`] runs on other
+    /// parameterisations until two agree within `tol` (see the type's docs);
+    /// evaluations of every stage are counted, and `max_budget` bounds
+    /// their sum.
     fn to_tolerance<I: Integrand>(
         &self,
         g: &I,

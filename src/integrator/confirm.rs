@@ -45,16 +45,17 @@ pub(crate) enum Family {
 
 impl Family {
     /// Whether a candidate of `self` may be confirmed by one of `other`:
-    /// different rules that do not share nodes or a parameterisation's
-    /// failure mode (the plain grid and the plain adaptive rule share the
-    /// square but not the rule: the grid's estimate assumes global
-    /// smoothness, the adaptive rule's refines locally).
+    /// different rules or parameterisations, which share no nodes (the
+    /// plain grid and the plain adaptive rule share the square but not the
+    /// rule: the grid's estimate assumes global smoothness, the adaptive
+    /// rule refines locally; the plain and the shifted adaptive rules split
+    /// at the same kink lines but place every node elsewhere).
     fn independent_of(self, other: Family) -> bool {
         self != other
     }
 }
 
-/// Most candidates kept (two methods × the rounds).
+/// Most candidates kept.
 const MAX_CANDIDATES: usize = 16;
 
 /// Most staged runs of [`cross_confirm`].
@@ -83,23 +84,28 @@ pub(crate) struct Spent {
     pub(crate) runs: u32,
 }
 
-/// Confirms `first` (if any) or finds and confirms a candidate: staged
-/// [`Adaptive`] runs to `t = tol, tol/4, tol/16, …` (at most
-/// [`MAX_ROUNDS`] rounds), on the plain square and — with a sampling map —
-/// on the warped one, each round in the order `order` names (the first
-/// method whose family differs from `first`'s runs first). Every resolved
-/// run confirmed by its own stages with error `≤ tol` becomes a candidate;
-/// the outcome is [`StopReason::ToleranceReached`] as soon as two candidates
-/// of [independent](Family::independent_of) families differ by `≤ tol`
-/// (every channel) and — with a sampling map — an importance-sampled mean
-/// check through the map does not contradict the later one (see
-/// [`probe::MeanCheck`]). The later candidate is returned, its error the
-/// larger of its own and the difference, `confirmation` the difference.
-/// Runs spend at most `max_budget` evaluations in all (each at most
-/// [`MAX_ADAPTIVE_EVALUATIONS`]); when the budget is spent without two
-/// agreeing candidates, the stop is [`StopReason::MaxBudget`] (or
-/// [`StopReason::IntegratorCap`] when a run was capped below the budget
-/// left) with the last estimate.
+/// Confirms `first` (if any) or finds and confirms a candidate with staged
+/// [`Adaptive`] runs from scratch on three parameterisations: the plain
+/// square ([`Family::Plain`]), the shifted plain square
+/// ([`Family::Shifted`]) and — with a sampling map — the warped square
+/// ([`Family::Warped`]). Each attempt runs the method that has spent the
+/// fewest evaluations so far (ties: the warped rule first after a chart's
+/// candidate or without one, the plain rules first otherwise), staged to
+/// its own tolerance `t` (`tol` at first, divided by 4 after each run that
+/// produced a value) with at most `cap` evaluations (`max(4 × first's,
+/// 4,096)`, quadrupled whenever an attempt ran out of it before meeting
+/// `t`; at most [`MAX_ATTEMPTS`] attempts). A resolved run confirmed by its
+/// own stages with error `≤ tol` is a candidate; the outcome is
+/// [`StopReason::ToleranceReached`] as soon as two candidates of different
+/// families differ by `≤ tol` (every channel) and — with a sampling map —
+/// an importance-sampled mean check through the map does not contradict the
+/// later one (see `probe::MeanCheck`). The later candidate is returned, its
+/// error the larger of its own and the difference, `confirmation` the
+/// difference. The runs spend at most `max_budget` evaluations in all (each
+/// at most [`MAX_ADAPTIVE_EVALUATIONS`]); without two agreeing candidates
+/// the stop is [`StopReason::MaxBudget`] (or [`StopReason::IntegratorCap`]
+/// when a run was held below the budget left by the rule's own cap) with
+/// the last estimate.
 pub(crate) fn cross_confirm<I: Integrand>(
     g: &I,
     tol: f64,
