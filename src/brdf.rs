@@ -218,6 +218,36 @@ pub trait Brdf {
     fn directional_albedo(&self, wo: Vec3) -> Albedo<Self::Spectrum> {
         crate::compose::albedo_by_sampling(self, wo)
     }
+
+    /// The hemispherical average of the directional albedo, `Ē = 2∫₀¹ E(μ) μ
+    /// dμ` (the albedo under uniform light from every direction, the
+    /// normalisation of a reciprocal layer, [`compose::Coated`](crate::compose::Coated)).
+    ///
+    /// The default is an 8-point Gauss–Legendre rule in `μ` over
+    /// [`directional_albedo`](Brdf::directional_albedo) at `φo = 0` (8
+    /// albedo queries; an isotropic lobe's albedo depends on `μ` alone).
+    /// Plugins with a global table or a closed form override it.
+    fn average_albedo(&self) -> Self::Spectrum {
+        default_average_albedo(self)
+    }
+}
+
+/// The default [`Brdf::average_albedo`]: 8-point Gauss–Legendre in `μ` over
+/// the lobe's directional albedo at `φo = 0`.
+pub fn default_average_albedo<B: Brdf + ?Sized>(b: &B) -> B::Spectrum {
+    {
+        const X: [f32; 4] = [0.183_434_65, 0.525_532_4, 0.796_666_5, 0.960_289_9];
+        const W: [f32; 4] = [0.362_683_78, 0.313_706_65, 0.222_381_03, 0.101_228_54];
+        let mut s = B::Spectrum::zero();
+        for (x, w) in X.iter().zip(W) {
+            for mu in [0.5 * (1.0 - x), 0.5 * (1.0 + x)] {
+                let wo = Vec3::new(libm::sqrtf((1.0 - mu * mu).max(0.0)), 0.0, mu);
+                let e = b.directional_albedo(wo).value;
+                s += e.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 }) * (w * mu);
+            }
+        }
+        s
+    }
 }
 
 /// A BRDF invariant under rotation about the normal: `f_r` depends only on
@@ -283,6 +313,9 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     #[inline]
     fn directional_albedo(&self, wo: Vec3) -> Albedo<Self::Spectrum> {
         (**self).directional_albedo(wo)
+    }
+    fn average_albedo(&self) -> Self::Spectrum {
+        (**self).average_albedo()
     }
 }
 

@@ -52,7 +52,7 @@ pub enum BrdfError {
         max_nm: f32,
     },
     /// A saved table of a layer's top albedo (e.g. one of
-    /// [`OpenPbrTables`](crate::openpbr::OpenPbrTables)) holds a value that
+    /// an OpenPBR material) holds a value that
     /// no top reports: a node outside `[0, 1]` or not finite, or a negative
     /// or non-finite error. The table was not read from the layer it is
     /// given back to, or was overwritten since.

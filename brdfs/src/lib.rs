@@ -24,6 +24,7 @@
 //! | [`Eon<S>`](Eon) | FON + the closed-form multiple-scattering lobe of Portsmouth, Kutz & Hill 2025 ("EON"), `σ ∈ [0, 1]` | — | — | energy-preserving: albedo 1 at `ρ = 1` for every `θo` (exact FON albedo) | any | mixture of cosine and uniform, exact pdf | `eval`, `pdf`, `sample` |
 //! | [`OrenNayar<S>`](OrenNayar) | the classic qualitative Oren–Nayar as pbrt-v3 has it, `σ ∈ [0, π/2]` **radians**; `ρ ≤ 1/(A + B/2)` (it gains energy above) | — | — | — | any | mixture of cosine and uniform, exact pdf | `eval`, `pdf`, `sample` |
 //! | [`Sheen<S>`](Sheen) | Estevez & Kulla 2017 cloth sheen: "Charlie" `D`, fitted Smith `Λ`, `r ∈ [0.07, 1]` | — (`F = 1`, scaled by `color`) | height-correlated, fitted `Λ` | — | any | uniform hemisphere, exact pdf `1/(2π)` | scalar loops |
+//! | [`LtcSheen<S>`](LtcSheen) | Zeltner, Burley & Chiang 2022 multiple-scattering sheen: an LTC fitted to a volume of fibres, 32 × 32 table of `(a, b, R)` over `(cos θo, r)`, `r ∈ [0, 1]`; **not reciprocal** | — (scaled by `color`) | in the fit | in the fit (volumetric) | any | exact LTC sampling, pdf = the LTC density | scalar loops |
 //! | [`OpenPbr<S>`](OpenPbr) | OpenPBR Surface 1.1's reflection layer: F82-tint metal, dielectric specular over EON, coat, fuzz (sheen), layered by `radiometry::compose` | dielectric ([`Achromatic`](microfacet::Achromatic)) and F82-tint | height-correlated | Kulla–Conty on the metal; EON | any | lobes and layers by albedo, exact mixture pdf | through the lobes' kernels |
 //! | [`Tabulated<'a, S>`](tabulated::Tabulated) | measured isotropic data on a Rusinkiewicz grid (MERL layout), trilinear, borrowed from the caller | in the data | in the data | in the data | any | cosine, or half-vector density in a caller buffer ([`with_sampling`](tabulated::Tabulated::with_sampling)) | `eval`, `pdf` |
 //!
@@ -31,7 +32,8 @@
 //! what the lobe combinators of `radiometry::compose` pick lobes by): `Lambertian`
 //! exactly; `Microfacet` and `KullaConty` from the Kulla–Conty tables times a
 //! 16-point Fresnel average over the lobe, with a bound (the range of `F`
-//! plus the table's `10⁻³`, [`microfacet::ALBEDO_TABLE_ERROR`]); the others by
+//! plus the table's `10⁻³`, [`microfacet::ALBEDO_TABLE_ERROR`]); `LtcSheen` exactly
+//! (`color · R(μo, r)`, the fraction of the transformed cosine above the horizon being 1); the others by
 //! the default 16-point sampling rule (an estimated error).
 //!
 //! **Metals** ([`metals`]): measured `η(λ) + i k(λ)` of Au, Ag, Cu, Al, Cr, Fe,
@@ -42,9 +44,10 @@
 //! Common to all: `eval` is zero below the horizon and never NaN, ∞ or a
 //! panic for finite input (grazing angles, `ωi = −ωo`, `u = 1 − 2⁻²⁴`);
 //! `pdf(ωi, ωo)` equals the pdf `sample` returned for that `ωi`, bit for
-//! bit; every plugin is reciprocal and isotropic
-//! ([`IsotropicBrdf`](radiometry::IsotropicBrdf)), and its albedo stays
-//! ≤ 1 — each property tested on every plugin.
+//! bit; every plugin is isotropic
+//! ([`IsotropicBrdf`](radiometry::IsotropicBrdf)) and, except `LtcSheen`
+//! (a fit of light leaving towards `ωo`, not reciprocal), reciprocal, and
+//! its albedo stays ≤ 1 — each property tested on every plugin.
 //!
 //! **Feature `simd`**: 8-wide vector kernels (`wide`; 16 lanes when the
 //! build has AVX-512) behind [`Brdf::eval_batch`](radiometry::Brdf::eval_batch),
@@ -106,7 +109,7 @@ pub use error::BrdfError;
 pub use blinn_phong::BlinnPhong;
 pub use lambertian::Lambertian;
 pub use phong::ModifiedPhong;
-pub use sheen::Sheen;
+pub use sheen::{LtcSheen, Sheen};
 // -- end Lambertian / Phong family
 // -- re-exports: microfacet (keep this block for that module)
 pub use microfacet::{
@@ -115,7 +118,7 @@ pub use microfacet::{
 };
 // -- end microfacet
 // -- re-exports: OpenPBR
-pub use openpbr::{OpenPbr, OpenPbrParams, OpenPbrTables};
+pub use openpbr::{Layering, OpenPbr, OpenPbrParams, OpenPbrView};
 // -- end OpenPBR
 // -- re-exports: rough diffuse (keep this block for that module)
 pub use rough_diffuse::{Eon, Fon, OrenNayar};

@@ -6,7 +6,9 @@
 
 mod batch;
 mod kulla_conty;
+mod ltc_sheen;
 mod microfacet_albedo;
+mod openpbr_conformance;
 mod sample_batch;
 mod sheen;
 mod tabulated;

@@ -117,10 +117,6 @@
 // `RadMaterial::kind`: `lobes[0]` (top) coated over `lobes[1]` (base).
 #define RAD_MATERIAL_COATED 4
 
-// Number of values in [`RadMaterial::table`]: the top's directional albedo
-// at `μ_k = (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`).
-#define RAD_MATERIAL_TABLE_NODES 128
-
 // `RadOpenPbr::kind` of a handle filled in by [`rad_openpbr_new`]: OpenPBR
 // Surface 1.1's reflection layer, monochrome.
 #define RAD_OPENPBR_REFLECTION 1
@@ -258,15 +254,15 @@ typedef struct RadBrdfSample {
 } RadBrdfSample;
 
 // A material: one or two [`RadBrdf`] lobes and how they combine. Plain data
-// (596 bytes, 4-byte aligned: five 32-bit fields, two `RadBrdf`s and 128
-// `float`s, no padding), filled in by `rad_material_brdf`,
-// `rad_material_sum`, `rad_material_mix` or `rad_material_coated`; copy it
+// (84 bytes, 4-byte aligned: five 32-bit fields and two `RadBrdf`s, no
+// padding), filled in by `rad_material_brdf`, `rad_material_sum`,
+// `rad_material_mix`, `rad_material_coated` or
+// `rad_material_coated_reciprocal`; copy it
 // freely (it holds no pointers). Treat the fields as read-only; a zeroed
 // struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`). Fields a kind does
 // not use are 0. Each call checks the fields the kind uses (the lobes as
-// `RadBrdf` calls do, the weight, the coat parameters, every table value
-// finite and in `[0, 1]`: about 130 comparisons) and rebuilds the
-// composite.
+// `RadBrdf` calls do, the weight, the coat parameters) and rebuilds the
+// composite (O(1)).
 typedef struct RadMaterial {
   // One of the `RAD_MATERIAL_*` kinds.
   uint32_t kind;
@@ -279,28 +275,28 @@ typedef struct RadMaterial {
   // `RAD_MATERIAL_COATED`: the coat's index of refraction `≥ 1` (sets
   // the path length of the absorption).
   float coat_ior;
-  // `RAD_MATERIAL_COATED`: the largest error the top stated for its
-  // albedo at the table's nodes.
-  float top_error;
+  // `RAD_MATERIAL_COATED`: the layering, 0 for OpenPBR's
+  // energy-conserving albedo scaling ([`rad_material_coated`]), 1 for the
+  // reciprocal form ([`rad_material_coated_reciprocal`]); any other value
+  // is `RAD_STATUS_BAD_HANDLE`.
+  uint32_t reciprocal;
   // The lobes: `A`, `B` (sum, mix), `top`, `base` (coated); `lobes[1]`
   // zeroed for `RAD_MATERIAL_BRDF`.
   struct RadBrdf lobes[2];
-  // `RAD_MATERIAL_COATED`: the top's directional albedo at
-  // `μ_k = (k/127)²`, each in `[0, 1]`.
-  float table[RAD_MATERIAL_TABLE_NODES];
 } RadMaterial;
 
 // The parameters of OpenPBR Surface 1.1's reflection layer, with the
-// specification's names (monochrome: every colour is one `float`). Plain
-// data (60 bytes, 15 `float`s); `rad_openpbr_default_params` fills in
-// OpenPBR's defaults. Domains: every weight, colour, roughness and
-// `base_metalness` in `[0, 1]`; `specular_ior` and `coat_ior` in `[1,
-// 1000]`. A roughness of 0 is raised to the microfacet floor `α = 10⁻⁴`,
+// specification's names (monochrome: every colour is one `float`), and
+// the layering mode. Plain data (68 bytes: 16 `float`s and a `uint32_t`);
+// `rad_openpbr_default_params` fills in OpenPBR's defaults. Domains: every
+// weight, colour, roughness, `base_metalness` and `coat_darkening` in `[0,
+// 1]`; `specular_ior` and `coat_ior` in `[1, 1000]`; `reciprocal` 0 or 1.
+// A roughness of 0 is raised to the microfacet floor `α = 10⁻⁴`,
 // `fuzz_roughness` below 0.07 to 0.07 (the sheen tables' range).
 // OpenPBR's other parameters (transmission, subsurface, thin film,
-// anisotropy, emission, geometry, `coat_darkening`) are outside a
-// reflection-only isotropic BRDF: the material behaves as if each were 0
-// (opaque, one-sided; see docs/materials.md).
+// anisotropy, emission, geometry) are outside a reflection-only isotropic
+// BRDF: the material behaves as if each were 0 (opaque, one-sided; see
+// docs/materials.md).
 typedef struct RadOpenPbrParams {
   // `base_weight` (default 1): scales `base_color`.
   float base_weight;
@@ -330,42 +326,33 @@ typedef struct RadOpenPbrParams {
   float coat_roughness;
   // `coat_ior` (default 1.6).
   float coat_ior;
+  // `coat_darkening` (default 1): the darkening of the coated base by
+  // light trapped in the coat (0: the base is boosted to cancel it).
+  float coat_darkening;
   // `fuzz_weight` (default 0).
   float fuzz_weight;
   // `fuzz_color` (default 1).
   float fuzz_color;
   // `fuzz_roughness` (default 0.5).
   float fuzz_roughness;
+  // The layering (not an OpenPBR parameter; default 0): 0 for OpenPBR's
+  // energy-conserving albedo scaling, 1 for the reciprocal form (for
+  // bidirectional methods; `Layering::Reciprocal`).
+  uint32_t reciprocal;
 } RadOpenPbrParams;
 
-// An OpenPBR Surface reflection material: its parameters and the three
-// albedo tables [`rad_openpbr_new`] read. Plain data (1,612 bytes, 4-byte
-// aligned: a `uint32_t`, 18 `float`s and three tables of 128 `float`s, no
+// An OpenPBR Surface reflection material: its parameters, checked. Plain
+// data (72 bytes, 4-byte aligned: a `uint32_t` and a `RadOpenPbrParams`, no
 // padding); copy it freely (it holds no pointers). Treat the fields as
 // read-only; a zeroed struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`).
-// Each call checks every field (the parameters as `rad_openpbr_new` does:
-// `RAD_STATUS_NOT_FINITE` / `_OUT_OF_RANGE`; a table value or error that
-// no top reports: `RAD_STATUS_BAD_HANDLE`) and rebuilds the material
-// (about 53 µs; a batch call does it once per batch).
+// Each call checks the parameters as `rad_openpbr_new` does
+// (`RAD_STATUS_NOT_FINITE` / `_OUT_OF_RANGE`) and builds the material (O(1):
+// a batch call does it once per batch).
 typedef struct RadOpenPbr {
   // [`RAD_OPENPBR_REFLECTION`].
   uint32_t kind;
   // The parameters it was built from.
   struct RadOpenPbrParams params;
-  // The largest error the specular top stated at the table's nodes.
-  float specular_error;
-  // The largest error the coat top stated at the table's nodes.
-  float coat_error;
-  // The largest error the fuzz top stated at the table's nodes.
-  float fuzz_error;
-  // The dielectric specular layer's directional albedo at `μ_k =
-  // (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`), each in `[0, 1]`.
-  float specular_table[RAD_MATERIAL_TABLE_NODES];
-  // The coat's directional albedo at the same nodes.
-  float coat_table[RAD_MATERIAL_TABLE_NODES];
-  // The fuzz layer's (`fuzz_weight` times the sheen's) directional albedo
-  // at the same nodes.
-  float fuzz_table[RAD_MATERIAL_TABLE_NODES];
 } RadOpenPbr;
 
 #ifdef __cplusplus
@@ -706,25 +693,23 @@ enum RadStatus rad_material_mix(float weight,
                                 const struct RadBrdf *b,
                                 struct RadMaterial *out);
 
-// `top` coated over `base` by albedo scaling, in a reciprocal, energy-safe
-// form (`radiometry::compose::Coated`; OpenPBR Surface 1.1 §"Layering"):
+// `top` coated over `base` by albedo scaling, in OpenPBR's
+// energy-conserving form (`radiometry::compose::Coated::new` /
+// `Coated::with_absorption`; OpenPBR Surface 1.1 §"Layering"):
 //
 // ```text
-// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) f_B(ωi, ωo)
-// τ(ωi, ωo) = A(μi, μo) t(ωi) t(ωo) (1 − E_min),   t(ω) = min((1 − E_T(ω)) / (1 − E_min), 1)
-// A(μi, μo) = C^((1/μᵗi + 1/μᵗo)/2),               μᵗ = √(1 − (1 − μ²)/η²)
+// f(ωi, ωo) = f_T(ωi, ωo) + A(μi, μo) (1 − E_T(ωo)) f_B(ωi, ωo)
+// A(μi, μo) = C^((1/μᵗi + 1/μᵗo)/2),   μᵗ = √(1 − (1 − μ²)/η²)
 // ```
 //
-// with `E_T` the top's directional albedo (read here, once, at 128
-// directions into `RadMaterial::table`: the slow step, about a millisecond
-// for a microfacet top on a desktop core), `E_min` its smallest value, `C =
-// coat_color ∈ [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. Each call then
-// checks the table and derives `E_min` and `E_avg` from it again (three
-// passes over the 128 values: batch calls pay it once per batch). A
-// plastic is a
-// dielectric microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a
-// diffuse base. Sampling picks the top with probability
-// `Ē_T / (Ē_T + Ē_through)` at `ωo`.
+// with `E_T` the top's directional albedo (read at every call: O(1) for
+// the crate's lobes, from global tables or closed forms), `C = coat_color ∈
+// [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. `E ≤ 1` for every base with
+// `E_B ≤ 1`, and a white base under a clear top keeps all its energy. Only
+// the lobes and the coat parameters are stored. A plastic is a dielectric
+// microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a diffuse
+// base. Sampling picks the top with probability `Ē_T / (Ē_T + Ē_through)`
+// at `ωo`.
 //
 // # Safety
 // `top`, `base` are null or point to readable `RadBrdf`s; `out` is null or
@@ -734,6 +719,26 @@ enum RadStatus rad_material_coated(const struct RadBrdf *top,
                                    float coat_color,
                                    float coat_ior,
                                    struct RadMaterial *out);
+
+// [`rad_material_coated`] in the reciprocal layering
+// (`Coated::with_layering(Layering::Reciprocal)`, for bidirectional
+// methods): the through-factor `(1 − E_T(ωo))` becomes
+//
+// ```text
+// τ(ωi, ωo) = min(t(ωi) t(ωo) / (1 − Ē_T), t(ωi), t(ωo)),   t(ω) = 1 − E_T(ω)
+// ```
+//
+// with `Ē_T` the top's hemispherical average albedo: `f(ωi, ωo) = f(ωo,
+// ωi)`, and `E ≤ 1` for every base with `E_B ≤ 1` (a white Lambertian base
+// keeps `E_T + 1 − Ē_T` where `E_T(ωo) < Ē_T`, instead of 1).
+//
+// # Safety
+// As [`rad_material_coated`].
+enum RadStatus rad_material_coated_reciprocal(const struct RadBrdf *top,
+                                              const struct RadBrdf *base,
+                                              float coat_color,
+                                              float coat_ior,
+                                              struct RadMaterial *out);
 
 // `*out = f_r(wi → wo)` of the material, in 1/sr.
 //
@@ -827,7 +832,8 @@ enum RadStatus rad_material_sample_batch(const struct RadMaterial *material,
 // `specular_ior` 1.5 specular layer, no coat (`coat_ior` 1.6,
 // `coat_color` 1, `coat_roughness` 0), no fuzz (`fuzz_color` 1,
 // `fuzz_roughness` 0.5); `base_weight`, `specular_weight`,
-// `specular_color` 1, `base_metalness`, `base_diffuse_roughness` 0.
+// `specular_color`, `coat_darkening` 1, `base_metalness`,
+// `base_diffuse_roughness` 0; `reciprocal` 0 (energy-conserving).
 //
 // # Safety
 // `out` is null or points to a writable `RadOpenPbrParams`.
@@ -839,10 +845,8 @@ enum RadStatus rad_openpbr_default_params(struct RadOpenPbrParams *out);
 // by albedo scaling; see docs/materials.md): checks the parameters (in the
 // order of the struct's fields; the first bad one gives the status:
 // `RAD_STATUS_NOT_FINITE` for NaN or ±∞, `RAD_STATUS_OUT_OF_RANGE` outside
-// its domain) and reads the three layers' top albedos into the tables (the
-// slow step: 0.6 ms with every layer on, on a loaded 2-core Xeon). Build
-// once, call many times; prefer the batch calls (each single call rebuilds
-// the material from the struct, about 53 µs).
+// its domain) and stores them. O(1); each call builds the material from
+// the struct again (also O(1); a batch call once per batch).
 //
 // # Safety
 // `params` is null or points to a readable `RadOpenPbrParams`; `out` is
@@ -885,7 +889,7 @@ enum RadStatus rad_openpbr_sample(const struct RadOpenPbr *material,
                                   struct RadBrdfSample *out);
 
 // `out[k] = f_r(wi[k] → wo[k])` for `k < n`, through the layers' batch
-// kernels (validates and rebuilds the material once per batch).
+// kernels (validates and builds the material once per batch).
 //
 // # Safety
 // `material` points to a readable `RadOpenPbr`; `wi`, `wo` to `n` readable

@@ -166,6 +166,7 @@ impl From<Option<BrdfSample<f32>>> for RadBrdfSample {
 pub(crate) trait DynBrdf {
     fn is_smooth(&self) -> bool;
     fn directional_albedo(&self, wo: Vec3) -> Albedo<f32>;
+    fn average_albedo(&self) -> f32;
     fn eval(&self, wi: Vec3, wo: Vec3) -> f32;
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32;
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>>;
@@ -181,6 +182,9 @@ impl<B: Brdf<Spectrum = f32>> DynBrdf for B {
     }
     fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
         Brdf::directional_albedo(self, wo)
+    }
+    fn average_albedo(&self) -> f32 {
+        Brdf::average_albedo(self)
     }
     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
         Brdf::eval(self, wi, wo)

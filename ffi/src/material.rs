@@ -5,15 +5,12 @@
 //! [`RadBrdf`]s.
 //!
 //! Like a `RadBrdf`, a `RadMaterial` is caller-allocated plain data (no
-//! pointers, no heap; 596 bytes, 4-byte aligned), filled in once by a
+//! pointers, no heap; 84 bytes, 4-byte aligned), filled in once by a
 //! `rad_material_*` constructor. Every call re-validates it (the lobes'
-//! parameters as for a `RadBrdf`, the weight and coat parameters, and each
-//! value of a coat's albedo table finite and in `[0, 1]`) and rebuilds the
-//! composite from it. A coat needs its top's directional albedo at 128
-//! directions: [`rad_material_coated`] reads it once into
-//! [`RadMaterial::table`] (that read is the slow part of building a
-//! `Coated`), and each call rebuilds the layer from the saved table
-//! (`Coated::from_table`), bit for bit the layer `Coated::new` builds.
+//! parameters as for a `RadBrdf`, the weight and coat parameters) and
+//! rebuilds the composite from it, in O(1): a coat reads its top's
+//! directional albedo where it needs it (`Coated::new`, O(1) for the crate's
+//! lobes through global tables), so nothing is tabulated per material.
 //!
 //! The values are those of the Rust composites over the same plugins, bit for
 //! bit: `Sum`, `Mix` and `Coated` pick a lobe to sample in proportion to its
@@ -26,7 +23,7 @@ use crate::brdf::{
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdf, RadBrdfSample, RadStatus, RadVec3};
 use radiometry::batch::Vec3Soa;
-use radiometry::compose::{COATED_TABLE_NODES, Coated, Mix, Sum};
+use radiometry::compose::{Coated, Layering, Mix, Sum};
 use radiometry::glam::Vec3;
 use radiometry::{Albedo, Brdf, BrdfSample};
 
@@ -39,26 +36,20 @@ pub const RAD_MATERIAL_MIX: u32 = 3;
 /// `RadMaterial::kind`: `lobes[0]` (top) coated over `lobes[1]` (base).
 pub const RAD_MATERIAL_COATED: u32 = 4;
 
-/// Number of values in [`RadMaterial::table`]: the top's directional albedo
-/// at `μ_k = (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`).
-pub const RAD_MATERIAL_TABLE_NODES: usize = 128;
-
-const _: () = assert!(RAD_MATERIAL_TABLE_NODES == COATED_TABLE_NODES);
 // The layouts the header documents.
 const _: () = assert!(core::mem::size_of::<RadBrdf>() == 32 && core::mem::align_of::<RadBrdf>() == 4);
-const _: () =
-    assert!(core::mem::size_of::<RadMaterial>() == 596 && core::mem::align_of::<RadMaterial>() == 4);
+const _: () = assert!(core::mem::size_of::<RadMaterial>() == 84 && core::mem::align_of::<RadMaterial>() == 4);
 
 /// A material: one or two [`RadBrdf`] lobes and how they combine. Plain data
-/// (596 bytes, 4-byte aligned: five 32-bit fields, two `RadBrdf`s and 128
-/// `float`s, no padding), filled in by `rad_material_brdf`,
-/// `rad_material_sum`, `rad_material_mix` or `rad_material_coated`; copy it
+/// (84 bytes, 4-byte aligned: five 32-bit fields and two `RadBrdf`s, no
+/// padding), filled in by `rad_material_brdf`, `rad_material_sum`,
+/// `rad_material_mix`, `rad_material_coated` or
+/// `rad_material_coated_reciprocal`; copy it
 /// freely (it holds no pointers). Treat the fields as read-only; a zeroed
 /// struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`). Fields a kind does
 /// not use are 0. Each call checks the fields the kind uses (the lobes as
-/// `RadBrdf` calls do, the weight, the coat parameters, every table value
-/// finite and in `[0, 1]`: about 130 comparisons) and rebuilds the
-/// composite.
+/// `RadBrdf` calls do, the weight, the coat parameters) and rebuilds the
+/// composite (O(1)).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RadMaterial {
@@ -73,15 +64,14 @@ pub struct RadMaterial {
     /// `RAD_MATERIAL_COATED`: the coat's index of refraction `≥ 1` (sets
     /// the path length of the absorption).
     pub coat_ior: f32,
-    /// `RAD_MATERIAL_COATED`: the largest error the top stated for its
-    /// albedo at the table's nodes.
-    pub top_error: f32,
+    /// `RAD_MATERIAL_COATED`: the layering, 0 for OpenPBR's
+    /// energy-conserving albedo scaling ([`rad_material_coated`]), 1 for the
+    /// reciprocal form ([`rad_material_coated_reciprocal`]); any other value
+    /// is `RAD_STATUS_BAD_HANDLE`.
+    pub reciprocal: u32,
     /// The lobes: `A`, `B` (sum, mix), `top`, `base` (coated); `lobes[1]`
     /// zeroed for `RAD_MATERIAL_BRDF`.
     pub lobes: [RadBrdf; 2],
-    /// `RAD_MATERIAL_COATED`: the top's directional albedo at
-    /// `μ_k = (k/127)²`, each in `[0, 1]`.
-    pub table: [f32; RAD_MATERIAL_TABLE_NODES],
 }
 
 impl Default for RadMaterial {
@@ -92,9 +82,8 @@ impl Default for RadMaterial {
             weight: 0.0,
             coat_color: 0.0,
             coat_ior: 0.0,
-            top_error: 0.0,
+            reciprocal: 0,
             lobes: [RadBrdf::default(); 2],
-            table: [0.0; RAD_MATERIAL_TABLE_NODES],
         }
     }
 }
@@ -141,6 +130,10 @@ impl Brdf for Lobe<'_> {
     fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
         DynBrdf::directional_albedo(self.0, wo)
     }
+    #[inline]
+    fn average_albedo(&self) -> f32 {
+        DynBrdf::average_albedo(self.0)
+    }
 }
 
 /// Builds both lobes of `m` and runs `f` on them.
@@ -174,8 +167,13 @@ impl Handle for RadMaterial {
             RAD_MATERIAL_MIX => two(self, |a, b| Ok(f(&Mix::new(self.weight, a, b)?)))?,
             RAD_MATERIAL_COATED => {
                 check_coat(self.coat_color, self.coat_ior)?;
+                let layering = match self.reciprocal {
+                    0 => Layering::EnergyConserving,
+                    1 => Layering::Reciprocal,
+                    _ => return Err(RadStatus::BadHandle),
+                };
                 two(self, |top, base| {
-                    let layer = Coated::from_table(top, base, self.table, self.top_error)?;
+                    let layer = Coated::new(top, base).with_layering(layering);
                     // A clear coat is `Coated::new`'s layer (as the spec
                     // grammar builds `coat_color=1`).
                     Ok(if self.coat_color < 1.0 {
@@ -290,25 +288,23 @@ pub unsafe extern "C" fn rad_material_mix(
     }
 }
 
-/// `top` coated over `base` by albedo scaling, in a reciprocal, energy-safe
-/// form (`radiometry::compose::Coated`; OpenPBR Surface 1.1 §"Layering"):
+/// `top` coated over `base` by albedo scaling, in OpenPBR's
+/// energy-conserving form (`radiometry::compose::Coated::new` /
+/// `Coated::with_absorption`; OpenPBR Surface 1.1 §"Layering"):
 ///
 /// ```text
-/// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) f_B(ωi, ωo)
-/// τ(ωi, ωo) = A(μi, μo) t(ωi) t(ωo) (1 − E_min),   t(ω) = min((1 − E_T(ω)) / (1 − E_min), 1)
-/// A(μi, μo) = C^((1/μᵗi + 1/μᵗo)/2),               μᵗ = √(1 − (1 − μ²)/η²)
+/// f(ωi, ωo) = f_T(ωi, ωo) + A(μi, μo) (1 − E_T(ωo)) f_B(ωi, ωo)
+/// A(μi, μo) = C^((1/μᵗi + 1/μᵗo)/2),   μᵗ = √(1 − (1 − μ²)/η²)
 /// ```
 ///
-/// with `E_T` the top's directional albedo (read here, once, at 128
-/// directions into `RadMaterial::table`: the slow step, about a millisecond
-/// for a microfacet top on a desktop core), `E_min` its smallest value, `C =
-/// coat_color ∈ [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. Each call then
-/// checks the table and derives `E_min` and `E_avg` from it again (three
-/// passes over the 128 values: batch calls pay it once per batch). A
-/// plastic is a
-/// dielectric microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a
-/// diffuse base. Sampling picks the top with probability
-/// `Ē_T / (Ē_T + Ē_through)` at `ωo`.
+/// with `E_T` the top's directional albedo (read at every call: O(1) for
+/// the crate's lobes, from global tables or closed forms), `C = coat_color ∈
+/// [0, 1]` (1: clear) and `η = coat_ior ≥ 1`. `E ≤ 1` for every base with
+/// `E_B ≤ 1`, and a white base under a clear top keeps all its energy. Only
+/// the lobes and the coat parameters are stored. A plastic is a dielectric
+/// microfacet top (`RAD_FRESNEL_DIELECTRIC`, `η = 1.5`) over a diffuse
+/// base. Sampling picks the top with probability `Ē_T / (Ē_T + Ē_through)`
+/// at `ωo`.
 ///
 /// # Safety
 /// `top`, `base` are null or point to readable `RadBrdf`s; `out` is null or
@@ -322,18 +318,55 @@ pub unsafe extern "C" fn rad_material_coated(
     out: *mut RadMaterial,
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
+    unsafe { coated(top, base, coat_color, coat_ior, 0, out) }
+}
+
+/// [`rad_material_coated`] in the reciprocal layering
+/// (`Coated::with_layering(Layering::Reciprocal)`, for bidirectional
+/// methods): the through-factor `(1 − E_T(ωo))` becomes
+///
+/// ```text
+/// τ(ωi, ωo) = min(t(ωi) t(ωo) / (1 − Ē_T), t(ωi), t(ωo)),   t(ω) = 1 − E_T(ω)
+/// ```
+///
+/// with `Ē_T` the top's hemispherical average albedo: `f(ωi, ωo) = f(ωo,
+/// ωi)`, and `E ≤ 1` for every base with `E_B ≤ 1` (a white Lambertian base
+/// keeps `E_T + 1 − Ē_T` where `E_T(ωo) < Ē_T`, instead of 1).
+///
+/// # Safety
+/// As [`rad_material_coated`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_coated_reciprocal(
+    top: *const RadBrdf,
+    base: *const RadBrdf,
+    coat_color: f32,
+    coat_ior: f32,
+    out: *mut RadMaterial,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { coated(top, base, coat_color, coat_ior, 1, out) }
+}
+
+/// The coat constructors.
+///
+/// # Safety
+/// As [`rad_material_coated`].
+unsafe fn coated(
+    top: *const RadBrdf,
+    base: *const RadBrdf,
+    coat_color: f32,
+    coat_ior: f32,
+    reciprocal: u32,
+    out: *mut RadMaterial,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
     unsafe {
         construct(top, Some(base), out, |m| {
             check_coat(coat_color, coat_ior)?;
-            let (table, top_error) = two(m, |top, base| {
-                let layer = Coated::new(top, base);
-                (*layer.table(), layer.top_error())
-            })?;
             m.kind = RAD_MATERIAL_COATED;
             m.coat_color = coat_color;
             m.coat_ior = coat_ior;
-            m.top_error = top_error;
-            m.table = table;
+            m.reciprocal = reciprocal;
             Ok(())
         })
     }

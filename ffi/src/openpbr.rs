@@ -2,31 +2,20 @@
 //! [`RadOpenPbr`]: the Rust `radiometry_brdfs::OpenPbr` (monochrome), with
 //! OpenPBR's parameter names and defaults in [`RadOpenPbrParams`].
 //!
-//! Building an `OpenPbr` reads the directional albedo of three layers' tops
-//! (the dielectric specular, the coat, the fuzz) at 128 directions each:
-//! the slow step (0.6 ms with every layer on, measured on a loaded 2-core
-//! Xeon). [`rad_openpbr_new`]
-//! does it once and keeps the three tables in the caller's `RadOpenPbr`
-//! (plain data: no pointers, no heap). Every call re-validates the struct
-//! (the 15 parameters as `rad_openpbr_new` checks them, each of the 384
-//! table values finite and in `[0, 1]`, the three errors finite and `≥ 0`)
-//! and rebuilds the material from it with `OpenPbr::from_tables`, bit for bit
-//! the material `OpenPbr::new` builds: the values are the Rust plugin's, and
-//! `rad_openpbr_pdf` at a sampled direction equals the sample's pdf, bit for
-//! bit. Batch calls rebuild once per batch.
-//!
-//! The rebuild costs about 53 µs per call (measured as above; the Rust
-//! `eval` itself is about 0.1 µs): mostly the metal lobe's Kulla–Conty
-//! compensation, which `from_tables` recomputes. Shade in batches: at a
-//! thousand elements the rebuild adds about 50 ns per element. During a call
-//! the rebuilt material (4,472 bytes) and a copy of the tables (1,548 bytes)
-//! live on the stack. See docs/materials.md for the measured costs.
+//! Building an `OpenPbr` is O(1): the parameters' validation and a few reads
+//! of the crate's global albedo tables. [`rad_openpbr_new`] validates the
+//! parameters and keeps them in the caller's `RadOpenPbr` (plain data, 72
+//! bytes: no pointers, no heap, no tables). Every call re-validates the
+//! struct and builds the material from it with `OpenPbr::new` (or
+//! `OpenPbr::with_layering` for the reciprocal mode): the values are the
+//! Rust plugin's, bit for bit, and `rad_openpbr_pdf` at a sampled direction
+//! equals the sample's pdf, bit for bit. Batch calls build once per batch.
+//! During a call the built material lives on the stack.
 
 use crate::brdf::{DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch};
-use crate::material::RAD_MATERIAL_TABLE_NODES;
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdfSample, RadStatus, RadVec3};
-use radiometry_brdfs::openpbr::{OpenPbr, OpenPbrParams, OpenPbrTables};
+use radiometry_brdfs::openpbr::{Layering, OpenPbr, OpenPbrParams};
 
 /// `RadOpenPbr::kind` of a handle filled in by [`rad_openpbr_new`]: OpenPBR
 /// Surface 1.1's reflection layer, monochrome.
@@ -34,20 +23,21 @@ pub const RAD_OPENPBR_REFLECTION: u32 = 1;
 
 // The layouts the header documents.
 const _: () =
-    assert!(core::mem::size_of::<RadOpenPbrParams>() == 60 && core::mem::align_of::<RadOpenPbrParams>() == 4);
-const _: () = assert!(core::mem::size_of::<RadOpenPbr>() == 1612 && core::mem::align_of::<RadOpenPbr>() == 4);
+    assert!(core::mem::size_of::<RadOpenPbrParams>() == 68 && core::mem::align_of::<RadOpenPbrParams>() == 4);
+const _: () = assert!(core::mem::size_of::<RadOpenPbr>() == 72 && core::mem::align_of::<RadOpenPbr>() == 4);
 
 /// The parameters of OpenPBR Surface 1.1's reflection layer, with the
-/// specification's names (monochrome: every colour is one `float`). Plain
-/// data (60 bytes, 15 `float`s); `rad_openpbr_default_params` fills in
-/// OpenPBR's defaults. Domains: every weight, colour, roughness and
-/// `base_metalness` in `[0, 1]`; `specular_ior` and `coat_ior` in `[1,
-/// 1000]`. A roughness of 0 is raised to the microfacet floor `α = 10⁻⁴`,
+/// specification's names (monochrome: every colour is one `float`), and
+/// the layering mode. Plain data (68 bytes: 16 `float`s and a `uint32_t`);
+/// `rad_openpbr_default_params` fills in OpenPBR's defaults. Domains: every
+/// weight, colour, roughness, `base_metalness` and `coat_darkening` in `[0,
+/// 1]`; `specular_ior` and `coat_ior` in `[1, 1000]`; `reciprocal` 0 or 1.
+/// A roughness of 0 is raised to the microfacet floor `α = 10⁻⁴`,
 /// `fuzz_roughness` below 0.07 to 0.07 (the sheen tables' range).
 /// OpenPBR's other parameters (transmission, subsurface, thin film,
-/// anisotropy, emission, geometry, `coat_darkening`) are outside a
-/// reflection-only isotropic BRDF: the material behaves as if each were 0
-/// (opaque, one-sided; see docs/materials.md).
+/// anisotropy, emission, geometry) are outside a reflection-only isotropic
+/// BRDF: the material behaves as if each were 0 (opaque, one-sided; see
+/// docs/materials.md).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RadOpenPbrParams {
@@ -79,12 +69,19 @@ pub struct RadOpenPbrParams {
     pub coat_roughness: f32,
     /// `coat_ior` (default 1.6).
     pub coat_ior: f32,
+    /// `coat_darkening` (default 1): the darkening of the coated base by
+    /// light trapped in the coat (0: the base is boosted to cancel it).
+    pub coat_darkening: f32,
     /// `fuzz_weight` (default 0).
     pub fuzz_weight: f32,
     /// `fuzz_color` (default 1).
     pub fuzz_color: f32,
     /// `fuzz_roughness` (default 0.5).
     pub fuzz_roughness: f32,
+    /// The layering (not an OpenPBR parameter; default 0): 0 for OpenPBR's
+    /// energy-conserving albedo scaling, 1 for the reciprocal form (for
+    /// bidirectional methods; `Layering::Reciprocal`).
+    pub reciprocal: u32,
 }
 
 impl Default for RadOpenPbrParams {
@@ -110,6 +107,7 @@ impl From<RadOpenPbrParams> for OpenPbrParams<f32> {
             coat_color: p.coat_color,
             coat_roughness: p.coat_roughness,
             coat_ior: p.coat_ior,
+            coat_darkening: p.coat_darkening,
             fuzz_weight: p.fuzz_weight,
             fuzz_color: p.fuzz_color,
             fuzz_roughness: p.fuzz_roughness,
@@ -118,6 +116,7 @@ impl From<RadOpenPbrParams> for OpenPbrParams<f32> {
 }
 
 impl From<OpenPbrParams<f32>> for RadOpenPbrParams {
+    /// The parameters, in the energy-conserving layering (`reciprocal` 0).
     #[inline]
     fn from(p: OpenPbrParams<f32>) -> Self {
         RadOpenPbrParams {
@@ -133,22 +132,39 @@ impl From<OpenPbrParams<f32>> for RadOpenPbrParams {
             coat_color: p.coat_color,
             coat_roughness: p.coat_roughness,
             coat_ior: p.coat_ior,
+            coat_darkening: p.coat_darkening,
             fuzz_weight: p.fuzz_weight,
             fuzz_color: p.fuzz_color,
             fuzz_roughness: p.fuzz_roughness,
+            reciprocal: 0,
         }
     }
 }
 
-/// An OpenPBR Surface reflection material: its parameters and the three
-/// albedo tables [`rad_openpbr_new`] read. Plain data (1,612 bytes, 4-byte
-/// aligned: a `uint32_t`, 18 `float`s and three tables of 128 `float`s, no
+impl RadOpenPbrParams {
+    /// The material: the parameters checked in the order of the fields (the
+    /// first bad one gives the status), `reciprocal` last.
+    fn build(&self) -> Result<OpenPbr<f32>, RadStatus> {
+        let layering = match self.reciprocal {
+            0 => Some(Layering::EnergyConserving),
+            1 => Some(Layering::Reciprocal),
+            _ => None,
+        };
+        let m = OpenPbr::with_layering((*self).into(), layering.unwrap_or_default())?;
+        if layering.is_none() {
+            return Err(RadStatus::OutOfRange);
+        }
+        Ok(m)
+    }
+}
+
+/// An OpenPBR Surface reflection material: its parameters, checked. Plain
+/// data (72 bytes, 4-byte aligned: a `uint32_t` and a `RadOpenPbrParams`, no
 /// padding); copy it freely (it holds no pointers). Treat the fields as
 /// read-only; a zeroed struct is an invalid handle (`RAD_STATUS_BAD_HANDLE`).
-/// Each call checks every field (the parameters as `rad_openpbr_new` does:
-/// `RAD_STATUS_NOT_FINITE` / `_OUT_OF_RANGE`; a table value or error that
-/// no top reports: `RAD_STATUS_BAD_HANDLE`) and rebuilds the material
-/// (about 53 µs; a batch call does it once per batch).
+/// Each call checks the parameters as `rad_openpbr_new` does
+/// (`RAD_STATUS_NOT_FINITE` / `_OUT_OF_RANGE`) and builds the material (O(1):
+/// a batch call does it once per batch).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RadOpenPbr {
@@ -156,20 +172,6 @@ pub struct RadOpenPbr {
     pub kind: u32,
     /// The parameters it was built from.
     pub params: RadOpenPbrParams,
-    /// The largest error the specular top stated at the table's nodes.
-    pub specular_error: f32,
-    /// The largest error the coat top stated at the table's nodes.
-    pub coat_error: f32,
-    /// The largest error the fuzz top stated at the table's nodes.
-    pub fuzz_error: f32,
-    /// The dielectric specular layer's directional albedo at `μ_k =
-    /// (k/127)²`, `k = 0..128` (`μ_0 = 10⁻⁶`), each in `[0, 1]`.
-    pub specular_table: [f32; RAD_MATERIAL_TABLE_NODES],
-    /// The coat's directional albedo at the same nodes.
-    pub coat_table: [f32; RAD_MATERIAL_TABLE_NODES],
-    /// The fuzz layer's (`fuzz_weight` times the sheen's) directional albedo
-    /// at the same nodes.
-    pub fuzz_table: [f32; RAD_MATERIAL_TABLE_NODES],
 }
 
 impl Default for RadOpenPbr {
@@ -190,45 +192,12 @@ impl Default for RadOpenPbr {
                 coat_color: 0.0,
                 coat_roughness: 0.0,
                 coat_ior: 0.0,
+                coat_darkening: 0.0,
                 fuzz_weight: 0.0,
                 fuzz_color: 0.0,
                 fuzz_roughness: 0.0,
+                reciprocal: 0,
             },
-            specular_error: 0.0,
-            coat_error: 0.0,
-            fuzz_error: 0.0,
-            specular_table: [0.0; RAD_MATERIAL_TABLE_NODES],
-            coat_table: [0.0; RAD_MATERIAL_TABLE_NODES],
-            fuzz_table: [0.0; RAD_MATERIAL_TABLE_NODES],
-        }
-    }
-}
-
-impl RadOpenPbr {
-    /// The handle of a built material.
-    fn of(m: &OpenPbr<f32>) -> Self {
-        let t = m.tables();
-        RadOpenPbr {
-            kind: RAD_OPENPBR_REFLECTION,
-            params: (*m.params()).into(),
-            specular_error: t.specular_error,
-            coat_error: t.coat_error,
-            fuzz_error: t.fuzz_error,
-            specular_table: t.specular,
-            coat_table: t.coat,
-            fuzz_table: t.fuzz,
-        }
-    }
-
-    /// The tables as `OpenPbr::from_tables` takes them.
-    fn tables(&self) -> OpenPbrTables<f32> {
-        OpenPbrTables {
-            specular: self.specular_table,
-            specular_error: self.specular_error,
-            coat: self.coat_table,
-            coat_error: self.coat_error,
-            fuzz: self.fuzz_table,
-            fuzz_error: self.fuzz_error,
         }
     }
 }
@@ -239,7 +208,7 @@ impl Handle for RadOpenPbr {
         if self.kind != RAD_OPENPBR_REFLECTION {
             return Err(RadStatus::BadHandle);
         }
-        let m = OpenPbr::from_tables(self.params.into(), &self.tables())?;
+        let m = self.params.build()?;
         Ok(f(&m))
     }
 }
@@ -249,7 +218,8 @@ impl Handle for RadOpenPbr {
 /// `specular_ior` 1.5 specular layer, no coat (`coat_ior` 1.6,
 /// `coat_color` 1, `coat_roughness` 0), no fuzz (`fuzz_color` 1,
 /// `fuzz_roughness` 0.5); `base_weight`, `specular_weight`,
-/// `specular_color` 1, `base_metalness`, `base_diffuse_roughness` 0.
+/// `specular_color`, `coat_darkening` 1, `base_metalness`,
+/// `base_diffuse_roughness` 0; `reciprocal` 0 (energy-conserving).
 ///
 /// # Safety
 /// `out` is null or points to a writable `RadOpenPbrParams`.
@@ -271,10 +241,8 @@ pub unsafe extern "C" fn rad_openpbr_default_params(out: *mut RadOpenPbrParams) 
 /// by albedo scaling; see docs/materials.md): checks the parameters (in the
 /// order of the struct's fields; the first bad one gives the status:
 /// `RAD_STATUS_NOT_FINITE` for NaN or ±∞, `RAD_STATUS_OUT_OF_RANGE` outside
-/// its domain) and reads the three layers' top albedos into the tables (the
-/// slow step: 0.6 ms with every layer on, on a loaded 2-core Xeon). Build
-/// once, call many times; prefer the batch calls (each single call rebuilds
-/// the material from the struct, about 53 µs).
+/// its domain) and stores them. O(1); each call builds the material from
+/// the struct again (also O(1); a batch call once per batch).
 ///
 /// # Safety
 /// `params` is null or points to a readable `RadOpenPbrParams`; `out` is
@@ -285,10 +253,13 @@ pub unsafe extern "C" fn rad_openpbr_new(params: *const RadOpenPbrParams, out: *
         // SAFETY: forwarded caller contract; the parameters are copied out
         // before `out` is borrowed (C may pass overlapping pointers).
         let p = unsafe { *as_ref(params)? };
-        let m = OpenPbr::new(p.into())?;
+        p.build()?;
         // SAFETY: forwarded caller contract.
         let out = unsafe { as_mut(out)? };
-        *out = RadOpenPbr::of(&m);
+        *out = RadOpenPbr {
+            kind: RAD_OPENPBR_REFLECTION,
+            params: p,
+        };
         Ok(())
     })();
     r.err().unwrap_or(RadStatus::Ok)
@@ -348,7 +319,7 @@ pub unsafe extern "C" fn rad_openpbr_sample(
 }
 
 /// `out[k] = f_r(wi[k] → wo[k])` for `k < n`, through the layers' batch
-/// kernels (validates and rebuilds the material once per batch).
+/// kernels (validates and builds the material once per batch).
 ///
 /// # Safety
 /// `material` points to a readable `RadOpenPbr`; `wi`, `wo` to `n` readable

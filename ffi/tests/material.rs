@@ -8,7 +8,7 @@
 
 use core::f32::consts::PI;
 use core::ptr::{null, null_mut};
-use radiometry::compose::{Coated, Mix, Sum};
+use radiometry::compose::{Coated, Layering, Mix, Sum};
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample};
 use radiometry_brdfs::metals::Metal;
@@ -283,9 +283,16 @@ fn materials_equal_the_rust_composites_bit_for_bit() {
     let plastic = c_coated(&dielectric, &eon, 1.0, 1.5);
     let r_plastic = Coated::new(r_dielectric(), r_eon());
     assert_eq!(plastic.kind, RAD_MATERIAL_COATED);
-    assert_eq!(&plastic.table, r_plastic.table());
-    assert_eq!(plastic.top_error, r_plastic.top_error());
     check_equal("plastic", &plastic, &r_plastic);
+    let mut reciprocal = RadMaterial::default();
+    ok(unsafe { rad_material_coated_reciprocal(&dielectric, &eon, 0.7, 1.5, &mut reciprocal) });
+    check_equal(
+        "reciprocal plastic, absorbing",
+        &reciprocal,
+        &Coated::with_absorption(r_dielectric(), r_eon(), 0.7, 1.5)
+            .unwrap()
+            .with_layering(Layering::Reciprocal),
+    );
 
     // A coated gold with an absorbing coat.
     let gold = c_ggx(0.3, RAD_FRESNEL_METAL, RAD_METAL_AU as f32, 0.0);
@@ -371,22 +378,27 @@ fn materials_match_their_soa_batches() {
 }
 
 #[test]
-fn a_plastic_is_reciprocal_and_keeps_energy() {
-    let plastic = c_coated(
-        &c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
-        &c_plugin(rad_brdf_eon, 1.0, 0.5),
-        1.0,
-        1.5,
+fn a_plastic_keeps_energy_and_its_reciprocal_form_is_reciprocal() {
+    let (top, base) = (
+        c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
+        c_plugin(rad_brdf_eon, 1.0, 0.5),
     );
+    let energy = c_coated(&top, &base, 1.0, 1.5);
+    let mut reciprocal = RadMaterial::default();
+    ok(unsafe { rad_material_coated_reciprocal(&top, &base, 1.0, 1.5, &mut reciprocal) });
+    assert_eq!((energy.reciprocal, reciprocal.reciprocal), (0, 1));
     let d = directions(40, 0.2);
     for &a in &d {
         for &b in &d {
-            let (x, y) = (plastic.eval(a, b), plastic.eval(b, a));
+            let (x, y) = (reciprocal.eval(a, b), reciprocal.eval(b, a));
             assert!((x - y).abs() <= 1e-5 * x.abs().max(1e-3), "{x} vs {y}");
         }
     }
     // Albedo by its own sampler (the estimator is unbiased): ≤ 1 within 4 standard errors.
-    for theta in [0.0f32, 1.0, 1.4] {
+    for (plastic, theta) in [energy, reciprocal]
+        .into_iter()
+        .flat_map(|m| [0.0f32, 1.0, 1.4].map(|t| (m, t)))
+    {
         let wo = RadVec3 {
             x: theta.sin(),
             y: 0.0,
@@ -505,11 +517,9 @@ fn scribbled_materials_are_reported() {
     assert_eq!(status(&plastic), RadStatus::Ok);
     assert_eq!(status(&RadMaterial::default()), RadStatus::BadHandle);
     type Scribble = fn(&mut RadMaterial);
-    let cases: [(&str, Scribble, RadStatus); 8] = [
+    let cases: [(&str, Scribble, RadStatus); 6] = [
         ("kind", |m| m.kind = 99, RadStatus::BadHandle),
-        ("table above 1", |m| m.table[40] = 1.5, RadStatus::BadHandle),
-        ("table NaN", |m| m.table[0] = f32::NAN, RadStatus::BadHandle),
-        ("top error", |m| m.top_error = -1.0, RadStatus::BadHandle),
+        ("layering", |m| m.reciprocal = 2, RadStatus::BadHandle),
         ("coat ior", |m| m.coat_ior = 0.0, RadStatus::OutOfRange),
         ("coat colour", |m| m.coat_color = f32::NAN, RadStatus::NotFinite),
         ("lobe", |m| m.lobes[1].params[0] = 3.0, RadStatus::OutOfRange),
@@ -626,9 +636,22 @@ fn openpbr_variety() -> Vec<RadOpenPbrParams> {
             coat_color: 0.3,
             coat_roughness: 0.4,
             coat_ior: 1.3,
+            coat_darkening: 0.4,
             fuzz_weight: 0.4,
             fuzz_color: 0.6,
             fuzz_roughness: 0.9,
+            reciprocal: 0,
+        },
+        // The reciprocal layering, every layer on.
+        RadOpenPbrParams {
+            base_metalness: 0.3,
+            coat_weight: 0.7,
+            coat_color: 0.6,
+            coat_roughness: 0.3,
+            coat_darkening: 0.0,
+            fuzz_weight: 0.5,
+            reciprocal: 1,
+            ..d
         },
     ]
 }
@@ -649,9 +672,11 @@ fn openpbr_defaults_are_openpbrs() {
         coat_color: 1.0,
         coat_roughness: 0.0,
         coat_ior: 1.6,
+        coat_darkening: 1.0,
         fuzz_weight: 0.0,
         fuzz_color: 1.0,
         fuzz_roughness: 0.5,
+        reciprocal: 0,
     };
     assert_eq!(p, want);
     assert_eq!(OpenPbrParams::<f32>::from(p), OpenPbrParams::default());
@@ -665,20 +690,15 @@ fn openpbr_defaults_are_openpbrs() {
 fn openpbr_equals_the_rust_plugin_bit_for_bit() {
     for (k, p) in openpbr_variety().into_iter().enumerate() {
         let c = c_openpbr(&p);
-        let r = OpenPbr::new(OpenPbrParams::from(p)).unwrap();
-        let t = r.tables();
+        let layering = if p.reciprocal == 1 {
+            Layering::Reciprocal
+        } else {
+            Layering::EnergyConserving
+        };
+        let r = OpenPbr::with_layering(OpenPbrParams::from(p), layering).unwrap();
         assert_eq!(c.kind, RAD_OPENPBR_REFLECTION);
         assert_eq!(c.params, p);
-        assert_eq!(
-            (c.specular_table, c.coat_table, c.fuzz_table),
-            (t.specular, t.coat, t.fuzz),
-            "{k}"
-        );
-        assert_eq!(
-            (c.specular_error, c.coat_error, c.fuzz_error),
-            (t.specular_error, t.coat_error, t.fuzz_error),
-            "{k}"
-        );
+        assert_eq!(r.layering(), layering);
         check_equal(&format!("openpbr {k}"), &c, &r);
     }
 }
@@ -713,7 +733,7 @@ fn openpbr_soa_batch_equals_single_calls() {
 /// Every field of `RadOpenPbrParams`, by name, for the checks below.
 type Field = fn(&mut RadOpenPbrParams) -> &mut f32;
 
-fn openpbr_fields() -> [(&'static str, Field); 15] {
+fn openpbr_fields() -> [(&'static str, Field); 16] {
     [
         ("base_weight", |p| &mut p.base_weight),
         ("base_color", |p| &mut p.base_color),
@@ -727,6 +747,7 @@ fn openpbr_fields() -> [(&'static str, Field); 15] {
         ("coat_color", |p| &mut p.coat_color),
         ("coat_roughness", |p| &mut p.coat_roughness),
         ("coat_ior", |p| &mut p.coat_ior),
+        ("coat_darkening", |p| &mut p.coat_darkening),
         ("fuzz_weight", |p| &mut p.fuzz_weight),
         ("fuzz_color", |p| &mut p.fuzz_color),
         ("fuzz_roughness", |p| &mut p.fuzz_roughness),
@@ -757,6 +778,30 @@ fn openpbr_rejects_bad_parameters_with_a_status() {
         let mut good = RadOpenPbr::default();
         assert_eq!(unsafe { rad_openpbr_new(&p, &mut good) }, RadStatus::Ok, "{name}");
     }
+    // The layering flag: 0 or 1; checked after every float.
+    for (reciprocal, want) in [
+        (1, RadStatus::Ok),
+        (2, RadStatus::OutOfRange),
+        (u32::MAX, RadStatus::OutOfRange),
+    ] {
+        let mut good = RadOpenPbr::default();
+        let p = RadOpenPbrParams { reciprocal, ..d };
+        assert_eq!(
+            unsafe { rad_openpbr_new(&p, &mut good) },
+            want,
+            "reciprocal = {reciprocal}"
+        );
+        let p = RadOpenPbrParams {
+            reciprocal,
+            fuzz_roughness: f32::NAN,
+            ..d
+        };
+        assert_eq!(
+            unsafe { rad_openpbr_new(&p, &mut good) },
+            RadStatus::NotFinite,
+            "reciprocal = {reciprocal}, fuzz_roughness NaN"
+        );
+    }
     unsafe {
         assert_eq!(rad_openpbr_new(null(), &mut m), RadStatus::NullPointer);
         assert_eq!(rad_openpbr_new(&d, null_mut()), RadStatus::NullPointer);
@@ -775,49 +820,8 @@ fn scribbled_openpbr_handles_are_reported() {
     assert_eq!(status(&good), RadStatus::Ok);
     assert_eq!(status(&RadOpenPbr::default()), RadStatus::BadHandle);
     type Scribble = fn(&mut RadOpenPbr);
-    let cases: [(&str, Scribble, RadStatus); 14] = [
+    let cases: [(&str, Scribble, RadStatus); 6] = [
         ("kind", |m| m.kind = 2, RadStatus::BadHandle),
-        (
-            "specular table above 1",
-            |m| m.specular_table[40] = 1.5,
-            RadStatus::BadHandle,
-        ),
-        (
-            "specular table NaN",
-            |m| m.specular_table[0] = f32::NAN,
-            RadStatus::BadHandle,
-        ),
-        (
-            "coat table negative",
-            |m| m.coat_table[127] = -0.1,
-            RadStatus::BadHandle,
-        ),
-        (
-            "coat table infinite",
-            |m| m.coat_table[3] = f32::INFINITY,
-            RadStatus::BadHandle,
-        ),
-        (
-            "fuzz table above 1",
-            |m| m.fuzz_table[64] = 2.0,
-            RadStatus::BadHandle,
-        ),
-        (
-            "fuzz table NaN",
-            |m| m.fuzz_table[1] = f32::NAN,
-            RadStatus::BadHandle,
-        ),
-        (
-            "specular error",
-            |m| m.specular_error = -1.0,
-            RadStatus::BadHandle,
-        ),
-        ("coat error", |m| m.coat_error = f32::NAN, RadStatus::BadHandle),
-        (
-            "fuzz error",
-            |m| m.fuzz_error = f32::INFINITY,
-            RadStatus::BadHandle,
-        ),
         ("coat ior", |m| m.params.coat_ior = 0.0, RadStatus::OutOfRange),
         (
             "base colour",
@@ -834,6 +838,7 @@ fn scribbled_openpbr_handles_are_reported() {
             |m| m.params.specular_ior = f32::INFINITY,
             RadStatus::NotFinite,
         ),
+        ("reciprocal", |m| m.params.reciprocal = 7, RadStatus::OutOfRange),
     ];
     let d = directions(8, 0.0);
     let u = [0.5f32; 16];
@@ -869,12 +874,6 @@ fn scribbled_openpbr_handles_are_reported() {
             );
         }
     }
-    // A handle with another material's tables still evaluates (finite,
-    // reciprocal, pdf of a sample exact): only its energy bound is the
-    // tables' (see OpenPbr::from_tables).
-    let mut swapped = c_openpbr(&openpbr_variety()[2]);
-    swapped.specular_table = good.specular_table;
-    assert_eq!(status(&swapped), RadStatus::Ok);
     // Pointer checks as for the other handles.
     unsafe {
         assert_eq!(

@@ -1,5 +1,5 @@
 //! BRDF specs: `lambertian(...)`, `phong(...)`, `blinn-phong(...)`, `ggx(...)`, `beckmann(...)`,
-//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, `sheen(...)`, and their compositions `A + B`, `mix(W, A, B)` and
+//! `fon(...)`, `eon(...)`, `oren-nayar(...)`, `sheen(...)`, `ltc-sheen(...)`, and their compositions `A + B`, `mix(W, A, B)` and
 //! `coated(TOP, BASE)`.
 
 use crate::SpecError;
@@ -155,6 +155,14 @@ pub enum BrdfSpec {
         /// Roughness `r ∈ [MIN_SHEEN_ROUGHNESS, 1]`.
         roughness: f64,
     },
+    /// `ltc-sheen(color=1, roughness=0.5)`: the LTC sheen of Zeltner, Burley & Chiang 2022
+    /// (OpenPBR's recommended fuzz lobe; `radiometry_brdfs::LtcSheen`).
+    LtcSheen {
+        /// Colour (one number: the run-time BRDF is monochrome), in `[0, 1]` (default 1).
+        color: f64,
+        /// Roughness `r ∈ [0, 1]` (default 0.5).
+        roughness: f64,
+    },
     /// `openpbr(base_color=…, specular_roughness=…, …)`: the reflection layer of OpenPBR Surface
     /// (`radiometry_brdfs::OpenPbr`), OpenPBR's parameter names and defaults.
     OpenPbr(OpenPbrSpec),
@@ -188,6 +196,8 @@ pub enum BrdfSpec {
         coat_color: f64,
         /// The coat's index of refraction `≥ 1` (for the path length of absorption).
         coat_ior: f64,
+        /// `reciprocal=1`: the reciprocal layering (default: energy-conserving).
+        reciprocal: bool,
     },
 }
 
@@ -227,10 +237,14 @@ pub struct OpenPbrSpec {
     pub fuzz_color: [f64; 3],
     /// `fuzz_roughness` (0.5).
     pub fuzz_roughness: f64,
+    /// `coat_darkening` (1).
+    pub coat_darkening: f64,
+    /// `reciprocal=1`: the reciprocal layering (default 0: energy-conserving).
+    pub reciprocal: bool,
 }
 
 /// The parameter names `openpbr(...)` accepts (OpenPBR Surface 1.1's reflection parameters).
-pub const OPENPBR_PARAMS: [&str; 15] = [
+pub const OPENPBR_PARAMS: [&str; 17] = [
     "base_weight",
     "base_color",
     "base_metalness",
@@ -243,19 +257,20 @@ pub const OPENPBR_PARAMS: [&str; 15] = [
     "coat_color",
     "coat_roughness",
     "coat_ior",
+    "coat_darkening",
     "fuzz_weight",
     "fuzz_color",
     "fuzz_roughness",
+    "reciprocal",
 ];
 
 /// OpenPBR parameters outside a reflection-only isotropic BRDF: named in the error message when a
 /// spec uses one.
-const OPENPBR_OUTSIDE: [&str; 12] = [
+const OPENPBR_OUTSIDE: [&str; 11] = [
     "transmission_weight",
     "subsurface_weight",
     "specular_anisotropy",
     "coat_anisotropy",
-    "coat_darkening",
     "thin_film_weight",
     "thin_film_thickness",
     "thin_film_ior",
@@ -307,12 +322,13 @@ the run-time BRDF is monochrome: a colour is one number or rgb(R, G, B), which e
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
 `oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
-cloth sheen; roughness ∈ [0.07, 1] is required), \
+cloth sheen; roughness ∈ [0.07, 1] is required), `ltc-sheen(color=1, roughness=0.5)` (Zeltner, Burley & Chiang \
+2022 LTC sheen, OpenPBR's fuzz; roughness ∈ [0, 1], its defaults shown; not reciprocal), \
 `openpbr(base_weight=1, base_color=0.8, base_metalness=0, base_diffuse_roughness=0, specular_weight=1, \
 specular_color=1, specular_roughness=0.3, specular_ior=1.5, coat_weight=0, coat_color=1, coat_roughness=0, \
-coat_ior=1.6, fuzz_weight=0, fuzz_color=1, fuzz_roughness=0.5)` (OpenPBR Surface's reflection layer, its defaults shown); \
-compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5)` \
-(TOP over BASE by albedo scaling), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
+coat_ior=1.6, coat_darkening=1, fuzz_weight=0, fuzz_color=1, fuzz_roughness=0.5, reciprocal=0)` (OpenPBR Surface's reflection layer, its defaults shown); \
+compositions: `A + B` (sum), `mix(W, A, B)` (W·A + (1−W)·B), `coated(TOP, BASE, coat_color=1, coat_ior=1.5, reciprocal=0)` \
+(TOP over BASE by albedo scaling; reciprocal=1 for the reciprocal layering), e.g. `coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))`. Defaults: albedo=1, rho=1, ks=1, kd=0, g=height-correlated, fresnel=none, \
 ms=none (kulla-conty adds the Kulla–Conty 2017 multiple-scattering lobe); a microfacet kd adds a diffuse kd/π; \
 exponent ∈ [0, 1e7] and alpha ∈ [1e-4, 1] are required; kd + ks ≤ 1; eon/fon take sigma ∈ [0, 1] (dimensionless), \
 oren-nayar takes sigma_rad ∈ [0, π/2] in radians and rho ≤ 1/(A + B/2) (its albedo exceeds 1 above).";
@@ -375,13 +391,13 @@ fn term(spec: &str, p: &mut Parser<'_>, depth: usize) -> Result<BrdfSpec, SpecEr
         let top = expr(spec, p, depth + 1)?;
         expect(p, Tok::Comma, "`,`")?;
         let base = expr(spec, p, depth + 1)?;
-        let (mut coat_color, mut coat_ior) = (1.0, 1.5);
+        let (mut coat_color, mut coat_ior, mut reciprocal) = (1.0, 1.5, false);
         while p.peek().tok == Tok::Comma {
             p.bump();
             let kt = p.peek().clone();
             let key = match &kt.tok {
-                Tok::Ident(k) if k == "coat_color" || k == "coat_ior" => k.clone(),
-                _ => return Err(p.expected("`coat_color=` or `coat_ior=`")),
+                Tok::Ident(k) if k == "coat_color" || k == "coat_ior" || k == "reciprocal" => k.clone(),
+                _ => return Err(p.expected("`coat_color=`, `coat_ior=` or `reciprocal=`")),
             };
             p.bump();
             expect(p, Tok::Eq, "`=`")?;
@@ -389,24 +405,24 @@ fn term(spec: &str, p: &mut Parser<'_>, depth: usize) -> Result<BrdfSpec, SpecEr
             let Tok::Num(v) = vt.tok else {
                 return Err(p.expected(&format!("a number for `{key}`")));
             };
-            let ok = if key == "coat_color" {
-                (0.0..=1.0).contains(&v)
-            } else {
-                (1.0..=1e3).contains(&v)
+            let ok = match key.as_str() {
+                "coat_color" => (0.0..=1.0).contains(&v),
+                "reciprocal" => v == 0.0 || v == 1.0,
+                _ => (1.0..=1e3).contains(&v),
             };
             if !ok {
-                let range = if key == "coat_color" {
-                    "[0, 1]"
-                } else {
-                    "[1, 1000]"
+                let range = match key.as_str() {
+                    "coat_color" => "[0, 1]",
+                    "reciprocal" => "{0, 1}",
+                    _ => "[1, 1000]",
                 };
                 return Err(p.err_at(&vt, format!("{key} = {v} must lie in {range}")));
             }
             p.bump();
-            if key == "coat_color" {
-                coat_color = v;
-            } else {
-                coat_ior = v;
+            match key.as_str() {
+                "coat_color" => coat_color = v,
+                "reciprocal" => reciprocal = v == 1.0,
+                _ => coat_ior = v,
             }
         }
         expect(p, Tok::RParen, "`)`")?;
@@ -415,6 +431,7 @@ fn term(spec: &str, p: &mut Parser<'_>, depth: usize) -> Result<BrdfSpec, SpecEr
             base: Box::new(base),
             coat_color,
             coat_ior,
+            reciprocal,
         });
     }
     let call = p.call(0)?;
@@ -584,6 +601,8 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
                 fuzz_weight: unit(&mut a, "fuzz_weight", 0.0)?,
                 fuzz_color: a.colour("fuzz_color", Some(1.0))?,
                 fuzz_roughness: unit(&mut a, "fuzz_roughness", 0.5)?,
+                coat_darkening: unit(&mut a, "coat_darkening", 1.0)?,
+                reciprocal: a.num("reciprocal", Some(0.0), 0.0, 1.0, true)? == 1.0,
             }))
         }
         "sheen" => {
@@ -592,11 +611,17 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
             let roughness = a.num("roughness", None, MIN_SHEEN_ROUGHNESS, 1.0, false)?;
             Ok(BrdfSpec::Sheen { color, roughness })
         }
+        "ltc-sheen" => {
+            let mut a = Args::new(spec, call, &["color", "roughness"])?;
+            let color = luminance(a.colour("color", Some(1.0))?);
+            let roughness = a.num("roughness", Some(0.5), 0.0, 1.0, false)?;
+            Ok(BrdfSpec::LtcSheen { color, roughness })
+        }
         other => Err(err_span(
             spec,
             call.name_span,
             format!(
-                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, openpbr, tabulated, mix or coated)"
+                "unknown BRDF `{other}` (expected lambertian, phong, blinn-phong, ggx, beckmann, eon, fon, oren-nayar, sheen, ltc-sheen, openpbr, tabulated, mix or coated)"
             ),
         )),
     }
@@ -693,7 +718,7 @@ mod tests {
         );
         assert_eq!(
             parse_brdf(
-                "coated(lambertian(albedo=0.1), mix(1, lambertian, lambertian), coat_ior=1.6, coat_color=0.5)"
+                "coated(lambertian(albedo=0.1), mix(1, lambertian, lambertian), coat_ior=1.6, coat_color=0.5, reciprocal=1)"
             )
             .unwrap(),
             BrdfSpec::Coated {
@@ -705,6 +730,7 @@ mod tests {
                 }),
                 coat_color: 0.5,
                 coat_ior: 1.6,
+                reciprocal: true,
             }
         );
         for (t, bad) in [
@@ -981,6 +1007,39 @@ mod tests {
             ("sheen(color=1.5, roughness=0.5)", "1.5"),
             ("sheen(colour=1, roughness=0.5)", "colour"),
             ("sheen(roughness=0.5, alpha=0.1)", "alpha"),
+        ] {
+            let e = parse_brdf(spec).expect_err(spec);
+            assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn ltc_sheen_spec() {
+        assert_eq!(
+            parse_brdf("ltc-sheen(color=0.8, roughness=0.3)").unwrap(),
+            BrdfSpec::LtcSheen {
+                color: 0.8,
+                roughness: 0.3
+            }
+        );
+        assert_eq!(
+            parse_brdf("ltc-sheen()").unwrap(),
+            BrdfSpec::LtcSheen {
+                color: 1.0,
+                roughness: 0.5
+            }
+        );
+        // Both ends of the roughness are accepted.
+        for r in ["0", "1"] {
+            assert!(parse_brdf(&format!("ltc-sheen(roughness={r})")).is_ok(), "{r}");
+        }
+        for (spec, bad) in [
+            ("ltc-sheen(roughness=1.5)", "1.5"),
+            ("ltc-sheen(roughness=-0.1)", "-0.1"),
+            ("ltc-sheen(color=1.5)", "1.5"),
+            ("ltc-sheen(colour=1)", "colour"),
+            ("ltc-sheen(roughness=0.5, alpha=0.1)", "alpha"),
+            ("ltc_sheen(roughness=0.5)", "ltc_sheen"),
         ] {
             let e = parse_brdf(spec).expect_err(spec);
             assert_eq!(caret_of(&e), bad, "spec {spec:?}: {e}");

@@ -10,7 +10,7 @@ mod with_diffuse;
 
 use crate::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
 use radiometry::BrdfSample;
-use radiometry::compose::{Coated, Mix, Sum};
+use radiometry::compose::{Coated, Layering, Mix, Sum};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
     Adaptive, Auto, Estimate, GaussLegendre, Heuristic, Integrand, IntegrateError, Integrator, MonteCarlo,
@@ -19,8 +19,9 @@ use radiometry::integrator::{
 use radiometry::{Albedo, Brdf};
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx,
-    HeightCorrelated, KullaConty, Lambertian, Microfacet, MicrofacetDistribution, ModifiedPhong, NoFresnel,
-    OpenPbr, OpenPbrParams, OrenNayar, Schlick, Separable, ShadowingMasking, Sheen, microfacet::EnergyTable,
+    HeightCorrelated, KullaConty, Lambertian, LtcSheen, Microfacet, MicrofacetDistribution, ModifiedPhong,
+    NoFresnel, OpenPbr, OpenPbrParams, OrenNayar, Schlick, Separable, ShadowingMasking, Sheen,
+    microfacet::EnergyTable,
 };
 
 /// Object-safe view of a monochrome BRDF.
@@ -180,13 +181,19 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
             ref base,
             coat_color,
             coat_ior,
+            reciprocal,
         } => {
             let (top, base) = (build_brdf(text, top)?, build_brdf(text, base)?);
+            let layering = if reciprocal {
+                Layering::Reciprocal
+            } else {
+                Layering::EnergyConserving
+            };
             if coat_color >= 1.0 {
-                return Ok(boxed(Coated::new(top, base)));
+                return Ok(boxed(Coated::new(top, base).with_layering(layering)));
             }
             return Coated::with_absorption(top, base, coat_color as f32, coat_ior as f32)
-                .map(boxed)
+                .map(|c| boxed(c.with_layering(layering)))
                 .map_err(|e| whole(e.to_string()));
         }
         BrdfSpec::Tabulated { file: (start, end) } => {
@@ -204,25 +211,35 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
         BrdfSpec::Eon { rho, sigma } => Eon::new(rho as f32, sigma as f32).map(boxed),
         BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(rho as f32, sigma_rad as f32).map(boxed),
         BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
+        BrdfSpec::LtcSheen { color, roughness } => LtcSheen::new(color as f32, roughness as f32).map(boxed),
         BrdfSpec::OpenPbr(ref p) => {
             let c = |v: [f64; 3]| crate::brdf::luminance(v) as f32;
-            OpenPbr::new(OpenPbrParams {
-                base_weight: p.base_weight as f32,
-                base_color: c(p.base_color),
-                base_metalness: p.base_metalness as f32,
-                base_diffuse_roughness: p.base_diffuse_roughness as f32,
-                specular_weight: p.specular_weight as f32,
-                specular_color: c(p.specular_color),
-                specular_roughness: p.specular_roughness as f32,
-                specular_ior: p.specular_ior as f32,
-                coat_weight: p.coat_weight as f32,
-                coat_color: c(p.coat_color),
-                coat_roughness: p.coat_roughness as f32,
-                coat_ior: p.coat_ior as f32,
-                fuzz_weight: p.fuzz_weight as f32,
-                fuzz_color: c(p.fuzz_color),
-                fuzz_roughness: p.fuzz_roughness as f32,
-            })
+            let layering = if p.reciprocal {
+                Layering::Reciprocal
+            } else {
+                Layering::EnergyConserving
+            };
+            OpenPbr::with_layering(
+                OpenPbrParams {
+                    base_weight: p.base_weight as f32,
+                    base_color: c(p.base_color),
+                    base_metalness: p.base_metalness as f32,
+                    base_diffuse_roughness: p.base_diffuse_roughness as f32,
+                    specular_weight: p.specular_weight as f32,
+                    specular_color: c(p.specular_color),
+                    specular_roughness: p.specular_roughness as f32,
+                    specular_ior: p.specular_ior as f32,
+                    coat_weight: p.coat_weight as f32,
+                    coat_color: c(p.coat_color),
+                    coat_roughness: p.coat_roughness as f32,
+                    coat_ior: p.coat_ior as f32,
+                    fuzz_weight: p.fuzz_weight as f32,
+                    fuzz_color: c(p.fuzz_color),
+                    fuzz_roughness: p.fuzz_roughness as f32,
+                    coat_darkening: p.coat_darkening as f32,
+                },
+                layering,
+            )
             .map(boxed)
         }
         BrdfSpec::Phong { exponent, ks, kd } => {
@@ -490,6 +507,18 @@ mod tests {
         };
         let e = build_brdf(text, &spec).err().expect("energy gain rejected");
         assert_eq!(&text[e.start..e.end], "1", "{e}");
+    }
+
+    /// `ltc-sheen(...)` builds `LtcSheen`: the same values as the plugin, its closed-form albedo.
+    #[test]
+    fn ltc_sheen_spec_builds() {
+        let text = "ltc-sheen(color=0.5, roughness=0.3)";
+        let b = build_brdf(text, &parse_brdf(text).unwrap()).unwrap();
+        let direct = LtcSheen::new(0.5f32, 0.3).unwrap();
+        let (wi, wo) = (Vec3::new(-0.6, 0.0, 0.8), Vec3::new(0.8, 0.0, 0.6));
+        assert_eq!(b.eval(wi, wo), direct.eval(wi, wo));
+        assert_eq!(b.directional_albedo(wo), direct.directional_albedo(wo));
+        assert!(b.directional_albedo(wo).is_bound);
     }
 
     /// The rough diffuse specs build the plugins: EON's white furnace through

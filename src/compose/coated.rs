@@ -1,75 +1,61 @@
-//! [`Coated`]: albedo-scaled layering of a top lobe over a base, in a
-//! reciprocal, energy-safe form.
+//! [`Coated`]: albedo-scaled layering of a top lobe over a base, in
+//! OpenPBR's energy-conserving form or a reciprocal one ([`Layering`]).
 
 use super::{
-    ComposeError, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample, pick_first,
+    ComposeError, Layering, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample,
+    pick_first, reciprocal_through,
 };
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::frame::cos_theta;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
-/// Number of nodes of the top's albedo table of a [`Coated`]: `μ_k =
-/// (k/127)²`, `k = 0..128` (`μ_0` raised to `10⁻⁶`), dense near the horizon
-/// where a lobe's albedo changes fastest (see [`Coated::table`] and
-/// [`Coated::from_table`]).
-pub const COATED_TABLE_NODES: usize = 128;
-const TOP_NODES: usize = COATED_TABLE_NODES;
-
-/// Smallest `μ` at which the top's albedo is read (the horizon itself has
-/// albedo 0 by convention).
-const MIN_NODE_MU: f32 = 1e-6;
-
 /// A coat: a top lobe (a clear or tinted dielectric interface, a sheen)
 /// over a base, by albedo scaling (OpenPBR Surface 1.1, §"Layering"):
 ///
 /// ```text
-/// f(ωi, ωo) = f_T(ωi, ωo) + τ(ωi, ωo) ⊙ f_B(ωi, ωo)
-/// τ(ωi, ωo) = A(μi, μo) ⊙ t(ωi) ⊙ t(ωo) (1 − E_min)
-/// t(ω)      = min((1 − E_T(ω)) / (1 − E_min), 1)
+/// f(ωi, ωo) = K ⊙ f_T(ωi, ωo) + A(μi, μo) ⊙ τ(ωi, ωo) ⊙ f_B(ωi, ωo)
+///
+/// energy-conserving (default):  τ = t(ωo) = 1 − E_T(ωo)
+/// reciprocal:                   τ = min(t(ωi) t(ωo)/(1 − Ē_T), t(ωi), t(ωo))
+///
 /// A(μi, μo) = C^{(1/μᵗi + 1/μᵗo)/2},   μᵗ = √(1 − (1 − μ²)/η²)
 /// ```
 ///
-/// `E_T` is the top's [directional albedo](Brdf::directional_albedo) (its
-/// value, not the upper end of its error: the plugins' bounds for Fresnel
-/// tops are wide, and the base would go dark under them): light
-/// the top reflects never reaches the base, once on the way in and once on
-/// the way out — a product, so `τ` is symmetric and the layer stays
-/// **reciprocal** (OpenPBR's `(1 − E_T(ωo))` alone is not). `E_min` is the
-/// top's smallest albedo over all directions (from the table of the top's
-/// albedo read at construction); dividing by `1 − E_min` gives back the light that the
-/// two-way product would lose to the top's *average* reflectance, as far
-/// as that is safe:
+/// per channel, with `E_T` the top's [directional
+/// albedo](Brdf::directional_albedo) read at every call (the crate's lobes
+/// report it in O(1) from global tables or closed forms; wrap a third-party
+/// top whose albedo is costly in [`Precomputed`](super::Precomputed), which
+/// tabulates it once) and `Ē_T = 2∫E_T μ dμ` its hemispherical average
+/// ([`Brdf::average_albedo`], read once at construction).
 ///
-/// * **Energy**: `t ≤ 1`, so `E(ωo) ≤ E_T(ωo) + (1 − E_T(ωo)) E_B(ωo) ≤ 1`
-///   for any base with `E_B ≤ 1` and any top with `E_T ≤ 1` — with `E_T` the
-///   value the top reports; where that value is below the top's true
-///   albedo, the layer can exceed 1 by at most the difference times `E_B`
-///   (so by at most the top's stated albedo error).
-/// * **Furnace**: with a white Lambertian base and a clear coat,
-///   `E(ωo) = 1 − (1 − E_T(ωo)) (E_avg − E_min)/(1 − E_min)`, where
-///   `E_avg = 2∫E_T μ dμ` — a smooth dielectric coat of η = 1.5 keeps
-///   about 95 % (the light internal reflections would return is not
-///   modelled; see OpenPBR's "coat darkening", which a caller applies to the
-///   base with [`Scaled`](super::Scaled)).
+/// * **Energy-conserving** ([`Layering::EnergyConserving`], OpenPBR's eq.
+///   "non-reciprocal albedo scaling"): `E(ωo) = K E_T(ωo) + (1 − E_T(ωo))
+///   ∫A f_B cos θi dωi ≤ 1` for every base with `E_B ≤ 1`, and `= 1` for a
+///   white base under a clear, untinted top: the white furnace holds up to
+///   the error of the top's reported albedo.
+/// * **Reciprocal** ([`Layering::Reciprocal`], for bidirectional methods):
+///   `τ` is symmetric in `(ωi, ωo)`. Without the caps it is the form of
+///   Kelemen & Szirmay-Kalos (2001), exact for a Lambertian base (`∫ t(μi)
+///   t(μo)/(1 − Ē) · ρ/π · μi dωi = ρ t(μo)`); the caps `τ ≤ t(μi), t(μo)`
+///   keep `E ≤ 1` for every base (a mirror-like base sees at most the
+///   one-sided `t(μo)`), and bind only where `E_T(μo) < Ē_T` (towards normal
+///   incidence for a Fresnel top), where a white Lambertian base keeps
+///   `E_T + 1 − Ē_T` instead of 1.
 ///
 /// `A` is the coat's absorption with OpenPBR's parameters: `C` =
 /// `coat_color`, the square of the transmittance at normal incidence, and
 /// the path length through a coat of index `η` along the refracted
 /// directions (OpenPBR §"Coat — view-dependent absorption"). Without
-/// absorption ([`Coated::new`]) `A = 1`.
+/// absorption ([`Coated::new`]) `A = 1`. `K` ([`Coated::with_top_tint`])
+/// tints the top's reflection only.
 ///
 /// Sampling picks the top with probability `Ē_T / (Ē_T + Ē_through)` at `ωo`
-/// (`Ē_through` = the channel average of `A(μo, μo)(1 − E_T(ωo)) E_B(ωo)`),
-/// with the mixture density; `pdf(sample) == sample.pdf` bit for bit.
-///
-/// Cost: [`Coated::new`] reads the top's albedo at 128 directions into a
-/// table (the top must be isotropic: its albedo a function of `μ` alone);
-/// each `eval` then reads it twice — two square roots and four loads —
-/// besides evaluating both lobes.
+/// (`Ē_through` = the channel average of `A(μo, μo) t(ωo) E_B(ωo)`), with
+/// the mixture density; `pdf(sample) == sample.pdf` bit for bit.
 ///
 /// ```
-/// use radiometry::compose::Coated;
+/// use radiometry::compose::{Coated, Layering};
 /// use radiometry::{Albedo, Brdf, glam::Vec3};
 /// # struct Flat(f32);
 /// # impl Brdf for Flat {
@@ -81,28 +67,22 @@ const MIN_NODE_MU: f32 = 1e-6;
 /// #         if wo.z > 0.0 { Albedo::bounded(self.0, 0.0) } else { Albedo::zero() }
 /// #     }
 /// # }
-/// let layer = Coated::new(Flat(0.1), Flat(1.0));
+/// let layer = Coated::new(Flat(0.1), Flat(1.0)); // energy-conserving
 /// let wo = Vec3::new(0.0, 0.6, 0.8);
-/// let e = layer.directional_albedo(wo);
-/// assert!(e.value <= 1.0 + e.error);
+/// assert!((layer.directional_albedo(wo).value - 1.0).abs() < 1e-6); // white furnace
+/// let both_ways = Coated::new(Flat(0.1), Flat(1.0)).with_layering(Layering::Reciprocal);
 /// let wi = Vec3::new(0.6, 0.0, 0.8);
-/// assert_eq!(layer.eval(wi, wo), layer.eval(wo, wi)); // reciprocal
+/// assert_eq!(both_ways.eval(wi, wo), both_ways.eval(wo, wi)); // reciprocal
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Coated<T: Brdf, B> {
     top: T,
     base: B,
+    layering: Layering,
     /// `coat_color` (`C`) and the coat's index of refraction, if absorbing.
     absorption: Option<(T::Spectrum, f32)>,
-    /// `1 / (1 − E_min)`.
-    gain: f32,
-    /// `E_avg = 2∫E_T μ dμ` (for the albedo estimate).
-    average: f32,
-    /// The top's albedo at the nodes `μ_k = (k/127)²` (read once, at
-    /// construction).
-    table: [T::Spectrum; TOP_NODES],
-    /// The largest error the top stated at the nodes.
-    top_error: f32,
+    /// `1/(1 − Ē_T)` per channel (the reciprocal mode's normalisation).
+    inv_average: T::Spectrum,
     /// The tint `K` of the top's reflection (1 unless set by
     /// [`with_top_tint`](Coated::with_top_tint)).
     tint: T::Spectrum,
@@ -114,83 +94,29 @@ where
     B: Brdf<Spectrum = S>,
     S: Spectrum,
 {
-    /// `top` over `base`, clear (no absorption). Reads the top's albedo at
-    /// 128 directions (`μ_k = (k/127)²`; the top is isotropic) into a table
-    /// that `eval` reads (interpolated so as never to fall below the two values around `μ`), and takes
-    /// `E_min` (the smallest tabulated value) and `E_avg` from it.
+    /// `top` over `base`, clear (no absorption), energy-conserving. O(1):
+    /// reads the top's [average albedo](Brdf::average_albedo) once.
     pub fn new(top: T, base: B) -> Self {
-        let mut table = [S::zero(); TOP_NODES];
-        let mut top_error = 0.0f32;
-        for (k, e) in table.iter_mut().enumerate() {
-            let x = k as f32 / (TOP_NODES - 1) as f32;
-            let mu = (x * x).max(MIN_NODE_MU);
-            let s = libm::sqrtf((1.0 - mu * mu).max(0.0));
-            let a = top.directional_albedo(Vec3::new(s, 0.0, mu));
-            *e = a
-                .value
-                .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
-            if a.error.is_finite() {
-                top_error = top_error.max(a.error);
-            }
-        }
-        Self::from_valid_table(top, base, table, top_error)
-    }
-
-    /// `top` over `base` (clear) from a table of the top's albedo that
-    /// [`Coated::new`] read before ([`Coated::table`], [`Coated::top_error`]):
-    /// no albedo query, so a caller that keeps the table (the C API, which
-    /// rebuilds the layer from plain data on every call) skips the 128
-    /// queries. `table[k]` is the top's albedo at `μ_k = (k/127)²` (`μ_0 =
-    /// 10⁻⁶`), each channel finite and in `[0, 1]`; `top_error` finite and
-    /// `≥ 0`; otherwise [`ComposeError::AlbedoTable`] with the offending
-    /// value. With the table and error of [`Coated::new`] the layer is equal
-    /// to it (same `E_min`, `E_avg`, bit for bit). A table that is not the
-    /// top's keeps every guarantee but energy (the layer is reciprocal and
-    /// finite; its energy bound holds for the albedo the table states).
-    /// [`Coated::absorbing`] adds a coat's absorption.
-    pub fn from_table(top: T, base: B, table: [S; TOP_NODES], top_error: f32) -> Result<Self, ComposeError> {
-        for e in &table {
-            for c in 0..S::CHANNELS {
-                let v = e.channel(c);
-                if !(0.0..=1.0).contains(&v) {
-                    return Err(ComposeError::AlbedoTable(v));
-                }
-            }
-        }
-        if !(top_error.is_finite() && top_error >= 0.0) {
-            return Err(ComposeError::AlbedoTable(top_error));
-        }
-        Ok(Self::from_valid_table(top, base, table, top_error))
-    }
-
-    /// The layer of a validated table: `E_min` and `E_avg` from it.
-    fn from_valid_table(top: T, base: B, table: [S; TOP_NODES], top_error: f32) -> Self {
-        let e_min = table
-            .iter()
-            .fold(1.0f32, |m, e| m.min(e.min_channel()))
-            .clamp(0.0, 0.999);
-        // E_avg = 2∫E μ dμ by the trapezoid rule over the nodes.
-        let mut average = 0.0f32;
-        let mut prev = (0.0f32, 0.0f32);
-        for (k, e) in table.iter().enumerate() {
-            let x = k as f32 / (TOP_NODES - 1) as f32;
-            let mu = x * x;
-            let cur = (mu, 2.0 * e.average() * mu);
-            if k > 0 {
-                average += 0.5 * (cur.1 + prev.1) * (cur.0 - prev.0);
-            }
-            prev = cur;
-        }
+        let avg = top.average_albedo();
         Self {
             top,
             base,
+            layering: Layering::EnergyConserving,
             absorption: None,
-            gain: 1.0 / (1.0 - e_min),
-            average: average.clamp(0.0, 1.0),
-            table,
-            top_error,
+            inv_average: avg.map(|a| 1.0 / (1.0 - a.clamp(0.0, 1.0)).max(1e-6)),
             tint: S::splat(1.0),
         }
+    }
+
+    /// This layer in the given [`Layering`] mode.
+    pub fn with_layering(mut self, layering: Layering) -> Self {
+        self.layering = layering;
+        self
+    }
+
+    /// The layering mode.
+    pub fn layering(&self) -> Layering {
+        self.layering
     }
 
     /// Tints the top's reflection by `K ∈ [0, 1]` per channel, leaving what
@@ -212,48 +138,13 @@ where
         Ok(self)
     }
 
-    /// The top's albedo at `μ` as the layer uses it: with nodes uniform in
-    /// `x = 127 √μ` and `Ê_k = max(E_{k−1}, E_k, E_{k+1})` (the table
-    /// dilated by one node), the linear interpolation of `Ê` — per channel,
-    /// for `x ∈ [k, k + 1]`:
-    ///
-    /// ```text
-    /// E_used(μ) = Ê_k + (x − k)(Ê_{k+1} − Ê_k)  ≥  max(E_k, E_{k+1})
-    /// ```
-    ///
-    /// At least the larger of the two table values around `μ` (both `Ê_k` and
-    /// `Ê_{k+1}` are), which keeps the energy bound where the albedo jumps
-    /// between nodes (a smooth dielectric coat with `η < 1` turns to total
-    /// internal reflection within a hair of its critical angle), and
-    /// continuous in `μ`, so the layer's integrand has kinks, not steps, at
-    /// the nodes (quadrature converges on it). In smooth parts it lets
-    /// through at most about two node steps less than the table.
+    /// The top's albedo at `ω`, each channel clamped to `[0, 1]` (NaN → 0).
     #[inline]
-    fn top_albedo(&self, mu: f32) -> S {
-        let x = libm::sqrtf(mu.clamp(0.0, 1.0)) * (TOP_NODES - 1) as f32;
-        let i = (x as usize).min(TOP_NODES - 2);
-        let f = (x - i as f32).clamp(0.0, 1.0);
-        let at = |k: usize| self.table.get(k).copied();
-        // Ê_k needs k − 1 and k + 1; at the ends the missing neighbour is
-        // left out.
-        let dilated = |k: usize| {
-            let mid = at(k)?;
-            let lo = k.checked_sub(1).and_then(at).unwrap_or(mid);
-            let hi = at(k + 1).unwrap_or(mid);
-            Some(S::from_fn(|c| {
-                lo.channel(c).max(mid.channel(c)).max(hi.channel(c))
-            }))
-        };
-        match (dilated(i), dilated(i + 1)) {
-            (Some(a), Some(b)) => S::from_fn(|c| {
-                let (a, b) = (a.channel(c), b.channel(c));
-                // Kept within [min, max] of the two (rounding), so ≥ the
-                // larger table value as argued above. (`max`/`min` rather
-                // than `clamp`, which checks its bounds at run time.)
-                (a + (b - a) * f).max(a.min(b)).min(a.max(b))
-            }),
-            _ => S::zero(),
-        }
+    fn top_albedo(&self, w: Vec3) -> S {
+        self.top
+            .directional_albedo(w)
+            .value
+            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
     }
 
     /// `top` over `base` through an absorbing coat: `coat_color` (`C ∈ [0,
@@ -265,24 +156,11 @@ where
     }
 
     /// This layer with an absorbing coat, as [`Coated::with_absorption`]
-    /// builds it (`coat_color ∈ [0, 1]` per channel, `ior ≥ 1`): for a layer
-    /// made by [`Coated::from_table`].
+    /// builds it (`coat_color ∈ [0, 1]` per channel, `ior ≥ 1`).
     pub fn absorbing(mut self, coat_color: S, ior: f32) -> Result<Self, ComposeError> {
         check_coat(coat_color, ior)?;
         self.absorption = Some((coat_color, ior));
         Ok(self)
-    }
-
-    /// The top's albedo at the nodes `μ_k = (k/127)²`, `k = 0..128`, as
-    /// [`Coated::new`] read it (each channel in `[0, 1]`); with
-    /// [`Coated::top_error`], what [`Coated::from_table`] takes back.
-    pub fn table(&self) -> &[S; TOP_NODES] {
-        &self.table
-    }
-
-    /// The largest error the top stated for its albedo at the table's nodes.
-    pub fn top_error(&self) -> f32 {
-        self.top_error
     }
 
     /// The top lobe.
@@ -293,12 +171,6 @@ where
     /// The base lobe.
     pub fn base(&self) -> &B {
         &self.base
-    }
-
-    /// `1/(1 − E_min)`, the factor that hands the base back what the top's
-    /// least reflective direction would lose twice.
-    pub fn gain(&self) -> f32 {
-        self.gain
     }
 
     /// The absorption factor `A(μi, μo)` (1 per channel without absorption).
@@ -327,14 +199,17 @@ where
         }
     }
 
-    /// `min(g (1 − E_T(ω)), 1)` per channel: what the top lets through,
-    /// scaled by the gain `g = 1/(1 − E_min)` and capped at 1 (the cap keeps
-    /// the energy bound where the top's albedo dips below `E_min` between
-    /// the nodes it was read at).
+    /// `τ(ωi, ωo)` per channel (see the type's docs).
     #[inline]
-    fn through_scaled(&self, w: Vec3) -> S {
-        self.top_albedo(cos_theta(w))
-            .map(|v| ((1.0 - v).clamp(0.0, 1.0) * self.gain).min(1.0))
+    fn through(&self, wi: Vec3, wo: Vec3) -> S {
+        let to = self.top_albedo(wo).map(|e| 1.0 - e);
+        match self.layering {
+            Layering::EnergyConserving => to,
+            Layering::Reciprocal => {
+                let ti = self.top_albedo(wi).map(|e| 1.0 - e);
+                S::from_fn(|c| reciprocal_through(ti.channel(c), to.channel(c), self.inv_average.channel(c)))
+            }
+        }
     }
 
     /// Whether both directions are strictly above the horizon.
@@ -344,17 +219,15 @@ where
         !((mi.is_nan() || mi <= 0.0) || (mo.is_nan() || mo <= 0.0))
     }
 
-    /// `K ⊙ f_T + τ ⊙ f_B` from the lobes' values (both directions above the
-    /// horizon).
+    /// `K ⊙ f_T + A τ ⊙ f_B` from the lobes' values (both directions above
+    /// the horizon).
     #[inline]
     fn layer(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S) -> S {
         let top = f_top * self.tint;
         if fb.is_black() {
             return top;
         }
-        let tau = self.absorption(cos_theta(wi), cos_theta(wo))
-            * (self.through_scaled(wi) * self.through_scaled(wo))
-            * (1.0 / self.gain);
+        let tau = self.absorption(cos_theta(wi), cos_theta(wo)) * self.through(wi, wo);
         top + tau * fb
     }
 
@@ -364,7 +237,7 @@ where
         if mu.is_nan() || mu <= 0.0 {
             return 0.5;
         }
-        let et = self.top_albedo(mu);
+        let et = self.top_albedo(wo);
         let through = self.absorption(mu, mu)
             * et.map(|e| (1.0 - e).clamp(0.0, 1.0))
             * self.base.directional_albedo(wo).value;
@@ -436,33 +309,49 @@ where
         mixture_pdf(p, self.top.pdf(wi, wo), self.base.pdf(wi, wo))
     }
 
-    /// `false`: `τ` reads the top's albedo at `ωi`, which the plugins take
-    /// from interpolated tables (and the default rule from samples that may
-    /// fall below the horizon) — not an analytic function of `ωi`.
+    /// `false`: `τ` reads the top's albedo, which the plugins take from
+    /// interpolated tables — not an analytic function of the directions.
     fn is_smooth(&self) -> bool {
         false
     }
 
-    /// `E = E_T(ωo) + (1 − E_T(ωo)) g X`, `X = ∫(1 − E_T(ωi)) A f_B cos θi dωi`,
-    /// estimated as `X ≈ (1 − E_avg) A(μo, μo) E_B(ωo)` (exact for a
-    /// Lambertian base under a clear coat); `0 ≤ X ≤ E_B/g` bounds the error.
+    /// `E = K E_T(ωo) + X`, `X = ∫τ A f_B cos θi dωi`, estimated as
+    /// `X ≈ A(μo, μo) t(ωo) E_B(ωo)` (exact for the energy-conserving mode
+    /// without absorption); `0 ≤ X ≤ t(ωo) E_B(ωo)` bounds its error.
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         let mu = cos_theta(wo);
         if mu.is_nan() || mu <= 0.0 {
             return Albedo::zero();
         }
-        let et = self.top_albedo(mu);
+        let top = self.top.directional_albedo(wo);
+        let et = top
+            .value
+            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
         let eb = self.base.directional_albedo(wo);
-        let through = et.map(|e| (1.0 - e).clamp(0.0, 1.0));
-        let upper = through * eb.value; // g · X ≤ E_B
-        let est = upper * self.absorption(mu, mu) * (self.gain * (1.0 - self.average)).min(1.0);
-        let spread = (upper - est).max_channel().max(est.max_channel());
+        let upper = et.map(|e| 1.0 - e) * eb.value;
+        let est = upper * self.absorption(mu, mu);
+        let exact = self.absorption.is_none() && self.layering == Layering::EnergyConserving;
+        let spread = if exact {
+            0.0
+        } else {
+            (upper - est).max_channel().max(est.max_channel())
+        };
         Albedo {
             value: et * self.tint + est,
-            error: self.top_error * (1.0 + eb.value.max_channel()) + eb.error + spread,
-            // The table's interpolation error is not bounded.
-            is_bound: false,
+            error: top.error * (1.0 + eb.value.max_channel()) + eb.error + spread,
+            is_bound: exact && top.is_bound && eb.is_bound,
         }
+    }
+
+    /// `K Ē_T + (1 − Ē_T) Ē_B` for a clear layer (an estimate: exact for a
+    /// base whose albedo is the same at every `μ`); with absorption, the
+    /// default rule.
+    fn average_albedo(&self) -> S {
+        if self.absorption.is_some() {
+            return crate::brdf::default_average_albedo(self);
+        }
+        let t = self.top.average_albedo();
+        t * self.tint + t.map(|v| 1.0 - v) * self.base.average_albedo()
     }
 }
 
@@ -490,37 +379,27 @@ mod tests {
                 0.0
             }
         }
+        /// `ρ (1 + μo/2)/2` (closed form: `∫ μi dω/(2π) = ½`, `∫ μi² dω/(2π) = ⅓`).
+        fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
+            if wo.z > 0.0 {
+                Albedo::bounded(self.0 * 0.5 * (1.0 + wo.z * 2.0 / 3.0), 0.0)
+            } else {
+                Albedo::zero()
+            }
+        }
     }
 
     #[test]
-    fn from_table_rebuilds_the_layer_bit_for_bit_and_rejects_bad_tables() {
-        let layer = Coated::new(Tilted(0.3), Tilted(0.9));
-        assert!(
-            layer.table().iter().any(|&e| e != layer.table()[127]),
-            "the table varies with μ"
-        );
-        let again = Coated::from_table(Tilted(0.3), Tilted(0.9), *layer.table(), layer.top_error()).unwrap();
-        assert_eq!(again, layer);
-        let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, -0.28, 0.96));
-        assert_eq!(again.eval(wi, wo).to_bits(), layer.eval(wi, wo).to_bits());
-        assert_eq!(again.pdf(wi, wo).to_bits(), layer.pdf(wi, wo).to_bits());
-        let tinted = Coated::with_absorption(Tilted(0.3), Tilted(0.9), 0.6, 1.5).unwrap();
-        assert_eq!(again.absorbing(0.6, 1.5), Ok(tinted));
-        assert!(matches!(again.absorbing(0.6, 0.5), Err(ComposeError::CoatIor(_))));
-        for bad in [-0.1, 1.5, f32::NAN, f32::INFINITY] {
-            let mut t = *layer.table();
-            t[17] = bad;
-            let e = Coated::from_table(Tilted(0.3), Tilted(0.9), t, 0.0).unwrap_err();
-            assert!(
-                matches!(e, ComposeError::AlbedoTable(v) if v.to_bits() == bad.to_bits()),
-                "{e:?}"
-            );
-        }
-        for bad in [-1.0, f32::NAN] {
-            assert!(matches!(
-                Coated::from_table(Tilted(0.3), Tilted(0.9), *layer.table(), bad),
-                Err(ComposeError::AlbedoTable(_))
-            ));
+    fn reciprocal_mode_is_symmetric_and_never_exceeds_the_one_sided_through_factor() {
+        let layer = Coated::new(Tilted(0.3), Tilted(0.9)).with_layering(Layering::Reciprocal);
+        let one_sided = Coated::new(Tilted(0.3), Tilted(0.9));
+        for (wi, wo) in [
+            (Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, -0.28, 0.96)),
+            (Vec3::new(0.0, 0.995, 0.0998), Vec3::Z),
+        ] {
+            assert_eq!(layer.eval(wi, wo).to_bits(), layer.eval(wo, wi).to_bits());
+            // τ ≤ t(ωo): the reciprocal layer never passes more than the one-sided one.
+            assert!(layer.eval(wi, wo) <= one_sided.eval(wi, wo) * (1.0 + 1e-6));
         }
     }
 }

@@ -7,7 +7,7 @@
 //! | [`Sum<A, B>`](Sum) | `f_A + f_B` | lobe `A` with probability `Ē_A / (Ē_A + Ē_B)` |
 //! | [`Mix<A, B>`](Mix) | `w f_A + (1 − w) f_B`, `w ∈ [0, 1]` | lobe `A` with probability `w Ē_A / (w Ē_A + (1 − w) Ē_B)` |
 //! | [`Scaled<B, S>`](Scaled) | `s ⊙ f_B`, `s ≥ 0` per channel | that of `B` |
-//! | [`Coated<T, B>`](Coated) | `f_T + τ(ωi, ωo) ⊙ f_B`, `τ` what the top lets through, reciprocal | top or base, by their albedos |
+//! | [`Coated<T, B>`](Coated) | `f_T + τ(ωi, ωo) ⊙ f_B`, `τ` what the top lets through ([`Layering`]: energy-conserving or reciprocal) | top or base, by their albedos |
 //! | [`Precomputed<B>`](Precomputed) | `f_B`, its albedo read once into a table | that of `B` |
 //!
 //! `Ē` is the channel average of a lobe's [directional
@@ -43,7 +43,7 @@ mod precomputed;
 mod scaled;
 mod sum;
 
-pub use coated::{COATED_TABLE_NODES, Coated};
+pub use coated::Coated;
 pub use error::ComposeError;
 pub use mix::Mix;
 pub use precomputed::Precomputed;
@@ -118,6 +118,36 @@ pub(crate) fn pdf_batch_pair<A, B>(
         }
     }
     crate::batch::zero_tail(out, wi.len().min(wo.len()));
+}
+
+/// How a layer ([`Coated`], `radiometry_brdfs::OpenPbr`) scales the light
+/// that reaches what lies beneath its top.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Layering {
+    /// OpenPBR's albedo scaling, `1 − E_T(ωo)` (the default): a white base
+    /// under a clear top keeps all its energy. Not reciprocal.
+    #[default]
+    EnergyConserving,
+    /// A symmetric factor in `(ωi, ωo)` ([`reciprocal_through`]), for
+    /// bidirectional methods; energy ≤ 1 for every base.
+    Reciprocal,
+}
+
+/// The reciprocal layering's through-factor of a top whose albedo leaves
+/// `ti = 1 − E_T(μi)` and `to = 1 − E_T(μo)`, with `inv_avg = 1/(1 − Ē_T)`:
+///
+/// ```text
+/// τ = min(ti to / (1 − Ē_T), ti, to)
+/// ```
+///
+/// Symmetric; the Kelemen & Szirmay-Kalos (2001) form, under which a
+/// Lambertian base keeps exactly `ρ (1 − E_T(μo))`, where the caps do not
+/// bind (`E_T(μo) ≥ Ē_T`); the caps keep `∫τ f_B cos θi dωi ≤ to E_B(ωo)`
+/// for every base, so `E ≤ 1` whenever `E_T, E_B ≤ 1`.
+#[inline]
+pub fn reciprocal_through(ti: f32, to: f32, inv_avg: f32) -> f32 {
+    let v = (ti * to * inv_avg).min(ti).min(to);
+    if v.is_finite() { v.max(0.0) } else { 0.0 }
 }
 
 /// The largest `f32` below 1: remapped sample coordinates stay in `[0, 1)`.

@@ -61,6 +61,18 @@ impl<F: Fresnel<Spectrum = f32>, S: Spectrum> Fresnel for Achromatic<F, S> {
         let (lo, hi) = self.fresnel.bounds();
         (S::splat(lo), S::splat(hi))
     }
+
+    fn form(&self) -> super::FresnelForm<S> {
+        match self.fresnel.form() {
+            super::FresnelForm::One => super::FresnelForm::One,
+            super::FresnelForm::Dielectric(eta) => super::FresnelForm::Dielectric(eta),
+            super::FresnelForm::Linear { f0, a } => super::FresnelForm::Linear {
+                f0: S::splat(f0),
+                a: S::splat(a),
+            },
+            super::FresnelForm::Other => super::FresnelForm::Other,
+        }
+    }
 }
 
 #[cfg(test)]

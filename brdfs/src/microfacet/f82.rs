@@ -99,6 +99,18 @@ impl<S: Spectrum> F82Tint<S> {
 impl<S: Spectrum> Fresnel for F82Tint<S> {
     type Spectrum = S;
 
+    /// Linear in the moments where no channel reaches the clamp at 0.
+    fn form(&self) -> super::FresnelForm<S> {
+        if self.smooth {
+            super::FresnelForm::Linear {
+                f0: self.f0,
+                a: self.a,
+            }
+        } else {
+            super::FresnelForm::Other
+        }
+    }
+
     /// `true` when no channel can reach the clamp at 0 (a kink).
     fn is_smooth(&self) -> bool {
         self.smooth

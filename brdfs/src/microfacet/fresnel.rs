@@ -59,6 +59,16 @@ pub trait Fresnel {
         numeric_bounds(|c| self.eval(c))
     }
 
+    /// How the albedo of a GGX lobe (height-correlated `G2`) with this
+    /// Fresnel term is read from the global energy tables
+    /// ([`fresnel_table`](super::fresnel_table)): a real dielectric index, or
+    /// the coefficients of a term linear in `(1 − c)⁵` and `c (1 − c)⁶`.
+    /// Default [`FresnelForm::Other`] (the albedo is estimated from the
+    /// lobe's own samples).
+    fn form(&self) -> FresnelForm<Self::Spectrum> {
+        FresnelForm::Other
+    }
+
     /// Hidden hook of the `simd` feature (not a stable API): the last factor
     /// of the microfacet BRDF for one vector of lanes,
     /// `out[k] = F(cos θd[k]) · scale[k]`, and exactly `0` where
@@ -82,6 +92,26 @@ pub trait Fresnel {
             };
         }
     }
+}
+
+/// What a Fresnel term is, as far as the global energy tables can read its
+/// albedo ([`Fresnel::form`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FresnelForm<S> {
+    /// `F = 1`.
+    One,
+    /// The exact unpolarised reflectance of a real relative index `η`.
+    Dielectric(f32),
+    /// `F(c) = f0 + (1 − f0)(1 − c)⁵ − a c (1 − c)⁶` per channel, never
+    /// clamped (Schlick: `a = 0`; F82-tint where it stays in `[0, 1]`).
+    Linear {
+        /// Reflectance at normal incidence.
+        f0: S,
+        /// The coefficient of `c (1 − c)⁶`.
+        a: S,
+    },
+    /// Anything else.
+    Other,
 }
 
 /// [`Fresnel::bounds`] of a function of `cos θd ∈ [0, 1]`: node minimum on
@@ -159,6 +189,10 @@ fn clamp_cos_v(c: Vf) -> Vf {
 pub struct NoFresnel;
 
 impl Fresnel for NoFresnel {
+    fn form(&self) -> FresnelForm<f32> {
+        FresnelForm::One
+    }
+
     type Spectrum = f32;
     fn is_smooth(&self) -> bool {
         true
@@ -212,6 +246,13 @@ impl<S: Spectrum> Schlick<S> {
 }
 
 impl<S: Spectrum> Fresnel for Schlick<S> {
+    fn form(&self) -> FresnelForm<S> {
+        FresnelForm::Linear {
+            f0: self.f0,
+            a: S::zero(),
+        }
+    }
+
     type Spectrum = S;
     fn is_smooth(&self) -> bool {
         true
@@ -281,6 +322,10 @@ impl Dielectric {
 }
 
 impl Fresnel for Dielectric {
+    fn form(&self) -> FresnelForm<f32> {
+        FresnelForm::Dielectric(self.eta)
+    }
+
     type Spectrum = f32;
     fn is_smooth(&self) -> bool {
         // Total internal reflection (η < 1) has a kink at the critical angle.

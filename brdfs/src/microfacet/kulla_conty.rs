@@ -443,7 +443,20 @@ where
         }
         let s2 = w.x * w.x + w.y * w.y;
         let raw_loss = lerp_row(&self.loss, rescale_mu(w.z, s2, self.r2));
-        let single = super::fresnel_albedo(1.0 - raw_loss, self.single.fresnel_spread(w));
+        let e1 = 1.0 - raw_loss;
+        let table = self
+            .single
+            .distribution
+            .energy_tables()
+            .and_then(|t| G::select_table(&t));
+        let single = match table.and_then(|t| self.single.tabulated_fresnel_ratio(t, w.z)) {
+            Some(ratio) => Albedo {
+                value: (ratio * e1).map(|v| v.clamp(0.0, 1.0)),
+                error: super::fresnel_table::FRESNEL_TABLE_ERROR,
+                is_bound: false,
+            },
+            None => super::fresnel_albedo(e1, self.single.fresnel_spread(w)),
+        };
         // F_ms = scale · π (1 − E_avg) per channel.
         let f_ms = self.scale * (core::f32::consts::PI * (1.0 - self.e_avg));
         let lobe = f_ms * self.loss_at(w.z, s2);

@@ -53,6 +53,8 @@ mod beckmann_slope_table;
 mod beckmann_tail;
 pub(crate) mod f82;
 mod fresnel;
+pub mod fresnel_table;
+mod fresnel_table_data;
 mod ggx;
 mod kulla_conty;
 mod smith;
@@ -73,12 +75,13 @@ pub use albedo_table::{
 pub use batch::{DistributionKind, G2Kind};
 pub use beckmann::Beckmann;
 pub use f82::{F82Tint, MU_BAR};
-pub use fresnel::{Conductor, Dielectric, Fresnel, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
+pub use fresnel::{Conductor, Dielectric, Fresnel, FresnelForm, MAX_ETA, MAX_K, MIN_ETA, NoFresnel, Schlick};
 pub use ggx::Ggx;
 pub use kulla_conty::{KullaConty, LOSS_MARGIN};
 pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 
 use core::marker::PhantomData;
+use fresnel_table::FRESNEL_TABLE_ERROR;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
 use radiometry::frame::half_vector_sum;
@@ -549,6 +552,51 @@ where
         }
     }
 
+    /// The lobe's mean Fresnel factor `E_F/E₁` at `μo` from the global
+    /// tables ([`fresnel_table`]) when they cover this lobe: GGX with the
+    /// height-correlated `G2` (`table` is its `F = 1` table) and a Fresnel
+    /// term whose [`form`](Fresnel::form) they read (`F = 1`, a real
+    /// dielectric index, or linear in the moments). `None` otherwise.
+    #[inline]
+    pub(crate) fn tabulated_fresnel_ratio(&self, table: &AlbedoTable, mu: f32) -> Option<F::Spectrum> {
+        if !core::ptr::eq(table, &albedo_data::GGX_HEIGHT_CORRELATED) {
+            return None;
+        }
+        let alpha = self.distribution.alpha();
+        match self.fresnel.form() {
+            FresnelForm::One => Some(F::Spectrum::splat(1.0)),
+            FresnelForm::Dielectric(eta) => Some(F::Spectrum::splat(fresnel_table::dielectric_ratio(
+                mu, alpha, eta,
+            ))),
+            FresnelForm::Linear { f0, a } => {
+                let m = fresnel_table::fresnel_moments(mu, alpha);
+                Some(F::Spectrum::from_fn(|c| {
+                    fresnel_table::linear_fresnel_ratio(f0.channel(c), a.channel(c), m)
+                }))
+            }
+            FresnelForm::Other => None,
+        }
+    }
+
+    /// The hemispherical average `Ē = 2∫E(μ) μ dμ` of this lobe's albedo
+    /// from the global tables, for a GGX (height-correlated) dielectric
+    /// interface; `None` for other lobes.
+    pub fn tabulated_average_albedo(&self) -> Option<f32> {
+        let table = self
+            .distribution
+            .energy_tables()
+            .and_then(|t| G::select_table(&t))?;
+        if !core::ptr::eq(table, &albedo_data::GGX_HEIGHT_CORRELATED) {
+            return None;
+        }
+        match self.fresnel.form() {
+            FresnelForm::Dielectric(eta) => {
+                Some(fresnel_table::dielectric_average(self.distribution.alpha(), eta))
+            }
+            _ => None,
+        }
+    }
+
     /// The Fresnel factor over the lobe at `ωo`: the average
     /// `F̄(ωo) = Σ F(ωo·m_k) G2_k / Σ G2_k` over the 16 visible normals `m_k`
     /// of the stratified points `u = ((i + ½)/4, (j + ½)/4)` whose reflection
@@ -850,6 +898,16 @@ where
     /// `brdfs/tests/microfacet_albedo.rs`. A distribution or shadowing term
     /// without a table falls back to the default sampling rule. Zero at or
     /// below the horizon.
+    /// From the global table for a GGX (height-correlated) dielectric
+    /// interface ([`fresnel_table::dielectric_average`]); the default rule
+    /// otherwise.
+    fn average_albedo(&self) -> F::Spectrum {
+        match self.tabulated_average_albedo() {
+            Some(a) => F::Spectrum::splat(a),
+            None => radiometry::brdf::default_average_albedo(self),
+        }
+    }
+
     fn directional_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
         let Some(table) = self
             .distribution
@@ -859,10 +917,17 @@ where
             return radiometry::compose::albedo_by_sampling(self, wo);
         };
         match unitize(wo) {
-            Some(w) if w.z > 0.0 => fresnel_albedo(
-                table.albedo(w.z, self.distribution.alpha()),
-                self.fresnel_spread(w),
-            ),
+            Some(w) if w.z > 0.0 => {
+                let e1 = table.albedo(w.z, self.distribution.alpha());
+                match self.tabulated_fresnel_ratio(table, w.z) {
+                    Some(ratio) => Albedo {
+                        value: (ratio * e1).map(clamp01),
+                        error: FRESNEL_TABLE_ERROR,
+                        is_bound: false,
+                    },
+                    None => fresnel_albedo(e1, self.fresnel_spread(w)),
+                }
+            }
             _ => Albedo::zero(),
         }
     }

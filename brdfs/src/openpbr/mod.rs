@@ -1,70 +1,101 @@
-//! The reflection layer of OpenPBR Surface as one plugin: [`OpenPbr`], built
-//! from this crate's lobes and `radiometry::compose`.
+//! The reflection layer of OpenPBR Surface as one plugin: [`OpenPbr`], a
+//! fixed, flat set of five lobes prepared once per view.
 //!
-//! # The layer stack
+//! # The lobes and their weights
 //!
 //! OpenPBR Surface 1.1 (Academy Software Foundation, 2024; §"Model") stacks
 //! slabs and mixes them by weights. Restricted to reflection from an opaque,
-//! isotropic surface, the stack is
+//! isotropic surface and written out as a weighted sum of leaf lobes (the
+//! "reduction to a mixture of lobes" of §"Model"):
 //!
 //! ```text
-//! f        = fuzz over coated                                   (weight w_F)
-//! coated   = mix(w_C, coat over substrate, substrate)
-//! substrate= mix(m, metal, glossy-diffuse)
-//! metal    = ξ_s · f_GGX(α_s; F82-tint(f0 = w_B C_B, t = C_s)),  Kulla–Conty compensated
-//! glossy   = C_s ⊙ f_GGX(α_s; dielectric η_s) over f_EON(ρ = w_B C_B, σ = r_D)
-//! coat     = f_GGX(α_c; dielectric η_c), absorption C_c
-//! fuzz     = w_F · f_sheen(C_F, r_F)
+//! f = w_F f_fuzz
+//!   + a_F(ωi, ωo) [ w_C f_coat
+//!                 + U_s(ωi, ωo) (m ξ_s f_metal + (1 − m) C_s ⊙ f_spec)
+//!                 + U_d(ωi, ωo) (1 − m) K(μi, μo) f_EON ]
 //! ```
 //!
-//! where `A over B` is [`Coated`]'s albedo-scaled layering (reciprocal:
-//! `f_A + t(ωi) t(ωo)(1 − E_min) f_B`, see its docs) and `α = r²` for every
-//! roughness `r` (OpenPBR §"Specular"). The dielectric's index comes from
-//! `specular_ior` and `specular_weight` as the specification defines it:
+//! | lobe | model |
+//! |---|---|
+//! | `f_fuzz` | the LTC sheen of Zeltner et al. 2022 ([`LtcSheen`], OpenPBR's recommendation); Charlie ([`Sheen`]) in the reciprocal mode |
+//! | `f_coat` | GGX (`α_c = r_c²`), dielectric Fresnel of `coat_ior` |
+//! | `f_metal` | GGX (`α_s = r_s²`), F82-tint (`f0 = w_B C_B`, tint `C_s`), Kulla–Conty compensated |
+//! | `f_spec` | GGX (`α_s`), dielectric Fresnel of the specular index ratio `η_s` |
+//! | `f_EON` | energy-preserving Oren–Nayar, `ρ = w_B C_B`, `σ = r_D` |
+//!
+//! **Albedo scaling** ([`Layering`]): in the default
+//! [`Layering::EnergyConserving`] mode every layer passes `1 − E_top(ωo)` of
+//! the light to what lies beneath it — OpenPBR's eq. "non-reciprocal albedo
+//! scaling", with the fuzz's **untinted** albedo `E_F` (§"Fuzz") — so a
+//! white furnace is exact up to the tables' error:
 //!
 //! ```text
-//! η   = specular_ior / (1 + w_C (coat_ior − 1))         (eq. 60: the base's index relative to the coat)
-//! F0  = ((η − 1)/(η + 1))²
-//! ε   = sign(η − 1) √(min(ξ_s, 1/F0) F0),   η_s = (1 + ε)/(1 − ε)   (eq. 26: ξ_s scales F0)
+//! a_F = 1 − w_F E_F(μo)
+//! U   = (1 − w_C) + w_C D A(μi, μo) (1 − E_C(μo))          (U_s = U_d)
 //! ```
 //!
-//! `specular_color` `C_s` tints only the dielectric's reflection from above
-//! (the base below sees `1 − E` of the untinted layer:
-//! [`Coated::with_top_tint`]) and is the F82 tint of the metal.
+//! The dielectric base keeps the reciprocal form of Kelemen & Szirmay-Kalos
+//! (2001) in both modes, `K(μi, μo) = (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s)`,
+//! as Adobe's OpenPBR BSDF does: exact for a Lambertian body, where
+//! OpenPBR's `E = E_s + (1 − E_s) C` holds at every `ωo`.
+//!
+//! [`Layering::Reciprocal`] (for bidirectional methods) replaces each
+//! one-sided factor `t(μo) = 1 − E(μo)` of the coat and the fuzz by the
+//! symmetric `τ = min(t(μi) t(μo)/(1 − Ē), t(μi), t(μo))`
+//! ([`reciprocal_through`](radiometry::compose::reciprocal_through)): the
+//! Kelemen form, capped under the specular lobes so that no base reflects
+//! more than the one-sided form lets through (energy ≤ 1 for any lobe shape),
+//! uncapped under the diffuse lobe (exact for a Lambertian body); the
+//! darkening uses `K_s = F0` instead of `F(μo)`, and the fuzz is the
+//! reciprocal Charlie sheen.
+//!
+//! `E_s`, `E_C` (directional albedos) and `Ē_s`, `Ē_C` (hemispherical
+//! averages) of the dielectric lobes come from the crate's global tables
+//! ([`fresnel_table`](crate::microfacet::fresnel_table)); the metal's from
+//! its moment tables; nothing is integrated when a material is built.
+//!
+//! # Formulas from the specification
+//!
+//! * **Specular index ratio** (eq. "specular_ior_ratio" with the TIR rule of
+//!   §"Coat — Total internal reflection"): `η_s = lerp(n_b, η_bc, w_C)`,
+//!   `η_bc = n_c/n_b` if `n_c > n_b`, else `n_b/n_c`; then `specular_weight`
+//!   scales its `F0` (eq. 26: `ε = sign(η − 1)√(min(ξ_s F0, 1))`,
+//!   `η = (1 + ε)/(1 − ε)`).
+//! * **Coat absorption** `A(μi, μo) = C_c^{(1/μᵗi + 1/μᵗo)/2}`, `μᵗ = √(1 − (1 −
+//!   μ²)/η_c²)` (§"View-dependent absorption").
+//! * **Coat roughening** (§"Roughening"): under a coat the base lobes use
+//!   `r'_s = lerp(r_s, min(1, r_s⁴ + 2 r_c⁴)^¼, w_C)`.
+//! * **Coat darkening** (§"Darkening"): the coated base is scaled by `D =
+//!   lerp(1, Δ, δ)`, `Δ = (1 − K)/(1 − E_b K)` per channel, `K = lerp(K_s,
+//!   K_r, r_b)`, `K_r = 1 − (1 − Ē_F(η_c))/η_c²`, `K_s = F(μo, η_c)`, `r_b =
+//!   lerp(lerp(1, r_s, ξ_s F0_s), r_s, m)`, `E_b` the base's albedo at normal
+//!   incidence; `δ = coat_darkening` (default 1).
 //!
 //! # Parameters
 //!
 //! [`OpenPbrParams`] has OpenPBR's names and defaults; colours are any
-//! [`Spectrum`] (`f32`, RGB as `glam::Vec3`, sampled). Domains (checked by
-//! [`OpenPbr::new`], [`BrdfError`] otherwise): every weight, colour channel,
-//! roughness and `base_metalness` in `[0, 1]`; `specular_ior` and `coat_ior`
-//! in `[1, 1000]`. Documented fallbacks, as a renderer needs them:
+//! [`Spectrum`]. Domains (checked by [`OpenPbr::new`], [`BrdfError`]
+//! otherwise): every weight, colour channel, roughness, `base_metalness` and
+//! `coat_darkening` in `[0, 1]`; `specular_ior` and `coat_ior` in `[1,
+//! 1000]`. Documented fallbacks: roughness 0 is raised to the microfacet
+//! floor `α = 10⁻⁴`; `fuzz_roughness` below 0.07 to 0.07
+//! ([`MIN_SHEEN_ROUGHNESS`]).
 //!
-//! * roughness 0 (a perfect mirror; OpenPBR allows it) is raised to the
-//!   microfacet floor `α = 10⁻⁴` (`r = 0.01`);
-//! * `fuzz_roughness` below 0.07 is raised to 0.07, the smallest the sheen
-//!   tables cover ([`MIN_SHEEN_ROUGHNESS`]).
+//! Outside a reflection-only isotropic BRDF (each behaves as if at the value
+//! in brackets): `transmission_weight`, `subsurface_weight` (0: the
+//! dielectric body is the EON diffuse), `*_anisotropy` (0),
+//! `thin_film_weight` (0), `geometry_*` (opaque, one-sided), `emission_*`
+//! (0).
 //!
-//! # Outside a reflection-only isotropic BRDF
+//! # Cost
 //!
-//! These OpenPBR parameters have no counterpart here, and the plugin behaves
-//! as if each were at the value in brackets: `transmission_weight` (0: the
-//! dielectric base is opaque, its body is the EON diffuse),
-//! `subsurface_weight` (0: likewise), `specular_anisotropy` and
-//! `coat_anisotropy` (0: isotropic), `thin_film_weight` (0), `geometry_*`
-//! (opaque, one-sided), `emission_*` (0), `coat_darkening` (0: the base is not
-//! darkened by light trapped in the coat — OpenPBR's default is 1), the coat's
-//! roughening of the base lobes (not applied), and `fuzz_weight`'s layering is
-//! `Coated`'s reciprocal form rather than the specification's one-sided
-//! `(1 − w_F E_F(ωo))`.
-//!
-//! # Energy
-//!
-//! Every piece keeps `E ≤ 1` (EON, the Kulla–Conty metal, `Coated`, `Mix`),
-//! up to the error of the tops' reported albedos that `Coated` reads (see its
-//! docs): the defaults stay below 1 at every `θo`, and a white metal
-//! (`base_metalness = 1`, `base_color = specular_color = 1`) keeps at least
-//! 99 % at `r ≤ 0.7` (`α ≤ 0.5`).
+//! [`OpenPbr::new`] validates and reads a few table entries. Every call
+//! prepares the view once ([`OpenPbr::prepare`]: the layers' factors at `μo`
+//! and the pick probabilities); `sample` picks one lobe in proportion to its
+//! share of the layered albedo at `ωo`, samples it, then evaluates and takes
+//! the mixture pdf in one pass over the lobes each. A renderer that shades
+//! several directions at one hit calls [`OpenPbr::prepare`] once and then
+//! [`OpenPbrView::eval`], [`OpenPbrView::pdf`] and [`OpenPbrView::sample`].
 //!
 //! ```
 //! use radiometry::{Brdf, glam::Vec3};
@@ -75,10 +106,10 @@
 //!     ..OpenPbrParams::default()
 //! })?;
 //! let wo = Vec3::new(0.6, 0.0, 0.8);
-//! let wi = Vec3::new(-0.3, 0.2, 0.93).normalize();
-//! assert_eq!(plastic.eval(wi, wo), plastic.eval(wo, wi)); // reciprocal
 //! let s = plastic.sample(wo, [0.3, 0.6]).unwrap();
 //! assert_eq!(s.pdf, plastic.pdf(s.wi, wo)); // bit for bit
+//! let view = plastic.prepare(wo); // several directions at one hit
+//! assert_eq!(view.eval(s.wi), plastic.eval(s.wi, wo));
 //! assert!(plastic.directional_albedo(wo).value.max_element() < 1.0);
 //! # Ok::<(), radiometry_brdfs::BrdfError>(())
 //! ```
@@ -87,12 +118,14 @@
 mod tests;
 
 use crate::error::{BrdfError, check_range};
+use crate::microfacet::fresnel_table::{dielectric_albedo, dielectric_average};
 use crate::microfacet::{
-    Achromatic, Dielectric, F82Tint, Ggx, HeightCorrelated, KullaConty, MAX_ETA, MIN_ALPHA, Microfacet,
+    Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, KullaConty,
+    MAX_ETA, MIN_ALPHA, Microfacet,
 };
 use crate::rough_diffuse::Eon;
-use crate::sheen::{MIN_SHEEN_ROUGHNESS, Sheen};
-use radiometry::compose::{COATED_TABLE_NODES, Coated, ComposeError, Mix, Precomputed, Scaled};
+use crate::sheen::{LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
+pub use radiometry::compose::Layering;
 use radiometry::glam::Vec3;
 use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
@@ -117,7 +150,7 @@ pub struct OpenPbrParams<S> {
     pub specular_color: S,
     /// `specular_roughness` `r_s` (default 0.3): `α_s = r_s²`.
     pub specular_roughness: f32,
-    /// `specular_ior` (default 1.5).
+    /// `specular_ior` `n_b` (default 1.5).
     pub specular_ior: f32,
     /// `coat_weight` `w_C` (default 0).
     pub coat_weight: f32,
@@ -126,8 +159,11 @@ pub struct OpenPbrParams<S> {
     pub coat_color: S,
     /// `coat_roughness` `r_c` (default 0): `α_c = r_c²`.
     pub coat_roughness: f32,
-    /// `coat_ior` `η_c` (default 1.6).
+    /// `coat_ior` `n_c` (default 1.6).
     pub coat_ior: f32,
+    /// `coat_darkening` `δ` (default 1): the darkening of the coated base by
+    /// light trapped in the coat (0: the base is boosted to cancel it).
+    pub coat_darkening: f32,
     /// `fuzz_weight` `w_F` (default 0).
     pub fuzz_weight: f32,
     /// `fuzz_color` `C_F` (default 1).
@@ -153,6 +189,7 @@ impl<S: Spectrum> Default for OpenPbrParams<S> {
             coat_color: S::splat(1.0),
             coat_roughness: 0.0,
             coat_ior: 1.6,
+            coat_darkening: 1.0,
             fuzz_weight: 0.0,
             fuzz_color: S::splat(1.0),
             fuzz_roughness: 0.5,
@@ -161,27 +198,64 @@ impl<S: Spectrum> Default for OpenPbrParams<S> {
 }
 
 type DielectricLobe<S> = Microfacet<Ggx, HeightCorrelated, Achromatic<Dielectric, S>>;
-type Metal<S> = Precomputed<Scaled<KullaConty<Ggx, HeightCorrelated, F82Tint<S>>, S>>;
-type Glossy<S> = Coated<DielectricLobe<S>, Eon<S>>;
-type Substrate<S> = Mix<Metal<S>, Glossy<S>>;
-type CoatMix<S> = Mix<Coated<DielectricLobe<S>, Substrate<S>>, Substrate<S>>;
-type Stack<S> = Coated<Scaled<Sheen<S>, S>, CoatMix<S>>;
+type Metal<S> = KullaConty<Ggx, HeightCorrelated, F82Tint<S>>;
+
+/// Number of leaf lobes.
+const LOBES: usize = 5;
+const FUZZ: usize = 0;
+const COAT: usize = 1;
+const METAL: usize = 2;
+const SPEC: usize = 3;
+const DIFFUSE: usize = 4;
+
+/// The `F = 1` albedo table of GGX with the height-correlated `G2`.
+fn e1_table() -> &'static AlbedoTable {
+    <Ggx as EnergyTable<HeightCorrelated>>::TABLE
+}
 
 /// OpenPBR Surface's reflection: metal, glossy-diffuse (a dielectric
-/// specular layer over EON), an optional coat and an optional fuzz, layered
-/// by albedo scaling (see the [module docs](self) for the stack, the
-/// formulas and what is outside a reflection-only BRDF).
+/// specular layer over EON), an optional coat and an optional fuzz, as a
+/// flat list of five weighted lobes (see the [module docs](self) for the
+/// weights, the formulas and what is outside a reflection-only BRDF).
 ///
-/// Sampling picks layers and lobes in proportion to their albedos at `ωo`
-/// (`radiometry::compose`), with the exact mixture density. A layer whose
-/// weight is 0 costs nothing per call: `Mix` with weight 0 or 1 evaluates
-/// one side, and a zero `fuzz_weight` skips the fuzz layer. Construction
-/// tabulates each layer's top albedo once (three 128-node tables).
+/// A plain value built in O(1) (validation and a few table reads); a lobe
+/// whose weight is 0 costs nothing per call.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OpenPbr<S: Spectrum = f32> {
     params: OpenPbrParams<S>,
-    stack: Stack<S>,
-    fuzz: bool,
+    layering: Layering,
+    /// The fuzz lobe of the energy-conserving mode (LTC sheen, OpenPBR's
+    /// recommendation) and of the reciprocal mode (Charlie: the LTC sheen is
+    /// not reciprocal).
+    fuzz: LtcSheen<S>,
+    fuzz_reciprocal: Sheen<S>,
+    coat: DielectricLobe<S>,
+    metal: Metal<S>,
+    spec: DielectricLobe<S>,
+    diffuse: Eon<S>,
+    /// Which lobes are on (weight > 0).
+    on: [bool; LOBES],
+    /// `ξ_s` (the metal's weight).
+    xi: f32,
+    /// `(α_s, η_s)` and `(α_c, η_c)` for the tables.
+    spec_ae: (f32, f32),
+    coat_ae: (f32, f32),
+    /// `1/(1 − Ē_s)`.
+    inv_spec_avg: f32,
+    /// Reciprocal mode: `1/(1 − Ē_C)`; the same for the fuzz (`w_F E_F`).
+    coat_norm: f32,
+    fuzz_norm: f32,
+    /// Reciprocal mode, the diffuse lobe: `1/(2∫ t_F t_s μ dμ)` for the
+    /// uncoated part and `1/(2∫ t_F t_C t_s μ dμ)` for the coated part
+    /// (`t = 1 − E` of each layer present; `t_F = 1` without fuzz).
+    joint_norm: [f32; 2],
+    /// `Δ − 1` per channel with `K_s` left out: `(E_b, K_r, r_b)` to finish it
+    /// per view.
+    base_albedo_normal: S,
+    k_r: f32,
+    r_b: f32,
+    /// `F0` of the coat (for the reciprocal mode's `K_s`).
+    coat_f0: f32,
 }
 
 /// `α = max(r², 10⁻⁴)`.
@@ -203,6 +277,18 @@ pub fn modulated_ior(eta: f32, xi: f32) -> f32 {
     ((1.0 + eps) / (1.0 - eps)).clamp(crate::microfacet::MIN_ETA, MAX_ETA)
 }
 
+/// OpenPBR's specular index ratio (eq. "specular_ior_ratio" with the TIR
+/// rule): `lerp(n_b, η_bc, w_C)`, `η_bc = n_c/n_b` if `n_c > n_b`, else
+/// `n_b/n_c` (never below 1 for `n_b, n_c ≥ 1`).
+pub fn specular_ior_ratio(specular_ior: f32, coat_ior: f32, coat_weight: f32) -> f32 {
+    let bc = if coat_ior > specular_ior {
+        coat_ior / specular_ior
+    } else {
+        specular_ior / coat_ior
+    };
+    specular_ior + coat_weight * (bc - specular_ior)
+}
+
 fn colour<S: Spectrum>(name: &'static str, c: S) -> Result<S, BrdfError> {
     for i in 0..S::CHANNELS {
         check_range(name, c.channel(i), 0.0, 1.0)?;
@@ -210,171 +296,142 @@ fn colour<S: Spectrum>(name: &'static str, c: S) -> Result<S, BrdfError> {
     Ok(c)
 }
 
-fn composed(e: ComposeError) -> BrdfError {
-    // Unreachable after the checks of `OpenPbr::new`; kept typed.
-    let what = match e {
-        ComposeError::CoatColor(_) => "coat_color outside [0, 1]",
-        ComposeError::CoatIor(_) => "coat_ior below 1",
-        _ => "a layer weight or colour outside [0, 1]",
-    };
-    BrdfError::Constraint { what }
+/// `1/x` for `x` clamped to `[10⁻⁶, 1]`.
+fn inv(x: f32) -> f32 {
+    1.0 / x.clamp(1e-6, 1.0)
 }
 
-/// The three albedo tables an [`OpenPbr`] reads at construction, as plain
-/// data: each layer's top albedo at the [`COATED_TABLE_NODES`] nodes `μ_k =
-/// (k/127)²` ([`Coated::table`]) and the largest error the top stated there
-/// ([`Coated::top_error`]). [`OpenPbr::tables`] returns them,
-/// [`OpenPbr::from_tables`] rebuilds the same material from them without
-/// reading the tops' albedos again (the C API keeps them in its handle).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OpenPbrTables<S> {
-    /// The glossy-diffuse layer's top: the dielectric specular lobe
-    /// (`specular_roughness`, the index from `specular_ior`,
-    /// `specular_weight` and `coat_weight`, `coat_ior`).
-    pub specular: [S; COATED_TABLE_NODES],
-    /// The largest error of [`specular`](Self::specular).
-    pub specular_error: f32,
-    /// The coat layer's top: the coat's dielectric lobe (`coat_roughness`,
-    /// `coat_ior`).
-    pub coat: [S; COATED_TABLE_NODES],
-    /// The largest error of [`coat`](Self::coat).
-    pub coat_error: f32,
-    /// The fuzz layer's top: `fuzz_weight ·` the sheen lobe (`fuzz_color`,
-    /// `fuzz_roughness`).
-    pub fuzz: [S; COATED_TABLE_NODES],
-    /// The largest error of [`fuzz`](Self::fuzz).
-    pub fuzz_error: f32,
-}
-
-/// `Coated::new(top, base)`, or from the saved `table` (checked).
-fn layer<T, B, S>(
-    top: T,
-    base: B,
-    saved: Option<(&'static str, &[S; COATED_TABLE_NODES], f32)>,
-) -> Result<Coated<T, B>, BrdfError>
-where
-    T: Brdf<Spectrum = S>,
-    B: Brdf<Spectrum = S>,
-    S: Spectrum,
-{
-    match saved {
-        None => Ok(Coated::new(top, base)),
-        Some((name, table, error)) => Coated::from_table(top, base, *table, error).map_err(|e| match e {
-            ComposeError::AlbedoTable(value) => BrdfError::AlbedoTable { name, value },
-            e => composed(e),
-        }),
-    }
+/// `F0 = ((η − 1)/(η + 1))²`.
+fn f0_of(eta: f32) -> f32 {
+    let r = (eta - 1.0) / (eta + 1.0);
+    r * r
 }
 
 impl<S: Spectrum> OpenPbr<S> {
-    /// Builds the stack from `p`, reading each layer's top albedo at the
-    /// [`COATED_TABLE_NODES`] nodes (three tables: about 1.7 ms with coat
-    /// and fuzz on; [`OpenPbr::from_tables`] skips it).
+    /// The material of `p` in the default, energy-conserving layering.
     ///
     /// # Errors
     /// [`BrdfError::NotFinite`] / [`BrdfError::OutOfRange`] naming the
     /// OpenPBR parameter outside its domain (see the [module docs](self)).
     pub fn new(p: OpenPbrParams<S>) -> Result<Self, BrdfError> {
-        Self::build(p, None)
+        Self::with_layering(p, Layering::EnergyConserving)
     }
 
-    /// The material [`OpenPbr::new`] builds from `p`, with the tops' albedo
-    /// tables taken from `tables` (what [`OpenPbr::tables`] returned for
-    /// the same parameters) instead of read again: equal to it, bit for bit,
-    /// for about a tenth of the cost. What remains is the checks of `p` and
-    /// of the 3 × 128 table entries, and the lobes' constructors, of which
-    /// the metal's Kulla–Conty compensation (64 reads of the microfacet
-    /// albedo table) is most: about 53 µs against 0.6 ms for `new`
-    /// (monochrome, every layer on, release build on a loaded 2-core Xeon).
-    ///
-    /// Tables read for other parameters keep every guarantee but energy
-    /// (the material is reciprocal and finite, and `pdf` matches `sample`;
-    /// its energy bound holds for the albedos the tables state).
+    /// The material of `p` with the given [`Layering`] (reciprocal for
+    /// bidirectional methods).
     ///
     /// # Errors
-    /// As [`OpenPbr::new`] for `p`; [`BrdfError::AlbedoTable`] (`name` =
-    /// `"specular"`, `"coat"` or `"fuzz"`) for a table value outside `[0,
-    /// 1]` or NaN, or an error that is negative or not finite.
-    pub fn from_tables(p: OpenPbrParams<S>, tables: &OpenPbrTables<S>) -> Result<Self, BrdfError> {
-        Self::build(p, Some(tables))
-    }
-
-    /// The three tables of the tops' albedos this material read (or was
-    /// given), for [`OpenPbr::from_tables`].
-    pub fn tables(&self) -> OpenPbrTables<S> {
-        let glossy = self.coated().second().second();
-        let coat = self.coated().first();
-        OpenPbrTables {
-            specular: *glossy.table(),
-            specular_error: glossy.top_error(),
-            coat: *coat.table(),
-            coat_error: coat.top_error(),
-            fuzz: *self.stack.table(),
-            fuzz_error: self.stack.top_error(),
-        }
-    }
-
-    /// [`OpenPbr::new`] (`tables = None`) and [`OpenPbr::from_tables`].
-    fn build(p: OpenPbrParams<S>, tables: Option<&OpenPbrTables<S>>) -> Result<Self, BrdfError> {
-        let saved = |name, t: fn(&OpenPbrTables<S>) -> (&[S; COATED_TABLE_NODES], f32)| {
-            tables.map(|tables| {
-                let (table, error) = t(tables);
-                (name, table, error)
-            })
-        };
+    /// As [`OpenPbr::new`].
+    pub fn with_layering(p: OpenPbrParams<S>, layering: Layering) -> Result<Self, BrdfError> {
         let unit = |name, v| check_range(name, v, 0.0, 1.0);
         let base_weight = unit("base_weight", p.base_weight)?;
         let base_color = colour("base_color", p.base_color)?;
-        let metalness = unit("base_metalness", p.base_metalness)?;
+        let m = unit("base_metalness", p.base_metalness)?;
         let sigma = unit("base_diffuse_roughness", p.base_diffuse_roughness)?;
         let xi = unit("specular_weight", p.specular_weight)?;
         let spec_color = colour("specular_color", p.specular_color)?;
         let r_s = unit("specular_roughness", p.specular_roughness)?;
         let ior = check_range("specular_ior", p.specular_ior, 1.0, MAX_ETA)?;
-        let coat_weight = unit("coat_weight", p.coat_weight)?;
-        let coat_color = colour("coat_color", p.coat_color)?;
+        let w_c = unit("coat_weight", p.coat_weight)?;
+        colour("coat_color", p.coat_color)?;
         let r_c = unit("coat_roughness", p.coat_roughness)?;
         let coat_ior = check_range("coat_ior", p.coat_ior, 1.0, MAX_ETA)?;
-        let fuzz_weight = unit("fuzz_weight", p.fuzz_weight)?;
+        unit("coat_darkening", p.coat_darkening)?;
+        let w_f = unit("fuzz_weight", p.fuzz_weight)?;
         let fuzz_color = colour("fuzz_color", p.fuzz_color)?;
         let r_f = unit("fuzz_roughness", p.fuzz_roughness)?;
 
         let rho = base_color * base_weight;
-        let ggx_s = Ggx::new(alpha(r_s))?;
-        // The metal's albedo (a Fresnel average over 20 visible normals)
-        // is read at every pick of every layer above it: tabulated once.
-        let metal = Precomputed::new(
-            Scaled::new(
-                KullaConty::new(ggx_s, F82Tint::new(rho, spec_color)?),
-                S::splat(xi),
-            )
-            .map_err(composed)?,
-        );
-        let eta = ior / (1.0 + coat_weight * (coat_ior - 1.0));
-        let specular = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(modulated_ior(eta, xi))?));
-        let glossy = layer(
-            specular,
-            Eon::new(rho, sigma)?,
-            saved("specular", |t| (&t.specular, t.specular_error)),
-        )?
-        .with_top_tint(spec_color)
-        .map_err(composed)?;
-        let substrate = Mix::new(metalness, metal, glossy).map_err(composed)?;
-        let coat = Microfacet::new(Ggx::new(alpha(r_c))?, Achromatic::new(Dielectric::new(coat_ior)?));
-        // `Coated::with_absorption` is `Coated::new(..).absorbing(..)`.
-        let coat_layer = layer(coat, substrate, saved("coat", |t| (&t.coat, t.coat_error)))?
-            .absorbing(coat_color, coat_ior)
-            .map_err(composed)?;
-        let coated = Mix::new(coat_weight, coat_layer, substrate).map_err(composed)?;
-        let fuzz = Scaled::new(
-            Sheen::new(fuzz_color, r_f.max(MIN_SHEEN_ROUGHNESS))?,
-            S::splat(fuzz_weight),
-        )
-        .map_err(composed)?;
+        // The coat's roughening of the base lobes (§"Coat — Roughening"):
+        // r'_s = lerp(r_s, min(1, r_s⁴ + 2 r_c⁴)^¼, w_C).
+        let r_s = if w_c > 0.0 {
+            let q = |r: f32| (r * r) * (r * r);
+            let rough = libm::sqrtf(libm::sqrtf((q(r_s) + 2.0 * q(r_c)).min(1.0)));
+            r_s + w_c * (rough - r_s)
+        } else {
+            r_s
+        };
+        let a_s = alpha(r_s);
+        let ggx_s = Ggx::new(a_s)?;
+        let metal = KullaConty::new(ggx_s, F82Tint::from_valid(rho, spec_color));
+        let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
+        let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?));
+        let diffuse = Eon::new(rho, sigma)?;
+        let a_c = alpha(r_c);
+        let coat = Microfacet::new(Ggx::new(a_c)?, Achromatic::new(Dielectric::new(coat_ior)?));
+        let fuzz = LtcSheen::new(fuzz_color, r_f)?;
+        let r_f = r_f.max(MIN_SHEEN_ROUGHNESS);
+        let fuzz_reciprocal = Sheen::new(fuzz_color, r_f)?;
+
+        let spec_avg = dielectric_average(a_s, eta_s);
+        let reciprocal = layering == Layering::Reciprocal;
+        let coat_norm = if reciprocal && w_c > 0.0 {
+            inv(1.0 - dielectric_average(a_c, coat_ior))
+        } else {
+            1.0
+        };
+        let fuzz_norm = if reciprocal && w_f > 0.0 {
+            let t = SheenAlbedoTable::get();
+            // Ē_F = 2∫E μ dμ by 8-point Gauss–Legendre in μ (8 table reads).
+            inv(1.0 - gauss_legendre_average(|mu| w_f * t.albedo(mu, r_f)))
+        } else {
+            1.0
+        };
+        let joint_norm = if reciprocal {
+            let t = SheenAlbedoTable::get();
+            let t_f = |mu: f32| {
+                if w_f > 0.0 {
+                    1.0 - w_f * t.albedo(mu, r_f)
+                } else {
+                    1.0
+                }
+            };
+            let t_s = |mu: f32| 1.0 - dielectric_albedo(e1_table(), mu, a_s, eta_s);
+            let t_c = |mu: f32| {
+                if w_c > 0.0 {
+                    1.0 - dielectric_albedo(e1_table(), mu, a_c, coat_ior)
+                } else {
+                    1.0
+                }
+            };
+            [
+                inv(gauss_legendre_average(|mu| t_f(mu) * t_s(mu))),
+                inv(gauss_legendre_average(|mu| t_f(mu) * t_c(mu) * t_s(mu))),
+            ]
+        } else {
+            [1.0, 1.0]
+        };
+        // Coat darkening (§"Darkening"): E_b at normal incidence, K_r, r_b.
+        let n = Vec3::Z;
+        let e_s1 = dielectric_albedo(e1_table(), 1.0, a_s, eta_s);
+        let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
+        let base_albedo_normal = metal.directional_albedo(n).value * (m * xi) + glossy * (1.0 - m);
+        let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
+        let k_r = 1.0 - (1.0 - e_f_avg) / (coat_ior * coat_ior);
+        let r_d = 1.0 + (r_s - 1.0) * (xi * f0_of(ior)).clamp(0.0, 1.0);
+        let r_b = r_d + m * (r_s - r_d);
+        let on = [w_f > 0.0, w_c > 0.0, m > 0.0 && xi > 0.0, m < 1.0, m < 1.0];
         Ok(Self {
             params: p,
-            stack: layer(fuzz, coated, saved("fuzz", |t| (&t.fuzz, t.fuzz_error)))?,
-            fuzz: fuzz_weight > 0.0,
+            layering,
+            fuzz,
+            fuzz_reciprocal,
+            coat,
+            metal,
+            spec,
+            diffuse,
+            on,
+            xi,
+            spec_ae: (a_s, eta_s),
+            coat_ae: (a_c, coat_ior),
+            inv_spec_avg: inv(1.0 - spec_avg),
+            coat_norm,
+            fuzz_norm,
+            joint_norm,
+            base_albedo_normal,
+            k_r,
+            r_b,
+            coat_f0: f0_of(coat_ior),
         })
     }
 
@@ -383,9 +440,510 @@ impl<S: Spectrum> OpenPbr<S> {
         &self.params
     }
 
-    /// The layers below the fuzz (the whole BRDF when `fuzz_weight = 0`).
-    fn coated(&self) -> &CoatMix<S> {
-        self.stack.base()
+    /// The layering mode.
+    pub fn layering(&self) -> Layering {
+        self.layering
+    }
+
+    /// `E_s(μ)`: the dielectric specular lobe's albedo.
+    #[inline]
+    fn e_spec(&self, mu: f32) -> f32 {
+        dielectric_albedo(e1_table(), mu, self.spec_ae.0, self.spec_ae.1)
+    }
+
+    /// `E_C(μ)`: the coat lobe's albedo.
+    #[inline]
+    fn e_coat(&self, mu: f32) -> f32 {
+        dielectric_albedo(e1_table(), mu, self.coat_ae.0, self.coat_ae.1)
+    }
+
+    /// `w_F E_F(μ)`: the fuzz's untinted albedo, weighted.
+    #[inline]
+    fn e_fuzz(&self, mu: f32) -> f32 {
+        self.params.fuzz_weight
+            * match self.layering {
+                Layering::EnergyConserving => self.fuzz.albedo_untinted(mu),
+                Layering::Reciprocal => SheenAlbedoTable::get().albedo(mu, self.fuzz_reciprocal.roughness()),
+            }
+    }
+
+    /// The fuzz lobe's value, density, sample and albedo in this mode.
+    #[inline]
+    fn fuzz_eval(&self, wi: Vec3, wo: Vec3) -> S {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.eval(wi, wo),
+            Layering::Reciprocal => self.fuzz_reciprocal.eval(wi, wo),
+        }
+    }
+
+    #[inline]
+    fn fuzz_pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.pdf(wi, wo),
+            Layering::Reciprocal => self.fuzz_reciprocal.pdf(wi, wo),
+        }
+    }
+
+    fn fuzz_sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.sample(wo, u),
+            Layering::Reciprocal => self.fuzz_reciprocal.sample(wo, u),
+        }
+    }
+
+    fn fuzz_albedo(&self, wo: Vec3) -> S {
+        match self.layering {
+            Layering::EnergyConserving => self.fuzz.directional_albedo(wo).value,
+            Layering::Reciprocal => self.fuzz_reciprocal.directional_albedo(wo).value,
+        }
+    }
+
+    /// The coat's absorption `A(μi, μo)` per channel.
+    fn absorption(&self, mu_i: f32, mu_o: f32) -> S {
+        let color = self.params.coat_color;
+        let eta = self.coat_ae.1;
+        let refracted = |mu: f32| {
+            let s2 = (1.0 - mu * mu).max(0.0) / (eta * eta);
+            libm::sqrtf((1.0 - s2).max(0.0))
+        };
+        let (ti, to) = (refracted(mu_i), refracted(mu_o));
+        if (ti.is_nan() || ti <= 0.0) || (to.is_nan() || to <= 0.0) {
+            return color.map(|c| if c >= 1.0 { 1.0 } else { 0.0 });
+        }
+        let e = 0.5 * (1.0 / ti + 1.0 / to);
+        color.map(|c| {
+            if c >= 1.0 {
+                1.0
+            } else {
+                let v = libm::powf(c, e);
+                if v.is_finite() { v } else { 0.0 }
+            }
+        })
+    }
+
+    /// Prepares the view `ωo`: the layers' factors at `μo` and the lobes'
+    /// pick probabilities, for any number of [`OpenPbrView::eval`],
+    /// [`OpenPbrView::pdf`] and [`OpenPbrView::sample`] calls.
+    pub fn prepare(&self, wo: Vec3) -> OpenPbrView<'_, S> {
+        let wo = unit(wo);
+        let mu_o = wo.z;
+        let valid = mu_o.is_finite() && mu_o > 0.0 && wo.is_finite();
+        let mut view = OpenPbrView {
+            m: self,
+            wo,
+            valid,
+            mu_o: if valid { mu_o.min(1.0) } else { 0.0 },
+            fuzz_o: 0.0,
+            coat_o: 0.0,
+            spec_o: 0.0,
+            darkening: S::splat(1.0),
+            cdf: [0.0; LOBES],
+        };
+        if !valid {
+            return view;
+        }
+        let mu = view.mu_o;
+        let p = &self.params;
+        if self.on[FUZZ] {
+            view.fuzz_o = self.e_fuzz(mu);
+        }
+        if self.on[COAT] {
+            view.coat_o = self.e_coat(mu);
+            // D = lerp(1, Δ, δ), Δ = (1 − K)/(1 − E_b K), K = lerp(K_s, K_r, r_b).
+            let k_s = match self.layering {
+                Layering::EnergyConserving => Dielectric::new(self.coat_ae.1).map_or(0.0, |d| d.eval(mu)),
+                Layering::Reciprocal => self.coat_f0,
+            };
+            let k = k_s + self.r_b * (self.k_r - k_s);
+            let delta = p.coat_darkening;
+            view.darkening = self.base_albedo_normal.map(|eb| {
+                let d = (1.0 - k) / (1.0 - eb * k).max(1e-6);
+                1.0 + delta * (d.clamp(0.0, 1.0) - 1.0)
+            });
+        }
+        if self.on[SPEC] {
+            view.spec_o = self.e_spec(mu);
+        }
+        // Pick probabilities ∝ each lobe's share of the layered albedo at ωo.
+        let mut share = [0.0f32; LOBES];
+        if self.on[FUZZ] {
+            share[FUZZ] = p.fuzz_weight * self.fuzz_albedo(wo).average();
+        }
+        let a_f = view.fuzz_factor_o(Leaf::Specular);
+        if self.on[COAT] {
+            share[COAT] = a_f * p.coat_weight * view.coat_o;
+        }
+        let under = |leaf| (view.coat_factor(mu, leaf) * view.fuzz_factor_o(leaf)).average();
+        let u_s = under(Leaf::Specular);
+        if self.on[METAL] {
+            share[METAL] =
+                u_s * p.base_metalness * self.xi * self.metal.directional_albedo(wo).value.average();
+        }
+        if self.on[SPEC] {
+            share[SPEC] = u_s * (1.0 - p.base_metalness) * p.specular_color.average() * view.spec_o;
+            share[DIFFUSE] = under(Leaf::Diffuse)
+                * (1.0 - p.base_metalness)
+                * (1.0 - view.spec_o)
+                * self.diffuse.directional_albedo(wo).value.average();
+        }
+        let total: f32 = share
+            .iter()
+            .map(|s| if s.is_finite() { s.max(0.0) } else { 0.0 })
+            .sum();
+        let mut acc = 0.0f32;
+        for (c, s) in view.cdf.iter_mut().zip(share) {
+            if total > 0.0 && total.is_finite() {
+                acc += (if s.is_finite() { s.max(0.0) } else { 0.0 }) / total;
+            }
+            *c = acc;
+        }
+        if !(total > 0.0 && total.is_finite()) {
+            // Nothing reflects: the diffuse lobe's sampler (its value is 0).
+            view.cdf = [0.0, 0.0, 0.0, 0.0, 1.0];
+        }
+        view.cdf[LOBES - 1] = 1.0;
+        view
+    }
+}
+
+/// `w` itself when unit (to `10⁻⁵` in the squared length), else normalised
+/// (the cold path; a zero or non-finite `w` stays as it is and is rejected
+/// by the callers' `z > 0` and finiteness checks).
+#[inline]
+fn unit(w: Vec3) -> Vec3 {
+    let l2 = w.length_squared();
+    if (l2 - 1.0).abs() <= 1e-5 {
+        w
+    } else {
+        renormalise(w, l2)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn renormalise(w: Vec3, l2: f32) -> Vec3 {
+    if l2.is_finite() && l2 > 0.0 {
+        let s = w / libm::sqrtf(l2);
+        if s.is_finite() { s } else { Vec3::ZERO }
+    } else {
+        let m = w.abs().max_element();
+        if m.is_finite() && m > 0.0 {
+            let s = w / m;
+            s / libm::sqrtf(s.length_squared())
+        } else {
+            Vec3::ZERO
+        }
+    }
+}
+
+/// `2∫₀¹ e(μ) μ dμ` by 8-point Gauss–Legendre.
+fn gauss_legendre_average(e: impl Fn(f32) -> f32) -> f32 {
+    const X: [f32; 4] = [0.183_434_65, 0.525_532_4, 0.796_666_5, 0.960_289_9];
+    const W: [f32; 4] = [0.362_683_78, 0.313_706_65, 0.222_381_03, 0.101_228_54];
+    let mut s = 0.0;
+    for (x, w) in X.iter().zip(W) {
+        for mu in [0.5 * (1.0 - x), 0.5 * (1.0 + x)] {
+            s += 0.5 * w * 2.0 * mu * e(mu);
+        }
+    }
+    s.clamp(0.0, 1.0)
+}
+
+/// The reciprocal mode's through-factor of a layer for a base lobe: the
+/// Kelemen form `ti to/(1 − Ē)` under the diffuse lobe (exact for a
+/// Lambertian body, which cannot concentrate light where the form would
+/// overshoot), capped by `ti` and `to` under the specular lobes
+/// ([`reciprocal_through`](radiometry::compose::reciprocal_through)).
+#[inline]
+fn through(leaf: Leaf, ti: f32, to: f32, inv_avg: f32) -> f32 {
+    match leaf {
+        Leaf::Diffuse => {
+            let v = ti * to * inv_avg;
+            if v.is_finite() { v.max(0.0) } else { 0.0 }
+        }
+        Leaf::Specular => radiometry::compose::reciprocal_through(ti, to, inv_avg),
+    }
+}
+
+/// The two kinds of base lobe the reciprocal mode normalises apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Leaf {
+    Specular,
+    Diffuse,
+}
+
+/// An [`OpenPbr`] prepared for one view direction `ωo` ([`OpenPbr::prepare`]).
+#[derive(Clone, Copy, Debug)]
+pub struct OpenPbrView<'a, S: Spectrum> {
+    m: &'a OpenPbr<S>,
+    wo: Vec3,
+    valid: bool,
+    mu_o: f32,
+    /// `w_F E_F(μo)`, `E_C(μo)`, `E_s(μo)`.
+    fuzz_o: f32,
+    coat_o: f32,
+    spec_o: f32,
+    /// The coat darkening `D` per channel.
+    darkening: S,
+    /// Cumulative pick probabilities of the lobes.
+    cdf: [f32; LOBES],
+}
+
+impl<S: Spectrum> OpenPbrView<'_, S> {
+    /// The fuzz's factor at `ωo` alone (energy mode: `1 − w_F E_F(μo)`).
+    #[inline]
+    fn fuzz_factor_o(&self, leaf: Leaf) -> f32 {
+        self.fuzz_factor(self.mu_o, leaf)
+    }
+
+    /// The fuzz's factor for `(μi, μo)`.
+    #[inline]
+    fn fuzz_factor(&self, mu_i: f32, leaf: Leaf) -> f32 {
+        if !self.m.on[FUZZ] {
+            return 1.0;
+        }
+        match self.m.layering {
+            Layering::EnergyConserving => 1.0 - self.fuzz_o,
+            Layering::Reciprocal => {
+                let ti = if mu_i == self.mu_o {
+                    1.0 - self.fuzz_o
+                } else {
+                    1.0 - self.m.e_fuzz(mu_i)
+                };
+                through(leaf, ti, 1.0 - self.fuzz_o, self.m.fuzz_norm)
+            }
+        }
+    }
+
+    /// What the layers pass to the diffuse lobe, per channel. Energy mode:
+    /// `a_F(μo) U(μi, μo) K(μi, μo)`. Reciprocal mode: the product of every
+    /// layer's `t(μi) t(μo)` over the joint normalisation `2∫ Π t μ dμ`, per
+    /// coverage part — exact for a Lambertian body under any stack of clear
+    /// layers (`∫ Π t(μi) t(μo)/N · ρ/π · μi dωi = ρ Π t(μo)`).
+    #[inline]
+    fn diffuse_factor(&self, mu_i: f32, es_i: f32) -> S {
+        let m = self.m;
+        let ts = (1.0 - es_i) * (1.0 - self.spec_o);
+        match m.layering {
+            Layering::EnergyConserving => {
+                self.coat_factor(mu_i, Leaf::Diffuse)
+                    * (self.fuzz_factor(mu_i, Leaf::Diffuse) * ts * m.inv_spec_avg)
+            }
+            Layering::Reciprocal => {
+                let same = mu_i == self.mu_o;
+                let tf = if m.on[FUZZ] {
+                    let fi = if same { self.fuzz_o } else { m.e_fuzz(mu_i) };
+                    (1.0 - fi) * (1.0 - self.fuzz_o)
+                } else {
+                    1.0
+                };
+                let bare = S::splat(ts * tf * m.joint_norm[0]);
+                if !m.on[COAT] {
+                    return bare;
+                }
+                let w_c = m.params.coat_weight;
+                let ci = if same { self.coat_o } else { m.e_coat(mu_i) };
+                let tc = (1.0 - ci) * (1.0 - self.coat_o);
+                let coated =
+                    m.absorption(mu_i, self.mu_o) * self.darkening * (ts * tf * tc * m.joint_norm[1] * w_c);
+                coated + bare * (1.0 - w_c)
+            }
+        }
+    }
+
+    /// `U = (1 − w_C) + w_C D A(μi, μo) T_C(μi, μo)` per channel.
+    #[inline]
+    fn coat_factor(&self, mu_i: f32, leaf: Leaf) -> S {
+        let m = self.m;
+        if !m.on[COAT] {
+            return S::splat(1.0);
+        }
+        let w_c = m.params.coat_weight;
+        let t = match m.layering {
+            Layering::EnergyConserving => 1.0 - self.coat_o,
+            Layering::Reciprocal => {
+                let ti = if mu_i == self.mu_o {
+                    1.0 - self.coat_o
+                } else {
+                    1.0 - m.e_coat(mu_i)
+                };
+                through(leaf, ti, 1.0 - self.coat_o, m.coat_norm)
+            }
+        };
+        let a = m.absorption(mu_i, self.mu_o);
+        (a * self.darkening * (w_c * t)).map(|v| v + (1.0 - w_c))
+    }
+
+    /// The lobes' values at `ωi` with their layer weights, and the mixture
+    /// pdf of the lobes' densities with the pick probabilities.
+    #[inline]
+    fn eval_inner(&self, wi: Vec3, want_value: bool, want_pdf: bool) -> (S, f32) {
+        let m = self.m;
+        let wi = unit(wi);
+        if !self.valid || !(wi.z > 0.0) || !wi.is_finite() {
+            return (S::zero(), 0.0);
+        }
+        let wo = self.wo;
+        let mu_i = wi.z.min(1.0);
+        let p = &m.params;
+        let mut f = S::zero();
+        let mut pdf = 0.0f32;
+        let prob = |k: usize| {
+            let lo = k
+                .checked_sub(1)
+                .and_then(|i| self.cdf.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
+        };
+        if m.on[FUZZ] {
+            if want_value {
+                f += m.fuzz_eval(wi, wo) * p.fuzz_weight;
+            }
+            if want_pdf {
+                pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
+            }
+        }
+        if m.on[COAT] {
+            if want_value {
+                f += m.coat.eval(wi, wo) * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
+            }
+            if want_pdf {
+                pdf += prob(COAT) * m.coat.pdf(wi, wo);
+            }
+        }
+        let under_s = if want_value && (m.on[METAL] || m.on[SPEC]) {
+            self.coat_factor(mu_i, Leaf::Specular) * self.fuzz_factor(mu_i, Leaf::Specular)
+        } else {
+            S::zero()
+        };
+        if m.on[METAL] {
+            if want_value {
+                f += m.metal.eval(wi, wo) * under_s * (p.base_metalness * m.xi);
+            }
+            if want_pdf {
+                pdf += prob(METAL) * m.metal.pdf(wi, wo);
+            }
+        }
+        if m.on[SPEC] {
+            let dielectric = 1.0 - p.base_metalness;
+            if want_value {
+                f += m.spec.eval(wi, wo) * p.specular_color * under_s * dielectric;
+                // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
+                let es_i = if mu_i == self.mu_o {
+                    self.spec_o
+                } else {
+                    m.e_spec(mu_i)
+                };
+                f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
+            }
+            if want_pdf {
+                pdf += prob(SPEC) * m.spec.pdf(wi, wo) + prob(DIFFUSE) * m.diffuse.pdf(wi, wo);
+            }
+        }
+        let pdf = if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 };
+        (f.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 }), pdf)
+    }
+
+    /// `f_r(ωi, ωo)` per channel.
+    pub fn eval(&self, wi: Vec3) -> S {
+        self.eval_inner(wi, true, false).0
+    }
+
+    /// The density `sample` draws `ωi` with: `Σ_k p_k pdf_k(ωi, ωo)`.
+    pub fn pdf(&self, wi: Vec3) -> f32 {
+        self.eval_inner(wi, false, true).1
+    }
+
+    /// Picks a lobe with `u[0]` (rescaled), samples it with the rest, then
+    /// evaluates the material and its mixture pdf at the drawn `ωi` in one
+    /// pass over the lobes.
+    pub fn sample(&self, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        if !self.valid {
+            return None;
+        }
+        let m = self.m;
+        let u0 = if u[0].is_finite() {
+            u[0].clamp(0.0, 1.0 - f32::EPSILON / 2.0)
+        } else {
+            0.0
+        };
+        let mut k = LOBES - 1;
+        for (i, &c) in self.cdf.iter().enumerate() {
+            if u0 < c {
+                k = i;
+                break;
+            }
+        }
+        let lo = k
+            .checked_sub(1)
+            .and_then(|i| self.cdf.get(i))
+            .copied()
+            .unwrap_or(0.0);
+        let width = self.cdf.get(k).copied().unwrap_or(1.0) - lo;
+        let v = if width > 0.0 {
+            ((u0 - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
+        } else {
+            0.0
+        };
+        let uu = [v, u[1]];
+        let wo = self.wo;
+        let s = match k {
+            FUZZ => m.fuzz_sample(wo, uu),
+            COAT => m.coat.sample(wo, uu),
+            METAL => m.metal.sample(wo, uu),
+            SPEC => m.spec.sample(wo, uu),
+            _ => m.diffuse.sample(wo, uu),
+        }?;
+        let (f, pdf) = self.eval_inner(s.wi, true, true);
+        if !(pdf > 0.0) {
+            return None;
+        }
+        let weight = f * (s.wi.z.max(0.0) / pdf);
+        if !weight.is_finite() {
+            return None;
+        }
+        Some(BrdfSample {
+            wi: s.wi,
+            pdf,
+            weight,
+        })
+    }
+
+    /// The material's directional albedo at `ωo`, estimated from the lobes'
+    /// albedos and the layers' factors at `μo` (the diffuse lobe's `1 − E_s`
+    /// and the coat's absorption taken at `μo`).
+    pub fn albedo(&self) -> Albedo<S> {
+        if !self.valid {
+            return Albedo::zero();
+        }
+        let m = self.m;
+        let p = &m.params;
+        let wo = self.wo;
+        let mu = self.mu_o;
+        let mut e = S::zero();
+        if m.on[FUZZ] {
+            e += m.fuzz_albedo(wo) * p.fuzz_weight;
+        }
+        if m.on[COAT] {
+            e += S::splat(self.fuzz_factor(mu, Leaf::Specular) * p.coat_weight * self.coat_o);
+        }
+        let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
+        if m.on[METAL] {
+            e += m.metal.directional_albedo(wo).value * under_s * (p.base_metalness * m.xi);
+        }
+        if m.on[SPEC] {
+            let d = 1.0 - p.base_metalness;
+            e += p.specular_color * under_s * (d * self.spec_o);
+            let under_d = self.coat_factor(mu, Leaf::Diffuse) * self.fuzz_factor(mu, Leaf::Diffuse);
+            e += m.diffuse.directional_albedo(wo).value * under_d * (d * (1.0 - self.spec_o));
+        }
+        Albedo {
+            value: e,
+            // The tables' error, the absorption and Kelemen factors taken at μo.
+            error: 1e-2,
+            is_bound: false,
+        }
     }
 }
 
@@ -394,60 +952,24 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
 
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
-        if self.fuzz {
-            self.stack.eval(wi, wo)
-        } else {
-            self.coated().eval(wi, wo)
-        }
+        self.prepare(wo).eval(wi)
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
-        if self.fuzz {
-            self.stack.sample(wo, u)
-        } else {
-            self.coated().sample(wo, u)
-        }
+        self.prepare(wo).sample(u)
     }
 
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        if self.fuzz {
-            self.stack.pdf(wi, wo)
-        } else {
-            self.coated().pdf(wi, wo)
-        }
+        self.prepare(wo).pdf(wi)
     }
 
-    /// The layers' own batch kernels (equal to [`eval`](Brdf::eval) element
-    /// by element).
-    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-        if self.fuzz {
-            self.stack.eval_batch(wi, wo, out)
-        } else {
-            self.coated().eval_batch(wi, wo, out)
-        }
-    }
-
-    /// The layers' own `pdf_batch` kernels (equal to [`pdf`](Brdf::pdf)
-    /// element by element).
-    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
-        if self.fuzz {
-            self.stack.pdf_batch(wi, wo, out)
-        } else {
-            self.coated().pdf_batch(wi, wo, out)
-        }
-    }
-
-    /// `false`: `Coated` reads its tops' albedos from tables.
+    /// `false`: the layers read tabulated albedos.
     fn is_smooth(&self) -> bool {
         false
     }
 
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
-        if self.fuzz {
-            self.stack.directional_albedo(wo)
-        } else {
-            self.coated().directional_albedo(wo)
-        }
+        self.prepare(wo).albedo()
     }
 }
 

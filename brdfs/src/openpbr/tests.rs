@@ -19,6 +19,20 @@ fn integrated_albedo<B: Brdf<Spectrum = f32>>(b: &B, wo: Vec3, tol: f64) -> (f64
     (out.estimate.value, out.estimate.error)
 }
 
+/// `∫ f cos θi dωi` by plain (unwarped) adaptive cubature at 2¹⁷ and 2¹⁸
+/// evaluations: the finer value, after checking that the two agree to
+/// `2·10⁻⁴` (the layered materials have kinks and mixture seams that the
+/// warped rules of `auto` can misjudge; plain subdivision converges on them).
+fn robust_albedo<B: Brdf<Spectrum = f32>>(b: &B, wo: Vec3) -> f64 {
+    use radiometry::integrator::{Adaptive, Integrator};
+    let g = DirectionalAlbedo { brdf: b, wo };
+    let a = Adaptive::new(0.0, 0.0).unwrap();
+    let coarse = a.integrate(&g, 1 << 17).unwrap().value;
+    let fine = a.integrate(&g, 1 << 18).unwrap().value;
+    assert!((coarse - fine).abs() < 2e-4, "{wo:?}: {coarse} vs {fine}");
+    fine
+}
+
 const THETAS: [f32; 9] = [0.0, 20.0, 40.0, 60.0, 70.0, 80.0, 85.0, 89.0, 89.9];
 
 #[test]
@@ -33,13 +47,13 @@ fn defaults_are_openpbr_defaults_and_keep_albedo_below_one() {
     let m = OpenPbr::new(p).unwrap();
     for t in THETAS {
         let wo = dir(t, 0.4);
-        let (e, err) = integrated_albedo(&m, wo, 1e-3);
-        assert!(e + err <= 1.0, "θo = {t}°: albedo {e} ± {err}");
+        let e = robust_albedo(&m, wo);
+        assert!(e <= 1.0, "θo = {t}°: albedo {e}");
         assert!(e > 0.5, "θo = {t}°: albedo {e} (a white-ish base)");
         // The reported albedo is close to the integral.
         let r = m.directional_albedo(wo);
         assert!(
-            (f64::from(r.value) - e).abs() <= f64::from(r.error) + err,
+            (f64::from(r.value) - e).abs() <= f64::from(r.error),
             "{t}: {r:?} vs {e}"
         );
     }
@@ -109,7 +123,7 @@ fn variety() -> [OpenPbrParams<f32>; 5] {
 #[test]
 fn reciprocal_and_pdf_of_sample_is_bit_exact() {
     for p in variety() {
-        let m = OpenPbr::new(p).unwrap();
+        let m = OpenPbr::with_layering(p, Layering::Reciprocal).unwrap();
         let mut n = 0;
         for i in 0..24 {
             let wo = dir(3.7 * i as f32, 0.9 * i as f32);
@@ -349,121 +363,145 @@ fn rgb_colours_are_per_channel() {
     }
 }
 
-/// `eval`, `pdf`, `sample` and the batches of `a` and `b` give the same bits.
-fn same_bits<S: Spectrum + core::fmt::Debug>(a: &OpenPbr<S>, b: &OpenPbr<S>, what: &str) {
-    let bits = |s: S| {
-        (0..S::CHANNELS)
-            .map(|c| s.channel(c).to_bits())
-            .collect::<std::vec::Vec<_>>()
-    };
-    let mut wis = std::vec::Vec::new();
-    let mut wos = std::vec::Vec::new();
-    for i in 0..16 {
-        let wo = dir(6.0 * i as f32, 0.9 * i as f32);
-        for j in 0..16 {
-            let wi = dir(5.9 * j as f32 + 0.5, 2.1 * j as f32);
-            wis.push(wi);
-            wos.push(wo);
-            assert_eq!(bits(a.eval(wi, wo)), bits(b.eval(wi, wo)), "{what} eval");
-            assert_eq!(a.pdf(wi, wo).to_bits(), b.pdf(wi, wo).to_bits(), "{what} pdf");
-            let u = [(j as f32 + 0.5) / 16.0, (i as f32 * 0.618_034).fract()];
-            match (a.sample(wo, u), b.sample(wo, u)) {
-                (None, None) => {}
-                (Some(x), Some(y)) => {
-                    assert_eq!(
-                        x.wi.to_array().map(f32::to_bits),
-                        y.wi.to_array().map(f32::to_bits),
-                        "{what}"
-                    );
-                    assert_eq!(x.pdf.to_bits(), y.pdf.to_bits(), "{what} sample pdf");
-                    assert_eq!(bits(x.weight), bits(y.weight), "{what} sample weight");
+/// A prepared view gives the bits of the per-call methods.
+#[test]
+fn a_prepared_view_gives_the_bits_of_the_per_call_methods() {
+    for layering in [Layering::EnergyConserving, Layering::Reciprocal] {
+        for p in variety() {
+            let m = OpenPbr::with_layering(p, layering).unwrap();
+            for i in 0..8 {
+                let wo = dir(11.0 * i as f32, 0.9 * i as f32);
+                let view = m.prepare(wo);
+                for j in 0..8 {
+                    let wi = dir(10.9 * j as f32 + 0.5, 2.1 * j as f32);
+                    assert_eq!(view.eval(wi).to_bits(), m.eval(wi, wo).to_bits());
+                    assert_eq!(view.pdf(wi).to_bits(), m.pdf(wi, wo).to_bits());
+                    let u = [(j as f32 + 0.5) / 8.0, 0.37];
+                    assert_eq!(view.sample(u), m.sample(wo, u));
                 }
-                other => panic!("{what}: {other:?}"),
             }
         }
     }
-    let n = wis.len();
-    let (mut fa, mut fb) = (std::vec![S::zero(); n], std::vec![S::zero(); n]);
-    a.eval_batch(&wis, &wos, &mut fa);
-    b.eval_batch(&wis, &wos, &mut fb);
-    assert!(
-        fa.iter().zip(&fb).all(|(&x, &y)| bits(x) == bits(y)),
-        "{what} eval_batch"
-    );
-    let (mut pa, mut pb) = (std::vec![0.0f32; n], std::vec![0.0f32; n]);
-    a.pdf_batch(&wis, &wos, &mut pa);
-    b.pdf_batch(&wis, &wos, &mut pb);
-    assert!(
-        pa.iter().zip(&pb).all(|(x, y)| x.to_bits() == y.to_bits()),
-        "{what} pdf_batch"
-    );
 }
 
+/// OpenPBR's "White furnace testing" configurations (white colours, no
+/// absorption) keep all their energy in the energy-conserving mode:
+/// `|E − 1| ≤ 2·10⁻³` by integration of `eval`, at roughnesses 0.05–1 and
+/// indices 1.1–3.
 #[test]
-fn from_tables_rebuilds_the_material_bit_for_bit() {
-    for (k, p) in variety().into_iter().enumerate() {
-        let m = OpenPbr::new(p).unwrap();
-        let t = m.tables();
-        // The tables vary with μ (they are the tops' albedos, not constants).
-        assert!(t.specular.iter().any(|&e| e != t.specular[127]), "{k}");
-        assert!(t.coat.iter().any(|&e| e != t.coat[127]), "{k}");
-        let again = OpenPbr::from_tables(p, &t).unwrap();
-        assert_eq!(again, m, "variety {k}");
-        assert_eq!(again.tables(), t);
-        same_bits(&m, &again, &std::format!("variety {k}"));
-    }
-    let p = OpenPbrParams::<Vec3> {
-        base_color: Vec3::new(0.9, 0.2, 0.05),
-        coat_weight: 0.7,
-        coat_color: Vec3::new(0.9, 0.8, 0.5),
-        fuzz_weight: 0.5,
-        fuzz_color: Vec3::new(0.2, 0.4, 1.0),
+fn white_furnace_holds_in_the_energy_conserving_mode() {
+    let w = OpenPbrParams::<f32> {
+        base_color: 1.0,
         ..OpenPbrParams::default()
     };
-    let m = OpenPbr::new(p).unwrap();
-    let again = OpenPbr::from_tables(p, &m.tables()).unwrap();
-    assert_eq!(again, m);
-    same_bits(&m, &again, "rgb");
+    let configs = [
+        OpenPbrParams {
+            specular_roughness: 0.05,
+            specular_ior: 3.0,
+            ..w
+        },
+        OpenPbrParams {
+            specular_roughness: 1.0,
+            specular_ior: 1.1,
+            ..w
+        },
+        OpenPbrParams {
+            base_metalness: 1.0,
+            specular_roughness: 0.5,
+            ..w
+        },
+        OpenPbrParams {
+            coat_weight: 1.0,
+            coat_roughness: 0.05,
+            coat_ior: 2.5,
+            specular_weight: 0.0,
+            ..w
+        },
+        OpenPbrParams {
+            coat_weight: 0.6,
+            coat_roughness: 0.7,
+            base_metalness: 0.4,
+            specular_roughness: 0.2,
+            ..w
+        },
+        OpenPbrParams {
+            fuzz_weight: 1.0,
+            fuzz_roughness: 0.3,
+            ..w
+        },
+        OpenPbrParams {
+            coat_weight: 1.0,
+            coat_roughness: 0.2,
+            fuzz_weight: 1.0,
+            base_metalness: 0.5,
+            ..w
+        },
+    ];
+    for p in configs {
+        let m = OpenPbr::new(p).unwrap();
+        for t in [0.0f32, 45.0, 75.0, 85.0] {
+            let e = robust_albedo(&m, dir(t, 0.3));
+            assert!((e - 1.0).abs() <= 2e-3, "{p:?} θo = {t}°: {e}");
+        }
+    }
 }
 
+/// The reciprocal mode: reciprocal to 10⁻⁵, a dielectric over a white
+/// diffuse body within 2·10⁻³ of 1, and no white configuration above
+/// `1 + 2·10⁻³`.
 #[test]
-fn from_tables_rejects_bad_tables_and_parameters() {
-    let p = variety()[3];
-    let t = OpenPbr::new(p).unwrap().tables();
-    type Scribble = fn(&mut OpenPbrTables<f32>, f32);
-    let cases: [(&str, Scribble); 6] = [
-        ("specular", |t, v| t.specular[5] = v),
-        ("coat", |t, v| t.coat[127] = v),
-        ("fuzz", |t, v| t.fuzz[0] = v),
-        ("specular", |t, v| t.specular_error = v),
-        ("coat", |t, v| t.coat_error = v),
-        ("fuzz", |t, v| t.fuzz_error = v),
+fn reciprocal_mode_is_reciprocal_and_keeps_energy_bounded() {
+    let w = OpenPbrParams::<f32> {
+        base_color: 1.0,
+        ..OpenPbrParams::default()
+    };
+    let configs = [
+        (w, true),
+        (
+            OpenPbrParams {
+                coat_weight: 1.0,
+                coat_roughness: 0.1,
+                specular_weight: 0.0,
+                ..w
+            },
+            false,
+        ),
+        (
+            OpenPbrParams {
+                coat_weight: 1.0,
+                coat_roughness: 0.1,
+                base_metalness: 1.0,
+                ..w
+            },
+            false,
+        ),
+        (
+            OpenPbrParams {
+                coat_weight: 1.0,
+                coat_roughness: 0.2,
+                fuzz_weight: 1.0,
+                base_metalness: 0.5,
+                ..w
+            },
+            false,
+        ),
     ];
-    for (name, scribble) in cases {
-        for bad in [-0.1f32, f32::NAN, f32::NEG_INFINITY] {
-            let mut s = t;
-            scribble(&mut s, bad);
-            match OpenPbr::from_tables(p, &s) {
-                Err(BrdfError::AlbedoTable { name: n, value }) => {
-                    assert_eq!((n, value.to_bits()), (name, bad.to_bits()))
-                }
-                other => panic!("{name} = {bad}: {other:?}"),
+    for (p, tight) in configs {
+        let m = OpenPbr::with_layering(p, Layering::Reciprocal).unwrap();
+        for i in 0..12 {
+            let wo = dir(7.3 * i as f32, 0.9 * i as f32);
+            for j in 0..12 {
+                let wi = dir(7.1 * j as f32 + 1.0, 2.1 * j as f32);
+                let (a, b) = (m.eval(wi, wo), m.eval(wo, wi));
+                assert!((a - b).abs() <= 1e-5 * a.max(b).max(1.0), "{p:?}: {a} vs {b}");
+            }
+        }
+        for t in [0.0f32, 45.0, 75.0, 85.0] {
+            let e = robust_albedo(&m, dir(t, 0.3));
+            assert!(e <= 1.0 + 2e-3, "{p:?} θo = {t}°: {e}");
+            if tight {
+                assert!((e - 1.0).abs() <= 2e-3, "{p:?} θo = {t}°: {e}");
             }
         }
     }
-    for (name, scribble) in &cases[..3] {
-        let mut s = t;
-        scribble(&mut s, 1.5);
-        assert_eq!(
-            OpenPbr::from_tables(p, &s),
-            Err(BrdfError::AlbedoTable { name, value: 1.5 })
-        );
-    }
-    // The parameters are checked as `new` checks them, before the tables.
-    let bad = OpenPbrParams { coat_ior: 0.5, ..p };
-    assert_eq!(OpenPbr::from_tables(bad, &t), OpenPbr::new(bad));
-    assert!(matches!(
-        OpenPbr::from_tables(bad, &t),
-        Err(BrdfError::OutOfRange { name: "coat_ior", .. })
-    ));
 }

@@ -203,6 +203,13 @@ fn material() {
             black_box(1.5),
             &mut m,
         ));
+        black_box(rad_material_coated_reciprocal(
+            &top,
+            &base,
+            black_box(0.8),
+            black_box(1.5),
+            &mut m,
+        ));
         let m = black_box(m);
         black_box(rad_material_eval(&m, wi, wo, &mut f[0]));
         black_box(rad_material_pdf(&m, wi, wo, &mut f[1]));

@@ -12,37 +12,30 @@
 //!   an exact Fresnel factor at `ωi·h`: [`dielectric_fresnel`] (the Fresnel
 //!   equations with Snell's law) or the conductor form of
 //!   [`RefModel::conductor_fresnel`].
-//! * [`Layer`]: the albedo-scaled layering documented on
-//!   `radiometry::compose::Coated` (clear coat, no absorption):
+//! * [`Layer`]: the energy-conserving albedo scaling documented on
+//!   `radiometry::compose::Coated` (clear coat, no absorption; OpenPBR's
+//!   "non-reciprocal albedo scaling"):
 //!
 //!   ```text
-//!   f(ωi, ωo) = f_T(ωi, ωo) + t(μi) t(μo) (1 − E_min) f_B(ωi, ωo)
-//!   t(μ)      = min((1 − E_T(μ)) / (1 − E_min), 1)
+//!   f(ωi, ωo) = f_T(ωi, ωo) + (1 − E_T(μo)) f_B(ωi, ωo)
 //!   ```
 //!
-//!   with `E_T` the top's directional albedo tabulated at the 128 nodes
-//!   `μ_k = (k/127)²` (`μ_0` raised to `10⁻⁶`), read by linear interpolation
-//!   in `√μ` of the table dilated by one node (`Ê_k = max(E_{k−1}, E_k,
-//!   E_{k+1})`), and `E_min` the smallest table value (clamped to
-//!   `[0, 0.999]`).
-//!
-//! The table is part of the layer's definition: `Coated` reads its top's
-//! *reported* albedo into it once. For a microfacet top the reference takes
-//! that table as data ([`library_table`]), as the `Tabulated` references take
-//! the measured values — the report judges the integrators on the layer the
-//! library evaluates, and every formula applied to the table is this module's
-//! own. [`Prepared::with_tolerances`] tabulates the top's **true** albedo by
-//! this module's own quadrature instead: docs/accuracy.md compares the two
-//! (the reported albedo of a dielectric coat misses the truth by up to
-//! ~2·10⁻², which shifts the layer, not the integrators' errors).
+//! `E_T` is part of the layer's definition: `Coated` reads its top's
+//! *reported* albedo. For a microfacet top the reference takes that value as
+//! data (the library's global tables read at `μo`, [`library_albedo`]), as
+//! the `Tabulated` references take the measured values — the report judges
+//! the integrators on the layer the library evaluates. For other tops, and in
+//! [`Prepared::with_tolerances`], the top's **true** albedo is tabulated by
+//! this module's own quadrature at 128 nodes `μ_k = (k/127)²` and read
+//! linearly in `√μ`.
 //!
 //! Each table is computed once per process ([`prepared`]) and shared by the
 //! cases that use it; its quadrature evaluations are not counted in a case's
 //! [`Reference::evaluations`].
 
 use super::{RefModel, Reference, cap_radiance_of, integrate_2d, pole_albedo, sph};
-use radiometry::compose::Coated;
-use radiometry_brdfs::{Conductor, Dielectric, Ggx, HeightCorrelated, Lambertian, Microfacet};
+use radiometry::Brdf;
+use radiometry_brdfs::{Conductor, Dielectric, Ggx, HeightCorrelated, Microfacet};
 use std::f64::consts::PI;
 use std::sync::{Mutex, OnceLock};
 
@@ -56,17 +49,6 @@ pub const MIN_NODE_MU: f64 = 1e-6;
 pub fn node_mu(k: usize) -> f64 {
     let x = k as f64 / (NODES - 1) as f64;
     (x * x).max(MIN_NODE_MU)
-}
-
-/// The `μ` where the layer's reading of the table has kinks: `(k/127)²`,
-/// `k = 1..=126` (between two of them it is linear in `√μ`).
-pub fn node_boundaries() -> Vec<f64> {
-    (1..NODES - 1)
-        .map(|k| {
-            let x = k as f64 / (NODES - 1) as f64;
-            x * x
-        })
-        .collect()
 }
 
 /// Exact Fresnel reflectance of an interface with relative index `eta`
@@ -280,36 +262,45 @@ pub struct Prepared {
     pub table: [f64; NODES],
     /// The largest error bound of a table entry.
     pub table_bound: f64,
-    /// `E_min`, the smallest table value clamped to `[0, 0.999]`.
-    pub e_min: f64,
-    /// `1/(1 − E_min)`.
-    pub gain: f64,
+    /// Whether `E_T` is the library's reported albedo, read at `μo`
+    /// ([`library_albedo`]) rather than the table.
+    pub library: bool,
     /// Integrand evaluations spent on the table.
     pub evaluations: u64,
 }
 
-/// The table `radiometry::compose::Coated` reads for a GGX top (its
-/// reported `directional_albedo` at the 128 nodes, via `Coated::table`), as
-/// data; `None` for other tops (their albedo is tabulated by quadrature).
-pub fn library_table(top: &Lobe) -> Option<[f64; NODES]> {
+/// The albedo `radiometry::compose::Coated` reads for a GGX top at `μ`
+/// (its reported `directional_albedo`, from the crate's global tables), as
+/// data; `None` for other tops.
+pub fn library_albedo(top: &Lobe, mu: f64) -> Option<f64> {
     let Lobe::Ggx { alpha, fresnel } = *top else {
         return None;
     };
     let ggx = Ggx::new(alpha as f32).ok()?;
-    let base = Lambertian::new(0.0f32).ok()?;
-    let t = match fresnel {
-        Fresnel::Dielectric { eta } => *Coated::new(
-            Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(eta as f32).ok()?),
-            base,
-        )
-        .table(),
-        Fresnel::Conductor { eta, k } => *Coated::new(
-            Microfacet::<_, HeightCorrelated, _>::new(ggx, Conductor::new(eta as f32, k as f32).ok()?),
-            base,
-        )
-        .table(),
+    let mu = mu.clamp(0.0, 1.0) as f32;
+    let wo = radiometry::glam::Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let e = match fresnel {
+        Fresnel::Dielectric { eta } => {
+            Microfacet::<_, HeightCorrelated, _>::new(ggx, Dielectric::new(eta as f32).ok()?)
+                .directional_albedo(wo)
+                .value
+        }
+        Fresnel::Conductor { eta, k } => {
+            Microfacet::<_, HeightCorrelated, _>::new(ggx, Conductor::new(eta as f32, k as f32).ok()?)
+                .directional_albedo(wo)
+                .value
+        }
     };
-    Some(t.map(f64::from))
+    Some(f64::from(e).clamp(0.0, 1.0))
+}
+
+/// [`library_albedo`] at the 128 nodes.
+pub fn library_table(top: &Lobe) -> Option<[f64; NODES]> {
+    let mut t = [0.0; NODES];
+    for (k, e) in t.iter_mut().enumerate() {
+        *e = library_albedo(top, node_mu(k))?;
+    }
+    Some(t)
 }
 
 impl Prepared {
@@ -319,7 +310,10 @@ impl Prepared {
     /// `10⁻¹²`).
     pub fn new(layer: Layer) -> Prepared {
         match library_table(&layer.top) {
-            Some(table) => Prepared::from_table(layer, table, 0.0, 0),
+            Some(table) => Prepared {
+                library: true,
+                ..Prepared::from_table(layer, table, 0.0, 0)
+            },
             None => Prepared::with_tolerances(layer, 1e-8, 1e-12),
         }
     }
@@ -328,13 +322,12 @@ impl Prepared {
     /// entries are within `table_bound` of what they stand for.
     pub fn from_table(layer: Layer, table: [f64; NODES], table_bound: f64, evaluations: u64) -> Prepared {
         let table = table.map(|e| if e.is_finite() { e.clamp(0.0, 1.0) } else { 0.0 });
-        let e_min = table.iter().fold(1.0f64, |m, &e| m.min(e)).clamp(0.0, 0.999);
+
         Prepared {
             layer,
             table,
             table_bound,
-            e_min,
-            gain: 1.0 / (1.0 - e_min),
+            library: false,
             evaluations,
         }
     }
@@ -356,32 +349,26 @@ impl Prepared {
         Prepared::from_table(layer, table, table_bound, evaluations)
     }
 
-    /// `Ê_k = max(E_{k−1}, E_k, E_{k+1})` (neighbours past the ends left out).
-    fn dilated(&self, k: usize) -> f64 {
-        let lo = if k > 0 { self.table[k - 1] } else { self.table[k] };
-        let hi = if k + 1 < NODES {
-            self.table[k + 1]
-        } else {
-            self.table[k]
-        };
-        lo.max(self.table[k]).max(hi)
-    }
-
-    /// The top's albedo as the layer reads it at `μ`: with `x = 127 √μ` in
-    /// `[k, k + 1]`, `Ê_k + (x − k)(Ê_{k+1} − Ê_k)`.
+    /// The top's albedo as the layer reads it at `μ`: the library's value
+    /// ([`library_albedo`]) or the table linear in `√μ`.
     pub fn top_albedo(&self, mu: f64) -> f64 {
+        if self.library
+            && let Some(e) = library_albedo(&self.layer.top, mu)
+        {
+            return e;
+        }
         let x = mu.clamp(0.0, 1.0).sqrt() * (NODES - 1) as f64;
         let i = (x as usize).min(NODES - 2);
-        let (a, b) = (self.dilated(i), self.dilated(i + 1));
+        let (a, b) = (self.table[i], self.table[i + 1]);
         a + (x - i as f64) * (b - a)
     }
 
-    /// `t(μ) = min((1 − E_T(μ))/(1 − E_min), 1)`.
+    /// `t(μ) = 1 − E_T(μ)`.
     pub fn through(&self, mu: f64) -> f64 {
-        ((1.0 - self.top_albedo(mu)).clamp(0.0, 1.0) * self.gain).min(1.0)
+        (1.0 - self.top_albedo(mu)).clamp(0.0, 1.0)
     }
 
-    /// `f(ωi, ωo) = f_T + t(μi) t(μo)(1 − E_min) f_B`.
+    /// `f(ωi, ωo) = f_T + t(μo) f_B`.
     pub fn eval(&self, wi: [f64; 3], wo: [f64; 3]) -> f64 {
         if wi[2] <= 0.0 || wo[2] <= 0.0 {
             return 0.0;
@@ -389,7 +376,7 @@ impl Prepared {
         self.layer.top.eval(wi, wo) + self.base_term(wi, wo)
     }
 
-    /// `t(μi) t(μo)(1 − E_min) f_B`.
+    /// `t(μo) f_B`.
     fn base_term(&self, wi: [f64; 3], wo: [f64; 3]) -> f64 {
         if wi[2] <= 0.0 || wo[2] <= 0.0 {
             return 0.0;
@@ -398,15 +385,14 @@ impl Prepared {
         if fb == 0.0 {
             return 0.0;
         }
-        self.through(wi[2]) * self.through(wo[2]) / self.gain * fb
+        self.through(wo[2]) * fb
     }
 
     /// Relative effect on the base term of every table entry being off by
-    /// up to [`Prepared::table_bound`]: `3 β/(1 − E_max)` (each of `1 −
-    /// E_T(μi)`, `1 − E_T(μo)` and `1 − E_min` moves by at most `β`).
+    /// up to [`Prepared::table_bound`]: `β/(1 − E_max)`.
     fn table_effect(&self) -> f64 {
         let e_max = self.table.iter().fold(0.0f64, |m, &e| m.max(e));
-        3.0 * self.table_bound / (1.0 - e_max).max(1e-3)
+        self.table_bound / (1.0 - e_max).max(1e-3)
     }
 }
 
@@ -431,8 +417,7 @@ pub fn prepared(layer: &Layer) -> &'static Prepared {
 
 /// The directional albedo of `layer` at `θo` (radians): the top's
 /// `∫ f_T μi dωi` in polar coordinates about the mirror direction plus the
-/// base term's integral over `(μ, φ)` with break points at every
-/// [`node_boundaries`] (where `t(μi)` steps), at `μo` and at `φ = π/2`
+/// base term's integral over `(μ, φ)` with break points at `μo` and at `φ = π/2`
 /// (EON's kinks); bound: the sum of both bounds plus the effect of the
 /// table's own bound.
 pub fn albedo(layer: &Layer, theta_o: f64) -> Reference {
@@ -447,8 +432,7 @@ pub fn albedo_with(p: &Prepared, theta_o: f64, coarse: f64, fine: f64) -> Refere
     let g = |mu: f64, phi: f64| 2.0 * p.base_term(sph(mu, phi), wo) * mu;
     let peak = p.layer.base.peak_width().map(|w| (mu_o, w));
     let kink: &dyn Fn(f64) -> Option<f64> = &|_| (wo[0] > 0.0).then_some(PI / 2.0);
-    let mut breaks = node_boundaries();
-    breaks.push(mu_o);
+    let breaks = vec![mu_o];
     let mut evals = top.evaluations;
     let (c, _) = integrate_2d(&g, peak, Some(kink), &breaks, coarse, 0.0, &mut evals);
     let (v, e) = integrate_2d(&g, peak, Some(kink), &breaks, fine, c, &mut evals);
@@ -476,7 +460,7 @@ pub fn cap_radiance_with(p: &Prepared, wo: [f64; 3], axis: [f64; 3], sigma: f64)
         (Some(a), Some(b)) => Some(a.min(b)),
         (a, b) => a.or(b),
     };
-    let r = cap_radiance_of(&f, lobe, &node_boundaries(), wo, axis, sigma);
+    let r = cap_radiance_of(&f, lobe, &[], wo, axis, sigma);
     Reference {
         bound: r.bound + p.table_effect() * r.value.abs(),
         ..r
@@ -565,7 +549,7 @@ mod tests {
             base: Lobe::Lambertian { rho: 0.7 },
         };
         let p = Prepared::with_tolerances(layer, 1e-7, 1e-10);
-        assert_eq!((p.e_min, p.gain), (0.0, 1.0));
+        assert!(p.table.iter().all(|&e| e == 0.0));
         for deg in [0.0f64, 60.0, 85.0] {
             let r = albedo_with(&p, deg.to_radians(), 1e-7, 1e-10);
             assert!(
@@ -583,8 +567,8 @@ mod tests {
         assert!((r.value - closed).abs() <= r.bound + 1e-12, "{r:?} vs {closed}");
     }
 
-    /// A top of constant albedo `c` (a Lambertian one): `E_min = c`, so
-    /// `t = 1` and the base is scaled by `1 − c`: `E = c + (1 − c) E_B`.
+    /// A top of constant albedo `c` (a Lambertian one): the base is scaled
+    /// by `1 − c`: `E = c + (1 − c) E_B`.
     #[test]
     fn constant_top_scales_the_base_by_one_minus_its_albedo() {
         let layer = Layer {
@@ -604,12 +588,9 @@ mod tests {
         }
     }
 
-    /// A clear dielectric coat over a white Lambertian base:
-    /// `E(μo) = E_T(μo) + (1 − Ē_T(μo))(1 − Ē_s)/(1 − E_min)`, with `Ē_T` the
-    /// layer's reading of the table and `Ē_s = 2∫Ē_T μ dμ` (by quadrature
-    /// with the node boundaries as break points). Where the reading
-    /// equals the top's albedo this is the documented
-    /// `1 − (1 − E_T)(E_avg − E_min)/(1 − E_min)`.
+    /// A clear dielectric coat over a white Lambertian base keeps all its
+    /// energy: `E(μo) = E_T(μo) + (1 − Ê_T(μo))`, `Ê_T` the layer's reading of
+    /// the top's albedo (the table, linear in `√μ`).
     #[test]
     fn clear_coat_over_white_lambertian_matches_the_closed_form() {
         let layer = Layer {
@@ -621,23 +602,16 @@ mod tests {
         };
         let p = Prepared::with_tolerances(layer, 1e-6, 1e-9);
         assert!(p.table_bound < 1e-8, "{}", p.table_bound);
-        // The minimum is at normal incidence, a little below F(0°) = 0.04.
-        assert!(
-            p.e_min == p.table[NODES - 1] && p.e_min > 0.03 && p.e_min < 0.04,
-            "{}",
-            p.e_min
-        );
-        let e_s = cosine_average(|mu| p.top_albedo(mu), &node_boundaries());
         for deg in [0.0f64, 60.0, 85.0] {
             let mu = deg.to_radians().cos();
             let r = albedo_with(&p, deg.to_radians(), 1e-6, 1e-9);
             let e_t = layer.top.albedo(mu, 1e-6, 1e-9);
-            let closed = e_t.value + (1.0 - p.top_albedo(mu)) * (1.0 - e_s) / (1.0 - p.e_min);
+            let closed = e_t.value + (1.0 - p.top_albedo(mu));
             assert!(
                 (r.value - closed).abs() <= r.bound + e_t.bound + 1e-12,
                 "{deg}: {r:?} vs {closed}"
             );
-            assert!(r.value < 1.0 && r.value > 0.9, "{deg}: {r:?}");
+            assert!((r.value - 1.0).abs() < 1e-3, "{deg}: {r:?}");
         }
     }
 
@@ -666,11 +640,10 @@ mod tests {
         }
     }
 
-    /// The reading of the table: linear in `√μ` between the dilated nodes
-    /// `Ê_k = max(E_{k−1}, E_k, E_{k+1})`, never below either node around
-    /// `μ`, and continuous across the node boundaries.
+    /// The reading of the table: linear in `√μ` between the nodes, exact at
+    /// them.
     #[test]
-    fn table_reading_is_the_dilated_linear_interpolant() {
+    fn table_reading_is_the_linear_interpolant() {
         let mut p = Prepared::with_tolerances(
             Layer {
                 top: Lobe::Black,
@@ -683,22 +656,12 @@ mod tests {
             *e = ((k * 37) % 11) as f64 / 20.0;
         }
         let t = p.table;
-        let hat = |k: usize| {
-            let lo = if k > 0 { t[k - 1] } else { t[k] };
-            let hi = if k + 1 < NODES { t[k + 1] } else { t[k] };
-            lo.max(t[k]).max(hi)
-        };
         for k in 0..NODES - 1 {
             let mid = ((k as f64 + 0.5) / (NODES - 1) as f64).powi(2);
-            let v = p.top_albedo(mid);
-            assert!((v - 0.5 * (hat(k) + hat(k + 1))).abs() < 1e-12, "{k}");
-            assert!(v >= t[k].max(t[k + 1]), "{k}");
+            assert!((p.top_albedo(mid) - 0.5 * (t[k] + t[k + 1])).abs() < 1e-12, "{k}");
+            let at = ((k as f64) / (NODES - 1) as f64).powi(2);
+            assert!((p.top_albedo(at) - t[k]).abs() < 1e-12, "{k}");
         }
-        for mu in node_boundaries() {
-            let (a, b) = (p.top_albedo(mu * (1.0 - 1e-9)), p.top_albedo(mu * (1.0 + 1e-9)));
-            assert!((a - b).abs() < 1e-6, "{mu}: {a} vs {b}");
-        }
-        assert_eq!(p.top_albedo(1.0), hat(NODES - 1));
     }
 }
 
@@ -786,7 +749,8 @@ mod plugin_tests {
         let p = Prepared::with_tolerances(layer, 1e-7, 1e-10);
         // The top's albedo varies with μ (so t(μ) < 1 away from E_min).
         let e_max = p.table.iter().fold(0.0f64, |m, &e| m.max(e));
-        assert!(e_max - p.e_min > 0.03, "{:?}", p.table);
+        let e_min = p.table.iter().fold(1.0f64, |m, &e| m.min(e));
+        assert!(e_max - e_min > 0.03, "{:?}", p.table);
         let text = "coated(eon(rho=0.3, sigma=1), eon(rho=0.8, sigma=0.5))";
         let w = worst(text, &|wi, wo| p.eval(wi, wo), 1e-3);
         assert!(w < 2e-5, "worst relative difference {w:e}");

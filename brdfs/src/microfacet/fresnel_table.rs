@@ -1,0 +1,185 @@
+//! Global energy tables of GGX (height-correlated Smith `G2`) with a Fresnel
+//! factor: the directional albedo of a dielectric interface `E(μ, α, η)` on
+//! both sides of `η = 1`, its hemispherical average `Ē(α, η)`, and the two
+//! moments that make the albedo of every Fresnel term linear in its
+//! parameters (Schlick, F82-tint) exact per channel.
+//!
+//! # What the tables hold
+//!
+//! With `E₁(μ, α)` the albedo with `F = 1` ([`AlbedoTable`](super::AlbedoTable))
+//! and `c = ωo·h`,
+//!
+//! ```text
+//! E_F(μo, α) = ∫_H F(c) D(h) G2(ωi, ωo) / (4 μo) dωi        (single scattering)
+//! R_F(μo, α) = E_F / E₁                                       (the lobe's mean Fresnel factor)
+//! ```
+//!
+//! * **Dielectric** (`F` the exact unpolarised Fresnel reflectance of a real
+//!   relative index `η`): [`dielectric_albedo`] `= E₁ · R`, with `R` read
+//!   from `33 × 32 × 32` `u16` nodes per side of `η = 1` (67.6 KB each):
+//!   `x = √μ` for `η > 1`; for `η < 1` the `μ` axis is split at the critical
+//!   cosine `μc = √(1 − η²)`, `x = ½ ∓ ½√(|μ − μc| / span)`, so that total
+//!   internal reflection starts on a node line for every `η` and the
+//!   Fresnel factor, linear in `√(μ − μc)` above it, is linear in `x`.
+//!   Roughness nodes `√α_k = 0.01 + 0.99 k/31`; index nodes `z_l = l/31`,
+//!   `z = F0^¼`, `F0 = ((η − 1)/(η + 1))²` (as Cycles and Adobe's OpenPBR
+//!   BSDF parameterise theirs). Trilinear interpolation.
+//! * **Average** [`dielectric_average`] `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ`:
+//!   `32 × 32` `f32` per side, bilinear.
+//! * **Moments** `R5 = M5/E₁`, `R6 = M6/E₁` of `F = (1 − c)⁵` and
+//!   `F = c (1 − c)⁶` on `33 × 32` `f32` nodes: for `F = f0 + (1 − f0)(1 −
+//!   c)⁵ − a c (1 − c)⁶` (Schlick with `a = 0`, F82-tint), `R_F = f0 + (1 −
+//!   f0) R5 − a R6` exactly ([`linear_fresnel_ratio`]).
+//!
+//! The values were computed by `tools/examples/energy_tables.rs` (product
+//! Gauss–Legendre quadrature in `f64` on the square of the visible-normal
+//! map; its header states the convergence of every table), written out as
+//! `fresnel_table_data.rs`. The tests in `brdfs/tests/fresnel_tables.rs`
+//! regenerate a sample of nodes and measure the interpolation error at cell
+//! midpoints and random points against an independent adaptive quadrature
+//! over the hemisphere; the errors they find are stated on each function.
+
+use super::albedo_table::AlbedoTable;
+use super::fresnel_table_data as data;
+
+/// The error this crate states for the tabulated albedos of a GGX lobe with
+/// a dielectric or linear Fresnel term (`E₁ · R`): `2·10⁻³`, the target the
+/// tests check over random `(μ, α, η)` against independent quadrature (see
+/// `brdfs/tests/fresnel_tables.rs` for the measured worst cases).
+pub const FRESNEL_TABLE_ERROR: f32 = 2e-3;
+
+/// `μ` nodes per row.
+pub const FT_NX: usize = 33;
+/// Roughness nodes.
+pub const FT_NA: usize = 32;
+/// Index nodes (`z = F0^¼`).
+pub const FT_NZ: usize = 32;
+
+/// Cell and fraction of `s ∈ [0, n − 1]` (clamped; NaN → 0).
+#[inline(always)]
+fn cell_of(s: f32, n: usize) -> (usize, f32) {
+    let s = if s > 0.0 { s.min((n - 1) as f32) } else { 0.0 };
+    let i = (s as usize).min(n - 2);
+    (i, (s - i as f32).clamp(0.0, 1.0))
+}
+
+/// The roughness coordinate: `(√α − 0.01)/0.99 · 31`.
+#[inline(always)]
+fn alpha_coord(alpha: f32) -> (usize, f32) {
+    let t = libm::sqrtf(alpha.clamp(1e-4, 1.0));
+    cell_of((t - 0.01) / 0.99 * (FT_NA - 1) as f32, FT_NA)
+}
+
+/// `z = F0^¼ = √|(η − 1)/(η + 1)|` and whether `η < 1`.
+#[inline(always)]
+fn index_coord(eta: f32) -> (usize, f32, bool) {
+    let r = ((eta - 1.0) / (eta + 1.0)).abs();
+    let z = libm::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
+    let (l, f) = cell_of(z * (FT_NZ - 1) as f32, FT_NZ);
+    (l, f, eta < 1.0)
+}
+
+/// The `μ` coordinate `x ∈ [0, 1]` of a table (see the module docs).
+#[inline(always)]
+fn mu_coord(mu: f32, inside: bool, eta: f32) -> f32 {
+    let mu = mu.clamp(0.0, 1.0);
+    if !inside {
+        return libm::sqrtf(mu);
+    }
+    let mc = libm::sqrtf((1.0 - eta * eta).max(0.0));
+    if mu <= mc {
+        if mc <= 0.0 {
+            return 0.5;
+        }
+        0.5 - 0.5 * libm::sqrtf(((mc - mu) / mc).clamp(0.0, 1.0))
+    } else {
+        let span = 1.0 - mc;
+        if span <= 0.0 {
+            return 1.0;
+        }
+        0.5 + 0.5 * libm::sqrtf(((mu - mc) / span).clamp(0.0, 1.0))
+    }
+}
+
+/// `R = E_F / E₁` of a GGX dielectric interface of relative index `η` at
+/// `μ = cos θo` and roughness `α`, trilinear in the table's coordinates.
+/// In `[0, 1]`; `η = 1` gives 0.
+pub fn dielectric_ratio(mu: f32, alpha: f32, eta: f32) -> f32 {
+    let (l, fz, inside) = index_coord(eta);
+    let (k, fa) = alpha_coord(alpha);
+    let table: &[u16] = if inside {
+        &data::DIELECTRIC_IN
+    } else {
+        &data::DIELECTRIC_OUT
+    };
+    // Each `z` slice at its own x: the inside table's x depends on η only
+    // through μc, which is the η of the query for both slices (nodes on a
+    // line of constant x share the critical point).
+    let x = mu_coord(mu, inside, eta);
+    let (j, fx) = cell_of(x * (FT_NX - 1) as f32, FT_NX);
+    let at = |l: usize, k: usize| -> f32 {
+        let base = (l * FT_NA + k) * FT_NX + j;
+        let a = table.get(base).copied().unwrap_or(0) as f32;
+        let b = table.get(base + 1).copied().unwrap_or(0) as f32;
+        a + fx * (b - a)
+    };
+    let row = |l: usize| {
+        let a = at(l, k);
+        a + fa * (at(l, k + 1) - a)
+    };
+    let a = row(l);
+    let v = a + fz * (row(l + 1) - a);
+    (v * (1.0 / 65535.0)).clamp(0.0, 1.0)
+}
+
+/// The directional albedo `E_F(μ, α, η) = E₁(μ, α) · R` of a GGX
+/// (height-correlated) dielectric interface: one read of the `F = 1` table
+/// and one of [`dielectric_ratio`].
+pub fn dielectric_albedo(e1: &AlbedoTable, mu: f32, alpha: f32, eta: f32) -> f32 {
+    (e1.albedo(mu, alpha) * dielectric_ratio(mu, alpha, eta)).clamp(0.0, 1.0)
+}
+
+/// The hemispherical average `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ` of a GGX
+/// dielectric interface, bilinear in `(√α, F0^¼)`.
+pub fn dielectric_average(alpha: f32, eta: f32) -> f32 {
+    let (l, fz, inside) = index_coord(eta);
+    let (k, fa) = alpha_coord(alpha);
+    let table: &[f32] = if inside {
+        &data::AVERAGE_IN
+    } else {
+        &data::AVERAGE_OUT
+    };
+    let at = |l: usize, k: usize| table.get(l * FT_NA + k).copied().unwrap_or(0.0);
+    let row = |l: usize| {
+        let a = at(l, k);
+        a + fa * (at(l, k + 1) - a)
+    };
+    let a = row(l);
+    (a + fz * (row(l + 1) - a)).clamp(0.0, 1.0)
+}
+
+/// The moments `(R5, R6) = (M5/E₁, M6/E₁)` at `μ`, `α` (bilinear in `(√μ,
+/// √α)`): the lobe's means of `(1 − c)⁵` and `c (1 − c)⁶`.
+pub fn fresnel_moments(mu: f32, alpha: f32) -> (f32, f32) {
+    let (k, fa) = alpha_coord(alpha);
+    let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
+    let read = |t: &[f32]| {
+        let at = |k: usize| {
+            let a = t.get(k * FT_NX + j).copied().unwrap_or(0.0);
+            let b = t.get(k * FT_NX + j + 1).copied().unwrap_or(0.0);
+            a + fx * (b - a)
+        };
+        let a = at(k);
+        a + fa * (at(k + 1) - a)
+    };
+    (read(&data::MOMENT5), read(&data::MOMENT6))
+}
+
+/// The lobe's mean Fresnel factor `R_F = f0 + (1 − f0) R5 − a R6` of `F(c)
+/// = f0 + (1 − f0)(1 − c)⁵ − a c (1 − c)⁶` (Schlick: `a = 0`; F82-tint:
+/// Hoffman 2019's `a`), from [`fresnel_moments`]: exact up to the moments'
+/// interpolation, clamped to `[0, 1]`.
+#[inline]
+pub fn linear_fresnel_ratio(f0: f32, a: f32, moments: (f32, f32)) -> f32 {
+    (f0 + (1.0 - f0) * moments.0 - a * moments.1).clamp(0.0, 1.0)
+}
