@@ -664,14 +664,14 @@ impl Adaptive {
         self
     }
 
-    /// The same rule on the plain square with other cuts: the first cut of
-    /// both axes at `√2 − 1` instead of `(√5 − 1)/2` and the azimuth offset
-    /// `(3 − √5)/2` turns instead of `(√5 − 1)/2`, so that no region
-    /// boundary and no node of the two rules coincide (after the first cut
-    /// every cut halves a region, so the boundaries are `x₀ 2⁻ᵏ`-grids of
-    /// the two first cuts, whose ratio is irrational). Used by the
-    /// tolerance driver as an independent confirmation of the plain rule
-    /// (crate-internal: the report's `adaptive` is the unshifted rule).
+    /// The same rule with other cuts and nodes: the first cut of both axes
+    /// at `√2 − 1` instead of `(√5 − 1)/2`, and every piece of the square
+    /// bent by `s(u) = u + κ u (1 − u)` (`κ =` [`SHIFTED_BEND`]; on the plain
+    /// square the azimuth offset is `(3 − √5)/2` turns instead of
+    /// `(√5 − 1)/2` where the integrand states no kinks), so that no region
+    /// boundary and no node of the two rules coincide. Used by the
+    /// tolerance driver as an independent confirmation (crate-internal: the
+    /// report's `adaptive` and `adaptive-warped` are the unshifted rules).
     pub(crate) const fn shifted(mut self) -> Self {
         self.shifted = true;
         self
@@ -962,6 +962,16 @@ impl Adaptive {
         if self.warped {
             if !g.has_sampling_map() {
                 return Err(IntegrateError::NoSamplingMap);
+            }
+            if self.shifted {
+                return self.run(
+                    budget,
+                    &[],
+                    |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+                        chunk::bent_warped_values(g, p, SHIFTED_BEND, out)
+                    },
+                    confirm,
+                );
             }
             self.run(
                 budget,

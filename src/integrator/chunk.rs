@@ -131,6 +131,35 @@ pub(crate) fn mapped_hemisphere_values<I: Integrand>(
     Ok(())
 }
 
+/// The sampling-map square through the bend `s(x) = x + κ x (1 − x)` of
+/// both coordinates (`|κ| < 1`, a smooth monotone map of `[0, 1]` onto
+/// itself): `out[k] = s'(a_k) s'(b_k) w(s(a_k), s(b_k))` with `w` the
+/// values of [`warped_values`].
+pub(crate) fn bent_warped_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    kappa: f64,
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut q = [[0.0f64; 2]; CHUNK];
+    let mut jac = [0.0f64; CHUNK];
+    let bend = |x: f64| (x + kappa * x * (1.0 - x), 1.0 + kappa * (1.0 - 2.0 * x));
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for ((q, j), &[a, b]) in head_mut(&mut q, n).iter_mut().zip(jac.iter_mut()).zip(p) {
+            let ((sa, da), (sb, db)) = (bend(a), bend(b));
+            *q = [sa.clamp(0.0, 1.0), sb.clamp(0.0, 1.0)];
+            *j = da * db;
+        }
+        let out = head_mut(out, n);
+        warped_values(g, head(&q, n), out)?;
+        for (o, &j) in out.iter_mut().zip(jac.iter()) {
+            *o = o.map(|x| x * j);
+        }
+    }
+    Ok(())
+}
+
 /// The sampling-map square: `out[k] = g(ω)/p(ω)` at `u = (a_k, b_k)`
 /// (rounded to `f32` in `[0, 1)`), zero where the map has no direction
 /// (see [`sample_weight`]), for `k < min(p.len(), out.len())`.

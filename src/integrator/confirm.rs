@@ -41,6 +41,9 @@ pub(crate) enum Family {
     Shifted,
     /// The staged Genz–Malik rule on the sampling map's square.
     Warped,
+    /// The same on the sampling map's square with other cuts and bent
+    /// coordinates ([`Adaptive::shifted`]).
+    WarpedShifted,
 }
 
 impl Family {
@@ -85,12 +88,14 @@ pub(crate) struct Spent {
 }
 
 /// Confirms `first` (if any) or finds and confirms a candidate with staged
-/// [`Adaptive`] runs from scratch on three parameterisations: the plain
-/// square ([`Family::Plain`]), the shifted plain square
-/// ([`Family::Shifted`]) and — with a sampling map — the warped square
-/// ([`Family::Warped`]). Each attempt runs the method that has spent the
-/// fewest evaluations so far (ties: the warped rule first after a chart's
-/// candidate or without one, the plain rules first otherwise), staged to
+/// [`Adaptive`] runs from scratch: on the plain square split at the
+/// integrand's kinks ([`Family::Plain`]), its shifted twin
+/// ([`Family::Shifted`]) and — with a sampling map — the warped square and
+/// its shifted twin ([`Family::Warped`], [`Family::WarpedShifted`]). Each
+/// attempt runs the method that has spent the fewest evaluations so far
+/// (ties: the shifted warped rule first after a warped candidate, the
+/// warped rules first after a chart's candidate or without one, the plain
+/// rules first otherwise), staged to
 /// its own tolerance `t` (`tol` at first, divided by 4 after each run that
 /// produced a value) with at most `cap` evaluations (`max(4 × first's,
 /// 4,096)`, quadrupled whenever an attempt ran out of it before meeting
@@ -123,28 +128,32 @@ pub(crate) fn cross_confirm<I: Integrand>(
         n = 1;
     }
     // The methods, in the order they are tried when they have spent
-    // alike: the warped rule first after a chart's candidate (the plain
-    // rule meets a peaked lobe late) or with no candidate yet (narrow
-    // lobes), the plain rule first otherwise.
-    let warped_first = matches!(first.map(|c| c.family), Some(Family::Chart) | None);
+    // alike: after a warped candidate its shifted twin (a narrow lobe the
+    // plain square meets late), after a chart's candidate or without one
+    // (narrow lobes) the warped rules, otherwise the plain rules first.
     let w = warped.map(|w| (w, Family::Warped));
+    let ws = warped.map(|w| (w.shifted(), Family::WarpedShifted));
     let p = Some((plain, Family::Plain));
     let q = Some((plain.shifted(), Family::Shifted));
-    let methods: [Option<(Adaptive, Family)>; 3] = if warped_first { [w, p, q] } else { [p, q, w] };
+    let methods: [Option<(Adaptive, Family)>; 4] = match first.map(|c| c.family) {
+        Some(Family::Warped) => [ws, p, q, w],
+        Some(Family::Chart) | None => [w, ws, p, q],
+        _ => [p, q, w, ws],
+    };
     let mut last = last;
     let mut capped = false;
     // Per method: its next tolerance, the evaluations it spent, whether it
     // can do no better.
-    let mut t = [tol; 3];
-    let mut used = [0u64; 3];
-    let mut exhausted = [false; 3];
+    let mut t = [tol; 4];
+    let mut used = [0u64; 4];
+    let mut exhausted = [false; 4];
     // Each attempt spends at most `cap` evaluations (quadrupled whenever an
     // attempt ran out of it): a method that stalls (a warped rule on a
     // seam) does not take the budget from one that converges.
     let mut cap = first.map_or(0, |c| 4 * c.estimate.evaluations).max(FIRST_CAP);
     for _attempt in 0..MAX_ATTEMPTS {
         // The method that spent least so far (ties: `methods` order).
-        let Some(k) = (0..3)
+        let Some(k) = (0..4)
             .filter(|&k| methods[k].is_some() && !exhausted[k])
             .min_by_key(|&k| used[k])
         else {

@@ -94,8 +94,13 @@ fn fresnel(r: &mut Rng) -> String {
 
 /// A random leaf lobe of the grammar.
 fn leaf(r: &mut Rng) -> String {
-    match r.below(11) {
+    match r.below(12) {
         0 => format!("lambertian(albedo={:.3})", r.range(0.05, 1.0)),
+        11 => format!(
+            "ltc-sheen(color={:.3}, roughness={:.3})",
+            r.range(0.05, 1.0),
+            r.unit()
+        ),
         1 | 2 => {
             let ms = if r.below(4) == 0 { ", ms=kulla-conty" } else { "" };
             let g = if r.below(3) == 0 { ", g=separable" } else { "" };
@@ -160,6 +165,9 @@ fn leaf(r: &mut Rng) -> String {
                     r.range(0.1, 1.0)
                 );
             }
+            if r.below(4) == 0 {
+                s.push_str(", reciprocal=1");
+            }
             s.push(')');
             s
         }
@@ -194,7 +202,8 @@ pub fn random_spec(r: &mut Rng, depth: u32) -> String {
                 ),
                 _ => random_spec(r, depth + 1),
             };
-            format!("coated({top}, {})", random_spec(r, depth + 1))
+            let reciprocal = if r.below(4) == 0 { ", reciprocal=1" } else { "" };
+            format!("coated({top}, {}{reciprocal})", random_spec(r, depth + 1))
         }
     }
 }
