@@ -108,8 +108,8 @@ enum Command {
         /// Absolute error tolerance. Refines until the estimate is resolved, its error estimate is ≤ X and it is
         /// confirmed beyond one run: the budget is doubled from 64 until two successive runs agree within X (the
         /// adaptive rules and `auto` instead refine their own work, and `auto` and `adaptive-warped` then need a
-        /// run of an unrelated rule on another parameterisation to agree: the plain (μ, φ) square split at μi = μo
-        /// and cos Δφ = 0, its shifted twin, or the sampling map's square), with at
+        /// run of a rule with other nodes to agree: the plain (μ, φ) square split at μi = μo and cos Δφ = 0, the
+        /// sampling map's square, or the shifted twin of either), with at
         /// most 4194304 (2^22) evaluations in the last run. The output says what happened ("stopped": "tolerance
         /// reached" | "max budget reached" | "integrator cap reached" | "out of reach": Monte Carlo whose N^-1/2
         /// projection needs more than 4 × the maximum budget), and "confirmation": how far the answer moved from

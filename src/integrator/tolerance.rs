@@ -17,11 +17,11 @@ pub enum StopReason {
     /// value differs from it by `≤ tol` (see
     /// [`ToleranceOutcome::confirmation`]): for budget doubling the larger
     /// run; for [`Auto`](super::Auto) and the warped
-    /// [`Adaptive`](super::Adaptive) rule a run from scratch of an unrelated
-    /// rule on another parameterisation (the plain `(μ, φ)` square split at
-    /// the integrand's [kinks](super::Integrand::kinks), or its shifted
-    /// twin, or the sampling map's square), never a stage of the candidate's
-    /// own refinement; for the plain [`Adaptive`](super::Adaptive) rule a run
+    /// [`Adaptive`](super::Adaptive) rule a run from scratch of a rule with
+    /// other nodes (the plain `(μ, φ)` square split at the integrand's
+    /// [kinks](super::Integrand::kinks), the sampling map's square, or the
+    /// shifted twin of either: other cuts, bent coordinates), never a stage
+    /// of the candidate's own refinement; for the plain [`Adaptive`](super::Adaptive) rule a run
     /// from scratch at twice the evaluations and an importance-sampled mean
     /// check. An unresolved estimate never counts as converged, however
     /// small its error, and neither does a single run, however confident.
