@@ -39,6 +39,9 @@ pub(crate) enum Family {
     /// The same on the plain square with other cuts and azimuth offset
     /// ([`Adaptive::shifted`]).
     Shifted,
+    /// The shifted plain rule without the split at the kinks
+    /// ([`Adaptive::unsplit`]).
+    Unsplit,
     /// The staged Genz–Malik rule on the sampling map's square.
     Warped,
     /// The same on the sampling map's square with other cuts and bent
@@ -53,9 +56,64 @@ impl Family {
     /// rule: the grid's estimate assumes global smoothness, the adaptive
     /// rule refines locally; the plain and the shifted adaptive rules split
     /// at the same kink lines but place every node elsewhere).
-    fn independent_of(self, other: Family) -> bool {
+    ///
+    /// Where the integrand is not smooth (`smooth = false`), two rules on
+    /// the same square are not enough: the warped rule and its shifted twin
+    /// share the sampling map and its seams, and the rules of the plain
+    /// square (the grid, the plain and the shifted rule) can miss the same
+    /// part of a lobe squeezed against the horizon (a coat past its critical
+    /// angle at θo = 89.7°: the plain and the shifted rule agreed to
+    /// `4·10⁻⁷` and were both `9·10⁻⁴` low). A candidate of one square is
+    /// then confirmed only by one of the other. For a smooth integrand any
+    /// two families confirm each other (GGX `α = 10⁻³`, which no rule of the
+    /// plain square resolves, confirms on its own map).
+    fn independent_of(self, other: Family, smooth: bool) -> bool {
+        if !smooth {
+            return self.is_warped() != other.is_warped();
+        }
         self != other
     }
+}
+
+impl Family {
+    /// Whether the rule runs on the sampling map's square.
+    fn is_warped(self) -> bool {
+        matches!(self, Family::Warped | Family::WarpedShifted)
+    }
+}
+
+/// With `e` (of the plain-square family `family`), three candidates of
+/// three different plain-square families ([`Family::Grid`],
+/// [`Family::Plain`], [`Family::Shifted`], [`Family::Unsplit`]) within
+/// `tol` of each other: the largest difference (per channel) of `e` to the
+/// other two.
+fn plain_trio<W: WideSpectrum>(
+    cands: &[Option<Candidate<W>>],
+    e: &Estimate<W>,
+    family: Family,
+    tol: f64,
+) -> Option<W> {
+    let near = |a: W, b: W| acc::max_abs(acc::abs_diff(a, b)) <= tol;
+    let plain_square = [Family::Grid, Family::Plain, Family::Shifted, Family::Unsplit];
+    let others = || {
+        cands
+            .iter()
+            .flatten()
+            .filter(move |c| c.family != family && plain_square.contains(&c.family))
+            .filter(move |c| near(c.estimate.value, e.value))
+    };
+    for a in others() {
+        for b in others() {
+            if a.family != b.family && near(a.estimate.value, b.estimate.value) {
+                let (da, db) = (
+                    acc::abs_diff(a.estimate.value, e.value),
+                    acc::abs_diff(b.estimate.value, e.value),
+                );
+                return Some(da.zip(db, f64::max));
+            }
+        }
+    }
+    None
 }
 
 /// Most candidates kept.
@@ -101,8 +159,8 @@ pub(crate) struct Spent {
 /// 4,096)`, quadrupled whenever an attempt ran out of it before meeting
 /// `t`; at most [`MAX_ATTEMPTS`] attempts). A resolved run confirmed by its
 /// own stages with error `≤ tol` is a candidate; the outcome is
-/// [`StopReason::ToleranceReached`] as soon as two candidates of different
-/// families differ by `≤ tol` (every channel) and — with a sampling map —
+/// [`StopReason::ToleranceReached`] as soon as two candidates of
+/// [independent](Family::independent_of) families differ by `≤ tol` (every channel) and — with a sampling map —
 /// an importance-sampled mean check through the map does not contradict the
 /// later one (see `probe::MeanCheck`). The later candidate is returned, its
 /// error the larger of its own and the difference, `confirmation` the
@@ -121,6 +179,9 @@ pub(crate) fn cross_confirm<I: Integrand>(
 ) -> Result<ToleranceOutcome<WideOf<I>>, IntegrateError> {
     let plain = Adaptive::new(0.0, 0.0)?;
     let warped = g.has_sampling_map().then(|| plain.warped());
+    // Without a map there is no second square: the plain rules confirm
+    // each other.
+    let smooth = g.is_smooth() || warped.is_none();
     let mut cands: [Option<Candidate<WideOf<I>>>; MAX_CANDIDATES] = [None; MAX_CANDIDATES];
     let mut n = 0usize;
     if let Some(c) = first {
@@ -135,25 +196,28 @@ pub(crate) fn cross_confirm<I: Integrand>(
     let ws = warped.map(|w| (w.shifted(), Family::WarpedShifted));
     let p = Some((plain, Family::Plain));
     let q = Some((plain.shifted(), Family::Shifted));
-    let methods: [Option<(Adaptive, Family)>; 4] = match first.map(|c| c.family) {
-        Some(Family::Warped) => [ws, p, q, w],
-        Some(Family::Chart) | None => [w, ws, p, q],
-        _ => [p, q, w, ws],
+    // The third rule of the plain square, for non-smooth integrands only
+    // (see `plain_trio`).
+    let u = (!smooth).then(|| (plain.unsplit(), Family::Unsplit));
+    let methods: [Option<(Adaptive, Family)>; 5] = match first.map(|c| c.family) {
+        Some(Family::Warped) => [ws, p, q, u, w],
+        Some(Family::Chart) | None => [w, ws, p, q, u],
+        _ => [p, q, u, w, ws],
     };
     let mut last = last;
     let mut capped = false;
     // Per method: its next tolerance, the evaluations it spent, whether it
     // can do no better.
-    let mut t = [tol; 4];
-    let mut used = [0u64; 4];
-    let mut exhausted = [false; 4];
+    let mut t = [tol; 5];
+    let mut used = [0u64; 5];
+    let mut exhausted = [false; 5];
     // Each attempt spends at most `cap` evaluations (quadrupled whenever an
     // attempt ran out of it): a method that stalls (a warped rule on a
     // seam) does not take the budget from one that converges.
     let mut cap = first.map_or(0, |c| 4 * c.estimate.evaluations).max(FIRST_CAP);
     for _attempt in 0..MAX_ATTEMPTS {
         // The method that spent least so far (ties: `methods` order).
-        let Some(k) = (0..4)
+        let Some(k) = (0..5)
             .filter(|&k| methods[k].is_some() && !exhausted[k])
             .min_by_key(|&k| used[k])
         else {
@@ -188,14 +252,21 @@ pub(crate) fn cross_confirm<I: Integrand>(
             continue;
         }
         t[k] /= ROUND_FACTOR;
-        for c in cands.iter().take(n).flatten() {
-            if !c.family.independent_of(family) {
-                continue;
+        // A non-smooth integrand's plain-square candidate also stands when
+        // three rules of the plain square (of the grid, the plain, the
+        // shifted and the unsplit rule) agree within `tol`: three rules
+        // with unrelated nodes, one of them not split at the kinks.
+        let trio = (!smooth && !family.is_warped())
+            .then(|| plain_trio(&cands[..n], &e, family, tol))
+            .flatten();
+        let pairs = cands.iter().take(n).flatten().filter_map(|c| {
+            if !c.family.independent_of(family, smooth) {
+                return None;
             }
             let d = acc::abs_diff(e.value, c.estimate.value);
-            if acc::max_abs(d) > tol {
-                continue;
-            }
+            (acc::max_abs(d) <= tol).then_some(d)
+        });
+        for d in trio.into_iter().chain(pairs) {
             if !mean_check_agrees(g, &e, tol, &mut spent)? {
                 continue;
             }
