@@ -1255,7 +1255,9 @@ impl Integrator for Adaptive {
     /// only if a staged run with other nodes agrees within `tol`, with the
     /// mean check: the warped rule's shifted twin (other cuts, bent
     /// coordinates; see `Adaptive::shifted`), the plain square split at the
-    /// integrand's [kinks](Integrand::kinks), or its shifted twin. The
+    /// integrand's [kinks](Integrand::kinks), or its shifted twin (for an
+    /// integrand not declared [smooth](Integrand::is_smooth), a rule of the
+    /// plain square). The
     /// driver alternates such runs, each staged to a tolerance four times
     /// tighter than the method's last, until two of different rules agree or
     /// `max_budget`

@@ -215,7 +215,9 @@ fn median(v: &[f64]) -> Option<f64> {
 /// plain `(μ, φ)` square split at the integrand's
 /// [kinks](super::Integrand::kinks) after the plain grid, the sampling map's
 /// square after a chart — or, if it does not, when any two such runs of
-/// different rules (plain, warped, and the shifted twin of each) agree, each
+/// different rules (plain, warped, and the shifted twin of each; for an
+/// integrand not declared smooth, one of each square or three of the plain
+/// square) agree, each
 /// method refining four times tighter on its next run (the narrow-lobe path
 /// starts there with the warped rule). With a fixed budget
 /// ([`Integrator::integrate`]) it refines until the budget cannot pay for

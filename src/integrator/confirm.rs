@@ -12,15 +12,18 @@
 //! to the same wrong value and agree with each other.
 //!
 //! The evidence accepted here comes from a second method whose errors do not
-//! follow the first one's: the staged [`Adaptive`] Genz–Malik rule on the
-//! *plain* `(μ, φ)` square (no seams: the plain square does not go through
-//! the sampling map; the kinks of isotropic lobes lie along its axes, where
-//! its bisection refines) against a candidate of the warped square or of the
-//! global Clenshaw–Curtis × trapezoid grid, or the staged rule on the
-//! *warped* square (a smooth map for a single lobe) against a candidate of a
-//! chart on which a peaked lobe is analytic. A candidate stands when the two
-//! values differ by at most `tol` (every channel); a wrong candidate stands
-//! only if an unrelated rule makes the same error to within `tol`.
+//! follow the first one's: staged [`Adaptive`] Genz–Malik runs from scratch
+//! on the *plain* `(μ, φ)` square (no seams: the plain square does not go
+//! through the sampling map; split at the integrand's
+//! [kinks](super::Integrand::kinks), where the Oren–Nayar family switches
+//! terms), on the *warped* square (a smooth map for a single lobe), and on a
+//! shifted twin of each (other first cuts, bent coordinates: no node in
+//! common). A candidate stands when a run of an independent rule differs
+//! from it by at most `tol` (every channel); where the integrand is not
+//! declared smooth the two must come from different squares, or three rules
+//! of the plain square must agree (one of them not split at the kinks). A
+//! wrong candidate stands only if unrelated rules make the same error to
+//! within `tol`.
 
 use super::acc;
 use super::adaptive::{Adaptive, MAX_ADAPTIVE_EVALUATIONS};
@@ -160,7 +163,9 @@ pub(crate) struct Spent {
 /// `t`; at most [`MAX_ATTEMPTS`] attempts). A resolved run confirmed by its
 /// own stages with error `≤ tol` is a candidate; the outcome is
 /// [`StopReason::ToleranceReached`] as soon as two candidates of
-/// [independent](Family::independent_of) families differ by `≤ tol` (every channel) and — with a sampling map —
+/// [independent](Family::independent_of) families (or, for a non-smooth
+/// integrand, three of the plain square: `plain_trio`) differ by `≤ tol`
+/// (every channel) and — with a sampling map —
 /// an importance-sampled mean check through the map does not contradict the
 /// later one (see `probe::MeanCheck`). The later candidate is returned, its
 /// error the larger of its own and the difference, `confirmation` the

@@ -20,8 +20,10 @@ pub enum StopReason {
     /// [`Adaptive`](super::Adaptive) rule a run from scratch of a rule with
     /// other nodes (the plain `(μ, φ)` square split at the integrand's
     /// [kinks](super::Integrand::kinks), the sampling map's square, or the
-    /// shifted twin of either: other cuts, bent coordinates), never a stage
-    /// of the candidate's own refinement; for the plain [`Adaptive`](super::Adaptive) rule a run
+    /// shifted twin of either: other cuts, bent coordinates; where the
+    /// integrand is not [smooth](super::Integrand::is_smooth), a rule of
+    /// the other square or two more rules of the plain square), never a
+    /// stage of the candidate's own refinement; for the plain [`Adaptive`](super::Adaptive) rule a run
     /// from scratch at twice the evaluations and an importance-sampled mean
     /// check. An unresolved estimate never counts as converged, however
     /// small its error, and neither does a single run, however confident.
