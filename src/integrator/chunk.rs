@@ -113,18 +113,19 @@ pub(crate) fn mapped_hemisphere_values<I: Integrand>(
     map: impl Fn(f64, f64) -> (f64, f64, f64),
     out: &mut [WideOf<I>],
 ) -> Result<(), IntegrateError> {
+    // The Jacobian is recomputed at the output instead of kept: no third
+    // chunk-sized buffer on the stack (firmware-sized frames).
     let mut dirs = [Vec3::ZERO; CHUNK];
-    let mut jac = [0.0f64; CHUNK];
     let mut vals = [I::Spectrum::zero(); CHUNK];
     for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         let n = p.len().min(out.len());
-        for ((d, j), &[a, b]) in head_mut(&mut dirs, n).iter_mut().zip(jac.iter_mut()).zip(p) {
-            let (mu, phi, jj) = map(a, b);
+        for (d, &[a, b]) in head_mut(&mut dirs, n).iter_mut().zip(p) {
+            let (mu, phi, _) = map(a, b);
             *d = direction(mu, phi);
-            *j = jj;
         }
         g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
-        for ((o, v), &j) in out.iter_mut().zip(head(&vals, n)).zip(jac.iter()) {
+        for ((o, v), &[a, b]) in out.iter_mut().zip(head(&vals, n)).zip(p) {
+            let j = map(a, b).2;
             *o = check_finite(v.to_wide())?.map(|x| x * j);
         }
     }
