@@ -84,8 +84,12 @@ pub const FT_NZ_IN: usize = 16;
 /// Cell and fraction of `s ∈ [0, n − 1]` (clamped; NaN → 0).
 #[inline(always)]
 fn cell_of(s: f32, n: usize) -> (usize, f32) {
-    let s = if s > 0.0 { s.min((n - 1) as f32) } else { 0.0 };
-    let i = (s as usize).min(n - 2);
+    let s = if s > 0.0 {
+        s.min(n.saturating_sub(1) as f32)
+    } else {
+        0.0
+    };
+    let i = (s as usize).min(n.saturating_sub(2));
     (i, (s - i as f32).clamp(0.0, 1.0))
 }
 
@@ -128,7 +132,7 @@ fn mu_coord(mu: f32, inside: bool, eta: f32, alpha: f32) -> f32 {
         if span <= 0.0 {
             return 0.0;
         }
-        let d = d.clamp(0.0, span);
+        let d = d.max(0.0).min(span); // (no `clamp`: its bound assertion is a panic path)
         0.3 * libm::sqrtf(d / span) + 0.7 * libm::asinhf(d / w) / libm::asinhf(span / w)
     };
     if mu <= mc {
@@ -158,19 +162,29 @@ pub fn dielectric_ratio(mu: f32, alpha: f32, eta: f32) -> f32 {
     let at = |l: usize, k: usize| -> f32 {
         let a_k = if inside { alpha_node_f32(k) } else { alpha };
         let x = mu_coord(mu, inside, eta, a_k);
+        let (j, fx) = if inside {
+            cell_of(x * (FT_NX_IN - 1) as f32, FT_NX_IN)
+        } else {
+            cell_of(x * (FT_NX - 1) as f32, FT_NX)
+        };
         let nx = if inside { FT_NX_IN } else { FT_NX };
-        let (j, fx) = cell_of(x * (nx - 1) as f32, nx);
-        let base = (l * FT_NA + k) * nx + j;
+        // Wrapping index arithmetic: an index past the table reads 0 through
+        // `get` (no overflow check can panic; the cells keep it in range).
+        let base = l
+            .wrapping_mul(FT_NA)
+            .wrapping_add(k)
+            .wrapping_mul(nx)
+            .wrapping_add(j);
         let a = table.get(base).copied().unwrap_or(0) as f32;
-        let b = table.get(base + 1).copied().unwrap_or(0) as f32;
+        let b = table.get(base.wrapping_add(1)).copied().unwrap_or(0) as f32;
         a + fx * (b - a)
     };
     let row = |l: usize| {
         let a = at(l, k);
-        a + fa * (at(l, k + 1) - a)
+        a + fa * (at(l, k.wrapping_add(1)) - a)
     };
     let a = row(l);
-    let v = a + fz * (row(l + 1) - a);
+    let v = a + fz * (row(l.wrapping_add(1)) - a);
     (v * (1.0 / 65535.0)).clamp(0.0, 1.0)
 }
 
@@ -191,13 +205,18 @@ pub fn dielectric_average(alpha: f32, eta: f32) -> f32 {
     } else {
         &data::AVERAGE_OUT
     };
-    let at = |l: usize, k: usize| table.get(l * FT_NA + k).copied().unwrap_or(0.0);
+    let at = |l: usize, k: usize| {
+        table
+            .get(l.wrapping_mul(FT_NA).wrapping_add(k))
+            .copied()
+            .unwrap_or(0.0)
+    };
     let row = |l: usize| {
         let a = at(l, k);
-        a + fa * (at(l, k + 1) - a)
+        a + fa * (at(l, k.wrapping_add(1)) - a)
     };
     let a = row(l);
-    (a + fz * (row(l + 1) - a)).clamp(0.0, 1.0)
+    (a + fz * (row(l.wrapping_add(1)) - a)).clamp(0.0, 1.0)
 }
 
 /// The moments `(R5, R6) = (M5/E₁, M6/E₁)` at `μ`, `α` (bilinear in `(√μ,
@@ -207,12 +226,13 @@ pub fn fresnel_moments(mu: f32, alpha: f32) -> (f32, f32) {
     let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
     let read = |t: &[f32]| {
         let at = |k: usize| {
-            let a = t.get(k * FT_NX + j).copied().unwrap_or(0.0);
-            let b = t.get(k * FT_NX + j + 1).copied().unwrap_or(0.0);
+            let i = k.wrapping_mul(FT_NX).wrapping_add(j);
+            let a = t.get(i).copied().unwrap_or(0.0);
+            let b = t.get(i.wrapping_add(1)).copied().unwrap_or(0.0);
             a + fx * (b - a)
         };
         let a = at(k);
-        a + fa * (at(k + 1) - a)
+        a + fa * (at(k.wrapping_add(1)) - a)
     };
     (read(&data::MOMENT5), read(&data::MOMENT6))
 }
@@ -243,5 +263,5 @@ pub fn e1_average(alpha: f32) -> f32 {
             .unwrap_or(1.0)
     };
     let a = at(k);
-    (a + f * (at(k + 1) - a)).clamp(0.0, 1.0)
+    (a + f * (at(k.wrapping_add(1)) - a)).clamp(0.0, 1.0)
 }
