@@ -932,6 +932,14 @@ where
                         error,
                         is_bound: false,
                     },
+                    // F = 1: the table itself, with its bound (what the
+                    // Fresnel average of a constant 1 gives, without the 20
+                    // visible-normal samples).
+                    None if matches!(self.fresnel.form(), FresnelForm::One) => Albedo {
+                        value: F::Spectrum::splat(clamp01(e1)),
+                        error: ALBEDO_TABLE_ERROR,
+                        is_bound: true,
+                    },
                     None => fresnel_albedo(e1, self.fresnel_spread(w)),
                 }
             }
