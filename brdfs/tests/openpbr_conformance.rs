@@ -28,51 +28,16 @@
 use radiometry::glam::Vec3;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
 use radiometry::{Brdf, Spectrum};
-use radiometry_brdfs::openpbr::{Layering, OpenPbr, OpenPbrParams};
+use radiometry_brdfs::openpbr::{Layering, OpenPbr};
 use serde_json::Value;
+
+#[path = "openpbr_adobe_params.rs"]
+mod adobe_params;
+use adobe_params::{Average, avg3, params};
 
 fn data() -> Value {
     let text = include_str!("data/openpbr_adobe.json");
     serde_json::from_str(text).expect("valid JSON")
-}
-
-fn colour(v: &Value) -> Vec3 {
-    match v {
-        Value::Array(a) => Vec3::new(
-            a[0].as_f64().unwrap() as f32,
-            a[1].as_f64().unwrap() as f32,
-            a[2].as_f64().unwrap() as f32,
-        ),
-        v => Vec3::splat(v.as_f64().unwrap() as f32),
-    }
-}
-
-/// The combination's parameters (OpenPBR names; the rest at the defaults).
-fn params(p: &Value) -> OpenPbrParams<Vec3> {
-    let mut o = OpenPbrParams::<Vec3>::default();
-    for (k, v) in p.as_object().unwrap() {
-        let f = || v.as_f64().unwrap() as f32;
-        match k.as_str() {
-            "base_weight" => o.base_weight = f(),
-            "base_color" => o.base_color = colour(v),
-            "base_metalness" => o.base_metalness = f(),
-            "base_diffuse_roughness" => o.base_diffuse_roughness = f(),
-            "specular_weight" => o.specular_weight = f(),
-            "specular_color" => o.specular_color = colour(v),
-            "specular_roughness" => o.specular_roughness = f(),
-            "specular_ior" => o.specular_ior = f(),
-            "coat_weight" => o.coat_weight = f(),
-            "coat_color" => o.coat_color = colour(v),
-            "coat_roughness" => o.coat_roughness = f(),
-            "coat_ior" => o.coat_ior = f(),
-            "coat_darkening" => o.coat_darkening = f(),
-            "fuzz_weight" => o.fuzz_weight = f(),
-            "fuzz_color" => o.fuzz_color = colour(v),
-            "fuzz_roughness" => o.fuzz_roughness = f(),
-            other => panic!("parameter {other} not mapped"),
-        }
-    }
-    o
 }
 
 fn dir(theta_deg: f64, phi_deg: f64) -> Vec3 {
@@ -82,25 +47,6 @@ fn dir(theta_deg: f64, phi_deg: f64) -> Vec3 {
         (t.sin() * p.sin()) as f32,
         t.cos() as f32,
     )
-}
-
-/// The channel average of a material, as a monochrome BRDF to integrate.
-struct Average<'a>(&'a OpenPbr<Vec3>);
-impl Brdf for Average<'_> {
-    type Spectrum = f32;
-    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
-        self.0.eval(wi, wo).average()
-    }
-    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<radiometry::BrdfSample<f32>> {
-        self.0.sample(wo, u).map(|s| radiometry::BrdfSample {
-            wi: s.wi,
-            pdf: s.pdf,
-            weight: s.weight.average(),
-        })
-    }
-    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        self.0.pdf(wi, wo)
-    }
 }
 
 /// Our channel-average albedo at θo (see the module docs for the method).
@@ -183,11 +129,6 @@ fn tolerances(name: &str) -> (f64, f64) {
         .iter()
         .find(|n| n.0 == name)
         .map_or((5e-3, 0.02), |n| (n.2, n.3))
-}
-
-fn avg3(v: &Value) -> f64 {
-    let a = v.as_array().unwrap();
-    a.iter().map(|x| x.as_f64().unwrap()).sum::<f64>() / 3.0
 }
 
 #[test]

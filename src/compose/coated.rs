@@ -177,25 +177,7 @@ where
     fn absorption(&self, mu_i: f32, mu_o: f32) -> S {
         match self.absorption {
             None => S::splat(1.0),
-            Some((color, eta)) => {
-                let refracted = |mu: f32| {
-                    let s2 = (1.0 - mu * mu).max(0.0) / (eta * eta);
-                    libm::sqrtf((1.0 - s2).max(0.0))
-                };
-                let (ti, to) = (refracted(mu_i), refracted(mu_o));
-                if (ti.is_nan() || ti <= 0.0) || (to.is_nan() || to <= 0.0) {
-                    return color.map(|c| if c >= 1.0 { 1.0 } else { 0.0 });
-                }
-                let e = 0.5 * (1.0 / ti + 1.0 / to);
-                color.map(|c| {
-                    if c >= 1.0 {
-                        1.0
-                    } else {
-                        let v = libm::powf(c, e);
-                        if v.is_finite() { v } else { 0.0 }
-                    }
-                })
-            }
+            Some((color, eta)) => coat_absorption(color, eta, mu_i, mu_o),
         }
     }
 
@@ -243,6 +225,37 @@ where
             * self.base.directional_albedo(wo).value;
         pick_first((et * self.tint).average(), through.average())
     }
+}
+
+/// A coat's absorption on the way in and out, OpenPBR Surface 1.1
+/// §"Coat — view-dependent absorption":
+///
+/// ```text
+/// A(μi, μo) = C^{(1/μᵗi + 1/μᵗo)/2},   μᵗ = √(1 − (1 − μ²)/η²)
+/// ```
+///
+/// per channel, with `C = coat_color` (the square of the transmittance at
+/// normal incidence, `[0, 1]`) and `η` the coat's index (`≥ 1`). A channel
+/// of `C = 1` is exactly 1; where a refracted cosine is 0 (or NaN) the path
+/// is infinitely long and every other channel is 0. Finite, in `[0, 1]`.
+pub fn coat_absorption<S: Spectrum>(color: S, eta: f32, mu_i: f32, mu_o: f32) -> S {
+    let refracted = |mu: f32| {
+        let s2 = (1.0 - mu * mu).max(0.0) / (eta * eta);
+        libm::sqrtf((1.0 - s2).max(0.0))
+    };
+    let (ti, to) = (refracted(mu_i), refracted(mu_o));
+    if (ti.is_nan() || ti <= 0.0) || (to.is_nan() || to <= 0.0) {
+        return color.map(|c| if c >= 1.0 { 1.0 } else { 0.0 });
+    }
+    let e = 0.5 * (1.0 / ti + 1.0 / to);
+    color.map(|c| {
+        if c >= 1.0 {
+            1.0
+        } else {
+            let v = libm::powf(c, e);
+            if v.is_finite() { v } else { 0.0 }
+        }
+    })
 }
 
 /// The domain of a coat's absorption parameters.

@@ -122,39 +122,12 @@ pub fn fresnel(eta: f64, c: f64) -> f64 {
 /// `∫∫ w(ωo·m) G2/G1 du` for weights `w` (several at once), with `p × p`
 /// panels of 8 × 8 Gauss–Legendre nodes.
 pub fn integrate<const K: usize>(alpha: f64, mu: f64, p: usize, w: impl Fn(f64) -> [f64; K]) -> [f64; K] {
-    let (gx, gw) = gl8();
-    let s = (1.0 - mu * mu).max(0.0).sqrt();
-    let wo = [s, 0.0, mu];
-    let lo = lambda(alpha, mu);
     let mut acc = [0.0f64; K];
-    let h = 1.0 / p as f64;
-    for a in 0..p {
-        for i in 0..8 {
-            let u1 = (a as f64 + gx[i]) * h;
-            let mut row = [0.0f64; K];
-            for b in 0..p {
-                for j in 0..8 {
-                    let u2 = (b as f64 + gx[j]) * h;
-                    let m = vndf(alpha, wo, u1, u2);
-                    let d = wo[0] * m[0] + wo[1] * m[1] + wo[2] * m[2];
-                    let wi_z = 2.0 * d * m[2] - wo[2];
-                    if d <= 0.0 || wi_z <= 0.0 {
-                        continue;
-                    }
-                    let g = (1.0 + lo) / (1.0 + lo + lambda(alpha, wi_z));
-                    let v = w(d);
-                    for k in 0..K {
-                        row[k] += gw[j] * g * v[k];
-                    }
-                }
-            }
-            for k in 0..K {
-                acc[k] += gw[i] * row[k] * h;
-            }
+    for (c, weight) in nodes(alpha, mu, p) {
+        let v = w(c);
+        for k in 0..K {
+            acc[k] += weight * v[k];
         }
-    }
-    for v in acc.iter_mut() {
-        *v *= h;
     }
     acc
 }

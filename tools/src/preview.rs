@@ -419,13 +419,33 @@ pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(
     brdf: &B,
     opt: &Options,
 ) -> Result<Image, PreviewError> {
+    check_options(opt)?;
+    let lighting = Lighting::new(opt)?;
+    Ok(render_with(&lighting, opt, |p, d, u| {
+        lighting.shade(brdf, p, -d, u)
+    }))
+}
+
+/// The image size and samples per pixel within their limits.
+fn check_options(opt: &Options) -> Result<(), PreviewError> {
     if opt.size == 0 || opt.size > MAX_SIZE {
         return Err(PreviewError::Size(opt.size));
     }
     if opt.samples == 0 || opt.samples > MAX_SAMPLES {
         return Err(PreviewError::Samples(opt.samples));
     }
-    let lighting = Lighting::new(opt)?;
+    Ok(())
+}
+
+/// The ball rendered row by row on `opt.threads` threads: `shade(p, d, u)`
+/// is the radiance toward the camera from the hit point `p` of a camera ray
+/// of direction `d`, with 5 uniform numbers `u`; a ray that misses sees the
+/// sky. Deterministic for a given seed, whatever the number of threads.
+fn render_with(
+    lighting: &Lighting,
+    opt: &Options,
+    shade: impl Fn(Vec3, Vec3, [f32; 5]) -> f32 + Sync,
+) -> Image {
     let n = opt.size as usize;
     let mut radiance = vec![0.0f32; n * n];
     let mut coverage = vec![0.0f32; n * n];
@@ -444,14 +464,14 @@ pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(
                     // Take the next row; the lock is held only for that.
                     let next = rows.lock().map(|mut r| r.next()).unwrap_or(None);
                     let Some((y, (lrow, crow))) = next else { break };
-                    render_row(brdf, &lighting, opt, y, lrow, crow);
+                    render_row(lighting, opt, y, lrow, crow, &shade);
                     progress.tick(&format!("row {}", y + 1));
                 }
             });
         }
     });
     progress.finish();
-    Ok(Image::new(opt.size, radiance, coverage))
+    Image::new(opt.size, radiance, coverage)
 }
 
 /// The parameters of the textured ball at the point `p` of the unit ball
@@ -494,83 +514,33 @@ pub fn render_textured(
     layering: Layering,
     opt: &Options,
 ) -> Result<(Image, TexturedStats), PreviewError> {
-    if opt.size == 0 || opt.size > MAX_SIZE {
-        return Err(PreviewError::Size(opt.size));
-    }
-    if opt.samples == 0 || opt.samples > MAX_SAMPLES {
-        return Err(PreviewError::Samples(opt.samples));
-    }
+    use std::sync::atomic::{AtomicU64, Ordering};
+    check_options(opt)?;
     OpenPbr::with_layering(textured_params(base, Vec3::Z), layering).map_err(PreviewError::Material)?;
     let lighting = Lighting::new(opt)?;
-    let n = opt.size as usize;
-    let mut radiance = vec![0.0f32; n * n];
-    let mut coverage = vec![0.0f32; n * n];
-    let threads = if opt.threads == 0 {
-        std::thread::available_parallelism().map_or(1, |t| t.get())
-    } else {
-        opt.threads
-    }
-    .clamp(1, n);
-    let progress = Progress::new(opt.progress, n);
-    let stats = Mutex::new(TexturedStats::default());
-    let rows = Mutex::new(radiance.chunks_mut(n).zip(coverage.chunks_mut(n)).enumerate());
-    std::thread::scope(|scope| {
-        for _ in 0..threads {
-            scope.spawn(|| {
-                let mut local = TexturedStats::default();
-                loop {
-                    let next = rows.lock().map(|mut r| r.next()).unwrap_or(None);
-                    let Some((y, (lrow, crow))) = next else { break };
-                    let t = half_fov_tan();
-                    for (x, (l, c)) in lrow.iter_mut().zip(crow.iter_mut()).enumerate() {
-                        let mut rng = Pcg32::with_stream(opt.seed, (y * n + x) as u64);
-                        let (mut sum, mut hits) = (0.0f64, 0u32);
-                        for _ in 0..opt.samples {
-                            let (px, py) = (x as f32 + rng.next_f32(), y as f32 + rng.next_f32());
-                            let (o, d) = camera_ray_with(t, px, py, opt.size);
-                            let u = [
-                                rng.next_f32(),
-                                rng.next_f32(),
-                                rng.next_f32(),
-                                rng.next_f32(),
-                                rng.next_f32(),
-                            ];
-                            sum += match hit_ball(o, d) {
-                                Some(p) => {
-                                    hits += 1;
-                                    let t0 = std::time::Instant::now();
-                                    let m = OpenPbr::with_layering(textured_params(base, p), layering);
-                                    local.construct_secs += t0.elapsed().as_secs_f64();
-                                    local.hits += 1;
-                                    m.map_or(0.0, |m| lighting.shade(&m, p, -d, u) as f64)
-                                }
-                                None => lighting.radiance(d) as f64,
-                            };
-                        }
-                        *l = (sum / opt.samples as f64) as f32;
-                        *c = hits as f32 / opt.samples as f32;
-                    }
-                    progress.tick(&format!("row {}", y + 1));
-                }
-                if let Ok(mut s) = stats.lock() {
-                    s.hits += local.hits;
-                    s.construct_secs += local.construct_secs;
-                }
-            });
-        }
+    let (hits, nanos) = (AtomicU64::new(0), AtomicU64::new(0));
+    let img = render_with(&lighting, opt, |p, d, u| {
+        let t0 = std::time::Instant::now();
+        let m = OpenPbr::with_layering(textured_params(base, p), layering);
+        let dt = u64::try_from(t0.elapsed().as_nanos()).unwrap_or(u64::MAX);
+        nanos.fetch_add(dt, Ordering::Relaxed);
+        hits.fetch_add(1, Ordering::Relaxed);
+        m.map_or(0.0, |m| lighting.shade(&m, p, -d, u))
     });
-    progress.finish();
-    let stats = stats.into_inner().unwrap_or_default();
-    Ok((Image::new(opt.size, radiance, coverage), stats))
+    let stats = TexturedStats {
+        hits: hits.load(Ordering::Relaxed),
+        construct_secs: nanos.load(Ordering::Relaxed) as f64 * 1e-9,
+    };
+    Ok((img, stats))
 }
 
-fn render_row<B: Brdf<Spectrum = f32> + ?Sized>(
-    brdf: &B,
+fn render_row(
     lighting: &Lighting,
     opt: &Options,
     y: usize,
     lrow: &mut [f32],
     crow: &mut [f32],
+    shade: &impl Fn(Vec3, Vec3, [f32; 5]) -> f32,
 ) {
     let n = opt.size as usize;
     let t = half_fov_tan();
@@ -590,7 +560,7 @@ fn render_row<B: Brdf<Spectrum = f32> + ?Sized>(
             sum += match hit_ball(o, d) {
                 Some(p) => {
                     hits += 1;
-                    lighting.shade(brdf, p, -d, u) as f64
+                    shade(p, d, u) as f64
                 }
                 None => lighting.radiance(d) as f64,
             };

@@ -593,27 +593,11 @@ impl<S: Spectrum> OpenPbr<S> {
         }
     }
 
-    /// The coat's absorption `A(μi, μo)` per channel.
+    /// The coat's absorption `A(μi, μo)` per channel
+    /// ([`coat_absorption`](radiometry::compose::coat_absorption)).
+    #[inline]
     fn absorption(&self, mu_i: f32, mu_o: f32) -> S {
-        let color = self.params.coat_color;
-        let eta = self.coat_ae.1;
-        let refracted = |mu: f32| {
-            let s2 = (1.0 - mu * mu).max(0.0) / (eta * eta);
-            libm::sqrtf((1.0 - s2).max(0.0))
-        };
-        let (ti, to) = (refracted(mu_i), refracted(mu_o));
-        if (ti.is_nan() || ti <= 0.0) || (to.is_nan() || to <= 0.0) {
-            return color.map(|c| if c >= 1.0 { 1.0 } else { 0.0 });
-        }
-        let e = 0.5 * (1.0 / ti + 1.0 / to);
-        color.map(|c| {
-            if c >= 1.0 {
-                1.0
-            } else {
-                let v = libm::powf(c, e);
-                if v.is_finite() { v } else { 0.0 }
-            }
-        })
+        radiometry::compose::coat_absorption(self.params.coat_color, self.coat_ae.1, mu_i, mu_o)
     }
 
     /// Prepares the view `ωo`: the layers' factors at `μo` and the lobes'
