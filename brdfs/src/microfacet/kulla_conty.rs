@@ -307,7 +307,10 @@ const SAMPLER_FLOOR: f32 = 1e-3;
 /// weight grows like `(1 − E(μi))`, which for smooth surfaces is a narrow
 /// band at the horizon (Beckmann `α = 0.05`: weights up to 74 against a mean
 /// of 1).
-fn lobe_sampler(nodes: &[f32; N_MU], loss: &[f32; N_MU]) -> ([f32; N_MU], [f32; N_MU], [f32; N_MU - 1]) {
+pub(crate) fn lobe_sampler(
+    nodes: &[f32; N_MU],
+    loss: &[f32; N_MU],
+) -> ([f32; N_MU], [f32; N_MU], [f32; N_MU - 1]) {
     let mu_sq: [f32; N_MU] = core::array::from_fn(|j| nodes[j] * nodes[j]);
     let mut v: [f32; N_MU - 1] = core::array::from_fn(|j| margined(loss[j]).max(margined(loss[j + 1])));
     let top = v.iter().fold(0.0f32, |m, &x| m.max(x));

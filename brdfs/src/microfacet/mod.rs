@@ -58,6 +58,7 @@ pub mod fresnel_table;
 mod fresnel_table_data;
 mod ggx;
 mod kulla_conty;
+pub(crate) mod ms_sampler;
 mod smith;
 mod special;
 #[cfg(feature = "simd")]

@@ -213,6 +213,8 @@ struct Metal<S: Spectrum> {
     /// `F_ms` per channel (0 likewise): the lobe's albedo is `F_ms (1 − E₁(μo))`.
     f_ms: S,
     alpha: f32,
+    /// The row of the global sampler of the lobe (`microfacet::ms_sampler`).
+    ms_row: u8,
 }
 
 impl<S: Spectrum> Metal<S> {
@@ -244,6 +246,7 @@ impl<S: Spectrum> Metal<S> {
             ms_scale,
             f_ms,
             alpha,
+            ms_row: crate::microfacet::ms_sampler::row_index(alpha),
         }
     }
 
@@ -251,6 +254,20 @@ impl<S: Spectrum> Metal<S> {
     #[inline]
     fn loss(&self, mu: f32) -> f32 {
         (1.0 - e1_table().albedo(mu, self.alpha)).clamp(0.0, 1.0)
+    }
+
+    /// A direction of the multiple-scattering lobe's sampler: the global
+    /// row nearest this roughness, `∝ (1 − E₁(μi)) μi` per cell
+    /// (`microfacet::ms_sampler`).
+    #[inline]
+    fn ms_sample(&self, u: [f32; 2]) -> Vec3 {
+        crate::microfacet::ms_sampler::row(self.ms_row).sample(u[0], u[1])
+    }
+
+    /// The solid-angle density of [`ms_sample`](Self::ms_sample) at `μi`.
+    #[inline]
+    fn ms_pdf(&self, mu_i: f32) -> f32 {
+        crate::microfacet::ms_sampler::row(self.ms_row).pdf(mu_i)
     }
 }
 
@@ -920,8 +937,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 f += (metal.single.eval(wi, wo) + ms) * under_s * (p.base_metalness * m.xi);
             }
             if want_pdf {
-                pdf += prob(METAL) * metal.single.pdf(wi, wo)
-                    + prob(METAL_MS) * radiometry::warp::cosine_hemisphere_pdf(wi);
+                pdf += prob(METAL) * metal.single.pdf(wi, wo) + prob(METAL_MS) * metal.ms_pdf(mu_i);
             }
         }
         if m.on[SPEC] {
@@ -991,14 +1007,14 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             FUZZ => m.fuzz_sample(wo, uu),
             COAT => m.coat.sample(wo, uu),
             METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
-            METAL_MS => {
-                let wi = radiometry::warp::square_to_cosine_hemisphere(uu);
+            METAL_MS => m.metal.as_ref().and_then(|x| {
+                let wi = x.ms_sample(uu);
                 (wi.z > 0.0).then(|| BrdfSample {
                     wi,
-                    pdf: radiometry::warp::cosine_hemisphere_pdf(wi),
+                    pdf: x.ms_pdf(wi.z),
                     weight: S::zero(),
                 })
-            }
+            }),
             SPEC => m.spec.sample(wo, uu),
             _ => m.diffuse.sample(wo, uu),
         }?;
