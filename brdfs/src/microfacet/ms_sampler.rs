@@ -93,7 +93,7 @@ impl MsRow {
     /// The solid-angle density `μ v_j / (π T)` of [`sample`](Self::sample)
     /// at `μ = cos θ > 0` (`j` the cell of `μ²`); 0 for `μ ≤ 0`.
     pub(crate) fn pdf(&self, mu: f32) -> f32 {
-        if !(mu > 0.0) {
+        if mu.is_nan() || mu <= 0.0 {
             return 0.0;
         }
         let m2 = mu * mu;
