@@ -5,10 +5,11 @@ use super::acc::{self, F32_FLOOR};
 use super::chart::peak::ASPECT_RANGE;
 use super::chart::{Chart, PeakChart, ProductChart};
 use super::chunk::{self, CHUNK, head, head_mut};
+use super::confirm;
 use super::probe::{self, Probe};
 use super::{
-    Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome,
-    Unresolved, WideOf, check_tolerance_args,
+    Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, ToleranceOutcome, Unresolved, WideOf,
+    check_tolerance_args,
 };
 use crate::spectrum::{Spectrum as _, WideSpectrum};
 
@@ -200,15 +201,25 @@ fn median(v: &[f64]) -> Option<f64> {
 ///    more than [`probe::PEAK_RATIO`] × the largest node value: a peak
 ///    between the nodes; no support seen; too few effective nodes): the
 ///    staged [`Adaptive`] rule on the sampling-map square (or the plain
-///    square without a map), which refines its own regions and confirms
-///    its value by a refinement of itself (see
-///    [`Integrator::to_tolerance`]).
+///    square without a map), which refines its own regions; to a tolerance
+///    its value is confirmed as below.
 ///
 /// To a tolerance ([`integrate_to_tolerance`](super::integrate_to_tolerance)),
 /// the grid stops when `d_μ + d_φ + floor ≤ tol` at a level reached by
 /// refinement (not the first one) and the status is resolved: the value
 /// agrees within `tol` with two coarser rules made of a subset of its own
-/// nodes (the confirmation). With a fixed budget
+/// nodes. That value is a *candidate* only: a kink (the Oren–Nayar family at
+/// `μi = μo`), a lobe cut by the horizon or the step of a mixture map fools
+/// every level of a nested rule alike. It stands when a staged [`Adaptive`]
+/// run from scratch on another parameterisation agrees within `tol` — the
+/// plain `(μ, φ)` square split at the integrand's
+/// [kinks](super::Integrand::kinks) after the plain grid, the sampling map's
+/// square after a chart — or, if it does not, when any two such runs of
+/// different rules (plain, warped, and the shifted twin of each; for an
+/// integrand not declared smooth, one of each square or three of the plain
+/// square) agree, each
+/// method refining four times tighter on its next run (the narrow-lobe path
+/// starts there with the warped rule). With a fixed budget
 /// ([`Integrator::integrate`]) it refines until the budget cannot pay for
 /// the next level.
 ///
@@ -860,10 +871,11 @@ impl Integrator for Auto {
         "auto"
     }
 
-    /// The pilot, the grid to `tol` (broad lobes), and if it does not get
-    /// there, the staged [`Adaptive`] rule (warped when the integrand has a
-    /// sampling map) with the budget left; evaluations of every stage are
-    /// counted.
+    /// The pilot, the grid to `tol` (broad lobes and peaked smooth ones),
+    /// whose value is a candidate, then staged [`Adaptive`] runs on other
+    /// parameterisations until two agree within `tol` (see the type's docs);
+    /// evaluations of every stage are counted, and `max_budget` bounds
+    /// their sum.
     fn to_tolerance<I: Integrand>(
         &self,
         g: &I,
@@ -876,32 +888,32 @@ impl Integrator for Auto {
 
         let mut spent = p.evals;
         let chart = chart_for(&p, g.is_smooth());
+        let mut first = None;
+        let mut last = None;
         if !p.narrow || chart.is_some() {
             // The grid may use a quarter of the budget before the fallback.
-            let (mut e, end) = grid(g, tol, max_budget as u64 / 4, &p.probe, false, chart)?;
+            let (e, end) = grid(g, tol, max_budget as u64 / 4, &p.probe, false, chart)?;
             spent += e.evaluations;
+            last = Some(e);
             if end == GridEnd::Met {
-                let confirmation = e.error;
-                e.evaluations = spent;
-                return Ok(ToleranceOutcome {
+                // The grid's own confirmation (two coarser rules made of its
+                // nodes) is a candidate only: a kink or a lobe cut by the
+                // horizon fools its nested estimate at every level alike.
+                first = Some(confirm::Candidate {
                     estimate: e,
-                    budget: max_budget,
-                    stop: StopReason::ToleranceReached,
-                    total_evaluations: spent,
-                    confirmation: Some(confirmation),
-                    runs: 1,
+                    family: if chart.is_some() {
+                        confirm::Family::Chart
+                    } else {
+                        confirm::Family::Grid
+                    },
                 });
             }
         }
-        let a = Adaptive::new(0.0, 0.0)?;
-        let a = if g.has_sampling_map() { a.warped() } else { a };
-        let left = (max_budget as u64)
-            .saturating_sub(spent)
-            .max(a.min_budget() as u64);
-        let mut out = a.to_tolerance(g, tol, a.min_budget(), left.min(u32::MAX as u64) as u32)?;
-        out.total_evaluations += spent;
-        out.runs += 1;
-        Ok(out)
+        let spent = confirm::Spent {
+            evaluations: spent,
+            runs: u32::from(last.is_some()),
+        };
+        confirm::cross_confirm(g, tol, max_budget, first, last, spent)
     }
 }
 
