@@ -173,7 +173,7 @@ pub(crate) struct Spent {
 /// at most [`MAX_ADAPTIVE_EVALUATIONS`]); without two agreeing candidates
 /// the stop is [`StopReason::MaxBudget`] (or [`StopReason::IntegratorCap`]
 /// when a run was held below the budget left by the rule's own cap) with
-/// the last estimate.
+/// the best estimate (resolved first, then the smallest error).
 pub(crate) fn cross_confirm<I: Integrand>(
     g: &I,
     tol: f64,
@@ -240,7 +240,14 @@ pub(crate) fn cross_confirm<I: Integrand>(
         spent.evaluations += e.evaluations;
         spent.runs += 1;
         used[k] += e.evaluations;
-        last = Some(e);
+        // Without a confirmation the outcome reports the best estimate seen
+        // (resolved first, then the smallest error), not the last attempt.
+        let better = last.is_none_or(|l| {
+            (e.is_resolved(), -acc::max_abs(e.error)) > (l.is_resolved(), -acc::max_abs(l.error))
+        });
+        if better {
+            last = Some(e);
+        }
         let own = confirmed.is_some() && e.is_resolved() && acc::max_abs(e.error) <= tol;
         if !own {
             if confirmed.is_none() {
