@@ -123,7 +123,7 @@ fn plain_trio<W: WideSpectrum>(
 const MAX_CANDIDATES: usize = 16;
 
 /// Most staged runs of [`cross_confirm`].
-const MAX_ATTEMPTS: u32 = 16;
+const MAX_ATTEMPTS: u32 = 48;
 
 /// How much tighter a method's next staged run refines after one that
 /// produced a value (a candidate or not).
@@ -211,6 +211,8 @@ pub(crate) fn cross_confirm<I: Integrand>(
     };
     let mut last = last;
     let mut capped = false;
+    // The randomised check (see `randomised_check`), once taken.
+    let mut randomised: Option<Option<probe::MeanCheck<WideOf<I>>>> = None;
     // Per method: its next tolerance, the evaluations it spent, whether it
     // can do no better.
     let mut t = [tol; 5];
@@ -259,11 +261,11 @@ pub(crate) fn cross_confirm<I: Integrand>(
                     cap = cap.saturating_mul(4);
                 }
             } else {
-                t[k] /= ROUND_FACTOR;
+                t[k] = next_tolerance(t[k], &e);
             }
             continue;
         }
-        t[k] /= ROUND_FACTOR;
+        t[k] = next_tolerance(t[k], &e);
         // A non-smooth integrand's plain-square candidate also stands when
         // three rules of the plain square (of the grid, the plain, the
         // shifted and the unsplit rule) agree within `tol`: three rules
@@ -294,6 +296,38 @@ pub(crate) fn cross_confirm<I: Integrand>(
                 runs: spent.runs,
             });
         }
+        // A non-smooth integrand's pair of one square (two warped rules that
+        // share the map's seams, or two plain rules that can miss the same
+        // narrow lobe) stands on randomised evidence: an importance-sampled
+        // estimate through the map with enough draws that its own 4σ bound
+        // is at most half the tolerance, and within the other half of `e`.
+        if !smooth {
+            let near_same_square = cands.iter().take(n).flatten().find(|c| {
+                c.family != family
+                    && !c.family.independent_of(family, smooth)
+                    && acc::max_abs(acc::abs_diff(e.value, c.estimate.value)) <= tol
+            });
+            if near_same_square.is_some() && randomised.is_none() {
+                randomised = Some(randomised_check(g, tol, max_budget, &mut spent)?);
+            }
+            if let Some(c) = near_same_square
+                && let Some(Some(m)) = &randomised
+                && let Some(d) = randomised_agrees(m, &e, tol)
+            {
+                let pair = acc::abs_diff(e.value, c.estimate.value);
+                let mut est = e;
+                est.error = est.error.zip(pair, f64::max).zip(d, f64::max);
+                est.evaluations = spent.evaluations;
+                return Ok(ToleranceOutcome {
+                    estimate: est,
+                    budget: max_budget,
+                    stop: StopReason::ToleranceReached,
+                    total_evaluations: spent.evaluations,
+                    confirmation: Some(d),
+                    runs: spent.runs,
+                });
+            }
+        }
         let cand = Candidate { estimate: e, family };
         if n < MAX_CANDIDATES {
             cands[n] = Some(cand);
@@ -323,6 +357,84 @@ pub(crate) fn cross_confirm<I: Integrand>(
     })
 }
 
+/// The tolerance of a method's next staged run after one that produced `e`
+/// at tolerance `t`: `min(t, ε)/4`, `ε` the run's own error estimate (every
+/// channel's largest), so that the next run refines past the point where
+/// this one stopped instead of repeating it (a run that met `t` with a
+/// far smaller error would otherwise stop at the same node set).
+fn next_tolerance<W: WideSpectrum>(t: f64, e: &Estimate<W>) -> f64 {
+    let own = acc::max_abs(e.error);
+    let t = if own.is_finite() && own > 0.0 {
+        t.min(own)
+    } else {
+        t
+    };
+    t / ROUND_FACTOR
+}
+
+/// Draws of the pilot that sizes a randomised confirmation.
+const RANDOMISED_PILOT: u32 = 4096;
+
+/// Most draws of a randomised confirmation.
+const RANDOMISED_MAX_DRAWS: u64 = 1 << 22;
+
+/// The randomised check of [`cross_confirm`] (with a sampling map): a pilot
+/// of [`RANDOMISED_PILOT`] lattice draws through the map estimates the
+/// weight's variance `v` (the largest channel's); when `n = 80 v / tol²`
+/// draws (so that `4σ ≈ 0.45 tol`) fit in the budget left and in
+/// [`RANDOMISED_MAX_DRAWS`], they are taken. `None` when the check cannot be
+/// afforded (a tight tolerance: the draws grow as `tol⁻²`) or is not usable
+/// (too few non-zero draws). Taken at most once per driver run.
+fn randomised_check<I: Integrand>(
+    g: &I,
+    tol: f64,
+    max_budget: u32,
+    spent: &mut Spent,
+) -> Result<Option<probe::MeanCheck<WideOf<I>>>, IntegrateError> {
+    if !g.has_sampling_map() {
+        return Ok(None);
+    }
+    let left = (max_budget as u64).saturating_sub(spent.evaluations);
+    if left < RANDOMISED_PILOT as u64 {
+        return Ok(None);
+    }
+    let pilot = probe::MeanCheck::take(g, RANDOMISED_PILOT)?;
+    spent.evaluations += RANDOMISED_PILOT as u64;
+    if !pilot.usable {
+        return Ok(None);
+    }
+    // The variance of one draw from the pilot's standard error.
+    let s = acc::max_abs(pilot.sigma);
+    let var = s * s * RANDOMISED_PILOT as f64;
+    let need = libm::ceil(80.0 * var / (tol * tol)).max(RANDOMISED_PILOT as f64);
+    let left = (max_budget as u64).saturating_sub(spent.evaluations);
+    if !(need <= RANDOMISED_MAX_DRAWS.min(left) as f64) {
+        return Ok(None);
+    }
+    let n = need as u32;
+    let m = probe::MeanCheck::take(g, n)?;
+    spent.evaluations += n as u64;
+    Ok(m.usable.then_some(m))
+}
+
+/// Whether the randomised check `m` confirms `e` to `tol`: in every channel
+/// `4σ + |m|/n ≤ tol/2` and `|e − m| ≤ tol/2`. Then `|e − I| ≤ |e − m| +
+/// |m − I| ≤ tol` unless the check's mean is more than 4σ off (a 4σ event
+/// of the central limit theorem; the lattice draws are at least as accurate
+/// as independent ones for weights of bounded variation). Returns
+/// `|e − m| + 4σ + |m|/n` per channel, the bound claimed.
+fn randomised_agrees<W: WideSpectrum>(m: &probe::MeanCheck<W>, e: &Estimate<W>, tol: f64) -> Option<W> {
+    let nf = m.n as f64;
+    let stands = (0..W::CHANNELS).all(|i| {
+        let d = (e.value.channel(i) - m.mean.channel(i)).abs();
+        4.0 * m.sigma.channel(i) + m.mean.channel(i).abs() / nf <= 0.5 * tol && d <= 0.5 * tol
+    });
+    let bound = acc::abs_diff(e.value, m.mean)
+        .zip(m.sigma, |d, s| d + 4.0 * s)
+        .zip(m.mean, |b, mm| b + mm.abs() / nf);
+    stands.then_some(bound)
+}
+
 /// Most draws of the mean check of an agreeing pair.
 const CONFIRM_MAX_DRAWS: u32 = 65_536;
 
@@ -330,7 +442,7 @@ const CONFIRM_MAX_DRAWS: u32 = 65_536;
 /// quarter of the evaluations spent, between 64 and 65,536 lattice draws)
 /// does not contradict `e` by more than `tol + 4σ + |P|/n` (see
 /// [`probe::MeanCheck::judge`]). Without a map: `true`.
-fn mean_check_agrees<I: Integrand>(
+pub(crate) fn mean_check_agrees<I: Integrand>(
     g: &I,
     e: &Estimate<WideOf<I>>,
     tol: f64,
