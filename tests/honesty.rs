@@ -479,6 +479,37 @@ fn mean_check_flags_a_lobe_the_plain_adaptive_rule_under_integrates() {
     // finds the lobe but leaves part of it in region margins: 1.4 % low with
     // an estimate of 1.5·10⁻⁴ at 2²⁰ evaluations. The importance-sampled
     // mean check (one draw per 1,024 evaluations) disagrees and marks it.
+    // (Through a wrapper that states no kink lines: split at `μi = μo`, the
+    // plain rule puts the lobe on a region boundary and integrates it.)
+    struct NoKinks<'a, I>(&'a I);
+    impl<I: Integrand> Integrand for NoKinks<'_, I> {
+        type Spectrum = I::Spectrum;
+        fn eval(&self, w: Vec3) -> I::Spectrum {
+            self.0.eval(w)
+        }
+        fn has_sampling_map(&self) -> bool {
+            self.0.has_sampling_map()
+        }
+        fn sample(&self, u: [f32; 2]) -> Option<radiometry::integrator::IntegrandSample<I::Spectrum>> {
+            self.0.sample(u)
+        }
+        fn pdf(&self, w: Vec3) -> f32 {
+            self.0.pdf(w)
+        }
+        fn eval_batch(&self, w: &[Vec3], out: &mut [I::Spectrum]) {
+            self.0.eval_batch(w, out)
+        }
+        fn sample_batch(
+            &self,
+            u: &[[f32; 2]],
+            out: &mut [Option<radiometry::integrator::IntegrandSample<I::Spectrum>>],
+        ) {
+            self.0.sample_batch(u, out)
+        }
+        fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
+            self.0.pdf_batch(w, out)
+        }
+    }
     let p = Params {
         alpha: 1e-3,
         ..Params::typical()
@@ -497,7 +528,7 @@ fn mean_check_flags_a_lobe_the_plain_adaptive_rule_under_integrates() {
     let adaptive = Adaptive::new(0.0, 0.0).unwrap();
     let mut flagged = 0;
     for budget in [65536u32, 262144, 1 << 20] {
-        let e = adaptive.integrate(&g, budget).unwrap();
+        let e = adaptive.integrate(&NoKinks(&g), budget).unwrap();
         let err = (e.value - exact).abs();
         eprintln!(
             "adaptive {budget}: {:.8} ± {:.1e} (true {err:.1e}), {}",

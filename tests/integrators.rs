@@ -941,8 +941,9 @@ fn run_all<I: Integrand>(g: &I, budget: u32) -> Vec<String> {
     out
 }
 
-/// Forwards `eval`/`sample`/`pdf` and keeps the default (point-by-point)
-/// batch methods: the integrators then see exactly the scalar path.
+/// Forwards `eval`/`sample`/`pdf` (and the kink lines the plain rule splits
+/// at) and keeps the default (point-by-point) batch methods: the
+/// integrators then see exactly the scalar path.
 struct PointByPoint<'a, I>(&'a I);
 impl<I: Integrand> Integrand for PointByPoint<'_, I> {
     type Spectrum = I::Spectrum;
@@ -951,6 +952,9 @@ impl<I: Integrand> Integrand for PointByPoint<'_, I> {
     }
     fn has_sampling_map(&self) -> bool {
         self.0.has_sampling_map()
+    }
+    fn kinks(&self) -> Option<radiometry::integrator::Kinks> {
+        self.0.kinks()
     }
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<I::Spectrum>> {
         self.0.sample(u)

@@ -81,6 +81,12 @@ enum Command {
         /// summary (e.g. SciPy's nquad for the to-tolerance comparison).
         #[arg(long)]
         peers: Option<std::path::PathBuf>,
+        /// Also run the random-material honesty check: N random specs of the grammar (sums, mixes and coats nested
+        /// up to depth 3), random θo (a third grazing), tolerances 1e-6..1e-3, a random integrator (half `auto`),
+        /// each to its tolerance, judged against an independent f64 quadrature; writes honesty.csv and the count of
+        /// claims and lies to summary.md. `--cases honesty` runs only this check.
+        #[arg(long, default_value_t = 0)]
+        honesty: usize,
     },
     /// Directional albedo ρ(θo) = ∫ f_r(ωi, ωo) cos θi dωi of a BRDF.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
@@ -101,7 +107,9 @@ enum Command {
         budget: Option<u32>,
         /// Absolute error tolerance. Refines until the estimate is resolved, its error estimate is ≤ X and it is
         /// confirmed beyond one run: the budget is doubled from 64 until two successive runs agree within X (the
-        /// adaptive rules and `auto` instead refine their own work and confirm against a coarser stage), with at
+        /// adaptive rules and `auto` instead refine their own work, and `auto` and `adaptive-warped` then need a
+        /// run of a rule with other nodes to agree: the plain (μ, φ) square split at μi = μo and cos Δφ = 0, the
+        /// sampling map's square, or the shifted twin of either), with at
         /// most 4194304 (2^22) evaluations in the last run. The output says what happened ("stopped": "tolerance
         /// reached" | "max budget reached" | "integrator cap reached" | "out of reach": Monte Carlo whose N^-1/2
         /// projection needs more than 4 × the maximum budget), and "confirmation": how far the answer moved from
@@ -372,6 +380,7 @@ fn main() -> ExitCode {
             cases,
             integrators,
             peers,
+            honesty,
         } => {
             let external = match peers {
                 None => Vec::new(),
@@ -396,6 +405,7 @@ fn main() -> ExitCode {
                 cases,
                 integrators,
                 external,
+                honesty,
             }) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {

@@ -231,12 +231,26 @@ fn albedo_tol_answers_the_compensated_lobe_at_grazing_views() {
             ]);
             assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
             let j = json(&o);
-            assert_eq!(j["stopped"], "tolerance reached", "{integrator} {theta}: {j}");
+            // Where the lobe is resolved only on the sampling map's square
+            // (the plain square misses it at 85°) and the map has a seam
+            // (the compensation lobe is a mixture), the two warped rules can
+            // differ by about 10⁻⁵: the driver then stops without a
+            // confirmation rather than claim the tolerance (docs/accuracy.md,
+            // known limits). Either way the answer is the truth's.
+            let stopped = j["stopped"].as_str().unwrap();
+            assert!(
+                stopped == "tolerance reached" || stopped == "integrator cap reached",
+                "{integrator} {theta}: {j}"
+            );
             let v = j["value"].as_f64().unwrap();
             assert!(
                 (v - exact).abs() <= 2e-5,
                 "{integrator} {theta}: {v} vs {exact}: {j}"
             );
+            if stopped == "tolerance reached" {
+                let claim = j["error"].as_f64().unwrap().max(1e-5);
+                assert!((v - exact).abs() <= 10.0 * claim, "{integrator} {theta}: {j}");
+            }
         }
     }
 }

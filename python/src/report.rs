@@ -157,6 +157,7 @@ pub fn tradeoff<'py>(
         cases: cases.unwrap_or_default(),
         integrators: integrators.unwrap_or_default(),
         external,
+        honesty: 0,
     };
     py.detach(|| report::run(&opt)).map_err(PyRuntimeError::new_err)?;
     let d = PyDict::new(py);

@@ -5,10 +5,11 @@ use super::acc::{self, F32_FLOOR};
 use super::chart::peak::ASPECT_RANGE;
 use super::chart::{Chart, PeakChart, ProductChart};
 use super::chunk::{self, CHUNK, head, head_mut};
+use super::confirm;
 use super::probe::{self, Probe};
 use super::{
-    Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, StopReason, ToleranceOutcome,
-    Unresolved, WideOf, check_tolerance_args,
+    Adaptive, Estimate, Integrand, IntegrateError, Integrator, Status, ToleranceOutcome, Unresolved, WideOf,
+    check_tolerance_args,
 };
 use crate::spectrum::{Spectrum as _, WideSpectrum};
 
@@ -45,6 +46,19 @@ const PEAK_CHART_PEAKINESS: f64 = 30.0;
 /// answered 6·10⁻⁶ off with a claim of 6.5·10⁻⁷, where the warped rule —
 /// whose weights `f cos θ / pdf` cancel the peak — is exact to 10⁻⁷.
 const MAX_PEAK_CHART_PEAKINESS: f64 = 1e5;
+
+/// Twins of a chart [`Auto`] tries to confirm a chart's grid (see
+/// `Chart::twin`).
+const CHART_TWINS: usize = 2;
+
+/// A chart's grid that did not meet the tolerance still confirms one that
+/// did when it is resolved, agrees within `tol`, and its own error estimate
+/// is at most `NEAR_MET × tol` (on narrow grazing lobes the estimate of a
+/// narrower chart carries the `f32` rounding of its nodes, about 10⁻⁶).
+const NEAR_MET: f64 = 4.0;
+
+/// Least budget left for a twin's grid.
+const CHART_TWIN_MIN_BUDGET: u64 = 1024;
 
 /// Smallest pole height `cos θ` (78.5°) at which [`Auto`] tries the
 /// peak-centred chart: closer to the horizon a narrow lobe is cut by it
@@ -200,15 +214,25 @@ fn median(v: &[f64]) -> Option<f64> {
 ///    more than [`probe::PEAK_RATIO`] × the largest node value: a peak
 ///    between the nodes; no support seen; too few effective nodes): the
 ///    staged [`Adaptive`] rule on the sampling-map square (or the plain
-///    square without a map), which refines its own regions and confirms
-///    its value by a refinement of itself (see
-///    [`Integrator::to_tolerance`]).
+///    square without a map), which refines its own regions; to a tolerance
+///    its value is confirmed as below.
 ///
 /// To a tolerance ([`integrate_to_tolerance`](super::integrate_to_tolerance)),
 /// the grid stops when `d_μ + d_φ + floor ≤ tol` at a level reached by
 /// refinement (not the first one) and the status is resolved: the value
 /// agrees within `tol` with two coarser rules made of a subset of its own
-/// nodes (the confirmation). With a fixed budget
+/// nodes. That value is a *candidate* only: a kink (the Oren–Nayar family at
+/// `μi = μo`), a lobe cut by the horizon or the step of a mixture map fools
+/// every level of a nested rule alike. It stands when a staged [`Adaptive`]
+/// run from scratch on another parameterisation agrees within `tol` — the
+/// plain `(μ, φ)` square split at the integrand's
+/// [kinks](super::Integrand::kinks) after the plain grid, the sampling map's
+/// square after a chart — or, if it does not, when any two such runs of
+/// different rules (plain, warped, and the shifted twin of each; for an
+/// integrand not declared smooth, one of each square or three of the plain
+/// square) agree, each
+/// method refining four times tighter on its next run (the narrow-lobe path
+/// starts there with the warped rule). With a fixed budget
 /// ([`Integrator::integrate`]) it refines until the budget cannot pay for
 /// the next level.
 ///
@@ -860,10 +884,11 @@ impl Integrator for Auto {
         "auto"
     }
 
-    /// The pilot, the grid to `tol` (broad lobes), and if it does not get
-    /// there, the staged [`Adaptive`] rule (warped when the integrand has a
-    /// sampling map) with the budget left; evaluations of every stage are
-    /// counted.
+    /// The pilot, the grid to `tol` (broad lobes and peaked smooth ones),
+    /// whose value is a candidate, then staged [`Adaptive`] runs on other
+    /// parameterisations until two agree within `tol` (see the type's docs);
+    /// evaluations of every stage are counted, and `max_budget` bounds
+    /// their sum.
     fn to_tolerance<I: Integrand>(
         &self,
         g: &I,
@@ -876,32 +901,105 @@ impl Integrator for Auto {
 
         let mut spent = p.evals;
         let chart = chart_for(&p, g.is_smooth());
+        let mut first = None;
+        let mut last = None;
+        let mut runs = 0u32;
         if !p.narrow || chart.is_some() {
             // The grid may use a quarter of the budget before the fallback.
-            let (mut e, end) = grid(g, tol, max_budget as u64 / 4, &p.probe, false, chart)?;
+            let quarter = max_budget as u64 / 4;
+            let (e, end) = grid(g, tol, quarter, &p.probe, false, chart)?;
             spent += e.evaluations;
-            if end == GridEnd::Met {
-                let confirmation = e.error;
-                e.evaluations = spent;
-                return Ok(ToleranceOutcome {
-                    estimate: e,
-                    budget: max_budget,
-                    stop: StopReason::ToleranceReached,
-                    total_evaluations: spent,
-                    confirmation: Some(confirmation),
-                    runs: 1,
-                });
+            runs += 1;
+            last = Some(e);
+            // The grid's own confirmation (two coarser rules made of its
+            // nodes) is a candidate only: a kink or a lobe cut by the
+            // horizon fools its nested estimate at every level alike.
+            first = (end == GridEnd::Met).then_some(confirm::Candidate {
+                estimate: e,
+                family: if chart.is_some() {
+                    confirm::Family::Chart
+                } else {
+                    confirm::Family::Grid
+                },
+            });
+            // On a chart (smooth integrands only), grids on its twins —
+            // the widths scaled by 1/φ and 1/φ², so other nodes — confirm a
+            // value two of them meet `tol` on and agree on within `tol`
+            // (with the mean check through the sampling map): the narrow
+            // lobes near the horizon that only a chart resolves to 10⁻⁶
+            // (GGX α = 10⁻³ and 10⁻² at 89.9°: the warped rules stall at
+            // a few 10⁻⁶ there).
+            // Each chart's estimate when resolved with its own error at most
+            // `NEAR_MET × tol`, and whether its grid met `tol`.
+            let near = |e: &Estimate<WideOf<I>>| e.is_resolved() && acc::max_abs(e.error) <= NEAR_MET * tol;
+            let mut seen: [Option<(Estimate<WideOf<I>>, bool)>; CHART_TWINS + 1] = [None; CHART_TWINS + 1];
+            if let (Some(s0), Some(_)) = (seen.first_mut(), chart)
+                && near(&e)
+            {
+                *s0 = Some((e, end == GridEnd::Met));
+            }
+            let mut cur = chart;
+            for k in 1..=CHART_TWINS {
+                let Some(tw) = cur.and_then(|c| c.twin()) else {
+                    break;
+                };
+                cur = Some(tw);
+                let left = quarter.saturating_sub(spent);
+                if left < CHART_TWIN_MIN_BUDGET {
+                    break;
+                }
+                let (t, tend) = grid(g, tol, left, &p.probe, false, Some(tw))?;
+                spent += t.evaluations;
+                runs += 1;
+                if !near(&t) {
+                    continue;
+                }
+                let t_met = tend == GridEnd::Met;
+                for &(prior, prior_met) in seen.iter().take(k).flatten() {
+                    let d = acc::abs_diff(prior.value, t.value);
+                    if !(t_met || prior_met) || acc::max_abs(d) > tol {
+                        continue;
+                    }
+                    let mut sp = confirm::Spent {
+                        evaluations: spent,
+                        runs,
+                    };
+                    let best = if acc::max_abs(t.error) <= acc::max_abs(prior.error) {
+                        t
+                    } else {
+                        prior
+                    };
+                    if confirm::mean_check_agrees(g, &best, tol, &mut sp)? {
+                        let mut est = best;
+                        est.error = est.error.zip(d, f64::max);
+                        est.evaluations = sp.evaluations;
+                        return Ok(ToleranceOutcome {
+                            estimate: est,
+                            budget: max_budget,
+                            stop: super::StopReason::ToleranceReached,
+                            total_evaluations: sp.evaluations,
+                            confirmation: Some(d),
+                            runs: sp.runs,
+                        });
+                    }
+                    spent = sp.evaluations;
+                }
+                if let Some(m) = seen.get_mut(k) {
+                    *m = Some((t, t_met));
+                }
+                if first.is_none() && t_met {
+                    first = Some(confirm::Candidate {
+                        estimate: t,
+                        family: confirm::Family::Chart,
+                    });
+                }
             }
         }
-        let a = Adaptive::new(0.0, 0.0)?;
-        let a = if g.has_sampling_map() { a.warped() } else { a };
-        let left = (max_budget as u64)
-            .saturating_sub(spent)
-            .max(a.min_budget() as u64);
-        let mut out = a.to_tolerance(g, tol, a.min_budget(), left.min(u32::MAX as u64) as u32)?;
-        out.total_evaluations += spent;
-        out.runs += 1;
-        Ok(out)
+        let spent = confirm::Spent {
+            evaluations: spent,
+            runs,
+        };
+        confirm::cross_confirm(g, tol, max_budget, first, last, spent)
     }
 }
 

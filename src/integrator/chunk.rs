@@ -104,6 +104,63 @@ pub(crate) fn hemisphere_values<I: Integrand>(
     Ok(())
 }
 
+/// The plain square through a map: `out[k] = J_k g(ω_k)` where
+/// `(μ_k, φ_k, J_k) = map(a_k, b_k)` and `ω_k = ω(μ_k, φ_k)`, for
+/// `k < min(p.len(), out.len())`.
+pub(crate) fn mapped_hemisphere_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    map: impl Fn(f64, f64) -> (f64, f64, f64),
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    // The Jacobian is recomputed at the output instead of kept: no third
+    // chunk-sized buffer on the stack (firmware-sized frames).
+    let mut dirs = [Vec3::ZERO; CHUNK];
+    let mut vals = [I::Spectrum::zero(); CHUNK];
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for (d, &[a, b]) in head_mut(&mut dirs, n).iter_mut().zip(p) {
+            let (mu, phi, _) = map(a, b);
+            *d = direction(mu, phi);
+        }
+        g.eval_batch(head(&dirs, n), head_mut(&mut vals, n));
+        for ((o, v), &[a, b]) in out.iter_mut().zip(head(&vals, n)).zip(p) {
+            let j = map(a, b).2;
+            *o = check_finite(v.to_wide())?.map(|x| x * j);
+        }
+    }
+    Ok(())
+}
+
+/// The sampling-map square through the bend `s(x) = x + κ x (1 − x)` of
+/// both coordinates (`|κ| < 1`, a smooth monotone map of `[0, 1]` onto
+/// itself): `out[k] = s'(a_k) s'(b_k) w(s(a_k), s(b_k))` with `w` the
+/// values of [`warped_values`].
+pub(crate) fn bent_warped_values<I: Integrand>(
+    g: &I,
+    p: &[[f64; 2]],
+    kappa: f64,
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut q = [[0.0f64; 2]; CHUNK];
+    let mut jac = [0.0f64; CHUNK];
+    let bend = |x: f64| (x + kappa * x * (1.0 - x), 1.0 + kappa * (1.0 - 2.0 * x));
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for ((q, j), &[a, b]) in head_mut(&mut q, n).iter_mut().zip(jac.iter_mut()).zip(p) {
+            let ((sa, da), (sb, db)) = (bend(a), bend(b));
+            *q = [sa.clamp(0.0, 1.0), sb.clamp(0.0, 1.0)];
+            *j = da * db;
+        }
+        let out = head_mut(out, n);
+        warped_values(g, head(&q, n), out)?;
+        for (o, &j) in out.iter_mut().zip(jac.iter()) {
+            *o = o.map(|x| x * j);
+        }
+    }
+    Ok(())
+}
+
 /// The sampling-map square: `out[k] = g(ω)/p(ω)` at `u = (a_k, b_k)`
 /// (rounded to `f32` in `[0, 1)`), zero where the map has no direction
 /// (see [`sample_weight`]), for `k < min(p.len(), out.len())`.

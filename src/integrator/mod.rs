@@ -85,6 +85,14 @@ pub trait Integrand {
         false
     }
 
+    /// Where `g` may fail to be smooth on the plain hemisphere, if it says:
+    /// the line `μ = cos θ = mu` and the azimuths with `cos(φ − phi) = 0`.
+    /// The plain [`Adaptive`] rule puts its first cuts there, so that no
+    /// region straddles them. Default `None`.
+    fn kinks(&self) -> Option<Kinks> {
+        None
+    }
+
     /// Maps `u ∈ [0,1)²` to a direction with its density and the integrand
     /// value there, or `None` where the map produces no valid direction
     /// (a zero-contribution sample). Default: `None`.
@@ -182,6 +190,10 @@ impl<T: Integrand + ?Sized> Integrand for &T {
         (**self).is_smooth()
     }
     #[inline]
+    fn kinks(&self) -> Option<Kinks> {
+        (**self).kinks()
+    }
+    #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<Self::Spectrum>> {
         (**self).sample(u)
     }
@@ -201,6 +213,16 @@ impl<T: Integrand + ?Sized> Integrand for &T {
     fn pdf_batch(&self, w: &[Vec3], out: &mut [f32]) {
         (**self).pdf_batch(w, out)
     }
+}
+
+/// Lines of the plain `(μ, φ)` hemisphere where an integrand may have a
+/// kink ([`Integrand::kinks`]): `μ = mu` and `cos(φ − phi) = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Kinks {
+    /// The polar cosine of the kink line `μ = mu`.
+    pub mu: f64,
+    /// The azimuth (radians) whose perpendiculars `phi ± π/2` are kink lines.
+    pub phi: f64,
 }
 
 /// The result of an integration.
@@ -354,6 +376,18 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
         self.brdf.is_smooth()
     }
 
+    /// `μi = μo` and `cos(φi − φo) = 0`: where the isotropic lobes of the
+    /// Oren–Nayar family switch terms (`max(0, cos Δφ)`, `min`/`max` of
+    /// `μi`, `μo`; Oren & Nayar 1994, Eq. 30; Fujii 2012; Portsmouth et al.
+    /// 2025), and the lines through the mirror direction `(μo, φo + π)` of
+    /// every isotropic lobe.
+    fn kinks(&self) -> Option<Kinks> {
+        Some(Kinks {
+            mu: self.wo.z as f64,
+            phi: libm::atan2(self.wo.y as f64, self.wo.x as f64),
+        })
+    }
+
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<B::Spectrum>> {
         let s = self.brdf.sample(self.wo, u)?;
@@ -408,6 +442,7 @@ pub(crate) fn check_finite<W: WideSpectrum>(v: W) -> Result<W, IntegrateError> {
 
 mod acc;
 pub(crate) mod chunk;
+mod confirm;
 pub mod gauss_legendre;
 pub mod points;
 mod sobol;

@@ -13,12 +13,20 @@ pub const DEFAULT_MAX_BUDGET: u32 = 1 << 22;
 pub enum StopReason {
     /// The tolerance was met on evidence that holds: a
     /// [`Status::Resolved`](super::Status::Resolved) estimate whose error
-    /// estimate (every channel) is `≤ tol`, *confirmed* by a larger run (or,
-    /// for [`Adaptive`](super::Adaptive), a refinement of the same run) whose
-    /// value differs from the previous one by `≤ tol` (see
-    /// [`ToleranceOutcome::confirmation`]). An unresolved estimate never
-    /// counts as converged, however small its error, and neither does a
-    /// single run, however confident.
+    /// estimate (every channel) is `≤ tol`, *confirmed* by a run whose
+    /// value differs from it by `≤ tol` (see
+    /// [`ToleranceOutcome::confirmation`]): for budget doubling the larger
+    /// run; for [`Auto`](super::Auto) and the warped
+    /// [`Adaptive`](super::Adaptive) rule a run from scratch of a rule with
+    /// other nodes (the plain `(μ, φ)` square split at the integrand's
+    /// [kinks](super::Integrand::kinks), the sampling map's square, or the
+    /// shifted twin of either: other cuts, bent coordinates; where the
+    /// integrand is not [smooth](super::Integrand::is_smooth), a rule of
+    /// the other square or two more rules of the plain square), never a
+    /// stage of the candidate's own refinement; for the plain [`Adaptive`](super::Adaptive) rule a run
+    /// from scratch at twice the evaluations and an importance-sampled mean
+    /// check. An unresolved estimate never counts as converged, however
+    /// small its error, and neither does a single run, however confident.
     ToleranceReached,
     /// The run at `max_budget` did not reach the tolerance (or did not
     /// confirm it).
@@ -105,10 +113,15 @@ pub fn check_tolerance_args(tol: f64, start_budget: u32, max_budget: u32) -> Res
 ///
 /// It stops with [`StopReason::ToleranceReached`] only on evidence beyond one
 /// run: a resolved estimate with error `≤ tol` whose value is within `tol`
-/// of the previous run's (or stage's). One lucky run — a rule whose nodes
-/// all fall on the flat part of a lobe, so that its two embedded rules agree
-/// to `10⁻⁷` while the lobe's tail is missed by `10⁻⁴` — is not enough: the
-/// next run sees the tail, moves by more than `tol`, and refinement goes on.
+/// of a confirming run's (see [`StopReason::ToleranceReached`]). One lucky
+/// run — a rule whose nodes all fall on the flat part of a lobe, so that its
+/// two embedded rules agree to `10⁻⁷` while the lobe's tail is missed by
+/// `10⁻⁴` — is not enough: the next run sees the tail, moves by more than
+/// `tol`, and refinement goes on. Nor is a refinement that confirms itself
+/// where the integrand is not what its error estimate assumes (a kink, a
+/// lobe cut by the horizon, the seam of a mixture sampling map at
+/// `u₀ = p`): [`Auto`](super::Auto) and the warped rule then need an
+/// unrelated rule on another parameterisation to agree.
 ///
 /// Domain: `tol` finite and `> 0`, `start_budget ≥ 1`,
 /// `max_budget ≥ start_budget` (use [`DEFAULT_MAX_BUDGET`] if unsure);

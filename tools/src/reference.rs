@@ -834,3 +834,80 @@ mod plugin_tests {
         eprintln!("worst relative plugin/reference-model difference: {worst:e}");
     }
 }
+
+/// The directional albedo at `θo` (radians) of an arbitrary BRDF given as
+/// its values `f(ωi)` at the fixed `ωo = (sin θo, 0, cos θo)` — the
+/// reference of the random-material honesty check
+/// (`radiometry tradeoff --honesty N`), which judges the integrators on the
+/// crate's own BRDF values.
+///
+/// `ρ = 2 ∫₀¹ ∫₀^π f(ω(μ, φ)) μ dφ dμ` (the BRDF is isotropic, so the
+/// integrand is even in `φ`), nested globally adaptive Gauss–Kronrod in
+/// `f64` ([`gauss_kronrod::adaptive`], written independently of the crate's
+/// integrators), split where the lobes of the grammar are not smooth or
+/// peak: `μ = μo` (the Oren–Nayar family's kink, the mirror direction's
+/// polar angle), `φ = π/2` (their `cos Δφ = 0` kink), and clusters of break
+/// points about the mirror direction `(μo, π)` at widths `4^k · 0.02`. Two
+/// runs (relative tolerances `10⁻⁵` and `10⁻⁷`); the bound is their
+/// difference plus the finer run's summed indicator.
+pub fn albedo_of(f: &dyn Fn([f64; 3]) -> f64, theta_o: f64) -> Reference {
+    let mu_o = theta_o.cos();
+    let g = |mu: f64, phi: f64| 2.0 * f(sph(mu, phi)) * mu;
+    let mut evals = 0;
+    let mut mu_breaks = cluster(mu_o, 0.02);
+    mu_breaks.push(mu_o);
+    let right = |_mu: f64| Some(FRAC_PI_2);
+    let (coarse, _) = integrate_split(&g, &mu_breaks, &right, 1e-5, 0.0, &mut evals);
+    let (fine, e) = integrate_split(&g, &mu_breaks, &right, 1e-7, coarse, &mut evals);
+    Reference {
+        value: fine,
+        bound: (coarse - fine).abs() + e + 4.0 * f64::EPSILON * fine.abs(),
+        evaluations: evals,
+    }
+}
+
+/// [`integrate_2d`] with the φ break points `π/2` and a cluster about `π`.
+fn integrate_split(
+    g: &dyn Fn(f64, f64) -> f64,
+    mu_breaks: &[f64],
+    kink: &dyn Fn(f64) -> Option<f64>,
+    tol: f64,
+    scale: f64,
+    evals: &mut u64,
+) -> (f64, f64) {
+    let phi_breaks = cluster(PI, 0.02);
+    let mut count = 0u64;
+    let (v, e) = adaptive(
+        |mu| {
+            let mut breaks = phi_breaks.clone();
+            if let Some(k) = kink(mu) {
+                breaks.push(k);
+            }
+            adaptive(
+                |phi| {
+                    count += 1;
+                    g(mu, phi)
+                },
+                0.0,
+                PI,
+                &breaks,
+                inner_abs_tol(tol, scale, 1.0),
+                tol,
+                SPLIT_MAX_INTERVALS,
+            )
+            .0
+        },
+        0.0,
+        1.0,
+        mu_breaks,
+        1e-300,
+        tol,
+        SPLIT_MAX_INTERVALS,
+    );
+    *evals += count;
+    (v, e)
+}
+
+/// Most intervals of each of [`integrate_split`]'s adaptive rules: the `f32`
+/// values' rounding noise (`≈ 10⁻⁷` relative) stops the rules long before.
+const SPLIT_MAX_INTERVALS: usize = 300;

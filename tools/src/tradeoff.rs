@@ -40,6 +40,9 @@ pub struct Options {
     /// Rows measured outside this crate (user integrators run by the Python
     /// harness), merged into the tables, CSVs and summary by case name.
     pub external: Vec<ExternalRow>,
+    /// Runs of the random-material honesty check (`--honesty N`, module
+    /// [`honesty`]; 0: none). With `--cases honesty` only that check runs.
+    pub honesty: usize,
 }
 
 /// A row measured outside this crate: a user integrator (Python
@@ -486,6 +489,14 @@ pub fn run(opt: &Options) -> Result<(), String> {
         pcases.clear();
     }
     if cases.is_empty() && pcases.is_empty() {
+        if opt.honesty > 0 {
+            let (text, md) = honesty_section(opt)?;
+            print!("{text}");
+            std::fs::write(opt.out.join("summary.md"), md)
+                .map_err(|e| format!("cannot write summary.md: {e}"))?;
+            println!("\nWrote {}/honesty.csv, summary.md.", opt.out.display());
+            return Ok(());
+        }
         return Err("the --cases / --integrators filters leave nothing to run".into());
     }
     let brdfs = cases
@@ -727,6 +738,11 @@ pub fn run(opt: &Options) -> Result<(), String> {
         text.push_str(&t);
         md.push_str(&m);
     }
+    if opt.honesty > 0 {
+        let (t, m) = honesty_section(opt)?;
+        text.push_str(&t);
+        md.push_str(&m);
+    }
     print!("{text}");
     std::fs::write(opt.out.join("summary.md"), md).map_err(|e| format!("cannot write summary.md: {e}"))?;
     println!(
@@ -742,7 +758,39 @@ pub fn run(opt: &Options) -> Result<(), String> {
     Ok(())
 }
 
+/// The random-material honesty check ([`honesty`]): `opt.honesty` cases of
+/// seed `opt.seed` on `opt.threads` workers; writes `honesty.csv` and returns
+/// the section's text and markdown.
+fn honesty_section(opt: &Options) -> Result<(String, String), String> {
+    let t0 = Instant::now();
+    let cases = honesty::cases(opt.honesty, opt.seed);
+    let slots: Vec<std::sync::Mutex<Option<honesty::HonestyRow>>> =
+        cases.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let progress = Progress::new(opt.progress, cases.len());
+    parallel_for(opt.threads, cases.len(), |k| {
+        let row = honesty::run_case(&cases[k]);
+        *slots[k].lock().expect("no poison") = Some(row);
+        progress.tick("honesty");
+    });
+    progress.finish();
+    let rows: Vec<honesty::HonestyRow> = slots
+        .into_iter()
+        .map(|m| m.into_inner().expect("no poison").expect("computed"))
+        .collect();
+    std::fs::write(opt.out.join("honesty.csv"), honesty::csv(&rows))
+        .map_err(|e| format!("cannot write honesty.csv: {e}"))?;
+    let line = honesty::summary_line(&rows, t0.elapsed().as_secs_f64());
+    Ok((
+        format!("\n{line}\n"),
+        format!(
+            "\n### Honesty on random materials (`--honesty {}`)\n\n{line}\n",
+            opt.honesty
+        ),
+    ))
+}
+
 pub mod external;
+pub mod honesty;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod product;

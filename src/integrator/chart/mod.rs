@@ -56,7 +56,22 @@ impl Chart {
             Chart::Product(c) => c.rounding(),
         }
     }
+
+    /// The chart's twin: the same peak with its widths scaled by
+    /// [`TWIN_WIDTH`], so that no node of a grid on it lies where a node of
+    /// the same grid on `self` does. A value of a smooth integrand that
+    /// the two grids agree on is confirmed by two parameterisations.
+    pub(crate) fn twin(&self) -> Option<Chart> {
+        match self {
+            Chart::Peak(c) => c.scaled(TWIN_WIDTH).map(Chart::Peak),
+            Chart::Product(c) => c.scaled(TWIN_WIDTH).map(Chart::Product),
+        }
+    }
 }
+
+/// The width ratio of a chart's [twin](Chart::twin): irrational, far from
+/// 1 and from the grids' refinement ratio 2.
+pub(crate) const TWIN_WIDTH: f64 = 0.618_033_988_749_894_9;
 
 /// `∫∫ f(ω) J dx dt` for a chart `map(x, t) = (ω, J)` (tests): composite
 /// Simpson in `x` (the Jacobians are smooth) times the trapezoid rule in the

@@ -118,6 +118,12 @@ impl PeakChart {
         (eps / (2.0 * libm::sqrt(self.w2) * self.k.min(1.0))).min(1.0)
     }
 
+    /// The chart with both widths scaled by `s` (`w² → s² w²`).
+    pub(crate) fn scaled(&self, s: f64) -> Option<Self> {
+        let w2 = self.w2 * s * s;
+        (w2.is_finite() && w2 > 0.0).then_some(PeakChart { w2, ..*self })
+    }
+
     /// The frame `(e₁, e₂)` of the chart's tangent plane.
     pub(crate) fn frame(&self) -> (DVec3, DVec3) {
         (self.e1, self.e2)

@@ -69,6 +69,11 @@ impl ProductChart {
         })
     }
 
+    /// The chart about the same peak with both widths scaled by `s`.
+    pub(crate) fn scaled(&self, s: f64) -> Option<Self> {
+        ProductChart::new(self.mu_p, self.phi_p, self.w_mu * s, self.w_phi * s)
+    }
+
     /// `(ω, J)` at `(x, t)`, `x ∈ [0, 1]`, `t` in turns.
     pub(crate) fn map(&self, x: f64, t: f64) -> (Vec3, f64) {
         let x = x.clamp(0.0, 1.0);
