@@ -190,7 +190,9 @@ pub(crate) fn cross_confirm<I: Integrand>(
     let mut cands: [Option<Candidate<WideOf<I>>>; MAX_CANDIDATES] = [None; MAX_CANDIDATES];
     let mut n = 0usize;
     if let Some(c) = first {
-        cands[0] = Some(c);
+        if let Some(slot) = cands.first_mut() {
+            *slot = Some(c);
+        }
         n = 1;
     }
     // The methods, in the order they are tried when they have spent
@@ -225,12 +227,14 @@ pub(crate) fn cross_confirm<I: Integrand>(
     for _attempt in 0..MAX_ATTEMPTS {
         // The method that spent least so far (ties: `methods` order).
         let Some(k) = (0..5)
-            .filter(|&k| methods[k].is_some() && !exhausted[k])
-            .min_by_key(|&k| used[k])
+            .filter(|&k| methods.get(k).is_some_and(Option::is_some) && exhausted.get(k) == Some(&false))
+            .min_by_key(|&k| used.get(k).copied().unwrap_or(u64::MAX))
         else {
             break;
         };
-        let Some((rule, family)) = methods[k] else { break };
+        let (Some(&Some((rule, family))), Some(&tk)) = (methods.get(k), t.get(k)) else {
+            break;
+        };
         let left = (max_budget as u64).saturating_sub(spent.evaluations);
         if left < rule.min_budget() as u64 {
             break;
@@ -238,10 +242,12 @@ pub(crate) fn cross_confirm<I: Integrand>(
         let limit = left.min(MAX_ADAPTIVE_EVALUATIONS as u64);
         capped |= limit < left;
         let budget = limit.min(cap).max(rule.min_budget() as u64) as u32;
-        let (e, confirmed) = rule.staged(g, budget, t[k])?;
+        let (e, confirmed) = rule.staged(g, budget, tk)?;
         spent.evaluations += e.evaluations;
         spent.runs += 1;
-        used[k] += e.evaluations;
+        if let Some(u) = used.get_mut(k) {
+            *u += e.evaluations;
+        }
         // Without a confirmation the outcome reports the best estimate seen
         // (resolved first, then the smallest error), not the last attempt.
         let better = last.is_none_or(|l| {
@@ -256,22 +262,28 @@ pub(crate) fn cross_confirm<I: Integrand>(
                 // Out of evaluations before meeting `t`: with a larger cap,
                 // or, at the limit, never.
                 if budget as u64 >= limit {
-                    exhausted[k] = true;
+                    if let Some(x) = exhausted.get_mut(k) {
+                        *x = true;
+                    }
                 } else {
                     cap = cap.saturating_mul(4);
                 }
             } else {
-                t[k] = next_tolerance(t[k], &e);
+                if let Some(x) = t.get_mut(k) {
+                    *x = next_tolerance(tk, &e);
+                }
             }
             continue;
         }
-        t[k] = next_tolerance(t[k], &e);
+        if let Some(x) = t.get_mut(k) {
+            *x = next_tolerance(tk, &e);
+        }
         // A non-smooth integrand's plain-square candidate also stands when
         // three rules of the plain square (of the grid, the plain, the
         // shifted and the unsplit rule) agree within `tol`: three rules
         // with unrelated nodes, one of them not split at the kinks.
         let trio = (!smooth && !family.is_warped())
-            .then(|| plain_trio(&cands[..n], &e, family, tol))
+            .then(|| plain_trio(cands.get(..n).unwrap_or_default(), &e, family, tol))
             .flatten();
         let pairs = cands.iter().take(n).flatten().filter_map(|c| {
             if !c.family.independent_of(family, smooth) {
@@ -329,8 +341,8 @@ pub(crate) fn cross_confirm<I: Integrand>(
             }
         }
         let cand = Candidate { estimate: e, family };
-        if n < MAX_CANDIDATES {
-            cands[n] = Some(cand);
+        if let Some(slot) = cands.get_mut(n) {
+            *slot = Some(cand);
             n += 1;
         } else if let Some(slot) = cands.get_mut(MAX_CANDIDATES - 1) {
             *slot = Some(cand);
