@@ -420,7 +420,7 @@ fn randomised_check<I: Integrand>(
     let var = s * s * RANDOMISED_PILOT as f64;
     let need = libm::ceil(80.0 * var / (tol * tol)).max(RANDOMISED_PILOT as f64);
     let left = (max_budget as u64).saturating_sub(spent.evaluations);
-    if !(need <= RANDOMISED_MAX_DRAWS.min(left) as f64) {
+    if need.is_nan() || need > RANDOMISED_MAX_DRAWS.min(left) as f64 {
         return Ok(None);
     }
     let n = need as u32;
