@@ -286,6 +286,130 @@ pub fn reflectance_to_linear_srgb(rho: impl Fn(f32) -> f32) -> [f32; 3] {
     out.map(|v| v as f32)
 }
 
+/// The reduction of the module docs as a continuous observer for spectral
+/// *radiance*: `RGB_c(L) = ∫ L(λ) v_c(λ) dλ` with
+/// `v_c(λ) = w_c(λ)/(D65(λ) Δλ)` (`Δλ` = 5 nm, linear between the grid's
+/// nodes, zero outside 360–780 nm), so that a radiance `L = m ρ(λ) D65(λ)`
+/// (D65 as tabulated, 100 at 560 nm) has the colour `m · RGB(ρ)` — in
+/// particular `m · D65` is the grey `(m, m, m)`. What a spectral renderer
+/// uses to turn hero-wavelength radiance samples into linear sRGB, and the
+/// ideal observer of a simulated camera. About 1 KB; build it once.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SrgbObserver {
+    v: [[f32; GRID_LEN]; 3],
+}
+
+impl Default for SrgbObserver {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl SrgbObserver {
+    /// The observer's tables (from the crate's CIE 1931 and D65 tables).
+    pub fn new() -> Self {
+        const D65_OFFSET: usize = ((GRID_START_NM - tables::D65_START_NM) / tables::D65_STEP_NM) as usize;
+        let w = Weights::new();
+        let mut v = [[0.0f32; GRID_LEN]; 3];
+        for (row, wrow) in v.iter_mut().zip(&w.w) {
+            for (i, (o, &wi)) in row.iter_mut().zip(wrow).enumerate() {
+                let d = CIE_D65.get(i + D65_OFFSET).copied().unwrap_or(0.0) as f64;
+                *o = if d > 0.0 {
+                    (wi / (d * GRID_STEP_NM as f64)) as f32
+                } else {
+                    0.0
+                };
+            }
+        }
+        Self { v }
+    }
+
+    /// `[v_R, v_G, v_B](λ)`: linear sRGB per unit spectral radiance per nm
+    /// at `lambda_nm` (zero outside 360–780 nm and for NaN).
+    pub fn weights(&self, lambda_nm: f32) -> [f32; 3] {
+        let x = (lambda_nm - GRID_START_NM) / GRID_STEP_NM;
+        if !(x >= 0.0 && x <= (GRID_LEN - 1) as f32) {
+            return [0.0; 3];
+        }
+        let i = (x as usize).min(GRID_LEN - 2);
+        let t = x - i as f32;
+        core::array::from_fn(|c| {
+            let (a, b) = (
+                self.v[c].get(i).copied().unwrap_or(0.0),
+                self.v[c].get(i + 1).copied().unwrap_or(0.0),
+            );
+            a + t * (b - a)
+        })
+    }
+
+    /// The colour of a spectral radiance curve: `Σ_i L(λ_i) v_c(λ_i) Δλ` on
+    /// the grid (non-finite values count as 0).
+    pub fn radiance_to_linear_srgb(&self, radiance: impl Fn(f32) -> f32) -> [f32; 3] {
+        let mut out = [0.0f64; 3];
+        for i in 0..GRID_LEN {
+            let l = radiance(GRID_START_NM + GRID_STEP_NM * i as f32);
+            let l = if l.is_finite() { l as f64 } else { 0.0 };
+            for (o, row) in out.iter_mut().zip(&self.v) {
+                *o += l * row.get(i).copied().unwrap_or(0.0) as f64 * GRID_STEP_NM as f64;
+            }
+        }
+        out.map(|v| v as f32)
+    }
+}
+
+/// A light of a given linear sRGB colour as a spectrum: `L(λ) = m ρ(λ) D65(λ)`
+/// with `m` the largest component and `ρ` the uplift of `rgb/m`
+/// (pbrt-v4's `RGBIlluminantSpectrum` construction): under
+/// [`SrgbObserver`] its colour is `rgb` (to the uplift's residual). D65 is
+/// the crate's table (100 at 560 nm, zero outside 300–780 nm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RgbIlluminant {
+    scale: f32,
+    rho: SigmoidSpectrum,
+}
+
+impl RgbIlluminant {
+    /// The illuminant of colour `rgb` (components finite and ≥ 0; black is
+    /// allowed and gives zero).
+    pub fn new(rgb: [f32; 3]) -> Result<Self, UpliftError> {
+        for &v in &rgb {
+            if !v.is_finite() {
+                return Err(UpliftError::NotFinite);
+            }
+            if v < 0.0 {
+                return Err(UpliftError::OutOfRange(v));
+            }
+        }
+        let m = rgb[0].max(rgb[1]).max(rgb[2]);
+        if m == 0.0 {
+            return Ok(Self {
+                scale: 0.0,
+                rho: SigmoidSpectrum::constant(0.0)?,
+            });
+        }
+        let rho = uplift_reflectance(rgb.map(|v| (v / m).min(1.0)))?;
+        Ok(Self { scale: m, rho })
+    }
+
+    /// The reflectance factor `ρ` of the construction.
+    pub fn reflectance(&self) -> &SigmoidSpectrum {
+        &self.rho
+    }
+}
+
+impl SpectralCurve for RgbIlluminant {
+    fn value(&self, lambda_nm: f32) -> f32 {
+        let d = super::d65().value(lambda_nm);
+        if d == 0.0 {
+            return 0.0;
+        }
+        self.scale * self.rho.eval(lambda_nm) * d
+    }
+    fn support(&self) -> (f32, f32) {
+        super::d65().support()
+    }
+}
+
 /// Solves the 3 × 3 system `a x = b` by Gaussian elimination with partial
 /// pivoting; `None` when singular.
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
@@ -551,5 +675,30 @@ mod tests {
             assert!(e < 1e-3, "{rgb:?}: {e}");
             assert!(bounded(&s));
         }
+    }
+
+    #[test]
+    fn observer_sees_d65_as_grey_and_illuminants_as_their_colour() {
+        let obs = SrgbObserver::new();
+        let d65 = crate::spectral::d65();
+        let g = obs.radiance_to_linear_srgb(|l| 0.37 * d65.value(l));
+        assert!(g.iter().all(|&c| (c - 0.37).abs() < 1e-6), "{g:?}");
+        for rgb in [[0.45f32, 0.6, 1.0], [2.0, 1.0, 0.25], [0.0, 0.0, 0.0]] {
+            let ill = RgbIlluminant::new(rgb).unwrap();
+            let back = obs.radiance_to_linear_srgb(|l| ill.value(l));
+            for c in 0..3 {
+                assert!(
+                    (back[c] - rgb[c]).abs() < 1e-5 * (1.0 + rgb[c]),
+                    "{rgb:?} → {back:?}"
+                );
+            }
+        }
+        // The continuous weights integrate to the grid sum (trapezoid on the grid's nodes).
+        let w = obs.weights(560.0);
+        assert!(w.iter().all(|v| v.is_finite()));
+        assert_eq!(obs.weights(f32::NAN), [0.0; 3]);
+        assert_eq!(obs.weights(900.0), [0.0; 3]);
+        assert!(RgbIlluminant::new([-1.0, 0.0, 0.0]).is_err());
+        assert!(RgbIlluminant::new([f32::INFINITY, 0.0, 0.0]).is_err());
     }
 }
