@@ -59,6 +59,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod camera;
+pub mod colour;
 pub mod image;
 
 pub use image::{Format, Image, WHITE_POINT, tone_map};
@@ -69,7 +71,7 @@ use radiometry::light::{Cap, LightError, UniformSky};
 use radiometry::math::ONE_MINUS_EPSILON;
 use radiometry::rng::Pcg32;
 use radiometry::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use radiometry::{Brdf, Frame};
+use radiometry::{Brdf, Frame, Spectrum};
 use radiometry_brdfs::openpbr::{Layering, OpenPbr, OpenPbrParams};
 use std::f32::consts::{PI, TAU};
 use std::fmt;
@@ -151,8 +153,17 @@ pub enum PreviewError {
     Light(LightError),
     /// Writing the image failed.
     Io(std::io::Error),
-    /// The textured ball's base parameters were rejected by `OpenPbr`.
+    /// The textured ball's base parameters (or a colour preset) were
+    /// rejected by their BRDF.
     Material(radiometry_brdfs::BrdfError),
+    /// A light colour is negative or not finite (name, value).
+    Colour(&'static str, f32),
+    /// A colour could not be uplifted to a spectrum.
+    Uplift(radiometry::spectral::uplift::UpliftError),
+    /// The number of hero wavelengths is 0 or above `colour::MAX_HERO`.
+    Wavelengths(usize),
+    /// The simulated camera was rejected (a sensor parameter out of range).
+    Camera(radiometry::sensor::SensorError),
 }
 
 impl fmt::Display for PreviewError {
@@ -163,7 +174,13 @@ impl fmt::Display for PreviewError {
             PreviewError::Angle(name, v) => write!(f, "{name} {v} is out of range"),
             PreviewError::Light(e) => write!(f, "{e}"),
             PreviewError::Io(e) => write!(f, "{e}"),
-            PreviewError::Material(e) => write!(f, "textured ball: {e}"),
+            PreviewError::Material(e) => write!(f, "material: {e}"),
+            PreviewError::Colour(name, v) => write!(f, "{name} component {v} must be finite and >= 0"),
+            PreviewError::Uplift(e) => write!(f, "{e}"),
+            PreviewError::Wavelengths(n) => {
+                write!(f, "{n} hero wavelengths: must be in [1, {}]", colour::MAX_HERO)
+            }
+            PreviewError::Camera(e) => write!(f, "camera: {e}"),
         }
     }
 }
@@ -376,8 +393,121 @@ impl Lighting {
     }
 }
 
+impl Lighting {
+    /// Incident radiance from world direction `w` in any spectrum: `sky`,
+    /// plus `sun` in the sun's cap (the radiances per channel, colour
+    /// included).
+    fn radiance_s<S: Spectrum>(&self, w: Vec3, sky: S, sun: S) -> S {
+        let sun = if self.sun.contains(w) { sun } else { S::zero() };
+        sky + sun
+    }
+
+    /// [`Lighting::shade`] in any spectrum: the same estimator (the same
+    /// directions, pdfs and MIS weights, which depend on the scalar sun and
+    /// sky only), with the incident radiance `sky` + `sun` per channel. For a
+    /// BRDF whose channels are equal and white light it gives the bits of
+    /// `shade` in every channel.
+    pub fn shade_spectrum<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
+        &self,
+        brdf: &B,
+        n: Vec3,
+        wo: Vec3,
+        u: [f32; 5],
+        sky: S,
+        sun: S,
+    ) -> S {
+        let Some(frame) = Frame::from_normal(n) else {
+            return S::zero();
+        };
+        let mut wo_l = frame.to_local(wo);
+        if wo_l.z < MIN_COS_VIEW {
+            wo_l.z = MIN_COS_VIEW;
+            wo_l = wo_l.normalize_or_zero();
+            if wo_l == Vec3::ZERO {
+                return S::zero();
+            }
+        }
+        let q = self.sun_share(&frame);
+        let mut light = [0.0f64; 32];
+        let mut bsdf = [0.0f64; 32];
+        self.light_draw_s(brdf, &frame, wo_l, q, [u[0], u[1], u[2]], sky, sun, &mut light);
+        self.brdf_draw_s(brdf, &frame, wo_l, q, [u[3], u[4]], sky, sun, &mut bsdf);
+        S::from_fn(|c| {
+            let v = (light.get(c).copied().unwrap_or(0.0) + bsdf.get(c).copied().unwrap_or(0.0)) as f32;
+            if v.is_finite() { v } else { 0.0 }
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn light_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
+        &self,
+        brdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        q: f32,
+        u: [f32; 3],
+        sky: S,
+        sun: S,
+        out: &mut [f64],
+    ) {
+        let (w, wl) = if u[0] < q {
+            let w = self.cone_sample([u[1], u[2]]);
+            (w, frame.to_local(w))
+        } else {
+            let wl = square_to_cosine_hemisphere([u[1], u[2]]);
+            (frame.to_world(wl), wl)
+        };
+        if wl.z <= 0.0 {
+            return;
+        }
+        let p_l = self.light_pdf(q, w, wl) as f64;
+        if p_l <= 0.0 || p_l.is_nan() {
+            return;
+        }
+        let f = brdf.eval(wl, wo);
+        if f.is_black() {
+            return;
+        }
+        let p_b = brdf.pdf(wl, wo) as f64;
+        let l = self.radiance_s(w, sky, sun);
+        for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
+            // The expression order of `light_draw`, channel by channel.
+            *o = f.channel(c) as f64 * l.channel(c) as f64 * wl.z as f64 * p_l / (p_l * p_l + p_b * p_b);
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn brdf_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
+        &self,
+        brdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        q: f32,
+        u: [f32; 2],
+        sky: S,
+        sun: S,
+        out: &mut [f64],
+    ) {
+        let u = [u[0].min(ONE_MINUS_EPSILON), u[1].min(ONE_MINUS_EPSILON)];
+        let Some(s) = brdf.sample(wo, u) else {
+            return;
+        };
+        if s.wi.z <= 0.0 || s.weight.is_black() {
+            return;
+        }
+        let w = frame.to_world(s.wi);
+        let p_b = s.pdf as f64;
+        let p_l = self.light_pdf(q, w, s.wi) as f64;
+        let mis = p_b * p_b / (p_b * p_b + p_l * p_l);
+        let l = self.radiance_s(w, sky, sun);
+        for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
+            *o = s.weight.channel(c) as f64 * l.channel(c) as f64 * mis;
+        }
+    }
+}
+
 /// `tan(FIELD_OF_VIEW_DEG / 2)`.
-fn half_fov_tan() -> f32 {
+pub(crate) fn half_fov_tan() -> f32 {
     (0.5 * FIELD_OF_VIEW_DEG).to_radians().tan()
 }
 
@@ -387,7 +517,7 @@ pub fn camera_ray(px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
     camera_ray_with(half_fov_tan(), px, py, size)
 }
 
-fn camera_ray_with(t: f32, px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
+pub(crate) fn camera_ray_with(t: f32, px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
     let s = size as f32;
     let x = (2.0 * px / s - 1.0) * t;
     let y = (1.0 - 2.0 * py / s) * t;
@@ -427,7 +557,7 @@ pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(
 }
 
 /// The image size and samples per pixel within their limits.
-fn check_options(opt: &Options) -> Result<(), PreviewError> {
+pub(crate) fn check_options(opt: &Options) -> Result<(), PreviewError> {
     if opt.size == 0 || opt.size > MAX_SIZE {
         return Err(PreviewError::Size(opt.size));
     }

@@ -1,0 +1,129 @@
+use super::*;
+use crate::preview::render;
+use crate::spec::{model::build_brdf, parse_brdf};
+use radiometry_brdfs::Lambertian;
+
+fn small(samples: u32) -> Options {
+    Options {
+        size: 12,
+        samples,
+        progress: false,
+        threads: 2,
+        ..Options::default()
+    }
+}
+
+#[test]
+fn grey_spec_renders_the_same_in_rgb_and_mono() {
+    for spec in [
+        "ggx(alpha=0.3, fresnel=dielectric(eta=1.5)) + lambertian(albedo=0.4)",
+        "eon(rho=0.7, sigma=0.5)",
+    ] {
+        let brdf = build_brdf(spec, &parse_brdf(spec).unwrap()).unwrap();
+        let opt = small(8);
+        let mono = render(&brdf, &opt).unwrap();
+        let rgb = render_rgb(&AsRgb(&brdf), &opt, &LightColours::default()).unwrap();
+        assert_eq!(mono.coverage(), rgb.coverage());
+        for (m, c) in mono.radiance().iter().zip(rgb.rgb()) {
+            // Bit for bit in every channel.
+            assert_eq!([m.to_bits(); 3], c.map(f32::to_bits), "{spec}");
+        }
+        // And the 8-bit pictures agree byte for byte.
+        let g = mono.to_gray8(1.0);
+        let c = rgb.to_rgb8(1.0);
+        assert!(g.iter().zip(c.chunks(3)).all(|(g, c)| c == [*g; 3]));
+    }
+}
+
+#[test]
+fn white_furnace_per_channel_rgb_and_spectral() {
+    // A white Lambertian under a uniform sky of colour (0.2, 0.5, 1.0) and no sun:
+    // every pixel, ball or background, reads the sky radiance per channel.
+    let colours = LightColours {
+        sun: [1.0; 3],
+        sky: [0.2, 0.5, 1.0],
+    };
+    let opt = Options {
+        sun_irradiance: 0.0,
+        sky_radiance: 0.8,
+        ..small(16)
+    };
+    let want = colours.sky.map(|c| c * opt.sky_radiance);
+    let white = Lambertian::new(Vec3::ONE).unwrap();
+    let img = render_rgb(&white, &opt, &colours).unwrap();
+    for p in img.rgb() {
+        for c in 0..3 {
+            assert!((p[c] - want[c]).abs() < 1e-5 * want[c], "{p:?} vs {want:?}");
+        }
+    }
+    // Spectrally (hero wavelengths, 4 per sample): the same within the wavelength
+    // sampling's error (stratified over 16 samples × 4 wavelengths: 64 strata).
+    let grey = Lambertian::new(1.0f32).unwrap();
+    let img = render_spectral::<4, _>(&AsGrey(&grey), &opt, &colours).unwrap();
+    let mut mean = [0.0f64; 3];
+    for p in img.rgb() {
+        for c in 0..3 {
+            assert!(
+                (p[c] - want[c]).abs() < 0.03 * want[c] + 2e-3,
+                "{p:?} vs {want:?}"
+            );
+            mean[c] += p[c] as f64 / img.rgb().len() as f64;
+        }
+    }
+    for c in 0..3 {
+        assert!(
+            (mean[c] as f32 - want[c]).abs() < 0.005 * want[c] + 5e-4,
+            "{mean:?} vs {want:?}"
+        );
+    }
+}
+
+#[test]
+fn presets_are_recognisable_colours() {
+    let opt = small(16);
+    let centre = |img: &RgbImage| img.rgb()[(6 * 12 + 6) as usize];
+    for kind in PresetKind::ALL {
+        let p = Preset::new(kind).unwrap();
+        let rgb = centre(&render_rgb(&p.rgb().unwrap(), &opt, &LightColours::default()).unwrap());
+        let spec = centre(&render_spectral::<4, _>(&p, &opt, &LightColours::default()).unwrap());
+        for c in [rgb, spec] {
+            // Red dominates green, green dominates blue: gold, copper and red plastic alike.
+            assert!(c[0] > c[1] && c[1] > c[2], "{kind}: {c:?}");
+        }
+        if kind == PresetKind::RedPlastic {
+            assert!(rgb[0] > 4.0 * rgb[1], "{rgb:?}");
+        }
+    }
+}
+
+#[test]
+fn bad_colours_and_wavelength_counts_are_typed_errors() {
+    let white = Lambertian::new(Vec3::ONE).unwrap();
+    let bad = LightColours {
+        sun: [1.0, f32::NAN, 1.0],
+        sky: [1.0; 3],
+    };
+    assert!(matches!(
+        render_rgb(&white, &small(1), &bad),
+        Err(PreviewError::Colour(..))
+    ));
+    let neg = LightColours {
+        sun: [1.0; 3],
+        sky: [-1.0, 0.0, 0.0],
+    };
+    assert!(matches!(
+        render_rgb(&white, &small(1), &neg),
+        Err(PreviewError::Colour(..))
+    ));
+    let p = Preset::new(PresetKind::Gold).unwrap();
+    assert!(matches!(
+        render_spectral::<0, _>(&p, &small(1), &LightColours::default()),
+        Err(PreviewError::Wavelengths(0))
+    ));
+    assert_eq!(hero_wavelengths::<4>(0.0), [360.0, 465.0, 570.0, 675.0]);
+    assert!(
+        hero_wavelengths::<8>(0.999_999)
+            .iter()
+            .all(|l| (360.0..=780.0).contains(l))
+    );
+}
