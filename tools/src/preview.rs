@@ -428,8 +428,8 @@ impl Lighting {
             }
         }
         let q = self.sun_share(&frame);
-        let mut light = [0.0f64; 32];
-        let mut bsdf = [0.0f64; 32];
+        let mut light = [0.0f64; MAX_CHANNELS];
+        let mut bsdf = [0.0f64; MAX_CHANNELS];
         self.light_draw_s(brdf, &frame, wo_l, q, [u[0], u[1], u[2]], sky, sun, &mut light);
         self.brdf_draw_s(brdf, &frame, wo_l, q, [u[3], u[4]], sky, sun, &mut bsdf);
         S::from_fn(|c| {
@@ -505,6 +505,9 @@ impl Lighting {
         }
     }
 }
+
+/// Channels [`Lighting::shade_spectrum`] carries (more are dropped as black).
+pub const MAX_CHANNELS: usize = 64;
 
 /// `tan(FIELD_OF_VIEW_DEG / 2)`.
 pub(crate) fn half_fov_tan() -> f32 {

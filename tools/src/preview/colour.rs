@@ -409,7 +409,7 @@ pub fn render_rgb<B: Brdf<Spectrum = Vec3> + Sync + ?Sized>(
 /// [`render_spectral`] builds at every camera sample.
 pub trait SpectralMaterial<const N: usize>: Sync {
     /// The BRDF at those wavelengths.
-    type Brdf: Brdf<Spectrum = SampledSpectrum<N>>;
+    type Brdf: Brdf<Spectrum = SampledSpectrum<N>> + Sync;
     /// Builds it (`None` skips the sample: it counts as black).
     fn at(&self, lambdas_nm: &[f32; N]) -> Option<Self::Brdf>;
 }
