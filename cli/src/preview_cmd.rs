@@ -3,6 +3,8 @@
 
 use crate::{model, spec};
 use clap::ValueEnum;
+use radiometry_tools::preview::camera::{self, CameraKind, CameraOptions, Illuminant};
+use radiometry_tools::preview::colour::{self, AsGrey, AsRgb, LightColours, Preset, PresetKind, RgbImage};
 use radiometry_tools::preview::{self, Format, Options};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -17,6 +19,64 @@ enum ImageFormat {
     Svg,
 }
 
+/// A typed colour material (`--material`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MaterialArg {
+    /// Gold: GGX α = 0.2, the exact Fresnel of Au's measured η, k (Johnson & Christy 1972).
+    Gold,
+    /// Copper: as gold with Cu.
+    Copper,
+    /// A red plastic: OpenPBR, base_color (0.6, 0.04, 0.03) linear sRGB, specular_roughness 0.25.
+    RedPlastic,
+}
+
+impl MaterialArg {
+    fn kind(self) -> PresetKind {
+        match self {
+            MaterialArg::Gold => PresetKind::Gold,
+            MaterialArg::Copper => PresetKind::Copper,
+            MaterialArg::RedPlastic => PresetKind::RedPlastic,
+        }
+    }
+}
+
+/// Colour architecture of `--camera`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CameraArg {
+    /// Bayer colour filter array (RGGB) + bilinear demosaicing.
+    Bayer,
+    /// 3-chip dichroic prism.
+    Prism,
+    /// Stacked photodiodes (Foveon-like).
+    Stacked,
+}
+
+/// Spectrum of the light for `--camera`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum LightArg {
+    /// CIE D65 daylight.
+    D65,
+    /// CIE illuminant A (tungsten, 2856 K).
+    A,
+}
+
+/// `R,G,B` with finite components ≥ 0.
+fn parse_rgb(s: &str) -> Result<[f32; 3], String> {
+    let v: Vec<&str> = s.split(',').map(str::trim).collect();
+    if v.len() != 3 {
+        return Err(format!("'{s}': expected R,G,B (three numbers)"));
+    }
+    let mut out = [0.0f32; 3];
+    for (o, t) in out.iter_mut().zip(v) {
+        let x: f32 = t.parse().map_err(|_| format!("'{t}' is not a number"))?;
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(format!("'{t}' must be finite and >= 0"));
+        }
+        *o = x;
+    }
+    Ok(out)
+}
+
 /// The help text after the options: the scene, the estimator, examples.
 pub const AFTER_HELP: &str = "\
 Scene: a unit ball seen by a pinhole camera (33.4° field of view, 4 radii away), lit by a sun (a uniform cap of
@@ -25,11 +85,26 @@ angular radius --sun-radius with irradiance --sun-irradiance at normal incidence
 light sample (sun cone or cosine-weighted sky, by the sun's share of the irradiance) and one sample of the BRDF's
 own importance sampling, combined by the power heuristic. Deterministic for a given seed, whatever the number of
 threads. Tone curve: extended Reinhard with white point 4 (times --exposure), then the sRGB transfer function,
-8 bits; the BRDF is monochrome, so the picture is grey.
+8 bits; the spec grammar's BRDFs are monochrome, so a spec under white light gives a grey picture.
+
+Colour: --material gold|copper|red-plastic renders a typed colour material (instead of SPEC); --sun-colour and
+--sky-colour tint the lights (linear sRGB), --ground-colour adds a ground below the horizon (--daylight: a white
+sun, a pale blue sky, a grey-brown ground); --rgb forces an RGB picture. Any of these writes 8-bit RGB (each
+channel through the same tone curve: a grey spec gives the grey picture's bytes). --spectral N renders with N
+hero wavelengths per sample (1, 4, 8 or 16; 360-780 nm), lights as spectra (white = D65), colour by the CIE 1931
+observer. --camera bayer|prism|stacked renders the pixel equation: the ball on 43 wavelengths under --light
+d65|a, through the camera's spectral sensitivities, exposure (--camera-exposure: the fraction of the full well a
+white diffuser facing the sun fills), EMVA 1288 shot and dark noise (10,000 e- full well, --dark-noise e-, 12-bit
+ADC), bilinear demosaicing (Bayer), a least-squares colour matrix and white balance, the sRGB response curve;
+beside it (right) the same ball as the CIE 1931 observer sees it; prints the colour error (mean CIE 1976 dE*ab)
+and the noise against the EMVA prediction.
 
 Examples:
   radiometry preview 'coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))' --out plastic.png
   radiometry preview 'ggx(alpha=0.3, fresnel=conductor(eta=0.2, k=3))' --size 160 --format svg --out metal.svg
+  radiometry preview --material gold --sky-colour 0.45,0.6,1 --out gold.png
+  radiometry preview --material copper --spectral 4 --out copper.png
+  radiometry preview --material red-plastic --camera bayer --light a --out camera.png
 
 ";
 
@@ -37,8 +112,8 @@ Examples:
 #[derive(clap::Args, Debug)]
 pub struct PreviewArgs {
     /// BRDF spec of the ball, e.g. `ggx(alpha=0.1, fresnel=dielectric(eta=1.5)) + lambertian(albedo=0.5)` (see
-    /// below).
-    spec: String,
+    /// below); omit it with --material.
+    spec: Option<String>,
     /// Output file.
     #[arg(long, default_value = "ball.png")]
     out: PathBuf,
@@ -83,23 +158,119 @@ pub struct PreviewArgs {
     /// checker toggles a clear coat. Prints the time per hit spent constructing the material.
     #[arg(long)]
     textured: bool,
+    /// A typed colour material instead of SPEC (an RGB picture).
+    #[arg(long, value_enum)]
+    material: Option<MaterialArg>,
+    /// Colour of the sun, linear sRGB `R,G,B` (an RGB picture).
+    #[arg(long, alias = "sun-color", value_parser = parse_rgb)]
+    sun_colour: Option<[f32; 3]>,
+    /// Colour of the sky, linear sRGB `R,G,B` (an RGB picture).
+    #[arg(long, alias = "sky-color", value_parser = parse_rgb)]
+    sky_colour: Option<[f32; 3]>,
+    /// Radiance of the ground below the horizontal plane, per channel as a multiple of --sky-radiance, `R,G,B`
+    /// (default: no ground, the sky all around; an RGB picture).
+    #[arg(long, alias = "ground-color", value_parser = parse_rgb)]
+    ground_colour: Option<[f32; 3]>,
+    /// The docs' daylight: --sun-colour 1,1,1 --sky-colour 0.75,0.85,1 --ground-colour 0.2,0.17,0.15 (the
+    /// explicit flags win).
+    #[arg(long)]
+    daylight: bool,
+    /// Write an RGB picture even when everything is grey.
+    #[arg(long)]
+    rgb: bool,
+    /// Hero-wavelength spectral rendering with N wavelengths per sample (1, 4, 8 or 16).
+    #[arg(long, value_name = "N")]
+    spectral: Option<usize>,
+    /// Render the pixel equation: the ball through a simulated camera, beside the CIE observer's ball.
+    #[arg(long, value_enum)]
+    camera: Option<CameraArg>,
+    /// Light spectrum of the sun and the sky for --camera.
+    #[arg(long, value_enum, default_value = "d65")]
+    light: LightArg,
+    /// --camera: fraction of the full well that a white diffuser facing the sun fills, in (0, 16].
+    #[arg(long, default_value_t = CameraOptions::default().exposure)]
+    camera_exposure: f32,
+    /// --camera: temporal dark noise, electrons.
+    #[arg(long, default_value_t = CameraOptions::default().dark_noise_e)]
+    dark_noise: f32,
+    /// --camera: no shot or dark noise (the mean response).
+    #[arg(long)]
+    no_noise: bool,
+}
+
+/// The ball's material: a spec (monochrome run-time BRDF) or a typed preset.
+enum Ball {
+    Spec(spec::BrdfSpec, model::AnyBrdf),
+    Preset(Preset),
 }
 
 /// Runs `radiometry preview`.
 pub fn run(a: PreviewArgs) -> ExitCode {
-    let parsed = match spec::parse_brdf(&a.spec) {
-        Ok(p) => p,
-        Err(e) => return crate::spec_error(e),
-    };
-    let brdf = match model::build_brdf(&a.spec, &parsed) {
-        Ok(b) => b,
-        Err(e) => return crate::spec_error(e),
+    let ball = match (&a.spec, a.material) {
+        (Some(_), Some(_)) => return crate::usage_error("give either SPEC or --material, not both"),
+        (None, None) => return crate::usage_error("give a BRDF SPEC or --material gold|copper|red-plastic"),
+        (None, Some(m)) => match Preset::new(m.kind()) {
+            Ok(p) => Ball::Preset(p),
+            Err(e) => return crate::usage_error(&e.to_string()),
+        },
+        (Some(s), None) => {
+            let parsed = match spec::parse_brdf(s) {
+                Ok(p) => p,
+                Err(e) => return crate::spec_error(e),
+            };
+            match model::build_brdf(s, &parsed) {
+                Ok(b) => Ball::Spec(parsed, b),
+                Err(e) => return crate::spec_error(e),
+            }
+        }
     };
     if !(a.exposure.is_finite() && a.exposure > 0.0) {
         return crate::usage_error(&format!(
             "--exposure {} must be a positive finite number",
             a.exposure
         ));
+    }
+    let colours = LightColours {
+        sun: a.sun_colour.unwrap_or([1.0; 3]),
+        sky: a.sky_colour.unwrap_or([1.0; 3]),
+        ground: a.ground_colour,
+    };
+    let colours = if a.daylight {
+        let d = LightColours::DAYLIGHT;
+        LightColours {
+            sun: a.sun_colour.unwrap_or(d.sun),
+            sky: a.sky_colour.unwrap_or(d.sky),
+            ground: a.ground_colour.or(d.ground),
+        }
+    } else {
+        colours
+    };
+    let colour_out = a.rgb
+        || a.material.is_some()
+        || a.sun_colour.is_some()
+        || a.sky_colour.is_some()
+        || a.ground_colour.is_some()
+        || a.daylight
+        || a.spectral.is_some()
+        || a.camera.is_some();
+    if a.textured && colour_out {
+        return crate::usage_error("--textured renders the grey ball only (no colour flags)");
+    }
+    if a.camera.is_some()
+        && (a.spectral.is_some()
+            || a.sun_colour.is_some()
+            || a.sky_colour.is_some()
+            || a.ground_colour.is_some()
+            || a.daylight)
+    {
+        return crate::usage_error(
+            "--camera renders on its own 43 wavelengths under --light; drop --spectral and the light colours",
+        );
+    }
+    if let Some(n) = a.spectral
+        && !colour::HERO_COUNTS.contains(&n)
+    {
+        return crate::usage_error(&format!("--spectral {n}: N must be one of 1, 4, 8, 16"));
     }
     let opt = Options {
         size: a.size,
@@ -123,6 +294,13 @@ pub fn run(a: PreviewArgs) -> ExitCode {
         t => t,
     };
     let t0 = Instant::now();
+    if colour_out {
+        return run_colour(&a, &ball, &opt, &colours, format, threads, t0);
+    }
+    let Ball::Spec(parsed, brdf) = ball else {
+        return crate::usage_error("--material renders in colour");
+    };
+    let spec_text = a.spec.clone().unwrap_or_default();
     let (img, stats) = if a.textured {
         let spec::BrdfSpec::OpenPbr(p) = parsed else {
             return crate::usage_error("--textured needs an openpbr(...) spec (its parameters are the base)");
@@ -142,7 +320,7 @@ pub fn run(a: PreviewArgs) -> ExitCode {
     let description = format!(
         "radiometry preview '{}'{} --size {} --samples {} --sun-elevation {} --sun-azimuth {} --sun-radius {} \
 --sun-irradiance {} --sky-radiance {} --exposure {} --seed {}",
-        a.spec,
+        spec_text,
         if a.textured { " --textured" } else { "" },
         opt.size,
         opt.samples,
@@ -180,5 +358,161 @@ pub fn run(a: PreviewArgs) -> ExitCode {
             100.0 * s.construct_secs / (secs * threads.min(opt.size as usize) as f64)
         );
     }
+    ExitCode::SUCCESS
+}
+
+/// The common part of the command line, for the PNG's description.
+fn describe(a: &PreviewArgs, opt: &Options) -> String {
+    let what = match (&a.spec, a.material) {
+        (Some(s), _) => format!("'{s}'"),
+        (None, Some(m)) => format!("--material {}", m.kind().name()),
+        (None, None) => String::new(),
+    };
+    format!(
+        "radiometry preview {what} --size {} --samples {} --sun-elevation {} --sun-azimuth {} --sun-radius {} \
+--sun-irradiance {} --sky-radiance {} --seed {}",
+        opt.size,
+        opt.samples,
+        opt.sun_elevation,
+        opt.sun_azimuth,
+        opt.sun_radius,
+        opt.sun_irradiance,
+        opt.sky_radiance,
+        opt.seed
+    )
+}
+
+/// `--material`, the light colours, `--rgb`, `--spectral`, `--camera`.
+fn run_colour(
+    a: &PreviewArgs,
+    ball: &Ball,
+    opt: &Options,
+    colours: &LightColours,
+    format: Format,
+    threads: usize,
+    t0: Instant,
+) -> ExitCode {
+    let used = threads.min(opt.size as usize);
+    let mut description = describe(a, opt);
+    if let Some(kind) = a.camera {
+        let cam = CameraOptions {
+            kind: match kind {
+                CameraArg::Bayer => CameraKind::Bayer,
+                CameraArg::Prism => CameraKind::Prism,
+                CameraArg::Stacked => CameraKind::Stacked,
+            },
+            illuminant: match a.light {
+                LightArg::D65 => Illuminant::D65,
+                LightArg::A => Illuminant::A,
+            },
+            exposure: a.camera_exposure,
+            dark_noise_e: a.dark_noise,
+            noise: !a.no_noise,
+            seed: a.seed,
+            ..CameraOptions::default()
+        };
+        let r = match ball {
+            Ball::Spec(_, b) => camera::render_camera(&AsGrey(b), opt, &cam),
+            Ball::Preset(p) => camera::render_camera(p, opt, &cam),
+        };
+        let r = match r {
+            Ok(r) => r,
+            Err(e) => return crate::usage_error(&e.to_string()),
+        };
+        let secs = t0.elapsed().as_secs_f64();
+        description.push_str(&format!(
+            " --camera {} --light {} --camera-exposure {} --dark-noise {}{} (left: camera, right: CIE 1931 observer)",
+            cam.kind.name(),
+            cam.illuminant.name(),
+            cam.exposure,
+            cam.dark_noise_e,
+            if cam.noise { "" } else { " --no-noise" }
+        ));
+        let pair = r.camera.beside(&r.observer, 8, [0.0; 3]);
+        if let Err(e) = pair.write_srgb(&a.out, format, &description) {
+            eprintln!("error: cannot write {}: {e}", a.out.display());
+            return ExitCode::from(1);
+        }
+        let rep = r.report;
+        println!(
+            "wrote {} ({}×{} px: camera | observer, {} samples/pixel, 43 wavelengths, {:.2} s on {} thread{})",
+            a.out.display(),
+            pair.width(),
+            pair.height(),
+            opt.samples,
+            secs,
+            used,
+            if used == 1 { "" } else { "s" }
+        );
+        println!(
+            "camera {} under {}: mean dE*ab {:.2} (noiseless {:.2}) over {} ball pixels; camera/observer per channel \
+R {:.3} G {:.3} B {:.3}",
+            cam.kind.name(),
+            cam.illuminant.name(),
+            rep.mean_delta_e,
+            rep.mean_delta_e_noiseless,
+            rep.pixels,
+            rep.channel_ratio[0],
+            rep.channel_ratio[1],
+            rep.channel_ratio[2]
+        );
+        println!(
+            "noise: white diffuser {:.0} e- (EMVA SNR {:.1}); measured rms noise / signal over the ball R {:.3} G {:.3} \
+B {:.3}",
+            rep.white_electrons,
+            rep.white_snr,
+            rep.relative_noise[0],
+            rep.relative_noise[1],
+            rep.relative_noise[2]
+        );
+        let m = rep.ccm;
+        println!(
+            "colour matrix (white-balanced, on white-normalised raw): [{:.3} {:.3} {:.3}; {:.3} {:.3} {:.3}; {:.3} {:.3} {:.3}]",
+            m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]
+        );
+        return ExitCode::SUCCESS;
+    }
+    let img: Result<RgbImage, _> = match (ball, a.spectral) {
+        (Ball::Spec(_, b), None) => colour::render_rgb(&AsRgb(b), opt, colours),
+        (Ball::Preset(p), None) => match p.rgb() {
+            Ok(m) => colour::render_rgb(&m, opt, colours),
+            Err(e) => Err(e),
+        },
+        (Ball::Spec(_, b), Some(n)) => colour::render_spectral_n(n, &AsGrey(b), opt, colours),
+        (Ball::Preset(p), Some(n)) => colour::render_spectral_n(n, p, opt, colours),
+    };
+    let img = match img {
+        Ok(i) => i,
+        Err(e) => return crate::usage_error(&e.to_string()),
+    };
+    let secs = t0.elapsed().as_secs_f64();
+    let c = |v: [f32; 3]| format!("{},{},{}", v[0], v[1], v[2]);
+    description.push_str(&format!(
+        " --sun-colour {} --sky-colour {}{} --exposure {}{}",
+        c(colours.sun),
+        c(colours.sky),
+        colours
+            .ground
+            .map_or(String::new(), |g| format!(" --ground-colour {}", c(g))),
+        a.exposure,
+        a.spectral
+            .map_or(String::from(" --rgb"), |n| format!(" --spectral {n}"))
+    ));
+    if let Err(e) = img.write(&a.out, format, a.exposure, &description) {
+        eprintln!("error: cannot write {}: {e}", a.out.display());
+        return ExitCode::from(1);
+    }
+    println!(
+        "wrote {} ({}×{} px, RGB{}, {} samples/pixel, {:.2} s on {} thread{})",
+        a.out.display(),
+        opt.size,
+        opt.size,
+        a.spectral
+            .map_or(String::new(), |n| format!(", {n} hero wavelengths")),
+        opt.samples,
+        secs,
+        used,
+        if used == 1 { "" } else { "s" }
+    );
     ExitCode::SUCCESS
 }

@@ -124,3 +124,104 @@ fn preview_rejects_bad_input() {
         assert!(help.contains(s), "{s} missing from:\n{help}");
     }
 }
+
+/// IHDR colour type of a PNG file (0 grey, 2 RGB) and its width.
+fn png_kind(bytes: &[u8]) -> (u8, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    (
+        bytes[25],
+        u32::from_be_bytes([bytes[16], bytes[17], bytes[18], bytes[19]]),
+    )
+}
+
+#[test]
+fn preview_writes_colour_materials_spectra_and_the_camera() {
+    let out = tmp("colour.png");
+    let o = out.to_str().unwrap();
+    let common = ["--size", "8", "--samples", "2", "--no-progress", "--out", o];
+    // A grey spec stays an 8-bit grey PNG; with a sky colour it becomes RGB.
+    let r = run(&[&["preview", "lambertian"], &common[..]].concat());
+    assert_eq!(r.status.code(), Some(0));
+    assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (0, 8));
+    for extra in [
+        &["lambertian", "--sky-colour", "0.5,0.7,1"][..],
+        &["--material", "gold"],
+        &["--material", "red-plastic", "--daylight"],
+        &["--material", "copper", "--spectral", "4"],
+        &["eon(rho=0.5, sigma=0.5)", "--spectral", "1", "--rgb"],
+    ] {
+        let r = run(&[&["preview"], extra, &common[..]].concat());
+        assert_eq!(
+            r.status.code(),
+            Some(0),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+        assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (2, 8), "{extra:?}");
+    }
+    // The camera: camera | gap | observer, and the report.
+    let r = run(&[
+        &[
+            "preview",
+            "--material",
+            "gold",
+            "--camera",
+            "bayer",
+            "--light",
+            "a",
+        ],
+        &common[..],
+    ]
+    .concat());
+    assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (2, 8 + 8 + 8));
+    let text = String::from_utf8_lossy(&r.stdout);
+    assert!(text.contains("dE*ab") && text.contains("EMVA SNR"), "{text}");
+    let _ = std::fs::remove_file(&out);
+}
+
+#[test]
+fn preview_rejects_bad_colour_input() {
+    let out = tmp("bad-colour.png");
+    let o = out.to_str().unwrap();
+    for args in [
+        &["preview", "--out", o][..],
+        &["preview", "lambertian", "--material", "gold", "--out", o],
+        &["preview", "--material", "silver", "--out", o],
+        &["preview", "lambertian", "--sky-colour", "1,2", "--out", o],
+        &["preview", "lambertian", "--sky-colour", "1,-2,0", "--out", o],
+        &["preview", "lambertian", "--spectral", "3", "--out", o],
+        &[
+            "preview",
+            "--material",
+            "gold",
+            "--camera",
+            "bayer",
+            "--spectral",
+            "4",
+            "--out",
+            o,
+        ],
+        &[
+            "preview",
+            "--material",
+            "gold",
+            "--camera",
+            "prism",
+            "--camera-exposure",
+            "0",
+            "--out",
+            o,
+        ],
+        &["preview", "openpbr", "--textured", "--rgb", "--out", o],
+    ] {
+        let r = run(args);
+        assert_eq!(
+            r.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+    }
+    assert!(!out.exists());
+}

@@ -393,28 +393,42 @@ impl Lighting {
     }
 }
 
+/// The radiances of the sun, the sky and the ground in one spectrum type,
+/// colour included (what [`Lighting::shade_spectrum`] lights with).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Env<S> {
+    /// Radiance of the sky (every direction above the horizontal plane).
+    pub sky: S,
+    /// Radiance of the ground (below it; equal to `sky` for the grey scene).
+    pub ground: S,
+    /// Radiance inside the sun's cap, added to the sky's.
+    pub sun: S,
+}
+
 impl Lighting {
-    /// Incident radiance from world direction `w` in any spectrum: `sky`,
-    /// plus `sun` in the sun's cap (the radiances per channel, colour
-    /// included).
-    fn radiance_s<S: Spectrum>(&self, w: Vec3, sky: S, sun: S) -> S {
-        let sun = if self.sun.contains(w) { sun } else { S::zero() };
-        sky + sun
+    /// Incident radiance from world direction `w` in any spectrum: the sky
+    /// (the ground below the horizontal plane, `w.y < 0`), plus the sun in
+    /// its cap (radiances per channel, colour included).
+    pub fn radiance_env<S: Spectrum>(&self, w: Vec3, env: &Env<S>) -> S {
+        let sun = if self.sun.contains(w) { env.sun } else { S::zero() };
+        let base = if w.y < 0.0 { env.ground } else { env.sky };
+        base + sun
     }
 
     /// [`Lighting::shade`] in any spectrum: the same estimator (the same
     /// directions, pdfs and MIS weights, which depend on the scalar sun and
-    /// sky only), with the incident radiance `sky` + `sun` per channel. For a
-    /// BRDF whose channels are equal and white light it gives the bits of
-    /// `shade` in every channel.
+    /// sky only), with the incident radiance of `env` per channel
+    /// ([`Lighting::radiance_env`]; the ground, when it differs from the sky,
+    /// is reached by the cosine-weighted sky technique and the BRDF's). For a
+    /// BRDF whose channels are equal under white light without a ground it
+    /// gives the bits of `shade` in every channel.
     pub fn shade_spectrum<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
         &self,
         brdf: &B,
         n: Vec3,
         wo: Vec3,
         u: [f32; 5],
-        sky: S,
-        sun: S,
+        env: &Env<S>,
     ) -> S {
         let Some(frame) = Frame::from_normal(n) else {
             return S::zero();
@@ -430,8 +444,8 @@ impl Lighting {
         let q = self.sun_share(&frame);
         let mut light = [0.0f64; MAX_CHANNELS];
         let mut bsdf = [0.0f64; MAX_CHANNELS];
-        self.light_draw_s(brdf, &frame, wo_l, q, [u[0], u[1], u[2]], sky, sun, &mut light);
-        self.brdf_draw_s(brdf, &frame, wo_l, q, [u[3], u[4]], sky, sun, &mut bsdf);
+        self.light_draw_s(brdf, &frame, wo_l, q, [u[0], u[1], u[2]], env, &mut light);
+        self.brdf_draw_s(brdf, &frame, wo_l, q, [u[3], u[4]], env, &mut bsdf);
         S::from_fn(|c| {
             let v = (light.get(c).copied().unwrap_or(0.0) + bsdf.get(c).copied().unwrap_or(0.0)) as f32;
             if v.is_finite() { v } else { 0.0 }
@@ -446,8 +460,7 @@ impl Lighting {
         wo: Vec3,
         q: f32,
         u: [f32; 3],
-        sky: S,
-        sun: S,
+        env: &Env<S>,
         out: &mut [f64],
     ) {
         let (w, wl) = if u[0] < q {
@@ -469,7 +482,7 @@ impl Lighting {
             return;
         }
         let p_b = brdf.pdf(wl, wo) as f64;
-        let l = self.radiance_s(w, sky, sun);
+        let l = self.radiance_env(w, env);
         for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
             // The expression order of `light_draw`, channel by channel.
             *o = f.channel(c) as f64 * l.channel(c) as f64 * wl.z as f64 * p_l / (p_l * p_l + p_b * p_b);
@@ -484,8 +497,7 @@ impl Lighting {
         wo: Vec3,
         q: f32,
         u: [f32; 2],
-        sky: S,
-        sun: S,
+        env: &Env<S>,
         out: &mut [f64],
     ) {
         let u = [u[0].min(ONE_MINUS_EPSILON), u[1].min(ONE_MINUS_EPSILON)];
@@ -499,7 +511,7 @@ impl Lighting {
         let p_b = s.pdf as f64;
         let p_l = self.light_pdf(q, w, s.wi) as f64;
         let mis = p_b * p_b / (p_b * p_b + p_l * p_l);
-        let l = self.radiance_s(w, sky, sun);
+        let l = self.radiance_env(w, env);
         for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
             *o = s.weight.channel(c) as f64 * l.channel(c) as f64 * mis;
         }

@@ -60,7 +60,7 @@
 //!   in silicon; broad, overlapping responses that need a strong matrix).
 
 use super::colour::{self, RgbImage, SpectralMaterial, render_channels};
-use super::{Lighting, Options, PreviewError, check_options};
+use super::{Env, Lighting, Options, PreviewError, check_options};
 use radiometry::SampledSpectrum;
 use radiometry::rng::Pcg32;
 use radiometry::sensor::color::{
@@ -103,6 +103,11 @@ pub enum CameraKind {
 impl CameraKind {
     /// Every kind.
     pub const ALL: [CameraKind; 3] = [CameraKind::Bayer, CameraKind::Prism, CameraKind::Stacked];
+
+    /// The kind of a CLI name.
+    pub fn from_name(name: &str) -> Option<CameraKind> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
 
     /// The CLI name.
     pub fn name(self) -> &'static str {
@@ -374,8 +379,11 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
     }
     let e: [f32; GRID_LEN] = raw.map(|v| v / y);
     let (sky_l, sun_l) = (lighting.sky().sky_radiance(), lighting.sun().cap_radiance());
-    let sky = SampledSpectrum(e.map(|v| v * sky_l));
-    let sun = SampledSpectrum(e.map(|v| v * sun_l));
+    let env = Env {
+        sky: SampledSpectrum(e.map(|v| v * sky_l)),
+        ground: SampledSpectrum(e.map(|v| v * sky_l)),
+        sun: SampledSpectrum(e.map(|v| v * sun_l)),
+    };
     let brdf = material
         .at(&grid)
         .ok_or(PreviewError::Camera(SensorError::BadParameter(
@@ -394,8 +402,8 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
     };
     let (pixels, coverage) = render_channels::<6>(
         opt,
-        |p, d, u, _| channels(lighting.shade_spectrum(&brdf, p, -d, u, sky, sun)),
-        |d, _| channels(lighting.radiance_s(d, sky, sun)),
+        |p, d, u, _| channels(lighting.shade_spectrum(&brdf, p, -d, u, &env)),
+        |d, _| channels(lighting.radiance_env(d, &env)),
     );
 
     // The white diffuser facing the sun: L = (E⊥ + π L_sky) E(λ)/π; and the
@@ -591,6 +599,25 @@ impl RgbImage {
             .iter()
             .flat_map(|p| p.map(|v| (response::Srgb.apply(v) * 255.0 + 0.5).clamp(0.0, 255.0) as u8))
             .collect()
+    }
+
+    /// Writes the picture through [`RgbImage::to_srgb8`] to `path` as PNG or
+    /// SVG (the PNG in an `<image>`).
+    #[cfg(feature = "plot")]
+    pub fn write_srgb(
+        &self,
+        path: &std::path::Path,
+        format: super::Format,
+        description: &str,
+    ) -> std::io::Result<()> {
+        let png = self.encode_png_srgb(description)?;
+        match format {
+            super::Format::Png => std::fs::write(path, png),
+            super::Format::Svg => std::fs::write(
+                path,
+                super::image::svg_wrap(&png, self.width(), self.height(), description),
+            ),
+        }
     }
 
     /// The picture as an 8-bit RGB PNG through [`RgbImage::to_srgb8`].

@@ -4,7 +4,9 @@
 //!
 //! **Light.** The sun and the sky keep their scalar radiances
 //! ([`Options::sun_irradiance`], [`Options::sky_radiance`]); [`LightColours`]
-//! tints them (linear sRGB, white = `(1, 1, 1)`). The estimator is the grey
+//! tints them (linear sRGB, white = `(1, 1, 1)`) and may add a ground below
+//! the horizontal plane (a multiple of the sky radiance per channel; a
+//! horizon line gives metals something to reflect). The estimator is the grey
 //! one ([`Lighting::shade_spectrum`]): the same directions, densities and MIS
 //! weights, per channel — so a grey BRDF under white light gives the grey
 //! render's numbers in every channel, bit for bit (tested). In spectral
@@ -36,7 +38,7 @@
 //! [`uplift_reflectance`] once and evaluating the spectra per sample).
 
 use super::image::{Format, tone_map};
-use super::{Lighting, Options, PreviewError, camera_ray_with, check_options, half_fov_tan, hit_ball};
+use super::{Env, Lighting, Options, PreviewError, camera_ray_with, check_options, half_fov_tan, hit_ball};
 use crate::tradeoff::Progress;
 use radiometry::glam::Vec3;
 use radiometry::rng::Pcg32;
@@ -161,35 +163,50 @@ impl<B: Brdf<Spectrum = f32> + ?Sized, S: Spectrum> Brdf for Splat<'_, B, S> {
     }
 }
 
-/// The colours of the sun and the sky (linear sRGB multipliers of their
-/// radiances; finite, ≥ 0).
+/// The colours of the sun, the sky and the ground (linear sRGB multipliers
+/// of the sun's and the sky's radiances; finite, ≥ 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightColours {
     /// The sun's colour.
     pub sun: [f32; 3],
     /// The sky's colour.
     pub sky: [f32; 3],
+    /// The ground's radiance as a multiple of the sky radiance, per channel;
+    /// `None`: no ground (the sky all around, as in the grey scene).
+    pub ground: Option<[f32; 3]>,
 }
 
 impl Default for LightColours {
-    /// White sun and sky: the grey preview's light.
+    /// White sun and sky, no ground: the grey preview's light.
     fn default() -> Self {
         LightColours {
             sun: [1.0; 3],
             sky: [1.0; 3],
+            ground: None,
         }
     }
 }
 
 impl LightColours {
-    /// A daylight look: a white (D65) sun and a blue sky, `(0.45, 0.6, 1.0)`.
+    /// A daylight look: a white (D65) sun, a pale blue sky `(0.75, 0.85, 1.0)`
+    /// and a darker grey-brown ground `(0.2, 0.17, 0.15)` (the docs' balls).
     pub const DAYLIGHT: LightColours = LightColours {
         sun: [1.0, 1.0, 1.0],
-        sky: [0.45, 0.6, 1.0],
+        sky: [0.75, 0.85, 1.0],
+        ground: Some([0.2, 0.17, 0.15]),
     };
 
+    /// The ground's colour (the sky's when there is no ground).
+    pub fn ground(&self) -> [f32; 3] {
+        self.ground.unwrap_or(self.sky)
+    }
+
     fn check(&self) -> Result<(), PreviewError> {
-        for (name, c) in [("sun colour", self.sun), ("sky colour", self.sky)] {
+        for (name, c) in [
+            ("sun colour", self.sun),
+            ("sky colour", self.sky),
+            ("ground colour", self.ground()),
+        ] {
             for v in c {
                 if !(v.is_finite() && v >= 0.0) {
                     return Err(PreviewError::Colour(name, v));
@@ -390,12 +407,15 @@ pub fn render_rgb<B: Brdf<Spectrum = Vec3> + Sync + ?Sized>(
     check_options(opt)?;
     colours.check()?;
     let lighting = Lighting::new(opt)?;
-    let sky = Vec3::from_array(colours.sky) * lighting.sky().sky_radiance();
-    let sun = Vec3::from_array(colours.sun) * lighting.sun().cap_radiance();
+    let env = Env {
+        sky: Vec3::from_array(colours.sky) * lighting.sky().sky_radiance(),
+        ground: Vec3::from_array(colours.ground()) * lighting.sky().sky_radiance(),
+        sun: Vec3::from_array(colours.sun) * lighting.sun().cap_radiance(),
+    };
     let (rgb, coverage) = render_channels::<3>(
         opt,
-        |p, d, u, _| lighting.shade_spectrum(brdf, p, -d, u, sky, sun).to_array(),
-        |d, _| lighting.radiance_s(d, sky, sun).to_array(),
+        |p, d, u, _| lighting.shade_spectrum(brdf, p, -d, u, &env).to_array(),
+        |d, _| lighting.radiance_env(d, &env).to_array(),
     );
     Ok(RgbImage {
         width: opt.size,
@@ -438,11 +458,14 @@ pub fn hero_wavelengths<const N: usize>(xi: f32) -> [f32; N] {
 }
 
 /// The light spectra of `colours` ([`RgbIlluminant`]).
-pub(crate) fn light_spectra(colours: &LightColours) -> Result<(RgbIlluminant, RgbIlluminant), PreviewError> {
+pub(crate) fn light_spectra(
+    colours: &LightColours,
+) -> Result<(RgbIlluminant, RgbIlluminant, RgbIlluminant), PreviewError> {
     colours.check()?;
     let sun = RgbIlluminant::new(colours.sun).map_err(PreviewError::Uplift)?;
     let sky = RgbIlluminant::new(colours.sky).map_err(PreviewError::Uplift)?;
-    Ok((sun, sky))
+    let ground = RgbIlluminant::new(colours.ground()).map_err(PreviewError::Uplift)?;
+    Ok((sun, sky, ground))
 }
 
 /// Renders the ball spectrally with `N` hero wavelengths per camera sample
@@ -457,15 +480,14 @@ pub fn render_spectral<const N: usize, M: SpectralMaterial<N>>(
     }
     check_options(opt)?;
     let lighting = Lighting::new(opt)?;
-    let (sun_spd, sky_spd) = light_spectra(colours)?;
+    let (sun_spd, sky_spd, ground_spd) = light_spectra(colours)?;
     let observer = SrgbObserver::new();
     let (sky_l, sun_l) = (lighting.sky().sky_radiance(), lighting.sun().cap_radiance());
     let per_sample = (LAMBDA_MAX_NM - LAMBDA_MIN_NM) / N as f32;
-    let lights = |l: &[f32; N]| {
-        (
-            SampledSpectrum(l.map(|x| sky_l * sky_spd.value(x))),
-            SampledSpectrum(l.map(|x| sun_l * sun_spd.value(x))),
-        )
+    let lights = |l: &[f32; N]| Env {
+        sky: SampledSpectrum(l.map(|x| sky_l * sky_spd.value(x))),
+        ground: SampledSpectrum(l.map(|x| sky_l * ground_spd.value(x))),
+        sun: SampledSpectrum(l.map(|x| sun_l * sun_spd.value(x))),
     };
     let to_rgb = |l: &[f32; N], v: SampledSpectrum<N>| {
         let mut rgb = [0.0f32; 3];
@@ -484,13 +506,11 @@ pub fn render_spectral<const N: usize, M: SpectralMaterial<N>>(
             let Some(brdf) = material.at(&l) else {
                 return [0.0; 3];
             };
-            let (sky, sun) = lights(&l);
-            to_rgb(&l, lighting.shade_spectrum(&brdf, p, -d, u, sky, sun))
+            to_rgb(&l, lighting.shade_spectrum(&brdf, p, -d, u, &lights(&l)))
         },
         |d, xi| {
             let l = hero_wavelengths::<N>(xi);
-            let (sky, sun) = lights(&l);
-            to_rgb(&l, lighting.radiance_s(d, sky, sun))
+            to_rgb(&l, lighting.radiance_env(d, &lights(&l)))
         },
     );
     Ok(RgbImage {
@@ -499,6 +519,30 @@ pub fn render_spectral<const N: usize, M: SpectralMaterial<N>>(
         rgb,
         coverage,
     })
+}
+
+/// The hero-wavelength counts [`render_spectral_n`] dispatches to.
+pub const HERO_COUNTS: [usize; 4] = [1, 4, 8, 16];
+
+/// [`render_spectral`] with the number of hero wavelengths chosen at run
+/// time, one of [`HERO_COUNTS`] (another count is
+/// [`PreviewError::Wavelengths`]).
+pub fn render_spectral_n<M>(
+    n: usize,
+    material: &M,
+    opt: &Options,
+    colours: &LightColours,
+) -> Result<RgbImage, PreviewError>
+where
+    M: SpectralMaterial<1> + SpectralMaterial<4> + SpectralMaterial<8> + SpectralMaterial<16>,
+{
+    match n {
+        1 => render_spectral::<1, M>(material, opt, colours),
+        4 => render_spectral::<4, M>(material, opt, colours),
+        8 => render_spectral::<8, M>(material, opt, colours),
+        16 => render_spectral::<16, M>(material, opt, colours),
+        _ => Err(PreviewError::Wavelengths(n)),
+    }
 }
 
 /// The typed colour materials of `radiometry preview --material`.

@@ -42,6 +42,7 @@ fn white_furnace_per_channel_rgb_and_spectral() {
     let colours = LightColours {
         sun: [1.0; 3],
         sky: [0.2, 0.5, 1.0],
+        ground: None,
     };
     let opt = Options {
         sun_irradiance: 0.0,
@@ -102,6 +103,7 @@ fn bad_colours_and_wavelength_counts_are_typed_errors() {
     let bad = LightColours {
         sun: [1.0, f32::NAN, 1.0],
         sky: [1.0; 3],
+        ground: None,
     };
     assert!(matches!(
         render_rgb(&white, &small(1), &bad),
@@ -110,6 +112,7 @@ fn bad_colours_and_wavelength_counts_are_typed_errors() {
     let neg = LightColours {
         sun: [1.0; 3],
         sky: [-1.0, 0.0, 0.0],
+        ground: None,
     };
     assert!(matches!(
         render_rgb(&white, &small(1), &neg),
@@ -126,4 +129,29 @@ fn bad_colours_and_wavelength_counts_are_typed_errors() {
             .iter()
             .all(|l| (360.0..=780.0).contains(l))
     );
+}
+
+#[test]
+fn the_ground_shows_below_the_horizon() {
+    let colours = LightColours::DAYLIGHT;
+    let opt = Options {
+        sun_irradiance: 0.0,
+        ..small(4)
+    };
+    let white = Lambertian::new(Vec3::ONE).unwrap();
+    let img = render_rgb(&white, &opt, &colours).unwrap();
+    let l = opt.sky_radiance;
+    // The camera looks horizontally: the top corner sees the sky, the bottom corner the ground.
+    let (top, bottom) = (img.rgb()[0], img.rgb()[11 * 12 + 11]);
+    for c in 0..3 {
+        assert_eq!(top[c], colours.sky[c] * l);
+        assert_eq!(bottom[c], colours.ground()[c] * l);
+    }
+    // A white Lambertian's top (seeing mostly sky) is brighter than its bottom (mostly ground),
+    // and both lie between the two radiances.
+    let (up, down) = (img.rgb()[2 * 12 + 6], img.rgb()[9 * 12 + 6]);
+    for c in 0..3 {
+        assert!(up[c] > down[c], "{up:?} {down:?}");
+        assert!(down[c] > colours.ground()[c] * l && up[c] < colours.sky[c] * l);
+    }
 }
