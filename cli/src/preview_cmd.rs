@@ -95,7 +95,7 @@ hero wavelengths per sample (1, 4, 8 or 16; 360-780 nm), lights as spectra (whit
 observer. --camera bayer|prism|stacked renders the pixel equation: the ball on 43 wavelengths under --light
 d65|a, through the camera's spectral sensitivities, exposure (--camera-exposure: the fraction of the full well a
 white diffuser facing the sun fills), EMVA 1288 shot and dark noise (10,000 e- full well, --dark-noise e-, 12-bit
-ADC), bilinear demosaicing (Bayer), a least-squares colour matrix and white balance, the sRGB response curve;
+ADC), bilinear demosaicing (Bayer), a colour matrix fitted on the 24 ColorChecker patches and a white balance, the sRGB response curve;
 beside it (right) the same ball as the CIE 1931 observer sees it; prints the colour error (mean CIE 1976 dE*ab)
 and the noise against the EMVA prediction.
 
@@ -457,13 +457,20 @@ R {:.3} G {:.3} B {:.3}",
             rep.channel_ratio[2]
         );
         println!(
-            "noise: white diffuser {:.0} e- (EMVA SNR {:.1}); measured rms noise / signal over the ball R {:.3} G {:.3} \
-B {:.3}",
+            "noise: white diffuser {:.0} e- (EMVA SNR {:.1}); rms noise over the ball as a fraction of white: R {:.4} \
+G {:.4} B {:.4}; EMVA prediction through the matrix R {:.4} G {:.4} B {:.4}",
             rep.white_electrons,
             rep.white_snr,
-            rep.relative_noise[0],
-            rep.relative_noise[1],
-            rep.relative_noise[2]
+            rep.noise[0],
+            rep.noise[1],
+            rep.noise[2],
+            rep.noise_predicted[0],
+            rep.noise_predicted[1],
+            rep.noise_predicted[2]
+        );
+        println!(
+            "ColorChecker (the matrix's chart, noiseless): mean dE*ab {:.2}, largest {:.2}",
+            rep.chart_delta_e, rep.chart_delta_e_max
         );
         let m = rep.ccm;
         println!(

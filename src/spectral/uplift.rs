@@ -410,6 +410,50 @@ impl SpectralCurve for RgbIlluminant {
     }
 }
 
+/// The sRGB decoding of an 8-bit value to linear (IEC 61966-2-1:
+/// `v/12.92` for `v ≤ 0.04045`, else `((v + 0.055)/1.055)^2.4`).
+pub fn srgb8_to_linear(v: u8) -> f32 {
+    let e = v as f64 / 255.0;
+    (if e <= 0.04045 {
+        e / 12.92
+    } else {
+        libm::pow((e + 0.055) / 1.055, 2.4)
+    }) as f32
+}
+
+/// The 24 patches of the ColorChecker Classic as 8-bit sRGB (X-Rite's
+/// published sRGB values for the post-2014 chart, as listed e.g. in
+/// Wikipedia's "ColorChecker" article and BabelColor's "ColorChecker RGB
+/// and spectra"), in chart order (dark skin … black): 24 in-gamut
+/// reflectance colours, for tests and for fitting colour matrices.
+pub const COLORCHECKER_SRGB8: [[u8; 3]; 24] = [
+    [115, 82, 68],
+    [194, 150, 130],
+    [98, 122, 157],
+    [87, 108, 67],
+    [133, 128, 177],
+    [103, 189, 170],
+    [214, 126, 44],
+    [80, 91, 166],
+    [193, 90, 99],
+    [94, 60, 108],
+    [157, 188, 64],
+    [224, 163, 46],
+    [56, 61, 150],
+    [70, 148, 73],
+    [175, 54, 60],
+    [231, 199, 31],
+    [187, 86, 149],
+    [8, 133, 161],
+    [243, 243, 242],
+    [200, 200, 200],
+    [160, 160, 160],
+    [122, 122, 121],
+    [85, 85, 85],
+    [52, 52, 52],
+];
+
+
 /// Solves the 3 × 3 system `a x = b` by Gaussian elimination with partial
 /// pivoting; `None` when singular.
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
@@ -530,46 +574,6 @@ fn newton(w: &Weights, mut c: [f64; 3], goal: [f64; 3], iterations: usize) -> [f
 mod tests {
     use super::*;
 
-    /// The 24 patches of the ColorChecker Classic as 8-bit sRGB (X-Rite's
-    /// published sRGB values for the post-2014 chart, as listed e.g. in
-    /// Wikipedia's "ColorChecker" article and BabelColor's "ColorChecker RGB
-    /// and spectra"): used as 24 in-gamut reflectance colours.
-    const COLORCHECKER_SRGB8: [[u8; 3]; 24] = [
-        [115, 82, 68],
-        [194, 150, 130],
-        [98, 122, 157],
-        [87, 108, 67],
-        [133, 128, 177],
-        [103, 189, 170],
-        [214, 126, 44],
-        [80, 91, 166],
-        [193, 90, 99],
-        [94, 60, 108],
-        [157, 188, 64],
-        [224, 163, 46],
-        [56, 61, 150],
-        [70, 148, 73],
-        [175, 54, 60],
-        [231, 199, 31],
-        [187, 86, 149],
-        [8, 133, 161],
-        [243, 243, 242],
-        [200, 200, 200],
-        [160, 160, 160],
-        [122, 122, 121],
-        [85, 85, 85],
-        [52, 52, 52],
-    ];
-
-    /// The sRGB decoding (IEC 61966-2-1).
-    fn srgb_to_linear(v: u8) -> f32 {
-        let e = v as f64 / 255.0;
-        (if e <= 0.04045 {
-            e / 12.92
-        } else {
-            libm::pow((e + 0.055) / 1.055, 2.4)
-        }) as f32
-    }
 
     fn round_trip(rgb: [f32; 3]) -> (f32, SigmoidSpectrum) {
         let s = uplift_reflectance(rgb).unwrap();
@@ -601,7 +605,7 @@ mod tests {
     fn colorchecker_round_trips_within_1e_3() {
         let mut worst = 0.0f32;
         for p in COLORCHECKER_SRGB8 {
-            let rgb = p.map(srgb_to_linear);
+            let rgb = p.map(srgb8_to_linear);
             let (e, s) = round_trip(rgb);
             assert!(e < 1e-3, "{p:?} → {rgb:?}: round-trip error {e}");
             assert!((s.residual() - e).abs() < 1e-7);

@@ -69,7 +69,7 @@ use radiometry::sensor::color::{
 use radiometry::sensor::emva::{GaussianDarkNoise, PoissonShotNoise};
 use radiometry::sensor::response::{self, Response};
 use radiometry::sensor::{Emva1288, FillFactor, Pixel, Sampling, SensorError};
-use radiometry::spectral::uplift::SrgbObserver;
+use radiometry::spectral::uplift::{COLORCHECKER_SRGB8, SrgbObserver, srgb8_to_linear, uplift_reflectance};
 use radiometry::spectral::{FnCurve, IlluminantA, SpectralCurve};
 
 /// The linear value the white diffuser facing the sun develops to, in both
@@ -305,12 +305,26 @@ pub struct CameraReport {
     /// The same without sensor noise: the sensitivities' and the
     /// demosaicing's colour error.
     pub mean_delta_e_noiseless: f32,
-    /// Per channel, mean camera / mean observer (linear, over the pixels).
+    /// Mean ΔE*ab of the 24 ColorChecker patches (the chart the matrix is
+    /// fitted on), lit as the white diffuser, noiseless: the classic
+    /// camera-profile figure.
+    pub chart_delta_e: f32,
+    /// The largest of those 24.
+    pub chart_delta_e_max: f32,
+    /// Per channel, mean noiseless camera / mean observer (linear, over the
+    /// pixels): the systematic colour error.
     pub channel_ratio: [f32; 3],
-    /// RMS of (noisy − noiseless) over the compared pixels, per channel,
-    /// relative to the mean noiseless value (linear, developed; zero without
-    /// noise).
-    pub relative_noise: [f32; 3],
+    /// RMS of (noisy − noiseless) over the compared pixels, per channel, as a
+    /// fraction of the white level (linear, developed; zero without noise).
+    pub noise: [f32; 3],
+    /// The EMVA 1288 prediction of [`CameraReport::noise`]: per pixel the
+    /// photon-transfer variance of each raw channel, `(μ_e + σ_d²)/FW² +
+    /// 1/(12 K² FW²)`, through the colour matrix and white balance
+    /// (`Σ_j (D M)²_cj σ_j²`), RMS over the pixels. Exact for the prism and
+    /// the stacked sensor; for the Bayer sensor demosaicing averages 2 or 4
+    /// photosites into each interpolated value, so the measurement falls
+    /// below the prediction.
+    pub noise_predicted: [f32; 3],
     /// The white diffuser's brightest channel: mean electrons.
     pub white_electrons: f32,
     /// The EMVA 1288 signal-to-noise ratio there,
@@ -406,19 +420,33 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         |d, _| channels(lighting.radiance_env(d, &env)),
     );
 
-    // The white diffuser facing the sun: L = (E⊥ + π L_sky) E(λ)/π; and the
-    // least-squares colour matrix, on the same grid.
+    // The white diffuser facing the sun: L = (E⊥ + π L_sky) E(λ)/π.
     let white_l = (lighting.e_perp + std::f32::consts::PI * sky_l) / std::f32::consts::PI;
-    let mut cam_ref = [0.0f64; 3];
-    let mut obs_ref = [0.0f64; 3];
+    let response = |rho: &dyn Fn(f32) -> f32| {
+        let (mut q, mut v) = ([0.0f64; 3], [0.0f64; 3]);
+        for i in 0..GRID_LEN {
+            let r = rho(grid[i]) as f64 * e[i] as f64;
+            for c in 0..3 {
+                q[c] += r * w_cam[i][c] as f64;
+                v[c] += r * w_obs[i][c] as f64;
+            }
+        }
+        (q, v)
+    };
+    let (white_q, white_v) = response(&|_| 1.0);
+    let cam_ref = white_q.map(|v| v * white_l as f64);
+    let obs_ref = white_v.map(|v| v * white_l as f64);
+    // The colour matrix: least squares over the 24 ColorChecker patches (their
+    // uplifted spectra) under the illuminant, camera → observer — a chart
+    // calibration, as cameras are profiled.
     let mut qq = [[0.0f64; 3]; 3];
     let mut vq = [[0.0f64; 3]; 3];
-    for i in 0..GRID_LEN {
-        let q = w_cam[i].map(|v| v as f64 * e[i] as f64);
-        let v = w_obs[i].map(|v| v as f64 * e[i] as f64);
+    let mut chart = [([0.0f64; 3], [0.0f64; 3]); 24];
+    for (patch, slot) in COLORCHECKER_SRGB8.iter().zip(chart.iter_mut()) {
+        let rho = uplift_reflectance(patch.map(srgb8_to_linear)).map_err(PreviewError::Uplift)?;
+        let (q, v) = response(&|l| rho.eval(l));
+        *slot = (q, v);
         for a in 0..3 {
-            cam_ref[a] += white_l as f64 * q[a];
-            obs_ref[a] += white_l as f64 * v[a];
             for b in 0..3 {
                 qq[a][b] += q[a] * q[b];
                 vq[a][b] += v[a] * q[b];
@@ -497,8 +525,15 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         ..CameraReport::default()
     };
     let (mut de, mut de0) = (0.0f64, 0.0f64);
-    let mut sums = [[0.0f64; 3]; 3]; // camera, observer, clean
+    let mut sums = [[0.0f64; 3]; 2]; // clean camera, observer
     let mut sq = [0.0f64; 3];
+    let mut predicted = [0.0f64; 3];
+    let k_dn = sensor.gain() as f64;
+    let fw = cam.full_well_e as f64;
+    // EMVA 1288 variance of a normalised raw value with mean μ electrons.
+    let raw_var =
+        |mu: f64| (mu + (cam.dark_noise_e as f64).powi(2)) / (fw * fw) + 1.0 / (12.0 * k_dn * k_dn * fw * fw);
+    let dm: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|c| d_cam[r] * ccm[r][c]));
     for i in 0..n * n {
         let (a, b, c) = (camera[i], observer_wb[i], clean[i]);
         if coverage[i] < 1.0 || [a, b, c].iter().flatten().any(|&v| v >= 1.0) {
@@ -507,11 +542,12 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         report.pixels += 1;
         de += delta_e(a, b) as f64;
         de0 += delta_e(c, b) as f64;
+        let var: [f64; 3] = std::array::from_fn(|k| raw_var(pixels[i][3 + k] as f64 * to_e));
         for k in 0..3 {
-            sums[0][k] += a[k] as f64;
+            sums[0][k] += c[k] as f64;
             sums[1][k] += b[k] as f64;
-            sums[2][k] += c[k] as f64;
             sq[k] += ((a[k] - c[k]) as f64).powi(2);
+            predicted[k] += (0..3).map(|j| dm[k][j] * dm[k][j] * var[j]).sum::<f64>();
         }
     }
     if report.pixels > 0 {
@@ -519,8 +555,22 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         report.mean_delta_e = (de / np) as f32;
         report.mean_delta_e_noiseless = (de0 / np) as f32;
         report.channel_ratio = std::array::from_fn(|k| (sums[0][k] / sums[1][k]) as f32);
-        report.relative_noise = std::array::from_fn(|k| ((sq[k] / np).sqrt() / (sums[2][k] / np)) as f32);
+        if cam.noise {
+            report.noise = std::array::from_fn(|k| ((sq[k] / np).sqrt() / WHITE_LEVEL as f64) as f32);
+            report.noise_predicted =
+                std::array::from_fn(|k| ((predicted[k] / np).sqrt() / WHITE_LEVEL as f64) as f32);
+        }
     }
+    // The chart itself, lit as the white diffuser, noiseless: the fit's residual.
+    let mut chart_de = [0.0f32; 24];
+    for (d, (q, v)) in chart_de.iter_mut().zip(&chart) {
+        let raw = q.map(|x| x * white_l as f64 * to_e / fw);
+        let a: [f32; 3] = std::array::from_fn(|r| (0..3).map(|j| dm[r][j] * raw[j]).sum::<f64>() as f32);
+        let b: [f32; 3] = std::array::from_fn(|r| (v[r] * white_l as f64 * d_obs[r]) as f32);
+        *d = delta_e(a, b);
+    }
+    report.chart_delta_e = chart_de.iter().sum::<f32>() / 24.0;
+    report.chart_delta_e_max = chart_de.iter().fold(0.0f32, |m, &v| m.max(v));
     let mu = cam.exposure * cam.full_well_e;
     let k = sensor.gain();
     report.white_electrons = mu;

@@ -123,9 +123,47 @@ fn the_camera_report_measures_something() {
     let rep = r.report;
     assert!(rep.pixels > 50, "{rep:?}");
     assert!(rep.mean_delta_e.is_finite() && rep.mean_delta_e >= rep.mean_delta_e_noiseless * 0.5);
-    assert!(rep.relative_noise.iter().all(|&v| v > 0.0 && v < 0.5), "{rep:?}");
+    assert!(rep.noise.iter().all(|&v| v > 0.0 && v < 0.5), "{rep:?}");
+    // Bayer: demosaicing averages photosites, so the measurement is at most the prediction.
+    for c in 0..3 {
+        assert!(rep.noise[c] <= 1.05 * rep.noise_predicted[c], "{rep:?}");
+    }
+    assert!(
+        rep.chart_delta_e > 0.0 && rep.chart_delta_e <= rep.chart_delta_e_max,
+        "{rep:?}"
+    );
     // 2500 e⁻, σ_d = 6 e⁻: SNR ≈ √2500 = 50.
     assert!((rep.white_snr - 49.6).abs() < 0.5, "{}", rep.white_snr);
+}
+
+#[test]
+fn developed_noise_follows_the_emva_prediction_through_the_matrix() {
+    // Prism and stacked sensors: every pixel reads its three channels itself, so the
+    // developed noise is the EMVA 1288 variance through D·M exactly (in expectation).
+    // A grey ball under the sky alone (flat): ~130 pixels, ±12 % (5 standard errors of an
+    // RMS over ~130 near-Gaussian values: 5/√(2·130)).
+    let grey = Lambertian::new(0.5f32).unwrap();
+    let opt = Options {
+        sun_irradiance: 0.0,
+        ..small()
+    };
+    for kind in [CameraKind::Prism, CameraKind::Stacked] {
+        let r = render_camera(
+            &AsGrey(&grey),
+            &opt,
+            &CameraOptions {
+                kind,
+                ..CameraOptions::default()
+            },
+        )
+        .unwrap();
+        let rep = r.report;
+        assert!(rep.pixels > 100, "{rep:?}");
+        for c in 0..3 {
+            let ratio = rep.noise[c] / rep.noise_predicted[c];
+            assert!((ratio - 1.0).abs() < 0.12, "{kind:?} channel {c}: {rep:?}");
+        }
+    }
 }
 
 #[test]
