@@ -20,7 +20,7 @@
 //! add < 10⁻⁴ of Y):
 //! `RGB_c = Σ_i ρ(λ_i) w_c(λ_i)`, `w_c(λ) = Σ_r M_cr x̄_r(λ) D65(λ) / Σ_i D65 ȳ`
 //! with `M` the XYZ → linear sRGB matrix of IEC 61966-2-1
-//! ([`XYZ_TO_SRGB`](super::photometry::XYZ_TO_SRGB)), each row then divided by
+//! ([`super::photometry::XYZ_TO_SRGB`]), each row then divided by
 //! its sum so that the perfect reflector `ρ ≡ 1` is `(1, 1, 1)` exactly (the
 //! 4-digit matrix alone gives white to 10⁻³; the rescaling is at most that
 //! large). Grey `ρ ≡ g` is therefore `(g, g, g)`.

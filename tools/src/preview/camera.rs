@@ -2,7 +2,7 @@
 //! records it, beside the same ball as an ideal CIE observer sees it —
 //! what `radiometry preview … --camera bayer|prism|stacked` draws.
 //!
-//! `I_c = R(∫∫∫∫ E(x, y, λ, t) s(x, y) q_c(λ))` (the crate's [`sensor`]
+//! `I_c = R(∫∫∫∫ E(x, y, λ, t) s(x, y) q_c(λ))` (the [`radiometry::sensor`]
 //! module), here:
 //!
 //! 1. **Scene radiance** `L(λ)`: the preview scene ([`super`]) rendered
