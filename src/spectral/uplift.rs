@@ -453,7 +453,6 @@ pub const COLORCHECKER_SRGB8: [[u8; 3]; 24] = [
     [52, 52, 52],
 ];
 
-
 /// Solves the 3 × 3 system `a x = b` by Gaussian elimination with partial
 /// pivoting; `None` when singular.
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
@@ -573,7 +572,6 @@ fn newton(w: &Weights, mut c: [f64; 3], goal: [f64; 3], iterations: usize) -> [f
 #[cfg(test)]
 mod tests {
     use super::*;
-
 
     fn round_trip(rgb: [f32; 3]) -> (f32, SigmoidSpectrum) {
         let s = uplift_reflectance(rgb).unwrap();
