@@ -5,6 +5,7 @@ use crate::{model, spec};
 use clap::ValueEnum;
 use radiometry_tools::preview::camera::{self, CameraKind, CameraOptions, Illuminant};
 use radiometry_tools::preview::colour::{self, AsGrey, AsRgb, LightColours, Preset, PresetKind, RgbImage};
+use radiometry_tools::preview::envmap::EnvMap;
 use radiometry_tools::preview::{self, Format, Options};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -89,7 +90,8 @@ threads. Tone curve: extended Reinhard with white point 4 (times --exposure), th
 
 Colour: --material gold|copper|red-plastic renders a typed colour material (instead of SPEC); --sun-colour and
 --sky-colour tint the lights (linear sRGB), --ground-colour adds a ground below the horizon (--daylight: a white
-sun, a pale blue sky, a grey-brown ground); --rgb forces an RGB picture. Any of these writes 8-bit RGB (each
+sun, a pale blue sky, a grey-brown ground), --env FILE.hdr lights by an equirectangular Radiance map instead;
+--rgb forces an RGB picture. Any of these writes 8-bit RGB (each
 channel through the same tone curve: a grey spec gives the grey picture's bytes). --spectral N renders with N
 hero wavelengths per sample (1, 4, 8 or 16; 360-780 nm), lights as spectra (white = D65), colour by the CIE 1931
 observer. --camera bayer|prism|stacked renders the pixel equation: the ball on 43 wavelengths under --light
@@ -175,6 +177,14 @@ pub struct PreviewArgs {
     /// explicit flags win).
     #[arg(long)]
     daylight: bool,
+    /// An equirectangular environment map (Radiance `.hdr`) instead of the uniform sky and ground: its texels times
+    /// --env-scale are the radiance all around (the image centre straight ahead of the camera, behind the ball); the
+    /// sun (--sun-…) is added. An RGB picture; --sky-radiance is replaced by the map's mean luminance.
+    #[arg(long, value_name = "FILE")]
+    env: Option<PathBuf>,
+    /// Radiance scale of --env.
+    #[arg(long, default_value_t = 1.0)]
+    env_scale: f32,
     /// Write an RGB picture even when everything is grey.
     #[arg(long)]
     rgb: bool,
@@ -251,6 +261,7 @@ pub fn run(a: PreviewArgs) -> ExitCode {
         || a.sky_colour.is_some()
         || a.ground_colour.is_some()
         || a.daylight
+        || a.env.is_some()
         || a.spectral.is_some()
         || a.camera.is_some();
     if a.textured && colour_out {
@@ -265,6 +276,17 @@ pub fn run(a: PreviewArgs) -> ExitCode {
     {
         return crate::usage_error(
             "--camera renders on its own 43 wavelengths under --light; drop --spectral and the light colours",
+        );
+    }
+    if a.env.is_some()
+        && (a.spectral.is_some()
+            || a.camera.is_some()
+            || a.sky_colour.is_some()
+            || a.ground_colour.is_some()
+            || a.daylight)
+    {
+        return crate::usage_error(
+            "--env lights in RGB by the map itself; drop --spectral, --camera, --sky-colour, --ground-colour, --daylight",
         );
     }
     if let Some(n) = a.spectral
@@ -476,6 +498,56 @@ G {:.4} B {:.4}; EMVA prediction through the matrix R {:.4} G {:.4} B {:.4}",
         println!(
             "colour matrix (white-balanced, on white-normalised raw): [{:.3} {:.3} {:.3}; {:.3} {:.3} {:.3}; {:.3} {:.3} {:.3}]",
             m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]
+        );
+        return ExitCode::SUCCESS;
+    }
+    if let Some(path) = &a.env {
+        let map = match EnvMap::read_hdr(path) {
+            Ok(m) => m,
+            Err(e) => return crate::usage_error(&e.to_string()),
+        };
+        let m = map.mean();
+        let lum = (0.2126 * m[0] + 0.7152 * m[1] + 0.0722 * m[2]) * a.env_scale;
+        let opt = Options {
+            sky_radiance: if lum.is_finite() { lum.max(0.0) } else { 0.0 },
+            ..opt.clone()
+        };
+        let img = match ball {
+            Ball::Spec(_, b) => colour::render_rgb_env(&AsRgb(b), &opt, &map, a.env_scale, colours.sun),
+            Ball::Preset(p) => match p.rgb() {
+                Ok(m) => colour::render_rgb_env(&m, &opt, &map, a.env_scale, colours.sun),
+                Err(e) => Err(e),
+            },
+        };
+        let img = match img {
+            Ok(i) => i,
+            Err(e) => return crate::usage_error(&e.to_string()),
+        };
+        let secs = t0.elapsed().as_secs_f64();
+        description.push_str(&format!(
+            " --env {} --env-scale {} --sun-colour {},{},{} --exposure {}",
+            path.display(),
+            a.env_scale,
+            colours.sun[0],
+            colours.sun[1],
+            colours.sun[2],
+            a.exposure
+        ));
+        if let Err(e) = img.write(&a.out, format, a.exposure, &description) {
+            eprintln!("error: cannot write {}: {e}", a.out.display());
+            return ExitCode::from(1);
+        }
+        println!(
+            "wrote {} ({}×{} px, RGB, environment {}×{} texels, {} samples/pixel, {:.2} s on {} thread{})",
+            a.out.display(),
+            opt.size,
+            opt.size,
+            map.width(),
+            map.height(),
+            opt.samples,
+            secs,
+            used,
+            if used == 1 { "" } else { "s" }
         );
         return ExitCode::SUCCESS;
     }

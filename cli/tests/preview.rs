@@ -214,6 +214,24 @@ fn preview_rejects_bad_colour_input() {
             o,
         ],
         &["preview", "openpbr", "--textured", "--rgb", "--out", o],
+        &[
+            "preview",
+            "lambertian",
+            "--env",
+            "/nonexistent/sky.hdr",
+            "--out",
+            o,
+        ],
+        &[
+            "preview",
+            "lambertian",
+            "--env",
+            "/nonexistent/sky.hdr",
+            "--spectral",
+            "4",
+            "--out",
+            o,
+        ],
     ] {
         let r = run(args);
         assert_eq!(
@@ -224,4 +242,39 @@ fn preview_rejects_bad_colour_input() {
         );
     }
     assert!(!out.exists());
+}
+
+#[test]
+fn preview_lights_by_an_hdr_environment_map() {
+    // A constant 8 × 4 Radiance file (RGBE, written by hand: header, then flat scanlines of
+    // 4 bytes per texel; 0.5 = mantissa 128, exponent 128) lights a white Lambertian as a
+    // uniform sky of 0.5: the furnace ball vanishes into the background.
+    let path = tmp("grey.hdr");
+    let mut bytes = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n".to_vec();
+    for _ in 0..32 {
+        bytes.extend_from_slice(&[128, 128, 128, 128]);
+    }
+    std::fs::write(&path, bytes).unwrap();
+    let out = tmp("env.png");
+    let r = run(&[
+        "preview",
+        "lambertian",
+        "--env",
+        path.to_str().unwrap(),
+        "--sun-irradiance",
+        "0",
+        "--size",
+        "8",
+        "--samples",
+        "2",
+        "--no-progress",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(String::from_utf8_lossy(&r.stdout).contains("environment 8×4 texels"));
+    let png = std::fs::read(&out).unwrap();
+    assert_eq!(png_kind(&png), (2, 8));
+    let _ = std::fs::remove_file(out);
+    let _ = std::fs::remove_file(path);
 }

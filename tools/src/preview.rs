@@ -61,6 +61,7 @@
 
 pub mod camera;
 pub mod colour;
+pub mod envmap;
 pub mod image;
 
 pub use image::{Format, Image, WHITE_POINT, tone_map};
@@ -164,6 +165,8 @@ pub enum PreviewError {
     Wavelengths(usize),
     /// The simulated camera was rejected (a sensor parameter out of range).
     Camera(radiometry::sensor::SensorError),
+    /// An environment map was rejected or could not be read.
+    EnvMap(String),
 }
 
 impl fmt::Display for PreviewError {
@@ -181,6 +184,7 @@ impl fmt::Display for PreviewError {
                 write!(f, "{n} hero wavelengths: must be in [1, {}]", colour::MAX_HERO)
             }
             PreviewError::Camera(e) => write!(f, "camera: {e}"),
+            PreviewError::EnvMap(e) => write!(f, "environment map: {e}"),
         }
     }
 }
@@ -405,6 +409,43 @@ pub struct Env<S> {
     pub sun: S,
 }
 
+/// What lights the colour preview: the incident radiance from every world
+/// direction, in spectrum `S` ([`Env`]: a uniform sky, a ground and the sun;
+/// [`envmap::EnvMap`] through [`MapEnv`]).
+pub trait Environment<S> {
+    /// Incident radiance from (unit, world) direction `w`.
+    fn radiance(&self, lighting: &Lighting, w: Vec3) -> S;
+}
+
+impl<S: Spectrum> Environment<S> for Env<S> {
+    fn radiance(&self, lighting: &Lighting, w: Vec3) -> S {
+        lighting.radiance_env(w, self)
+    }
+}
+
+/// An environment map times `scale`, plus the preview's sun cap of radiance
+/// `sun` (linear RGB).
+#[derive(Clone, Copy, Debug)]
+pub struct MapEnv<'a> {
+    /// The map.
+    pub map: &'a envmap::EnvMap,
+    /// Its radiance scale.
+    pub scale: f32,
+    /// The sun's radiance inside its cap.
+    pub sun: Vec3,
+}
+
+impl Environment<Vec3> for MapEnv<'_> {
+    fn radiance(&self, lighting: &Lighting, w: Vec3) -> Vec3 {
+        let sun = if lighting.sun.contains(w) {
+            self.sun
+        } else {
+            Vec3::ZERO
+        };
+        Vec3::from_array(self.map.radiance(w)) * self.scale + sun
+    }
+}
+
 impl Lighting {
     /// Incident radiance from world direction `w` in any spectrum: the sky
     /// (the ground below the horizontal plane, `w.y < 0`), plus the sun in
@@ -422,13 +463,13 @@ impl Lighting {
     /// is reached by the cosine-weighted sky technique and the BRDF's). For a
     /// BRDF whose channels are equal under white light without a ground it
     /// gives the bits of `shade` in every channel.
-    pub fn shade_spectrum<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
+    pub fn shade_spectrum<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized, E: Environment<S> + ?Sized>(
         &self,
         brdf: &B,
         n: Vec3,
         wo: Vec3,
         u: [f32; 5],
-        env: &Env<S>,
+        env: &E,
     ) -> S {
         let Some(frame) = Frame::from_normal(n) else {
             return S::zero();
@@ -453,14 +494,14 @@ impl Lighting {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn light_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
+    fn light_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized, E: Environment<S> + ?Sized>(
         &self,
         brdf: &B,
         frame: &Frame,
         wo: Vec3,
         q: f32,
         u: [f32; 3],
-        env: &Env<S>,
+        env: &E,
         out: &mut [f64],
     ) {
         let (w, wl) = if u[0] < q {
@@ -482,7 +523,7 @@ impl Lighting {
             return;
         }
         let p_b = brdf.pdf(wl, wo) as f64;
-        let l = self.radiance_env(w, env);
+        let l = env.radiance(self, w);
         for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
             // The expression order of `light_draw`, channel by channel.
             *o = f.channel(c) as f64 * l.channel(c) as f64 * wl.z as f64 * p_l / (p_l * p_l + p_b * p_b);
@@ -490,14 +531,14 @@ impl Lighting {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn brdf_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized>(
+    fn brdf_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized, E: Environment<S> + ?Sized>(
         &self,
         brdf: &B,
         frame: &Frame,
         wo: Vec3,
         q: f32,
         u: [f32; 2],
-        env: &Env<S>,
+        env: &E,
         out: &mut [f64],
     ) {
         let u = [u[0].min(ONE_MINUS_EPSILON), u[1].min(ONE_MINUS_EPSILON)];
@@ -511,7 +552,7 @@ impl Lighting {
         let p_b = s.pdf as f64;
         let p_l = self.light_pdf(q, w, s.wi) as f64;
         let mis = p_b * p_b / (p_b * p_b + p_l * p_l);
-        let l = self.radiance_env(w, env);
+        let l = env.radiance(self, w);
         for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
             *o = s.weight.channel(c) as f64 * l.channel(c) as f64 * mis;
         }

@@ -37,8 +37,12 @@
 //! material at `N` wavelengths, e.g. by uplifting its RGB parameters with
 //! [`uplift_reflectance`] once and evaluating the spectra per sample).
 
-use super::image::{Format, tone_map};
-use super::{Env, Lighting, Options, PreviewError, camera_ray_with, check_options, half_fov_tan, hit_ball};
+use super::envmap::EnvMap;
+use super::image::tone_map;
+use super::{
+    Env, Environment, Lighting, MapEnv, Options, PreviewError, camera_ray_with, check_options, half_fov_tan,
+    hit_ball,
+};
 use crate::tradeoff::Progress;
 use radiometry::glam::Vec3;
 use radiometry::rng::Pcg32;
@@ -52,7 +56,6 @@ use radiometry_brdfs::microfacet::Conductor;
 use radiometry_brdfs::openpbr::{OpenPbr, OpenPbrParams};
 use radiometry_brdfs::{BrdfError, Ggx, HeightCorrelated, Microfacet};
 use std::fmt;
-use std::path::Path;
 use std::sync::Mutex;
 
 /// Shortest wavelength of hero sampling, nm.
@@ -312,15 +315,15 @@ impl RgbImage {
     #[cfg(feature = "plot")]
     pub fn write(
         &self,
-        path: &Path,
-        format: Format,
+        path: &std::path::Path,
+        format: super::Format,
         exposure: f32,
         description: &str,
     ) -> std::io::Result<()> {
         let png = self.encode_png(exposure, description)?;
         match format {
-            Format::Png => std::fs::write(path, png),
-            Format::Svg => std::fs::write(
+            super::Format::Png => std::fs::write(path, png),
+            super::Format::Svg => std::fs::write(
                 path,
                 super::image::svg_wrap(&png, self.width, self.height, description),
             ),
@@ -416,6 +419,50 @@ pub fn render_rgb<B: Brdf<Spectrum = Vec3> + Sync + ?Sized>(
         opt,
         |p, d, u, _| lighting.shade_spectrum(brdf, p, -d, u, &env).to_array(),
         |d, _| lighting.radiance_env(d, &env).to_array(),
+    );
+    Ok(RgbImage {
+        width: opt.size,
+        height: opt.size,
+        rgb,
+        coverage,
+    })
+}
+
+/// Renders the ball in linear RGB under an environment map
+/// ([`super::envmap`]): the map times `scale` all around (the background
+/// shows it), plus the preview's sun cap tinted by `sun_colour` (set
+/// [`Options::sun_irradiance`] to 0 to light by the map alone).
+/// [`Options::sky_radiance`] only steers the choice between the sun's cone and
+/// the cosine-weighted technique; the map's mean luminance times `scale` is
+/// a good value.
+pub fn render_rgb_env<B: Brdf<Spectrum = Vec3> + Sync + ?Sized>(
+    brdf: &B,
+    opt: &Options,
+    map: &EnvMap,
+    scale: f32,
+    sun_colour: [f32; 3],
+) -> Result<RgbImage, PreviewError> {
+    check_options(opt)?;
+    LightColours {
+        sun: sun_colour,
+        ..LightColours::default()
+    }
+    .check()?;
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(PreviewError::EnvMap(format!(
+            "scale {scale} must be finite and ≥ 0"
+        )));
+    }
+    let lighting = Lighting::new(opt)?;
+    let env = MapEnv {
+        map,
+        scale,
+        sun: Vec3::from_array(sun_colour) * lighting.sun().cap_radiance(),
+    };
+    let (rgb, coverage) = render_channels::<3>(
+        opt,
+        |p, d, u, _| lighting.shade_spectrum(brdf, p, -d, u, &env).to_array(),
+        |d, _| env.radiance(&lighting, d).to_array(),
     );
     Ok(RgbImage {
         width: opt.size,
