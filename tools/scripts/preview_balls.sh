@@ -41,5 +41,11 @@ ball camera-prism-d65 --material red-plastic --camera prism --light d65
 ball camera-stacked-d65 --material red-plastic --camera stacked --light d65
 ball camera-bayer-a --material gold --camera bayer --light a
 ball camera-bayer-d65-dark --material red-plastic --camera bayer --light d65 --camera-exposure 0.01
+python3 tools/scripts/studio_hdr.py
+studio="--env $out/studio.hdr --sun-irradiance 0"
+ball studio-gold --material gold $studio
+ball studio-copper --material copper $studio
+ball studio-red-plastic --material red-plastic $studio
+ball studio-mirror 'ggx(alpha=0.02)' $studio
 }
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) hardware threads"

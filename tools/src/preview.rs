@@ -315,6 +315,18 @@ impl Lighting {
         q * cone + (1.0 - q) * cosine_hemisphere_pdf(wl)
     }
 
+    /// [`Lighting::light_pdf`] with the non-sun branch drawn from `sampler`
+    /// when there is one.
+    fn light_pdf_env(&self, q: f32, w: Vec3, wl: Vec3, sampler: Option<&envmap::EnvSampler>) -> f32 {
+        match sampler {
+            None => self.light_pdf(q, w, wl),
+            Some(s) => {
+                let cone = if self.sun.contains(w) { self.cone_pdf } else { 0.0 };
+                q * cone + (1.0 - q) * s.pdf(w)
+            }
+        }
+    }
+
     /// One estimate of the reflected radiance `L_r(ωo)` at a point with
     /// (unit) world normal `n`, seen from (unit) world direction `wo` (toward
     /// the viewer): one light sample and one BRDF sample, combined with the
@@ -415,6 +427,13 @@ pub struct Env<S> {
 pub trait Environment<S> {
     /// Incident radiance from (unit, world) direction `w`.
     fn radiance(&self, lighting: &Lighting, w: Vec3) -> S;
+
+    /// A distribution of world directions for the light technique's
+    /// non-sun branch; `None` (the default): cosine-weighted about the
+    /// normal, as for a uniform sky.
+    fn sampler(&self) -> Option<&envmap::EnvSampler> {
+        None
+    }
 }
 
 impl<S: Spectrum> Environment<S> for Env<S> {
@@ -433,6 +452,8 @@ pub struct MapEnv<'a> {
     pub scale: f32,
     /// The sun's radiance inside its cap.
     pub sun: Vec3,
+    /// Importance sampling of the map (`None`: cosine-weighted).
+    pub sampler: Option<&'a envmap::EnvSampler>,
 }
 
 impl Environment<Vec3> for MapEnv<'_> {
@@ -443,6 +464,10 @@ impl Environment<Vec3> for MapEnv<'_> {
             Vec3::ZERO
         };
         Vec3::from_array(self.map.radiance(w)) * self.scale + sun
+    }
+
+    fn sampler(&self) -> Option<&envmap::EnvSampler> {
+        self.sampler
     }
 }
 
@@ -504,8 +529,12 @@ impl Lighting {
         env: &E,
         out: &mut [f64],
     ) {
+        let sampler = env.sampler();
         let (w, wl) = if u[0] < q {
             let w = self.cone_sample([u[1], u[2]]);
+            (w, frame.to_local(w))
+        } else if let Some(s) = sampler {
+            let w = s.sample([u[1], u[2]]);
             (w, frame.to_local(w))
         } else {
             let wl = square_to_cosine_hemisphere([u[1], u[2]]);
@@ -514,7 +543,7 @@ impl Lighting {
         if wl.z <= 0.0 {
             return;
         }
-        let p_l = self.light_pdf(q, w, wl) as f64;
+        let p_l = self.light_pdf_env(q, w, wl, sampler) as f64;
         if p_l <= 0.0 || p_l.is_nan() {
             return;
         }
@@ -550,7 +579,7 @@ impl Lighting {
         }
         let w = frame.to_world(s.wi);
         let p_b = s.pdf as f64;
-        let p_l = self.light_pdf(q, w, s.wi) as f64;
+        let p_l = self.light_pdf_env(q, w, s.wi, env.sampler()) as f64;
         let mis = p_b * p_b / (p_b * p_b + p_l * p_l);
         let l = env.radiance(self, w);
         for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {

@@ -454,10 +454,12 @@ pub fn render_rgb_env<B: Brdf<Spectrum = Vec3> + Sync + ?Sized>(
         )));
     }
     let lighting = Lighting::new(opt)?;
+    let sampler = super::envmap::EnvSampler::new(map);
     let env = MapEnv {
         map,
         scale,
         sun: Vec3::from_array(sun_colour) * lighting.sun().cap_radiance(),
+        sampler: sampler.as_ref(),
     };
     let (rgb, coverage) = render_channels::<3>(
         opt,
