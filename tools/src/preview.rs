@@ -7,6 +7,9 @@
 //! | [`render`] | the image: per pixel, [`Options::samples`] camera rays, each shaded with one light sample and one BRDF sample combined by multiple importance sampling; parallel over rows with `std::thread::scope` |
 //! | [`Lighting`] | the sun and the sky, and [`Lighting::shade`], the one-sample-per-technique estimator of the reflected radiance at one shading point |
 //! | [`Image`] | the linear radiance and the sphere coverage of every pixel; [`tone_map`] to 8 bits; PNG and SVG output with the `plot` feature ([`image`] module) |
+//! | [`colour`] | the same scene in colour: coloured sun, sky and ground ([`Env`]), RGB ([`colour::render_rgb`]) and hero-wavelength spectral ([`colour::render_spectral`]) renders, typed colour materials, 8-bit RGB output |
+//! | [`envmap`] | equirectangular environment maps (Radiance `.hdr` with the `hdr` feature) and their importance sampling, lighting [`colour::render_rgb_env`] |
+//! | [`camera`] | the pixel equation end to end: the ball through a simulated camera (Bayer, prism, stacked; EMVA 1288 noise; demosaicing; colour matrix; response curve) beside the CIE 1931 observer |
 //!
 //! **Scene.** World axes: `+Y` up, the camera on `+Z` at distance
 //! [`CAMERA_DISTANCE`] looking at the sphere (radius 1, at the origin) with a
