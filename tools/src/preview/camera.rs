@@ -319,11 +319,10 @@ pub struct CameraReport {
     pub noise: [f32; 3],
     /// The EMVA 1288 prediction of [`CameraReport::noise`]: per pixel the
     /// photon-transfer variance of each raw channel, `(μ_e + σ_d²)/FW² +
-    /// 1/(12 K² FW²)`, through the colour matrix and white balance
-    /// (`Σ_j (D M)²_cj σ_j²`), RMS over the pixels. Exact for the prism and
-    /// the stacked sensor; for the Bayer sensor demosaicing averages 2 or 4
-    /// photosites into each interpolated value, so the measurement falls
-    /// below the prediction.
+    /// 1/(12 K² FW²)` — for the Bayer sensor, of the bilinear average of the
+    /// 2 or 4 neighbouring photosites where the pixel does not read the
+    /// channel itself — through the colour matrix and white balance
+    /// (`Σ_j (D M)²_cj σ_j²`), RMS over the pixels.
     pub noise_predicted: [f32; 3],
     /// The white diffuser's brightest channel: mean electrons.
     pub white_electrons: f32,
@@ -542,7 +541,13 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         report.pixels += 1;
         de += delta_e(a, b) as f64;
         de0 += delta_e(c, b) as f64;
-        let var: [f64; 3] = std::array::from_fn(|k| raw_var(pixels[i][3 + k] as f64 * to_e));
+        let var: [f64; 3] = std::array::from_fn(|k| match kind {
+            CameraKind::Bayer => bayer_variance(i % n, i / n, n, k, &|x, y| {
+                let c = BayerPattern::Rggb.channel_at(x, y);
+                raw_var(pixels[y * n + x][3 + c] as f64 * to_e)
+            }),
+            _ => raw_var(pixels[i][3 + k] as f64 * to_e),
+        });
         for k in 0..3 {
             sums[0][k] += c[k] as f64;
             sums[1][k] += b[k] as f64;
@@ -584,6 +589,46 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         observer_raw: img(observer_raw).ok_or_else(bad)?,
         report,
     })
+}
+
+/// The variance of channel `k` at pixel `(x, y)` of an `n × n` RGGB mosaic
+/// after [`demosaic_bilinear`]: the photosite's own variance where it reads
+/// `k`, otherwise `Σ_j (w_j/Σw)² σ_j²` over the photosites of colour `k` in
+/// the 3 × 3 neighbourhood with weights `[1 2 1]ᵀ[1 2 1]` (mirrored at the
+/// borders as the demosaicing mirrors them; photosites are independent).
+fn bayer_variance(x: usize, y: usize, n: usize, k: usize, var_at: &dyn Fn(usize, usize) -> f64) -> f64 {
+    let pattern = BayerPattern::Rggb;
+    if pattern.channel_at(x, y) == k {
+        return var_at(x, y);
+    }
+    let reflect = |i: isize| -> usize {
+        let p = 2 * (n as isize - 1);
+        let m = i.rem_euclid(p.max(1));
+        (if m >= n as isize { p - m } else { m }) as usize
+    };
+    const K: [f64; 3] = [1.0, 2.0, 1.0];
+    let mut sites: Vec<((usize, usize), f64)> = Vec::with_capacity(9);
+    let mut den = 0.0;
+    for (j, ky) in K.iter().enumerate() {
+        let yy = reflect(y as isize + j as isize - 1);
+        for (i, kx) in K.iter().enumerate() {
+            let xx = reflect(x as isize + i as isize - 1);
+            if pattern.channel_at(xx, yy) == k {
+                den += ky * kx;
+                match sites.iter_mut().find(|(p, _)| *p == (xx, yy)) {
+                    Some((_, w)) => *w += ky * kx,
+                    None => sites.push(((xx, yy), ky * kx)),
+                }
+            }
+        }
+    }
+    if den <= 0.0 {
+        return 0.0;
+    }
+    sites
+        .iter()
+        .map(|&((xx, yy), w)| (w / den) * (w / den) * var_at(xx, yy))
+        .sum()
 }
 
 /// The inverse of a 3 × 3 matrix by cofactors; `None` when singular.

@@ -124,9 +124,8 @@ fn the_camera_report_measures_something() {
     assert!(rep.pixels > 50, "{rep:?}");
     assert!(rep.mean_delta_e.is_finite() && rep.mean_delta_e >= rep.mean_delta_e_noiseless * 0.5);
     assert!(rep.noise.iter().all(|&v| v > 0.0 && v < 0.5), "{rep:?}");
-    // Bayer: demosaicing averages photosites, so the measurement is at most the prediction.
     for c in 0..3 {
-        assert!(rep.noise[c] <= 1.05 * rep.noise_predicted[c], "{rep:?}");
+        assert!(rep.noise_predicted[c] > 0.0, "{rep:?}");
     }
     assert!(
         rep.chart_delta_e > 0.0 && rep.chart_delta_e <= rep.chart_delta_e_max,
@@ -138,16 +137,19 @@ fn the_camera_report_measures_something() {
 
 #[test]
 fn developed_noise_follows_the_emva_prediction_through_the_matrix() {
-    // Prism and stacked sensors: every pixel reads its three channels itself, so the
-    // developed noise is the EMVA 1288 variance through D·M exactly (in expectation).
-    // A grey ball under the sky alone (flat): ~130 pixels, ±12 % (5 standard errors of an
-    // RMS over ~130 near-Gaussian values: 5/√(2·130)).
+    // The developed noise is the EMVA 1288 variance of the raw readings (for the Bayer
+    // sensor, of the bilinear averages of neighbouring photosites) through D·M, in expectation.
+    // A grey ball under the sky alone (flat), 64 × 64: ~2,300 pixels; a Bayer channel is read
+    // at ≥ 580 independent photosites, so ±12 % is about 4 standard errors of an RMS
+    // (1/√(2·580) = 2.9 %). Measured: within 6 % (Bayer), 1.6 % (prism), 2.5 % (stacked).
     let grey = Lambertian::new(0.5f32).unwrap();
     let opt = Options {
         sun_irradiance: 0.0,
+        size: 64,
+        samples: 4,
         ..small()
     };
-    for kind in [CameraKind::Prism, CameraKind::Stacked] {
+    for kind in CameraKind::ALL {
         let r = render_camera(
             &AsGrey(&grey),
             &opt,
