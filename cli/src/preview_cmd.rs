@@ -3,7 +3,7 @@
 
 use crate::{model, spec};
 use clap::ValueEnum;
-use radiometry_tools::preview::camera::{self, CameraKind, CameraOptions, Illuminant};
+use radiometry_tools::preview::camera::{self, CameraKind, CameraOptions, Illuminant, ResponseCurve};
 use radiometry_tools::preview::colour::{self, AsGrey, AsRgb, LightColours, Preset, PresetKind, RgbImage};
 use radiometry_tools::preview::envmap::EnvMap;
 use radiometry_tools::preview::{self, Format, Options};
@@ -78,6 +78,24 @@ fn parse_rgb(s: &str) -> Result<[f32; 3], String> {
     Ok(out)
 }
 
+/// `srgb`, `linear` or `gamma:G`.
+fn parse_response(s: &str) -> Result<ResponseCurve, String> {
+    match s {
+        "srgb" => Ok(ResponseCurve::Srgb),
+        "linear" => Ok(ResponseCurve::Linear),
+        _ => {
+            let g = s
+                .strip_prefix("gamma:")
+                .ok_or_else(|| format!("'{s}': expected srgb, linear or gamma:G"))?;
+            let g: f32 = g.parse().map_err(|_| format!("'{g}' is not a number"))?;
+            if !(g.is_finite() && (0.05..=20.0).contains(&g)) {
+                return Err(format!("gamma {g} must be in [0.05, 20]"));
+            }
+            Ok(ResponseCurve::Gamma(g))
+        }
+    }
+}
+
 /// The help text after the options: the scene, the estimator, examples.
 pub const AFTER_HELP: &str = "\
 Scene: a unit ball seen by a pinhole camera (33.4° field of view, 4 radii away), lit by a sun (a uniform cap of
@@ -97,9 +115,9 @@ hero wavelengths per sample (1, 4, 8 or 16; 360-780 nm), lights as spectra (whit
 observer. --camera bayer|prism|stacked renders the pixel equation: the ball on 43 wavelengths under --light
 d65|a, through the camera's spectral sensitivities, exposure (--camera-exposure: the fraction of the full well a
 white diffuser facing the sun fills), EMVA 1288 shot and dark noise (10,000 e- full well, --dark-noise e-, 12-bit
-ADC), bilinear demosaicing (Bayer), a colour matrix fitted on the 24 ColorChecker patches and a white balance, the sRGB response curve;
-beside it (right) the same ball as the CIE 1931 observer sees it; prints the colour error (mean CIE 1976 dE*ab)
-and the noise against the EMVA prediction.
+ADC), bilinear demosaicing (Bayer), a colour matrix fitted on the 24 ColorChecker patches and a white balance,
+the response curve (--response srgb|linear|gamma:G); beside it (right) the same ball as the CIE 1931 observer
+sees it; prints the colour error (mean CIE 1976 dE*ab) and the noise against the EMVA prediction.
 
 Examples:
   radiometry preview 'coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))' --out plastic.png
@@ -206,6 +224,9 @@ pub struct PreviewArgs {
     /// --camera: no shot or dark noise (the mean response).
     #[arg(long)]
     no_noise: bool,
+    /// --camera: the response curve encoding both pictures: `srgb`, `linear` or `gamma:G` (y = x^(1/G)).
+    #[arg(long, default_value = "srgb", value_parser = parse_response)]
+    response: ResponseCurve,
 }
 
 /// The ball's material: a spec (monochrome run-time BRDF) or a typed preset.
@@ -431,6 +452,7 @@ fn run_colour(
             dark_noise_e: a.dark_noise,
             noise: !a.no_noise,
             seed: a.seed,
+            response: a.response,
             ..CameraOptions::default()
         };
         let r = match ball {
@@ -443,15 +465,22 @@ fn run_colour(
         };
         let secs = t0.elapsed().as_secs_f64();
         description.push_str(&format!(
-            " --camera {} --light {} --camera-exposure {} --dark-noise {}{} (left: camera, right: CIE 1931 observer)",
+            " --camera {} --light {} --camera-exposure {} --dark-noise {}{} --response {} (left: camera, right: CIE 1931 \
+observer)",
             cam.kind.name(),
             cam.illuminant.name(),
             cam.exposure,
             cam.dark_noise_e,
-            if cam.noise { "" } else { " --no-noise" }
+            if cam.noise { "" } else { " --no-noise" },
+            match cam.response {
+                ResponseCurve::Srgb => String::from("srgb"),
+                ResponseCurve::Linear => String::from("linear"),
+                ResponseCurve::Gamma(g) => format!("gamma:{g}"),
+                _ => String::from("?"),
+            }
         ));
         let pair = r.camera.beside(&r.observer, 8, [0.0; 3]);
-        if let Err(e) = pair.write_srgb(&a.out, format, &description) {
+        if let Err(e) = pair.write_encoded(&a.out, format, cam.response, &description) {
             eprintln!("error: cannot write {}: {e}", a.out.display());
             return ExitCode::from(1);
         }

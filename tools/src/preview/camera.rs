@@ -174,6 +174,38 @@ impl Illuminant {
     }
 }
 
+/// The response curve `R` that encodes both pictures (a curve of
+/// [`radiometry::sensor::response`], applied to the clipped linear value).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ResponseCurve {
+    /// The sRGB transfer function ([`response::Srgb`]): what a display expects.
+    Srgb,
+    /// A power law `y = x^(1/γ)` ([`response::Gamma`], `γ ∈ [0.05, 20]`).
+    Gamma(f32),
+    /// Linear ([`response::Linear`]): the raw picture, dark on a display.
+    Linear,
+}
+
+impl ResponseCurve {
+    /// The curve at `x` (clipped to `[0, 1]`, NaN → 0); a `Gamma` out of its
+    /// range is the caller's error, caught by [`render_camera`].
+    pub fn apply(&self, x: f32) -> f32 {
+        match self {
+            ResponseCurve::Srgb => response::Srgb.apply(x),
+            ResponseCurve::Linear => response::Linear.apply(x),
+            ResponseCurve::Gamma(g) => response::Gamma::new(*g).map_or(0.0, |c| c.apply(x)),
+        }
+    }
+
+    fn check(&self) -> Result<(), PreviewError> {
+        if let ResponseCurve::Gamma(g) = self {
+            response::Gamma::new(*g).map_err(PreviewError::Camera)?;
+        }
+        Ok(())
+    }
+}
+
 /// The camera of [`render_camera`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraOptions {
@@ -196,6 +228,8 @@ pub struct CameraOptions {
     pub noise: bool,
     /// Seed of the sensor noise.
     pub seed: u64,
+    /// The response curve of both pictures.
+    pub response: ResponseCurve,
 }
 
 impl Default for CameraOptions {
@@ -210,6 +244,7 @@ impl Default for CameraOptions {
             dark_offset_dn: 64.0,
             noise: true,
             seed: 1,
+            response: ResponseCurve::Srgb,
         }
     }
 }
@@ -352,7 +387,8 @@ pub struct CameraRender {
 /// Renders the ball through the camera and the observer (module docs) on
 /// the fixed spectral grid [`grid`] (the material is built once there). The pictures hold linear values
 /// in which the white diffuser is [`WHITE_LEVEL`]; write them with
-/// [`RgbImage::to_srgb8`]-style clipping, not the preview's tone curve.
+/// [`RgbImage::write_encoded`] (clipping and [`CameraOptions::response`]),
+/// not the preview's tone curve.
 pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
     material: &M,
     opt: &Options,
@@ -365,6 +401,7 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
         )));
     }
     let sensor = SensorModel::new(cam)?;
+    cam.response.check()?;
     let lighting = Lighting::new(opt)?;
     let observer = SrgbObserver::new();
     let illum = cam.illuminant;
@@ -687,25 +724,31 @@ pub fn delta_e(a: [f32; 3], b: [f32; 3]) -> f32 {
 
 impl RgbImage {
     /// The 8-bit pixels for a camera-style picture: each linear value clipped
-    /// to `[0, 1]` and encoded by the response curve `R` = the sRGB transfer
-    /// function ([`response::Srgb`]), `R G B` row-major.
-    pub fn to_srgb8(&self) -> Vec<u8> {
+    /// to `[0, 1]` and encoded by the response curve `r`, `R G B` row-major.
+    pub fn to_encoded8(&self, r: ResponseCurve) -> Vec<u8> {
         self.rgb()
             .iter()
-            .flat_map(|p| p.map(|v| (response::Srgb.apply(v) * 255.0 + 0.5).clamp(0.0, 255.0) as u8))
+            .flat_map(|p| p.map(|v| (r.apply(v) * 255.0 + 0.5).clamp(0.0, 255.0) as u8))
             .collect()
     }
 
-    /// Writes the picture through [`RgbImage::to_srgb8`] to `path` as PNG or
-    /// SVG (the PNG in an `<image>`).
+    /// Writes the picture through [`RgbImage::to_encoded8`] to `path` as PNG
+    /// or SVG (the PNG in an `<image>`).
     #[cfg(feature = "plot")]
-    pub fn write_srgb(
+    pub fn write_encoded(
         &self,
         path: &std::path::Path,
         format: super::Format,
+        r: ResponseCurve,
         description: &str,
     ) -> std::io::Result<()> {
-        let png = self.encode_png_srgb(description)?;
+        let png = super::image::encode_png8(
+            self.width(),
+            self.height(),
+            png::ColorType::Rgb,
+            &self.to_encoded8(r),
+            description,
+        )?;
         match format {
             super::Format::Png => std::fs::write(path, png),
             super::Format::Svg => std::fs::write(
@@ -713,18 +756,6 @@ impl RgbImage {
                 super::image::svg_wrap(&png, self.width(), self.height(), description),
             ),
         }
-    }
-
-    /// The picture as an 8-bit RGB PNG through [`RgbImage::to_srgb8`].
-    #[cfg(feature = "plot")]
-    pub fn encode_png_srgb(&self, description: &str) -> std::io::Result<Vec<u8>> {
-        super::image::encode_png8(
-            self.width(),
-            self.height(),
-            png::ColorType::Rgb,
-            &self.to_srgb8(),
-            description,
-        )
     }
 }
 

@@ -198,6 +198,20 @@ fn bad_camera_options_are_typed_errors() {
             Err(PreviewError::Camera(_))
         ));
     }
+    let bad_gamma = CameraOptions {
+        response: ResponseCurve::Gamma(0.0),
+        ..CameraOptions::default()
+    };
+    assert!(matches!(
+        render_camera(&AsGrey(&grey), &small(), &bad_gamma),
+        Err(PreviewError::Camera(_))
+    ));
+    // The curves: sRGB of 0.5 linear is 0.7354 (IEC 61966-2-1), γ = 2 is √, linear is itself.
+    assert!((ResponseCurve::Srgb.apply(0.5) - 0.735_357).abs() < 1e-5);
+    assert!((ResponseCurve::Gamma(2.0).apply(0.25) - 0.5).abs() < 1e-6);
+    assert_eq!(ResponseCurve::Linear.apply(0.25), 0.25);
+    let img = RgbImage::new(1, 1, vec![[0.5, 2.0, f32::NAN]], vec![1.0]).unwrap();
+    assert_eq!(img.to_encoded8(ResponseCurve::Srgb), vec![188, 255, 0]);
     assert!(CameraKind::Bayer.sensitivities(f32::NAN) == [0.0; 3]);
     assert!(invert3([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]]).is_none());
     let id = invert3([[2.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, 0.0, 8.0]]).unwrap();
