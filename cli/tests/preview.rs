@@ -278,3 +278,31 @@ fn preview_lights_by_an_hdr_environment_map() {
     let _ = std::fs::remove_file(out);
     let _ = std::fs::remove_file(path);
 }
+
+/// The 8-bit samples of a PNG file.
+fn png_samples(path: &std::path::Path) -> Vec<u8> {
+    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = dec.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    buf
+}
+
+#[test]
+fn a_grey_spec_gives_the_same_bytes_in_rgb() {
+    let (grey, rgb) = (tmp("same-grey.png"), tmp("same-rgb.png"));
+    let spec = "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))";
+    for (out, extra) in [(&grey, None), (&rgb, Some("--rgb"))] {
+        let mut args = vec!["preview", spec, "--size", "12", "--samples", "4", "--no-progress"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let r = run(&args);
+        assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    }
+    let (g, c) = (png_samples(&grey), png_samples(&rgb));
+    assert_eq!(c.len(), 3 * g.len());
+    assert!(g.iter().zip(c.chunks(3)).all(|(g, c)| c == [*g; 3]));
+    let _ = std::fs::remove_file(grey);
+    let _ = std::fs::remove_file(rgb);
+}
