@@ -480,7 +480,20 @@ observer)",
             }
         ));
         let pair = r.camera.beside(&r.observer, 8, [0.0; 3]);
-        if let Err(e) = pair.write_encoded(&a.out, format, cam.response, &description) {
+        let labels = [
+            format!("camera: {}, {}", cam.kind.name(), cam.illuminant.name()),
+            String::from("CIE 1931 observer"),
+        ];
+        let x1 = (r.camera.width() + 8) as usize;
+        if let Err(e) = write_labelled(
+            &a.out,
+            format,
+            &pair,
+            cam.response,
+            &labels,
+            [0, x1],
+            &description,
+        ) {
             eprintln!("error: cannot write {}: {e}", a.out.display());
             return ExitCode::from(1);
         }
@@ -489,7 +502,7 @@ observer)",
             "wrote {} ({}×{} px: camera | observer, {} samples/pixel, 43 wavelengths, {:.2} s on {} thread{})",
             a.out.display(),
             pair.width(),
-            pair.height(),
+            pair.height() + LABEL_BAND,
             opt.samples,
             secs,
             used,
@@ -623,4 +636,55 @@ G {:.4} B {:.4}; EMVA prediction through the matrix R {:.4} G {:.4} B {:.4}",
         if used == 1 { "" } else { "s" }
     );
     ExitCode::SUCCESS
+}
+
+/// Height of the label band above the camera picture, pixels.
+const LABEL_BAND: u32 = 14;
+
+/// The camera | observer picture encoded by the response curve, under a black
+/// band with a label over each half (8 × 8 glyphs of `font8x8`, white, at
+/// the given x offsets), as PNG or SVG.
+fn write_labelled(
+    path: &std::path::Path,
+    format: Format,
+    img: &RgbImage,
+    response: ResponseCurve,
+    labels: &[String; 2],
+    x0: [usize; 2],
+    description: &str,
+) -> std::io::Result<()> {
+    use font8x8::UnicodeFonts as _;
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let band = LABEL_BAND as usize;
+    let mut px = vec![0u8; 3 * w * band];
+    px.extend(img.to_encoded8(response));
+    for (label, &x) in labels.iter().zip(&x0) {
+        for (i, ch) in label.chars().enumerate() {
+            let glyph = font8x8::BASIC_FONTS.get(ch).unwrap_or([0; 8]);
+            for (row, bits) in glyph.iter().enumerate() {
+                for col in 0..8 {
+                    // font8x8: bit 0 is the leftmost column.
+                    let (gx, gy) = (x + 3 + i * 8 + col, 3 + row);
+                    if bits & (1 << col) != 0 && gx < w {
+                        px[3 * (gy * w + gx)..3 * (gy * w + gx) + 3].copy_from_slice(&[255, 255, 255]);
+                    }
+                }
+            }
+        }
+    }
+    let height = (h + band) as u32;
+    let png = radiometry_tools::preview::image::encode_png8(
+        img.width(),
+        height,
+        png::ColorType::Rgb,
+        &px,
+        description,
+    )?;
+    match format {
+        Format::Png => std::fs::write(path, png),
+        Format::Svg => std::fs::write(
+            path,
+            radiometry_tools::preview::image::svg_wrap(&png, img.width(), height, description),
+        ),
+    }
 }

@@ -159,7 +159,7 @@ fn preview_writes_colour_materials_spectra_and_the_camera() {
         );
         assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (2, 8), "{extra:?}");
     }
-    // The camera: camera | gap | observer, and the report.
+    // The camera: camera | gap | observer under a 14-pixel label band, and the report.
     let r = run(&[
         &[
             "preview",
@@ -174,7 +174,12 @@ fn preview_writes_colour_materials_spectra_and_the_camera() {
     ]
     .concat());
     assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
-    assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (2, 8 + 8 + 8));
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(png_kind(&bytes), (2, 8 + 8 + 8));
+    assert_eq!(
+        u32::from_be_bytes([bytes[20], bytes[21], bytes[22], bytes[23]]),
+        8 + 14
+    );
     let text = String::from_utf8_lossy(&r.stdout);
     assert!(text.contains("dE*ab") && text.contains("EMVA SNR"), "{text}");
     let _ = std::fs::remove_file(&out);

@@ -147,7 +147,7 @@ impl Image {
 /// An 8-bit PNG of `width × height` pixels of `color` type, with
 /// `description` in a `Description` text chunk when it is not empty.
 #[cfg(feature = "plot")]
-pub(crate) fn encode_png8(
+pub fn encode_png8(
     width: u32,
     height: u32,
     color: png::ColorType,
@@ -171,7 +171,7 @@ pub(crate) fn encode_png8(
 /// An SVG document showing `png` (`width × height`) in one `<image>`
 /// element (base64 `data:` URI), `title` as its `<title>`.
 #[cfg(feature = "plot")]
-pub(crate) fn svg_wrap(png: &[u8], width: u32, height: u32, title: &str) -> String {
+pub fn svg_wrap(png: &[u8], width: u32, height: u32, title: &str) -> String {
     format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
 width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n<title>{}</title>\n\
