@@ -52,13 +52,22 @@ enum CameraArg {
     Stacked,
 }
 
-/// Spectrum of the light for `--camera`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum LightArg {
-    /// CIE D65 daylight.
-    D65,
-    /// CIE illuminant A (tungsten, 2856 K).
-    A,
+/// `d65`, `a` or `planck:T` (kelvin, in [1000, 40000]).
+fn parse_light(s: &str) -> Result<Illuminant, String> {
+    match s {
+        "d65" => Ok(Illuminant::D65),
+        "a" => Ok(Illuminant::A),
+        _ => {
+            let t = s
+                .strip_prefix("planck:")
+                .ok_or_else(|| format!("'{s}': expected d65, a or planck:T"))?;
+            let t: f32 = t.parse().map_err(|_| format!("'{t}' is not a number"))?;
+            if !(t.is_finite() && (1000.0..=40_000.0).contains(&t)) {
+                return Err(format!("black-body temperature {t} K must be in [1000, 40000]"));
+            }
+            Ok(Illuminant::Planck(t))
+        }
+    }
 }
 
 /// `R,G,B` with finite components ≥ 0.
@@ -113,9 +122,9 @@ sun, a pale blue sky, a grey-brown ground), --env FILE.hdr lights by an equirect
 channel through the same tone curve: a grey spec gives the grey picture's bytes). --spectral N renders with N
 hero wavelengths per sample (1, 4, 8 or 16; 360-780 nm), lights as spectra (white = D65), colour by the CIE 1931
 observer. --camera bayer|prism|stacked renders the pixel equation: the ball on 43 wavelengths under --light
-d65|a, through the camera's spectral sensitivities, exposure (--camera-exposure: the fraction of the full well a
-white diffuser facing the sun fills), EMVA 1288 shot and dark noise (10,000 e- full well, --dark-noise e-, 12-bit
-ADC), bilinear demosaicing (Bayer), a colour matrix fitted on the 24 ColorChecker patches and a white balance,
+d65|a|planck:T, through the camera's spectral sensitivities, exposure (--camera-exposure: the fraction of the full
+well a white diffuser facing the sun fills), EMVA 1288 shot and dark noise (10,000 e- full well, --dark-noise e-,
+12-bit ADC), bilinear demosaicing (Bayer), a colour matrix fitted on the 24 ColorChecker patches and a white balance,
 the response curve (--response srgb|linear|gamma:G); beside it (right) the same ball as the CIE 1931 observer
 sees it; prints the colour error (mean CIE 1976 dE*ab) and the noise against the EMVA prediction.
 
@@ -212,9 +221,10 @@ pub struct PreviewArgs {
     /// Render the pixel equation: the ball through a simulated camera, beside the CIE observer's ball.
     #[arg(long, value_enum)]
     camera: Option<CameraArg>,
-    /// Light spectrum of the sun and the sky for --camera.
-    #[arg(long, value_enum, default_value = "d65")]
-    light: LightArg,
+    /// Light spectrum of the sun and the sky for --camera: `d65`, `a` (CIE illuminant A, tungsten) or `planck:T` (a
+    /// black body at T kelvin).
+    #[arg(long, default_value = "d65", value_parser = parse_light)]
+    light: Illuminant,
     /// --camera: fraction of the full well that a white diffuser facing the sun fills, in (0, 16].
     #[arg(long, default_value_t = CameraOptions::default().exposure)]
     camera_exposure: f32,
@@ -444,10 +454,7 @@ fn run_colour(
                 CameraArg::Prism => CameraKind::Prism,
                 CameraArg::Stacked => CameraKind::Stacked,
             },
-            illuminant: match a.light {
-                LightArg::D65 => Illuminant::D65,
-                LightArg::A => Illuminant::A,
-            },
+            illuminant: a.light,
             exposure: a.camera_exposure,
             dark_noise_e: a.dark_noise,
             noise: !a.no_noise,

@@ -70,7 +70,7 @@ use radiometry::sensor::emva::{GaussianDarkNoise, PoissonShotNoise};
 use radiometry::sensor::response::{self, Response};
 use radiometry::sensor::{Emva1288, FillFactor, Pixel, Sampling, SensorError};
 use radiometry::spectral::uplift::{COLORCHECKER_SRGB8, SrgbObserver, srgb8_to_linear, uplift_reflectance};
-use radiometry::spectral::{FnCurve, IlluminantA, SpectralCurve};
+use radiometry::spectral::{Blackbody, FnCurve, IlluminantA, SpectralCurve};
 
 /// The linear value the white diffuser facing the sun develops to, in both
 /// pictures (below 1, so that it is not clipped).
@@ -148,21 +148,36 @@ impl CameraKind {
 }
 
 /// The spectrum of the sun and the sky.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Illuminant {
     /// CIE D65 (daylight; the sRGB white).
     D65,
     /// CIE illuminant A (a 2856 K tungsten lamp).
     A,
+    /// A black body at this temperature, kelvin, in `[1000, 40000]`
+    /// (Planck's law, [`Blackbody`]).
+    Planck(f32),
 }
 
 impl Illuminant {
-    /// The CLI name.
-    pub fn name(self) -> &'static str {
+    /// The CLI name (`d65`, `a`, `planck:T`).
+    pub fn name(self) -> String {
         match self {
-            Illuminant::D65 => "d65",
-            Illuminant::A => "a",
+            Illuminant::D65 => String::from("d65"),
+            Illuminant::A => String::from("a"),
+            Illuminant::Planck(t) => format!("planck:{t}"),
+        }
+    }
+
+    fn check(self) -> Result<(), PreviewError> {
+        match self {
+            Illuminant::Planck(t) if !(t.is_finite() && (1000.0..=40_000.0).contains(&t)) => {
+                Err(PreviewError::Camera(SensorError::BadParameter(
+                    "black-body temperature must be in [1000, 40000] K",
+                )))
+            }
+            _ => Ok(()),
         }
     }
 
@@ -170,6 +185,7 @@ impl Illuminant {
         match self {
             Illuminant::D65 => radiometry::spectral::d65().value(lambda_nm),
             Illuminant::A => IlluminantA.value(lambda_nm),
+            Illuminant::Planck(t) => Blackbody::new(t).map_or(0.0, |b| b.value(lambda_nm)),
         }
     }
 }
@@ -402,6 +418,7 @@ pub fn render_camera<M: SpectralMaterial<GRID_LEN>>(
     }
     let sensor = SensorModel::new(cam)?;
     cam.response.check()?;
+    cam.illuminant.check()?;
     let lighting = Lighting::new(opt)?;
     let observer = SrgbObserver::new();
     let illum = cam.illuminant;

@@ -169,6 +169,31 @@ fn developed_noise_follows_the_emva_prediction_through_the_matrix() {
 }
 
 #[test]
+fn a_black_body_at_6504_k_is_near_d65_and_a_cold_one_is_red() {
+    // The observer's white diffuser, before white balance, under Planck light: near-neutral
+    // at 6504 K (D65's correlated colour temperature; D65 is not Planckian, so only within
+    // 10 %), red-heavy at 2000 K.
+    let grey = Lambertian::new(1.0f32).unwrap();
+    let opt = Options {
+        sun_irradiance: 0.0,
+        ..small()
+    };
+    let centre = |t: f32| {
+        let cam = CameraOptions {
+            illuminant: Illuminant::Planck(t),
+            noise: false,
+            ..CameraOptions::default()
+        };
+        let r = render_camera(&AsGrey(&grey), &opt, &cam).unwrap();
+        r.observer_raw.rgb()[8 * 16 + 8]
+    };
+    let d = centre(6504.0);
+    assert!(spread(d) < 0.1, "{d:?}");
+    let warm = centre(2000.0);
+    assert!(warm[0] > 2.0 * warm[2], "{warm:?}");
+}
+
+#[test]
 fn bad_camera_options_are_typed_errors() {
     let grey = Lambertian::new(0.5f32).unwrap();
     for cam in [
