@@ -3,6 +3,9 @@
 
 use crate::{model, spec};
 use clap::ValueEnum;
+use radiometry_tools::preview::camera::{self, CameraKind, CameraOptions, Illuminant, ResponseCurve};
+use radiometry_tools::preview::colour::{self, AsGrey, AsRgb, LightColours, Preset, PresetKind, RgbImage};
+use radiometry_tools::preview::envmap::EnvMap;
 use radiometry_tools::preview::{self, Format, Options};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -17,6 +20,91 @@ enum ImageFormat {
     Svg,
 }
 
+/// A typed colour material (`--material`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MaterialArg {
+    /// Gold: GGX α = 0.2, the exact Fresnel of Au's measured η, k (Johnson & Christy 1972).
+    Gold,
+    /// Copper: as gold with Cu.
+    Copper,
+    /// A red plastic: OpenPBR, base_color (0.6, 0.04, 0.03) linear sRGB, specular_roughness 0.25.
+    RedPlastic,
+}
+
+impl MaterialArg {
+    fn kind(self) -> PresetKind {
+        match self {
+            MaterialArg::Gold => PresetKind::Gold,
+            MaterialArg::Copper => PresetKind::Copper,
+            MaterialArg::RedPlastic => PresetKind::RedPlastic,
+        }
+    }
+}
+
+/// Colour architecture of `--camera`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CameraArg {
+    /// Bayer colour filter array (RGGB) + bilinear demosaicing.
+    Bayer,
+    /// 3-chip dichroic prism.
+    Prism,
+    /// Stacked photodiodes (Foveon-like).
+    Stacked,
+}
+
+/// `d65`, `a` or `planck:T` (kelvin, in [1000, 40000]).
+fn parse_light(s: &str) -> Result<Illuminant, String> {
+    match s {
+        "d65" => Ok(Illuminant::D65),
+        "a" => Ok(Illuminant::A),
+        _ => {
+            let t = s
+                .strip_prefix("planck:")
+                .ok_or_else(|| format!("'{s}': expected d65, a or planck:T"))?;
+            let t: f32 = t.parse().map_err(|_| format!("'{t}' is not a number"))?;
+            if !(t.is_finite() && (1000.0..=40_000.0).contains(&t)) {
+                return Err(format!("black-body temperature {t} K must be in [1000, 40000]"));
+            }
+            Ok(Illuminant::Planck(t))
+        }
+    }
+}
+
+/// `R,G,B` with finite components ≥ 0.
+fn parse_rgb(s: &str) -> Result<[f32; 3], String> {
+    let v: Vec<&str> = s.split(',').map(str::trim).collect();
+    if v.len() != 3 {
+        return Err(format!("'{s}': expected R,G,B (three numbers)"));
+    }
+    let mut out = [0.0f32; 3];
+    for (o, t) in out.iter_mut().zip(v) {
+        let x: f32 = t.parse().map_err(|_| format!("'{t}' is not a number"))?;
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(format!("'{t}' must be finite and >= 0"));
+        }
+        *o = x;
+    }
+    Ok(out)
+}
+
+/// `srgb`, `linear` or `gamma:G`.
+fn parse_response(s: &str) -> Result<ResponseCurve, String> {
+    match s {
+        "srgb" => Ok(ResponseCurve::Srgb),
+        "linear" => Ok(ResponseCurve::Linear),
+        _ => {
+            let g = s
+                .strip_prefix("gamma:")
+                .ok_or_else(|| format!("'{s}': expected srgb, linear or gamma:G"))?;
+            let g: f32 = g.parse().map_err(|_| format!("'{g}' is not a number"))?;
+            if !(g.is_finite() && (0.05..=20.0).contains(&g)) {
+                return Err(format!("gamma {g} must be in [0.05, 20]"));
+            }
+            Ok(ResponseCurve::Gamma(g))
+        }
+    }
+}
+
 /// The help text after the options: the scene, the estimator, examples.
 pub const AFTER_HELP: &str = "\
 Scene: a unit ball seen by a pinhole camera (33.4° field of view, 4 radii away), lit by a sun (a uniform cap of
@@ -25,11 +113,27 @@ angular radius --sun-radius with irradiance --sun-irradiance at normal incidence
 light sample (sun cone or cosine-weighted sky, by the sun's share of the irradiance) and one sample of the BRDF's
 own importance sampling, combined by the power heuristic. Deterministic for a given seed, whatever the number of
 threads. Tone curve: extended Reinhard with white point 4 (times --exposure), then the sRGB transfer function,
-8 bits; the BRDF is monochrome, so the picture is grey.
+8 bits; the spec grammar's BRDFs are monochrome, so a spec under white light gives a grey picture.
+
+Colour: --material gold|copper|red-plastic renders a typed colour material (instead of SPEC); --sun-colour and
+--sky-colour tint the lights (linear sRGB), --ground-colour adds a ground below the horizon (--daylight: a white
+sun, a pale blue sky, a grey-brown ground), --env FILE.hdr lights by an equirectangular Radiance map instead;
+--rgb forces an RGB picture. Any of these writes 8-bit RGB (each
+channel through the same tone curve: a grey spec gives the grey picture's bytes). --spectral N renders with N
+hero wavelengths per sample (1, 4, 8 or 16; 360-780 nm), lights as spectra (white = D65), colour by the CIE 1931
+observer. --camera bayer|prism|stacked renders the pixel equation: the ball on 43 wavelengths under --light
+d65|a|planck:T, through the camera's spectral sensitivities, exposure (--camera-exposure: the fraction of the full
+well a white diffuser facing the sun fills), EMVA 1288 shot and dark noise (10,000 e- full well, --dark-noise e-,
+12-bit ADC), bilinear demosaicing (Bayer), a colour matrix fitted on the 24 ColorChecker patches and a white balance,
+the response curve (--response srgb|linear|gamma:G); beside it (right) the same ball as the CIE 1931 observer
+sees it; prints the colour error (mean CIE 1976 dE*ab) and the noise against the EMVA prediction.
 
 Examples:
   radiometry preview 'coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))' --out plastic.png
   radiometry preview 'ggx(alpha=0.3, fresnel=conductor(eta=0.2, k=3))' --size 160 --format svg --out metal.svg
+  radiometry preview --material gold --sky-colour 0.45,0.6,1 --out gold.png
+  radiometry preview --material copper --spectral 4 --out copper.png
+  radiometry preview --material red-plastic --camera bayer --light a --out camera.png
 
 ";
 
@@ -37,8 +141,8 @@ Examples:
 #[derive(clap::Args, Debug)]
 pub struct PreviewArgs {
     /// BRDF spec of the ball, e.g. `ggx(alpha=0.1, fresnel=dielectric(eta=1.5)) + lambertian(albedo=0.5)` (see
-    /// below).
-    spec: String,
+    /// below); omit it with --material.
+    spec: Option<String>,
     /// Output file.
     #[arg(long, default_value = "ball.png")]
     out: PathBuf,
@@ -83,23 +187,143 @@ pub struct PreviewArgs {
     /// checker toggles a clear coat. Prints the time per hit spent constructing the material.
     #[arg(long)]
     textured: bool,
+    /// A typed colour material instead of SPEC (an RGB picture).
+    #[arg(long, value_enum)]
+    material: Option<MaterialArg>,
+    /// Colour of the sun, linear sRGB `R,G,B` (an RGB picture).
+    #[arg(long, alias = "sun-color", value_parser = parse_rgb)]
+    sun_colour: Option<[f32; 3]>,
+    /// Colour of the sky, linear sRGB `R,G,B` (an RGB picture).
+    #[arg(long, alias = "sky-color", value_parser = parse_rgb)]
+    sky_colour: Option<[f32; 3]>,
+    /// Radiance of the ground below the horizontal plane, per channel as a multiple of --sky-radiance, `R,G,B`
+    /// (default: no ground, the sky all around; an RGB picture).
+    #[arg(long, alias = "ground-color", value_parser = parse_rgb)]
+    ground_colour: Option<[f32; 3]>,
+    /// The docs' daylight: --sun-colour 1,1,1 --sky-colour 0.75,0.85,1 --ground-colour 0.2,0.17,0.15 (the
+    /// explicit flags win).
+    #[arg(long)]
+    daylight: bool,
+    /// An equirectangular environment map (Radiance `.hdr`) instead of the uniform sky and ground: its texels times
+    /// --env-scale are the radiance all around (the image centre straight ahead of the camera, behind the ball); the
+    /// sun (--sun-…) is added. An RGB picture; --sky-radiance is replaced by the map's mean luminance.
+    #[arg(long, value_name = "FILE")]
+    env: Option<PathBuf>,
+    /// Radiance scale of --env.
+    #[arg(long, default_value_t = 1.0)]
+    env_scale: f32,
+    /// Write an RGB picture even when everything is grey.
+    #[arg(long)]
+    rgb: bool,
+    /// Hero-wavelength spectral rendering with N wavelengths per sample (1, 4, 8 or 16).
+    #[arg(long, value_name = "N")]
+    spectral: Option<usize>,
+    /// Render the pixel equation: the ball through a simulated camera, beside the CIE observer's ball.
+    #[arg(long, value_enum)]
+    camera: Option<CameraArg>,
+    /// Light spectrum of the sun and the sky for --camera: `d65`, `a` (CIE illuminant A, tungsten) or `planck:T` (a
+    /// black body at T kelvin).
+    #[arg(long, default_value = "d65", value_parser = parse_light)]
+    light: Illuminant,
+    /// --camera: fraction of the full well that a white diffuser facing the sun fills, in (0, 16].
+    #[arg(long, default_value_t = CameraOptions::default().exposure)]
+    camera_exposure: f32,
+    /// --camera: temporal dark noise, electrons.
+    #[arg(long, default_value_t = CameraOptions::default().dark_noise_e)]
+    dark_noise: f32,
+    /// --camera: no shot or dark noise (the mean response).
+    #[arg(long)]
+    no_noise: bool,
+    /// --camera: the response curve encoding both pictures: `srgb`, `linear` or `gamma:G` (y = x^(1/G)).
+    #[arg(long, default_value = "srgb", value_parser = parse_response)]
+    response: ResponseCurve,
+}
+
+/// The ball's material: a spec (monochrome run-time BRDF) or a typed preset.
+enum Ball {
+    Spec(spec::BrdfSpec, model::AnyBrdf),
+    Preset(Preset),
 }
 
 /// Runs `radiometry preview`.
 pub fn run(a: PreviewArgs) -> ExitCode {
-    let parsed = match spec::parse_brdf(&a.spec) {
-        Ok(p) => p,
-        Err(e) => return crate::spec_error(e),
-    };
-    let brdf = match model::build_brdf(&a.spec, &parsed) {
-        Ok(b) => b,
-        Err(e) => return crate::spec_error(e),
+    let ball = match (&a.spec, a.material) {
+        (Some(_), Some(_)) => return crate::usage_error("give either SPEC or --material, not both"),
+        (None, None) => return crate::usage_error("give a BRDF SPEC or --material gold|copper|red-plastic"),
+        (None, Some(m)) => match Preset::new(m.kind()) {
+            Ok(p) => Ball::Preset(p),
+            Err(e) => return crate::usage_error(&e.to_string()),
+        },
+        (Some(s), None) => {
+            let parsed = match spec::parse_brdf(s) {
+                Ok(p) => p,
+                Err(e) => return crate::spec_error(e),
+            };
+            match model::build_brdf(s, &parsed) {
+                Ok(b) => Ball::Spec(parsed, b),
+                Err(e) => return crate::spec_error(e),
+            }
+        }
     };
     if !(a.exposure.is_finite() && a.exposure > 0.0) {
         return crate::usage_error(&format!(
             "--exposure {} must be a positive finite number",
             a.exposure
         ));
+    }
+    let colours = LightColours {
+        sun: a.sun_colour.unwrap_or([1.0; 3]),
+        sky: a.sky_colour.unwrap_or([1.0; 3]),
+        ground: a.ground_colour,
+    };
+    let colours = if a.daylight {
+        let d = LightColours::DAYLIGHT;
+        LightColours {
+            sun: a.sun_colour.unwrap_or(d.sun),
+            sky: a.sky_colour.unwrap_or(d.sky),
+            ground: a.ground_colour.or(d.ground),
+        }
+    } else {
+        colours
+    };
+    let colour_out = a.rgb
+        || a.material.is_some()
+        || a.sun_colour.is_some()
+        || a.sky_colour.is_some()
+        || a.ground_colour.is_some()
+        || a.daylight
+        || a.env.is_some()
+        || a.spectral.is_some()
+        || a.camera.is_some();
+    if a.textured && colour_out {
+        return crate::usage_error("--textured renders the grey ball only (no colour flags)");
+    }
+    if a.camera.is_some()
+        && (a.spectral.is_some()
+            || a.sun_colour.is_some()
+            || a.sky_colour.is_some()
+            || a.ground_colour.is_some()
+            || a.daylight)
+    {
+        return crate::usage_error(
+            "--camera renders on its own 43 wavelengths under --light; drop --spectral and the light colours",
+        );
+    }
+    if a.env.is_some()
+        && (a.spectral.is_some()
+            || a.camera.is_some()
+            || a.sky_colour.is_some()
+            || a.ground_colour.is_some()
+            || a.daylight)
+    {
+        return crate::usage_error(
+            "--env lights in RGB by the map itself; drop --spectral, --camera, --sky-colour, --ground-colour, --daylight",
+        );
+    }
+    if let Some(n) = a.spectral
+        && !colour::HERO_COUNTS.contains(&n)
+    {
+        return crate::usage_error(&format!("--spectral {n}: N must be one of 1, 4, 8, 16"));
     }
     let opt = Options {
         size: a.size,
@@ -123,6 +347,13 @@ pub fn run(a: PreviewArgs) -> ExitCode {
         t => t,
     };
     let t0 = Instant::now();
+    if colour_out {
+        return run_colour(&a, &ball, &opt, &colours, format, threads, t0);
+    }
+    let Ball::Spec(parsed, brdf) = ball else {
+        return crate::usage_error("--material renders in colour");
+    };
+    let spec_text = a.spec.clone().unwrap_or_default();
     let (img, stats) = if a.textured {
         let spec::BrdfSpec::OpenPbr(p) = parsed else {
             return crate::usage_error("--textured needs an openpbr(...) spec (its parameters are the base)");
@@ -142,7 +373,7 @@ pub fn run(a: PreviewArgs) -> ExitCode {
     let description = format!(
         "radiometry preview '{}'{} --size {} --samples {} --sun-elevation {} --sun-azimuth {} --sun-radius {} \
 --sun-irradiance {} --sky-radiance {} --exposure {} --seed {}",
-        a.spec,
+        spec_text,
         if a.textured { " --textured" } else { "" },
         opt.size,
         opt.samples,
@@ -181,4 +412,286 @@ pub fn run(a: PreviewArgs) -> ExitCode {
         );
     }
     ExitCode::SUCCESS
+}
+
+/// The common part of the command line, for the PNG's description.
+fn describe(a: &PreviewArgs, opt: &Options) -> String {
+    let what = match (&a.spec, a.material) {
+        (Some(s), _) => format!("'{s}'"),
+        (None, Some(m)) => format!("--material {}", m.kind().name()),
+        (None, None) => String::new(),
+    };
+    format!(
+        "radiometry preview {what} --size {} --samples {} --sun-elevation {} --sun-azimuth {} --sun-radius {} \
+--sun-irradiance {} --sky-radiance {} --seed {}",
+        opt.size,
+        opt.samples,
+        opt.sun_elevation,
+        opt.sun_azimuth,
+        opt.sun_radius,
+        opt.sun_irradiance,
+        opt.sky_radiance,
+        opt.seed
+    )
+}
+
+/// `--material`, the light colours, `--rgb`, `--spectral`, `--camera`.
+fn run_colour(
+    a: &PreviewArgs,
+    ball: &Ball,
+    opt: &Options,
+    colours: &LightColours,
+    format: Format,
+    threads: usize,
+    t0: Instant,
+) -> ExitCode {
+    let used = threads.min(opt.size as usize);
+    let mut description = describe(a, opt);
+    if let Some(kind) = a.camera {
+        let cam = CameraOptions {
+            kind: match kind {
+                CameraArg::Bayer => CameraKind::Bayer,
+                CameraArg::Prism => CameraKind::Prism,
+                CameraArg::Stacked => CameraKind::Stacked,
+            },
+            illuminant: a.light,
+            exposure: a.camera_exposure,
+            dark_noise_e: a.dark_noise,
+            noise: !a.no_noise,
+            seed: a.seed,
+            response: a.response,
+            ..CameraOptions::default()
+        };
+        let r = match ball {
+            Ball::Spec(_, b) => camera::render_camera(&AsGrey(b), opt, &cam),
+            Ball::Preset(p) => camera::render_camera(p, opt, &cam),
+        };
+        let r = match r {
+            Ok(r) => r,
+            Err(e) => return crate::usage_error(&e.to_string()),
+        };
+        let secs = t0.elapsed().as_secs_f64();
+        description.push_str(&format!(
+            " --camera {} --light {} --camera-exposure {} --dark-noise {}{} --response {} (left: camera, right: CIE 1931 \
+observer)",
+            cam.kind.name(),
+            cam.illuminant.name(),
+            cam.exposure,
+            cam.dark_noise_e,
+            if cam.noise { "" } else { " --no-noise" },
+            match cam.response {
+                ResponseCurve::Srgb => String::from("srgb"),
+                ResponseCurve::Linear => String::from("linear"),
+                ResponseCurve::Gamma(g) => format!("gamma:{g}"),
+                _ => String::from("?"),
+            }
+        ));
+        let pair = r.camera.beside(&r.observer, 8, [0.0; 3]);
+        let labels = [
+            format!("camera: {}, {}", cam.kind.name(), cam.illuminant.name()),
+            String::from("CIE 1931 observer"),
+        ];
+        let x1 = (r.camera.width() + 8) as usize;
+        if let Err(e) = write_labelled(
+            &a.out,
+            format,
+            &pair,
+            cam.response,
+            &labels,
+            [0, x1],
+            &description,
+        ) {
+            eprintln!("error: cannot write {}: {e}", a.out.display());
+            return ExitCode::from(1);
+        }
+        let rep = r.report;
+        println!(
+            "wrote {} ({}×{} px: camera | observer, {} samples/pixel, 43 wavelengths, {:.2} s on {} thread{})",
+            a.out.display(),
+            pair.width(),
+            pair.height() + LABEL_BAND,
+            opt.samples,
+            secs,
+            used,
+            if used == 1 { "" } else { "s" }
+        );
+        println!(
+            "camera {} under {}: mean dE*ab {:.2} (noiseless {:.2}) over {} ball pixels; camera/observer per channel \
+R {:.3} G {:.3} B {:.3}",
+            cam.kind.name(),
+            cam.illuminant.name(),
+            rep.mean_delta_e,
+            rep.mean_delta_e_noiseless,
+            rep.pixels,
+            rep.channel_ratio[0],
+            rep.channel_ratio[1],
+            rep.channel_ratio[2]
+        );
+        println!(
+            "noise: white diffuser {:.0} e- (EMVA SNR {:.1}); rms noise over the ball as a fraction of white: R {:.4} \
+G {:.4} B {:.4}; EMVA prediction through the matrix R {:.4} G {:.4} B {:.4}",
+            rep.white_electrons,
+            rep.white_snr,
+            rep.noise[0],
+            rep.noise[1],
+            rep.noise[2],
+            rep.noise_predicted[0],
+            rep.noise_predicted[1],
+            rep.noise_predicted[2]
+        );
+        println!(
+            "ColorChecker (the matrix's chart, noiseless): mean dE*ab {:.2}, largest {:.2}",
+            rep.chart_delta_e, rep.chart_delta_e_max
+        );
+        let m = rep.ccm;
+        println!(
+            "colour matrix (white-balanced, on white-normalised raw): [{:.3} {:.3} {:.3}; {:.3} {:.3} {:.3}; {:.3} {:.3} {:.3}]",
+            m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]
+        );
+        return ExitCode::SUCCESS;
+    }
+    if let Some(path) = &a.env {
+        let map = match EnvMap::read_hdr(path) {
+            Ok(m) => m,
+            Err(e) => return crate::usage_error(&e.to_string()),
+        };
+        let m = map.mean();
+        let lum = (0.2126 * m[0] + 0.7152 * m[1] + 0.0722 * m[2]) * a.env_scale;
+        let opt = Options {
+            sky_radiance: if lum.is_finite() { lum.max(0.0) } else { 0.0 },
+            ..opt.clone()
+        };
+        let img = match ball {
+            Ball::Spec(_, b) => colour::render_rgb_env(&AsRgb(b), &opt, &map, a.env_scale, colours.sun),
+            Ball::Preset(p) => match p.rgb() {
+                Ok(m) => colour::render_rgb_env(&m, &opt, &map, a.env_scale, colours.sun),
+                Err(e) => Err(e),
+            },
+        };
+        let img = match img {
+            Ok(i) => i,
+            Err(e) => return crate::usage_error(&e.to_string()),
+        };
+        let secs = t0.elapsed().as_secs_f64();
+        description.push_str(&format!(
+            " --env {} --env-scale {} --sun-colour {},{},{} --exposure {}",
+            path.display(),
+            a.env_scale,
+            colours.sun[0],
+            colours.sun[1],
+            colours.sun[2],
+            a.exposure
+        ));
+        if let Err(e) = img.write(&a.out, format, a.exposure, &description) {
+            eprintln!("error: cannot write {}: {e}", a.out.display());
+            return ExitCode::from(1);
+        }
+        println!(
+            "wrote {} ({}×{} px, RGB, environment {}×{} texels, {} samples/pixel, {:.2} s on {} thread{})",
+            a.out.display(),
+            opt.size,
+            opt.size,
+            map.width(),
+            map.height(),
+            opt.samples,
+            secs,
+            used,
+            if used == 1 { "" } else { "s" }
+        );
+        return ExitCode::SUCCESS;
+    }
+    let img: Result<RgbImage, _> = match (ball, a.spectral) {
+        (Ball::Spec(_, b), None) => colour::render_rgb(&AsRgb(b), opt, colours),
+        (Ball::Preset(p), None) => match p.rgb() {
+            Ok(m) => colour::render_rgb(&m, opt, colours),
+            Err(e) => Err(e),
+        },
+        (Ball::Spec(_, b), Some(n)) => colour::render_spectral_n(n, &AsGrey(b), opt, colours),
+        (Ball::Preset(p), Some(n)) => colour::render_spectral_n(n, p, opt, colours),
+    };
+    let img = match img {
+        Ok(i) => i,
+        Err(e) => return crate::usage_error(&e.to_string()),
+    };
+    let secs = t0.elapsed().as_secs_f64();
+    let c = |v: [f32; 3]| format!("{},{},{}", v[0], v[1], v[2]);
+    description.push_str(&format!(
+        " --sun-colour {} --sky-colour {}{} --exposure {}{}",
+        c(colours.sun),
+        c(colours.sky),
+        colours
+            .ground
+            .map_or(String::new(), |g| format!(" --ground-colour {}", c(g))),
+        a.exposure,
+        a.spectral
+            .map_or(String::from(" --rgb"), |n| format!(" --spectral {n}"))
+    ));
+    if let Err(e) = img.write(&a.out, format, a.exposure, &description) {
+        eprintln!("error: cannot write {}: {e}", a.out.display());
+        return ExitCode::from(1);
+    }
+    println!(
+        "wrote {} ({}×{} px, RGB{}, {} samples/pixel, {:.2} s on {} thread{})",
+        a.out.display(),
+        opt.size,
+        opt.size,
+        a.spectral
+            .map_or(String::new(), |n| format!(", {n} hero wavelengths")),
+        opt.samples,
+        secs,
+        used,
+        if used == 1 { "" } else { "s" }
+    );
+    ExitCode::SUCCESS
+}
+
+/// Height of the label band above the camera picture, pixels.
+const LABEL_BAND: u32 = 14;
+
+/// The camera | observer picture encoded by the response curve, under a black
+/// band with a label over each half (8 × 8 glyphs of `font8x8`, white, at
+/// the given x offsets), as PNG or SVG.
+fn write_labelled(
+    path: &std::path::Path,
+    format: Format,
+    img: &RgbImage,
+    response: ResponseCurve,
+    labels: &[String; 2],
+    x0: [usize; 2],
+    description: &str,
+) -> std::io::Result<()> {
+    use font8x8::UnicodeFonts as _;
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let band = LABEL_BAND as usize;
+    let mut px = vec![0u8; 3 * w * band];
+    px.extend(img.to_encoded8(response));
+    for (label, &x) in labels.iter().zip(&x0) {
+        for (i, ch) in label.chars().enumerate() {
+            let glyph = font8x8::BASIC_FONTS.get(ch).unwrap_or([0; 8]);
+            for (row, bits) in glyph.iter().enumerate() {
+                for col in 0..8 {
+                    // font8x8: bit 0 is the leftmost column.
+                    let (gx, gy) = (x + 3 + i * 8 + col, 3 + row);
+                    if bits & (1 << col) != 0 && gx < w {
+                        px[3 * (gy * w + gx)..3 * (gy * w + gx) + 3].copy_from_slice(&[255, 255, 255]);
+                    }
+                }
+            }
+        }
+    }
+    let height = (h + band) as u32;
+    let png = radiometry_tools::preview::image::encode_png8(
+        img.width(),
+        height,
+        png::ColorType::Rgb,
+        &px,
+        description,
+    )?;
+    match format {
+        Format::Png => std::fs::write(path, png),
+        Format::Svg => std::fs::write(
+            path,
+            radiometry_tools::preview::image::svg_wrap(&png, img.width(), height, description),
+        ),
+    }
 }

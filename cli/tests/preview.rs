@@ -124,3 +124,190 @@ fn preview_rejects_bad_input() {
         assert!(help.contains(s), "{s} missing from:\n{help}");
     }
 }
+
+/// IHDR colour type of a PNG file (0 grey, 2 RGB) and its width.
+fn png_kind(bytes: &[u8]) -> (u8, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    (
+        bytes[25],
+        u32::from_be_bytes([bytes[16], bytes[17], bytes[18], bytes[19]]),
+    )
+}
+
+#[test]
+fn preview_writes_colour_materials_spectra_and_the_camera() {
+    let out = tmp("colour.png");
+    let o = out.to_str().unwrap();
+    let common = ["--size", "8", "--samples", "2", "--no-progress", "--out", o];
+    // A grey spec stays an 8-bit grey PNG; with a sky colour it becomes RGB.
+    let r = run(&[&["preview", "lambertian"], &common[..]].concat());
+    assert_eq!(r.status.code(), Some(0));
+    assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (0, 8));
+    for extra in [
+        &["lambertian", "--sky-colour", "0.5,0.7,1"][..],
+        &["--material", "gold"],
+        &["--material", "red-plastic", "--daylight"],
+        &["--material", "copper", "--spectral", "4"],
+        &["eon(rho=0.5, sigma=0.5)", "--spectral", "1", "--rgb"],
+    ] {
+        let r = run(&[&["preview"], extra, &common[..]].concat());
+        assert_eq!(
+            r.status.code(),
+            Some(0),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+        assert_eq!(png_kind(&std::fs::read(&out).unwrap()), (2, 8), "{extra:?}");
+    }
+    // The camera: camera | gap | observer under a 14-pixel label band, and the report.
+    let r = run(&[
+        &[
+            "preview",
+            "--material",
+            "gold",
+            "--camera",
+            "bayer",
+            "--light",
+            "a",
+        ],
+        &common[..],
+    ]
+    .concat());
+    assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(png_kind(&bytes), (2, 8 + 8 + 8));
+    assert_eq!(
+        u32::from_be_bytes([bytes[20], bytes[21], bytes[22], bytes[23]]),
+        8 + 14
+    );
+    let text = String::from_utf8_lossy(&r.stdout);
+    assert!(text.contains("dE*ab") && text.contains("EMVA SNR"), "{text}");
+    let _ = std::fs::remove_file(&out);
+}
+
+#[test]
+fn preview_rejects_bad_colour_input() {
+    let out = tmp("bad-colour.png");
+    let o = out.to_str().unwrap();
+    for args in [
+        &["preview", "--out", o][..],
+        &["preview", "lambertian", "--material", "gold", "--out", o],
+        &["preview", "--material", "silver", "--out", o],
+        &["preview", "lambertian", "--sky-colour", "1,2", "--out", o],
+        &["preview", "lambertian", "--sky-colour", "1,-2,0", "--out", o],
+        &["preview", "lambertian", "--spectral", "3", "--out", o],
+        &[
+            "preview",
+            "--material",
+            "gold",
+            "--camera",
+            "bayer",
+            "--spectral",
+            "4",
+            "--out",
+            o,
+        ],
+        &[
+            "preview",
+            "--material",
+            "gold",
+            "--camera",
+            "prism",
+            "--camera-exposure",
+            "0",
+            "--out",
+            o,
+        ],
+        &["preview", "openpbr", "--textured", "--rgb", "--out", o],
+        &[
+            "preview",
+            "lambertian",
+            "--env",
+            "/nonexistent/sky.hdr",
+            "--out",
+            o,
+        ],
+        &[
+            "preview",
+            "lambertian",
+            "--env",
+            "/nonexistent/sky.hdr",
+            "--spectral",
+            "4",
+            "--out",
+            o,
+        ],
+    ] {
+        let r = run(args);
+        assert_eq!(
+            r.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn preview_lights_by_an_hdr_environment_map() {
+    // A constant 8 × 4 Radiance file (RGBE, written by hand: header, then flat scanlines of
+    // 4 bytes per texel; 0.5 = mantissa 128, exponent 128) lights a white Lambertian as a
+    // uniform sky of 0.5: the furnace ball vanishes into the background.
+    let path = tmp("grey.hdr");
+    let mut bytes = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n".to_vec();
+    for _ in 0..32 {
+        bytes.extend_from_slice(&[128, 128, 128, 128]);
+    }
+    std::fs::write(&path, bytes).unwrap();
+    let out = tmp("env.png");
+    let r = run(&[
+        "preview",
+        "lambertian",
+        "--env",
+        path.to_str().unwrap(),
+        "--sun-irradiance",
+        "0",
+        "--size",
+        "8",
+        "--samples",
+        "2",
+        "--no-progress",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(String::from_utf8_lossy(&r.stdout).contains("environment 8×4 texels"));
+    let png = std::fs::read(&out).unwrap();
+    assert_eq!(png_kind(&png), (2, 8));
+    let _ = std::fs::remove_file(out);
+    let _ = std::fs::remove_file(path);
+}
+
+/// The 8-bit samples of a PNG file.
+fn png_samples(path: &std::path::Path) -> Vec<u8> {
+    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = dec.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    buf
+}
+
+#[test]
+fn a_grey_spec_gives_the_same_bytes_in_rgb() {
+    let (grey, rgb) = (tmp("same-grey.png"), tmp("same-rgb.png"));
+    let spec = "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), lambertian(albedo=0.8))";
+    for (out, extra) in [(&grey, None), (&rgb, Some("--rgb"))] {
+        let mut args = vec!["preview", spec, "--size", "12", "--samples", "4", "--no-progress"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let r = run(&args);
+        assert_eq!(r.status.code(), Some(0), "{}", String::from_utf8_lossy(&r.stderr));
+    }
+    let (g, c) = (png_samples(&grey), png_samples(&rgb));
+    assert_eq!(c.len(), 3 * g.len());
+    assert!(g.iter().zip(c.chunks(3)).all(|(g, c)| c == [*g; 3]));
+    let _ = std::fs::remove_file(grey);
+    let _ = std::fs::remove_file(rgb);
+}

@@ -109,6 +109,7 @@ fn run() -> i32 {
     acc += colour();
     acc += calibration();
     acc += spectral();
+    acc += uplift();
     if acc.is_finite() { 0 } else { 1 }
 }
 
@@ -705,5 +706,28 @@ fn spectral() -> f32 {
     acc += spectral::integrate_fn(black_box(380.0), black_box(780.0), black_box(2.0), |x| {
         spectral::IlluminantA.value(x) * 1e-2
     });
+    acc
+}
+
+/// RGB → spectrum uplift, the sRGB observer and RGB illuminants.
+#[inline(never)]
+fn uplift() -> f32 {
+    use radiometry::spectral::SpectralCurve;
+    use radiometry::spectral::uplift::*;
+    let mut acc = 0.0;
+    let rgb = black_box([0.6f32, 0.1, 0.05]);
+    if let Ok(s) = uplift_reflectance(rgb) {
+        acc += s.eval(black_box(550.0)) + s.value(black_box(f32::NAN)) + s.residual();
+        acc += reflectance_to_linear_srgb(|l| s.eval(l))[0];
+    }
+    if let Ok(s) = SigmoidSpectrum::constant(black_box(0.3)) {
+        acc += s.coefficients()[2];
+    }
+    let obs = SrgbObserver::new();
+    acc += obs.weights(black_box(512.0))[1];
+    if let Ok(ill) = RgbIlluminant::new(black_box([0.5, 0.7, 1.0])) {
+        acc += obs.radiance_to_linear_srgb(|l| ill.value(l))[2];
+    }
+    acc += srgb8_to_linear(black_box(128));
     acc
 }

@@ -30,6 +30,7 @@ use core::fmt;
 
 pub mod photometry;
 pub mod tables;
+pub mod uplift;
 
 pub use photometry::{
     K_M, chromaticity, illuminance_lux, illuminance_monochromatic, xyz, xyz_to_linear_srgb,

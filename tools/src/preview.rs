@@ -7,6 +7,9 @@
 //! | [`render`] | the image: per pixel, [`Options::samples`] camera rays, each shaded with one light sample and one BRDF sample combined by multiple importance sampling; parallel over rows with `std::thread::scope` |
 //! | [`Lighting`] | the sun and the sky, and [`Lighting::shade`], the one-sample-per-technique estimator of the reflected radiance at one shading point |
 //! | [`Image`] | the linear radiance and the sphere coverage of every pixel; [`tone_map`] to 8 bits; PNG and SVG output with the `plot` feature ([`image`] module) |
+//! | [`colour`] | the same scene in colour: coloured sun, sky and ground ([`Env`]), RGB ([`colour::render_rgb`]) and hero-wavelength spectral ([`colour::render_spectral`]) renders, typed colour materials, 8-bit RGB output |
+//! | [`envmap`] | equirectangular environment maps (Radiance `.hdr` with the `hdr` feature) and their importance sampling, lighting [`colour::render_rgb_env`] |
+//! | [`camera`] | the pixel equation end to end: the ball through a simulated camera (Bayer, prism, stacked; EMVA 1288 noise; demosaicing; colour matrix; response curve) beside the CIE 1931 observer |
 //!
 //! **Scene.** World axes: `+Y` up, the camera on `+Z` at distance
 //! [`CAMERA_DISTANCE`] looking at the sphere (radius 1, at the origin) with a
@@ -59,6 +62,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod camera;
+pub mod colour;
+pub mod envmap;
 pub mod image;
 
 pub use image::{Format, Image, WHITE_POINT, tone_map};
@@ -69,7 +75,7 @@ use radiometry::light::{Cap, LightError, UniformSky};
 use radiometry::math::ONE_MINUS_EPSILON;
 use radiometry::rng::Pcg32;
 use radiometry::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use radiometry::{Brdf, Frame};
+use radiometry::{Brdf, Frame, Spectrum};
 use radiometry_brdfs::openpbr::{Layering, OpenPbr, OpenPbrParams};
 use std::f32::consts::{PI, TAU};
 use std::fmt;
@@ -151,8 +157,19 @@ pub enum PreviewError {
     Light(LightError),
     /// Writing the image failed.
     Io(std::io::Error),
-    /// The textured ball's base parameters were rejected by `OpenPbr`.
+    /// The textured ball's base parameters (or a colour preset) were
+    /// rejected by their BRDF.
     Material(radiometry_brdfs::BrdfError),
+    /// A light colour is negative or not finite (name, value).
+    Colour(&'static str, f32),
+    /// A colour could not be uplifted to a spectrum.
+    Uplift(radiometry::spectral::uplift::UpliftError),
+    /// The number of hero wavelengths is 0 or above `colour::MAX_HERO`.
+    Wavelengths(usize),
+    /// The simulated camera was rejected (a sensor parameter out of range).
+    Camera(radiometry::sensor::SensorError),
+    /// An environment map was rejected or could not be read.
+    EnvMap(String),
 }
 
 impl fmt::Display for PreviewError {
@@ -163,7 +180,14 @@ impl fmt::Display for PreviewError {
             PreviewError::Angle(name, v) => write!(f, "{name} {v} is out of range"),
             PreviewError::Light(e) => write!(f, "{e}"),
             PreviewError::Io(e) => write!(f, "{e}"),
-            PreviewError::Material(e) => write!(f, "textured ball: {e}"),
+            PreviewError::Material(e) => write!(f, "material: {e}"),
+            PreviewError::Colour(name, v) => write!(f, "{name} component {v} must be finite and >= 0"),
+            PreviewError::Uplift(e) => write!(f, "{e}"),
+            PreviewError::Wavelengths(n) => {
+                write!(f, "{n} hero wavelengths: must be in [1, {}]", colour::MAX_HERO)
+            }
+            PreviewError::Camera(e) => write!(f, "camera: {e}"),
+            PreviewError::EnvMap(e) => write!(f, "environment map: {e}"),
         }
     }
 }
@@ -294,6 +318,18 @@ impl Lighting {
         q * cone + (1.0 - q) * cosine_hemisphere_pdf(wl)
     }
 
+    /// [`Lighting::light_pdf`] with the non-sun branch drawn from `sampler`
+    /// when there is one.
+    fn light_pdf_env(&self, q: f32, w: Vec3, wl: Vec3, sampler: Option<&envmap::EnvSampler>) -> f32 {
+        match sampler {
+            None => self.light_pdf(q, w, wl),
+            Some(s) => {
+                let cone = if self.sun.contains(w) { self.cone_pdf } else { 0.0 };
+                q * cone + (1.0 - q) * s.pdf(w)
+            }
+        }
+    }
+
     /// One estimate of the reflected radiance `L_r(ωo)` at a point with
     /// (unit) world normal `n`, seen from (unit) world direction `wo` (toward
     /// the viewer): one light sample and one BRDF sample, combined with the
@@ -376,8 +412,190 @@ impl Lighting {
     }
 }
 
+/// The radiances of the sun, the sky and the ground in one spectrum type,
+/// colour included (what [`Lighting::shade_spectrum`] lights with).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Env<S> {
+    /// Radiance of the sky (every direction above the horizontal plane).
+    pub sky: S,
+    /// Radiance of the ground (below it; equal to `sky` for the grey scene).
+    pub ground: S,
+    /// Radiance inside the sun's cap, added to the sky's.
+    pub sun: S,
+}
+
+/// What lights the colour preview: the incident radiance from every world
+/// direction, in spectrum `S` ([`Env`]: a uniform sky, a ground and the sun;
+/// [`envmap::EnvMap`] through [`MapEnv`]).
+pub trait Environment<S> {
+    /// Incident radiance from (unit, world) direction `w`.
+    fn radiance(&self, lighting: &Lighting, w: Vec3) -> S;
+
+    /// A distribution of world directions for the light technique's
+    /// non-sun branch; `None` (the default): cosine-weighted about the
+    /// normal, as for a uniform sky.
+    fn sampler(&self) -> Option<&envmap::EnvSampler> {
+        None
+    }
+}
+
+impl<S: Spectrum> Environment<S> for Env<S> {
+    fn radiance(&self, lighting: &Lighting, w: Vec3) -> S {
+        lighting.radiance_env(w, self)
+    }
+}
+
+/// An environment map times `scale`, plus the preview's sun cap of radiance
+/// `sun` (linear RGB).
+#[derive(Clone, Copy, Debug)]
+pub struct MapEnv<'a> {
+    /// The map.
+    pub map: &'a envmap::EnvMap,
+    /// Its radiance scale.
+    pub scale: f32,
+    /// The sun's radiance inside its cap.
+    pub sun: Vec3,
+    /// Importance sampling of the map (`None`: cosine-weighted).
+    pub sampler: Option<&'a envmap::EnvSampler>,
+}
+
+impl Environment<Vec3> for MapEnv<'_> {
+    fn radiance(&self, lighting: &Lighting, w: Vec3) -> Vec3 {
+        let sun = if lighting.sun.contains(w) {
+            self.sun
+        } else {
+            Vec3::ZERO
+        };
+        Vec3::from_array(self.map.radiance(w)) * self.scale + sun
+    }
+
+    fn sampler(&self) -> Option<&envmap::EnvSampler> {
+        self.sampler
+    }
+}
+
+impl Lighting {
+    /// Incident radiance from world direction `w` in any spectrum: the sky
+    /// (the ground below the horizontal plane, `w.y < 0`), plus the sun in
+    /// its cap (radiances per channel, colour included).
+    pub fn radiance_env<S: Spectrum>(&self, w: Vec3, env: &Env<S>) -> S {
+        let sun = if self.sun.contains(w) { env.sun } else { S::zero() };
+        let base = if w.y < 0.0 { env.ground } else { env.sky };
+        base + sun
+    }
+
+    /// [`Lighting::shade`] in any spectrum: the same estimator (the same
+    /// directions, pdfs and MIS weights, which depend on the scalar sun and
+    /// sky only), with the incident radiance of `env` per channel
+    /// ([`Lighting::radiance_env`]; the ground, when it differs from the sky,
+    /// is reached by the cosine-weighted sky technique and the BRDF's). For a
+    /// BRDF whose channels are equal under white light without a ground it
+    /// gives the bits of `shade` in every channel.
+    pub fn shade_spectrum<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized, E: Environment<S> + ?Sized>(
+        &self,
+        brdf: &B,
+        n: Vec3,
+        wo: Vec3,
+        u: [f32; 5],
+        env: &E,
+    ) -> S {
+        let Some(frame) = Frame::from_normal(n) else {
+            return S::zero();
+        };
+        let mut wo_l = frame.to_local(wo);
+        if wo_l.z < MIN_COS_VIEW {
+            wo_l.z = MIN_COS_VIEW;
+            wo_l = wo_l.normalize_or_zero();
+            if wo_l == Vec3::ZERO {
+                return S::zero();
+            }
+        }
+        let q = self.sun_share(&frame);
+        let mut light = [0.0f64; MAX_CHANNELS];
+        let mut bsdf = [0.0f64; MAX_CHANNELS];
+        self.light_draw_s(brdf, &frame, wo_l, q, [u[0], u[1], u[2]], env, &mut light);
+        self.brdf_draw_s(brdf, &frame, wo_l, q, [u[3], u[4]], env, &mut bsdf);
+        S::from_fn(|c| {
+            let v = (light.get(c).copied().unwrap_or(0.0) + bsdf.get(c).copied().unwrap_or(0.0)) as f32;
+            if v.is_finite() { v } else { 0.0 }
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn light_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized, E: Environment<S> + ?Sized>(
+        &self,
+        brdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        q: f32,
+        u: [f32; 3],
+        env: &E,
+        out: &mut [f64],
+    ) {
+        let sampler = env.sampler();
+        let (w, wl) = if u[0] < q {
+            let w = self.cone_sample([u[1], u[2]]);
+            (w, frame.to_local(w))
+        } else if let Some(s) = sampler {
+            let w = s.sample([u[1], u[2]]);
+            (w, frame.to_local(w))
+        } else {
+            let wl = square_to_cosine_hemisphere([u[1], u[2]]);
+            (frame.to_world(wl), wl)
+        };
+        if wl.z <= 0.0 {
+            return;
+        }
+        let p_l = self.light_pdf_env(q, w, wl, sampler) as f64;
+        if p_l <= 0.0 || p_l.is_nan() {
+            return;
+        }
+        let f = brdf.eval(wl, wo);
+        if f.is_black() {
+            return;
+        }
+        let p_b = brdf.pdf(wl, wo) as f64;
+        let l = env.radiance(self, w);
+        for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
+            // The expression order of `light_draw`, channel by channel.
+            *o = f.channel(c) as f64 * l.channel(c) as f64 * wl.z as f64 * p_l / (p_l * p_l + p_b * p_b);
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn brdf_draw_s<S: Spectrum, B: Brdf<Spectrum = S> + ?Sized, E: Environment<S> + ?Sized>(
+        &self,
+        brdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        q: f32,
+        u: [f32; 2],
+        env: &E,
+        out: &mut [f64],
+    ) {
+        let u = [u[0].min(ONE_MINUS_EPSILON), u[1].min(ONE_MINUS_EPSILON)];
+        let Some(s) = brdf.sample(wo, u) else {
+            return;
+        };
+        if s.wi.z <= 0.0 || s.weight.is_black() {
+            return;
+        }
+        let w = frame.to_world(s.wi);
+        let p_b = s.pdf as f64;
+        let p_l = self.light_pdf_env(q, w, s.wi, env.sampler()) as f64;
+        let mis = p_b * p_b / (p_b * p_b + p_l * p_l);
+        let l = env.radiance(self, w);
+        for (c, o) in out.iter_mut().enumerate().take(S::CHANNELS) {
+            *o = s.weight.channel(c) as f64 * l.channel(c) as f64 * mis;
+        }
+    }
+}
+
+/// Channels [`Lighting::shade_spectrum`] carries (more are dropped as black).
+pub const MAX_CHANNELS: usize = 64;
+
 /// `tan(FIELD_OF_VIEW_DEG / 2)`.
-fn half_fov_tan() -> f32 {
+pub(crate) fn half_fov_tan() -> f32 {
     (0.5 * FIELD_OF_VIEW_DEG).to_radians().tan()
 }
 
@@ -387,7 +605,7 @@ pub fn camera_ray(px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
     camera_ray_with(half_fov_tan(), px, py, size)
 }
 
-fn camera_ray_with(t: f32, px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
+pub(crate) fn camera_ray_with(t: f32, px: f32, py: f32, size: u32) -> (Vec3, Vec3) {
     let s = size as f32;
     let x = (2.0 * px / s - 1.0) * t;
     let y = (1.0 - 2.0 * py / s) * t;
@@ -427,7 +645,7 @@ pub fn render<B: Brdf<Spectrum = f32> + Sync + ?Sized>(
 }
 
 /// The image size and samples per pixel within their limits.
-fn check_options(opt: &Options) -> Result<(), PreviewError> {
+pub(crate) fn check_options(opt: &Options) -> Result<(), PreviewError> {
     if opt.size == 0 || opt.size > MAX_SIZE {
         return Err(PreviewError::Size(opt.size));
     }

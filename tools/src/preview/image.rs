@@ -110,19 +110,13 @@ impl Image {
     /// in a `Description` text chunk when it is not empty.
     #[cfg(feature = "plot")]
     pub fn encode_png(&self, exposure: f32, description: &str) -> std::io::Result<Vec<u8>> {
-        let mut out = Vec::new();
-        let mut enc = png::Encoder::new(&mut out, self.size, self.size);
-        enc.set_color(png::ColorType::Grayscale);
-        enc.set_depth(png::BitDepth::Eight);
-        if !description.is_empty() {
-            enc.add_text_chunk("Description".into(), description.into())
-                .map_err(std::io::Error::other)?;
-        }
-        let mut w = enc.write_header().map_err(std::io::Error::other)?;
-        w.write_image_data(&self.to_gray8(exposure))
-            .map_err(std::io::Error::other)?;
-        w.finish().map_err(std::io::Error::other)?;
-        Ok(out)
+        encode_png8(
+            self.size,
+            self.size,
+            png::ColorType::Grayscale,
+            &self.to_gray8(exposure),
+            description,
+        )
     }
 
     /// The picture as an SVG document: the PNG of [`Image::encode_png`] in one
@@ -130,15 +124,7 @@ impl Image {
     #[cfg(feature = "plot")]
     pub fn to_svg(&self, exposure: f32, title: &str) -> std::io::Result<String> {
         let png = self.encode_png(exposure, title)?;
-        let n = self.size;
-        Ok(format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
-width=\"{n}\" height=\"{n}\" viewBox=\"0 0 {n} {n}\">\n<title>{}</title>\n\
-<image width=\"{n}\" height=\"{n}\" style=\"image-rendering:pixelated\" \
-xlink:href=\"data:image/png;base64,{}\"/>\n</svg>\n",
-            xml_escape(title),
-            base64(&png)
-        ))
+        Ok(svg_wrap(&png, self.size, self.size, title))
     }
 
     /// Writes the picture to `path` as `format` ([`Image::encode_png`] or
@@ -156,6 +142,44 @@ xlink:href=\"data:image/png;base64,{}\"/>\n</svg>\n",
             Format::Svg => std::fs::write(path, self.to_svg(exposure, description)?),
         }
     }
+}
+
+/// An 8-bit PNG of `width × height` pixels of `color` type, with
+/// `description` in a `Description` text chunk when it is not empty.
+#[cfg(feature = "plot")]
+pub fn encode_png8(
+    width: u32,
+    height: u32,
+    color: png::ColorType,
+    data: &[u8],
+    description: &str,
+) -> std::io::Result<Vec<u8>> {
+    let mut out = Vec::new();
+    let mut enc = png::Encoder::new(&mut out, width, height);
+    enc.set_color(color);
+    enc.set_depth(png::BitDepth::Eight);
+    if !description.is_empty() {
+        enc.add_text_chunk("Description".into(), description.into())
+            .map_err(std::io::Error::other)?;
+    }
+    let mut w = enc.write_header().map_err(std::io::Error::other)?;
+    w.write_image_data(data).map_err(std::io::Error::other)?;
+    w.finish().map_err(std::io::Error::other)?;
+    Ok(out)
+}
+
+/// An SVG document showing `png` (`width × height`) in one `<image>`
+/// element (base64 `data:` URI), `title` as its `<title>`.
+#[cfg(feature = "plot")]
+pub fn svg_wrap(png: &[u8], width: u32, height: u32, title: &str) -> String {
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
+width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n<title>{}</title>\n\
+<image width=\"{width}\" height=\"{height}\" style=\"image-rendering:pixelated\" \
+xlink:href=\"data:image/png;base64,{}\"/>\n</svg>\n",
+        xml_escape(title),
+        base64(png)
+    )
 }
 
 /// `&`, `<`, `>`, `"` as XML entities.
