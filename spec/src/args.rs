@@ -87,6 +87,11 @@ impl<'a> Args<'a> {
                 *span,
                 format!("`{key}` must be one number, not a colour"),
             )),
+            Value::Str(_, span) => Err(err_span(
+                self.spec,
+                *span,
+                format!("`{key}` must be a number, not a string"),
+            )),
         }
     }
 
@@ -105,6 +110,13 @@ impl<'a> Args<'a> {
         let (c, span) = match &a.value {
             Value::Num(v, span) => ([*v; 3], *span),
             Value::Rgb(c, span) => (*c, *span),
+            Value::Str(_, span) => {
+                return Err(err_span(
+                    self.spec,
+                    *span,
+                    format!("`{key}` must be a number or rgb(R, G, B), not a string"),
+                ));
+            }
             Value::Call(c) => {
                 return Err(err_span(
                     self.spec,
@@ -123,6 +135,26 @@ impl<'a> Args<'a> {
         Ok(c)
     }
 
+    /// Whether the call has argument `key` (without marking it used).
+    pub(crate) fn has(&self, key: &str) -> bool {
+        self.call.args.iter().any(|a| a.key == key)
+    }
+
+    /// A string `"..."` and its span, or `None` when absent.
+    pub(crate) fn string(&mut self, key: &str) -> Result<Option<(&'a str, (usize, usize))>, SpecError> {
+        let Some(a) = self.find(key) else {
+            return Ok(None);
+        };
+        match &a.value {
+            Value::Str(s, span) => Ok(Some((s.as_str(), *span))),
+            v => Err(err_span(
+                self.spec,
+                v.span(),
+                format!("`{key}` must be a string in double quotes"),
+            )),
+        }
+    }
+
     /// A nested call (or bare name) value.
     pub(crate) fn call_value(&mut self, key: &str) -> Result<Option<&'a Call>, SpecError> {
         let Some(a) = self.find(key) else {
@@ -130,7 +162,7 @@ impl<'a> Args<'a> {
         };
         match &a.value {
             Value::Call(c) => Ok(Some(c)),
-            Value::Num(_, span) | Value::Rgb(_, span) => Err(err_span(
+            Value::Num(_, span) | Value::Rgb(_, span) | Value::Str(_, span) => Err(err_span(
                 self.spec,
                 *span,
                 format!("`{key}` must be a name, not a number"),

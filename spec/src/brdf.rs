@@ -583,25 +583,48 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
                     ),
                 ));
             }
-            let mut a = Args::new(spec, call, &OPENPBR_PARAMS)?;
+            let mut allowed = OPENPBR_PARAMS.to_vec();
+            allowed.extend(["file", "material"]);
+            let mut a = Args::new(spec, call, &allowed)?;
+            // `file="doc.mtlx"` (and `material="Name"`): the document's
+            // material gives the defaults of every parameter below.
+            let d = match a.string("file")? {
+                Some((path, span)) => {
+                    let material = a.string("material")?.map(|(m, _)| m);
+                    let xml = std::fs::read_to_string(path)
+                        .map_err(|e| err_span(spec, span, format!("cannot read `{path}`: {e}")))?;
+                    crate::mtlx::read_openpbr(&xml, material)
+                        .map_err(|e| err_span(spec, span, format!("{path}: {e}")))?
+                        .params
+                }
+                None => {
+                    if let Some((_, span)) = a.string("material")? {
+                        return Err(err_span(spec, span, "`material` needs `file`".into()));
+                    }
+                    crate::mtlx::openpbr_defaults()
+                }
+            };
             let unit = |a: &mut Args<'_>, k: &str, d: f64| a.num(k, Some(d), 0.0, 1.0, false);
+            let colour = |a: &mut Args<'_>, k: &str, d: [f64; 3]| -> Result<[f64; 3], SpecError> {
+                if a.has(k) { a.colour(k, None) } else { Ok(d) }
+            };
             Ok(BrdfSpec::OpenPbr(OpenPbrSpec {
-                base_weight: unit(&mut a, "base_weight", 1.0)?,
-                base_color: a.colour("base_color", Some(0.8))?,
-                base_metalness: unit(&mut a, "base_metalness", 0.0)?,
-                base_diffuse_roughness: unit(&mut a, "base_diffuse_roughness", 0.0)?,
-                specular_weight: unit(&mut a, "specular_weight", 1.0)?,
-                specular_color: a.colour("specular_color", Some(1.0))?,
-                specular_roughness: unit(&mut a, "specular_roughness", 0.3)?,
-                specular_ior: a.num("specular_ior", Some(1.5), 1.0, 1e3, false)?,
-                coat_weight: unit(&mut a, "coat_weight", 0.0)?,
-                coat_color: a.colour("coat_color", Some(1.0))?,
-                coat_roughness: unit(&mut a, "coat_roughness", 0.0)?,
-                coat_ior: a.num("coat_ior", Some(1.6), 1.0, 1e3, false)?,
-                fuzz_weight: unit(&mut a, "fuzz_weight", 0.0)?,
-                fuzz_color: a.colour("fuzz_color", Some(1.0))?,
-                fuzz_roughness: unit(&mut a, "fuzz_roughness", 0.5)?,
-                coat_darkening: unit(&mut a, "coat_darkening", 1.0)?,
+                base_weight: unit(&mut a, "base_weight", d.base_weight)?,
+                base_color: colour(&mut a, "base_color", d.base_color)?,
+                base_metalness: unit(&mut a, "base_metalness", d.base_metalness)?,
+                base_diffuse_roughness: unit(&mut a, "base_diffuse_roughness", d.base_diffuse_roughness)?,
+                specular_weight: unit(&mut a, "specular_weight", d.specular_weight)?,
+                specular_color: colour(&mut a, "specular_color", d.specular_color)?,
+                specular_roughness: unit(&mut a, "specular_roughness", d.specular_roughness)?,
+                specular_ior: a.num("specular_ior", Some(d.specular_ior), 1.0, 1e3, false)?,
+                coat_weight: unit(&mut a, "coat_weight", d.coat_weight)?,
+                coat_color: colour(&mut a, "coat_color", d.coat_color)?,
+                coat_roughness: unit(&mut a, "coat_roughness", d.coat_roughness)?,
+                coat_ior: a.num("coat_ior", Some(d.coat_ior), 1.0, 1e3, false)?,
+                fuzz_weight: unit(&mut a, "fuzz_weight", d.fuzz_weight)?,
+                fuzz_color: colour(&mut a, "fuzz_color", d.fuzz_color)?,
+                fuzz_roughness: unit(&mut a, "fuzz_roughness", d.fuzz_roughness)?,
+                coat_darkening: unit(&mut a, "coat_darkening", d.coat_darkening)?,
                 reciprocal: a.num("reciprocal", Some(0.0), 0.0, 1.0, true)? == 1.0,
             }))
         }

@@ -36,6 +36,8 @@ pub enum Value {
     Call(Call),
     /// `rgb(R, G, B)`: a colour's three numbers, with the span of the whole value.
     Rgb([f64; 3], (usize, usize)),
+    /// `"text"`: a string (a file name), with the span of the quoted value.
+    Str(String, (usize, usize)),
 }
 
 impl Value {
@@ -44,6 +46,7 @@ impl Value {
             Value::Num(_, s) => *s,
             Value::Call(c) => c.span,
             Value::Rgb(_, s) => *s,
+            Value::Str(_, s) => *s,
         }
     }
 }
@@ -128,6 +131,10 @@ impl<'a> Parser<'a> {
                     Value::Num(v, (vt.start, vt.end))
                 }
                 Tok::Ident(ref n) if n == "rgb" => self.rgb()?,
+                Tok::Str(ref text) => {
+                    self.bump();
+                    Value::Str(text.clone(), (vt.start, vt.end))
+                }
                 Tok::Ident(_) => Value::Call(self.call(depth + 1)?),
                 _ => return Err(self.expected(&format!("a value for `{key}`"))),
             };

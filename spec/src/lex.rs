@@ -6,6 +6,8 @@ use crate::SpecError;
 pub(crate) enum Tok {
     Ident(String),
     Num(f64),
+    /// A double-quoted string (no escapes; it runs to the next `"`).
+    Str(String),
     LParen,
     RParen,
     Comma,
@@ -25,6 +27,7 @@ pub(crate) fn describe(t: &Tok) -> String {
     match t {
         Tok::Ident(s) => format!("name `{s}`"),
         Tok::Num(_) => "a number".into(),
+        Tok::Str(_) => "a string".into(),
         Tok::LParen => "`(`".into(),
         Tok::RParen => "`)`".into(),
         Tok::Comma => "`,`".into(),
@@ -65,6 +68,23 @@ pub(crate) fn lex(spec: &str) -> Result<Vec<Token>, SpecError> {
                 end: i + 1,
             });
             i += 1;
+            continue;
+        }
+        if c == b'"' {
+            let Some(len) = spec[i + 1..].find('"') else {
+                return Err(err(
+                    start,
+                    spec.len(),
+                    "unterminated string (a `\"` opens it)".into(),
+                ));
+            };
+            let end = i + 1 + len + 1;
+            out.push(Token {
+                tok: Tok::Str(spec[i + 1..end - 1].to_string()),
+                start,
+                end,
+            });
+            i = end;
             continue;
         }
         if c.is_ascii_alphabetic() || c == b'_' {

@@ -47,6 +47,7 @@ mod tabulated;
 
 pub mod merl;
 pub mod model;
+pub mod mtlx;
 
 pub use angles::parse_angles;
 pub use brdf::{
