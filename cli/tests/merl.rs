@@ -317,3 +317,32 @@ fn cli_tabulate_then_albedo_and_eval() {
         let _ = std::fs::remove_file(f);
     }
 }
+
+/// `radiometry tabulate` of a colour spec writes its channels: gold's table read back gives gold's three values
+/// at a node direction (θh = 0, θd = 30°), within the f64 → f32 rounding of the file.
+#[test]
+fn cli_tabulate_keeps_colour() {
+    let path = tmp("cli_gold.binary");
+    let p = path.to_str().unwrap();
+    let gold = "ggx(alpha=0.3, fresnel=conductor(metal=Au))";
+    let o = run(&["tabulate", gold, "--out", p]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let eval = |s: &str| -> Vec<f64> {
+        let o = run(&["eval", s, "--wi", "30,0", "--wo", "30,180"]);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout)
+            .split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect()
+    };
+    let (table, direct) = (eval(&format!("tabulated(file={p})")), eval(gold));
+    assert_eq!((table.len(), direct.len()), (3, 3));
+    for c in 0..3 {
+        assert!(
+            (table[c] - direct[c]).abs() <= 1e-5 * direct[c],
+            "{table:?} vs {direct:?}"
+        );
+    }
+    assert!(table[0] > 2.0 * table[2], "gold: {table:?}");
+    std::fs::remove_file(&path).ok();
+}
