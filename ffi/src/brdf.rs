@@ -352,6 +352,33 @@ pub(crate) fn with_plugin<S: Channels, R>(
     }
 }
 
+/// Checks the colour parameters of a handle whose monochrome form is valid
+/// (`with_plugin::<f32>` succeeded): the RGB plugin's constructor per kind, as
+/// `with_plugin::<Vec3>` would run it, without building the plugin behind a
+/// `dyn` (a monochrome-only firmware image then links no `Vec3` plugin
+/// methods, only their parameter checks).
+pub(crate) fn check_rgb(h: &RadBrdf) -> Result<(), RadStatus> {
+    let [_, p1, p2] = h.params;
+    let (c0, c1) = (Vec3::from_array(h.rgb[0]), Vec3::from_array(h.rgb[1]));
+    match h.kind {
+        RAD_BRDF_LAMBERTIAN => Lambertian::new(c0).map(drop)?,
+        RAD_BRDF_EON => Eon::new(c0, p1).map(drop)?,
+        RAD_BRDF_FON => Fon::new(c0, p1).map(drop)?,
+        RAD_BRDF_OREN_NAYAR => OrenNayar::new(c0, p1).map(drop)?,
+        RAD_BRDF_SHEEN => Sheen::new(c0, p1).map(drop)?,
+        RAD_BRDF_PHONG => ModifiedPhong::new(c0, c1, p2).map(drop)?,
+        RAD_BRDF_BLINN_PHONG => BlinnPhong::new(c0, c1, p2).map(drop)?,
+        RAD_BRDF_MICROFACET => match h.fresnel {
+            RAD_FRESNEL_SCHLICK => Schlick::new(c0).map(drop)?,
+            RAD_FRESNEL_CONDUCTOR | RAD_FRESNEL_METAL => Conductor::new(c0, c1).map(drop)?,
+            RAD_FRESNEL_F82 => F82Tint::new(c0, c1).map(drop)?,
+            _ => (),
+        },
+        _ => return Err(RadStatus::BadHandle),
+    }
+    Ok(())
+}
+
 /// As [`with_plugin`], through one shared instance of the plugin tree (the
 /// callback behind `&mut dyn FnMut`): for callers with many closures (the
 /// materials), where a copy of the tree per closure would cost firmware
@@ -383,7 +410,7 @@ unsafe fn construct(h: RadBrdf, out: *mut RadBrdf) -> RadStatus {
         Err(s) => return s,
     };
     // Both forms: the monochrome parameters and the channels.
-    match with_plugin::<f32, _>(&h, |_| ()).and_then(|()| with_plugin::<Vec3, _>(&h, |_| ())) {
+    match with_plugin::<f32, _>(&h, |_| ()).and_then(|()| check_rgb(&h)) {
         Ok(()) => {
             *out = h;
             RadStatus::Ok

@@ -18,8 +18,8 @@
 //! sample reported, bit for bit.
 
 use crate::brdf::{
-    Channels, DynBrdf, Handle, eval_batch_rgb, eval_one, eval_one_rgb, pair_batch, pdf_one, pdf_one_rgb,
-    sample_batch, sample_one, sample_one_rgb, soa_batch, with_plugin_shared,
+    Channels, DynBrdf, Handle, check_rgb, eval_batch_rgb, eval_one, eval_one_rgb, pair_batch, pdf_one,
+    pdf_one_rgb, sample_batch, sample_one, sample_one_rgb, soa_batch, with_plugin_shared,
 };
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdf, RadBrdfSample, RadStatus, RadVec3};
@@ -227,7 +227,11 @@ unsafe fn construct(
         };
         fill(&mut m)?;
         m.with::<f32, _>(|_| ())?;
-        m.with::<Vec3, _>(|_| ())?;
+        // The lobes' colours (the composite's own parameters are checked above and are grey).
+        check_rgb(&m.lobes[0])?;
+        if m.lobes[1] != RadBrdf::default() {
+            check_rgb(&m.lobes[1])?;
+        }
         // SAFETY: forwarded caller contract.
         let out = unsafe { as_mut(out)? };
         *out = m;
