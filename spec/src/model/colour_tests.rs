@@ -367,3 +367,35 @@ fn merl_files_keep_their_channels() {
     assert_eq!(&bad[e.start..e.end], "/nonexistent/x.binary");
     assert!(e.message.contains("cannot read MERL file"), "{e}");
 }
+
+/// `openpbr(base_color=rgb(0.8, 0.1, 0.1))` in RGB is `OpenPbr<Vec3>` with that base colour, bit for bit (the
+/// issue's target for the front ends, which all build it here).
+#[test]
+fn rgb_openpbr_is_the_typed_plugin() {
+    let text = "openpbr(base_color=rgb(0.8, 0.1, 0.1), coat_weight=0.5, fuzz_weight=0.2, fuzz_color=rgb(0.2, 0.3, 0.9))";
+    let b = rgb(text);
+    let typed = OpenPbr::new(OpenPbrParams {
+        base_color: Vec3::new(0.8, 0.1, 0.1),
+        coat_weight: 0.5,
+        fuzz_weight: 0.2,
+        fuzz_color: Vec3::new(0.2, 0.3, 0.9),
+        ..OpenPbrParams::default()
+    })
+    .unwrap();
+    for to in [0.0, 30.0, 75.0] {
+        let wo = dir(to, 0.0);
+        assert_eq!(
+            b.directional_albedo(wo),
+            typed.directional_albedo(wo),
+            "albedo at {to}°"
+        );
+        for (ti, pi) in [(0.0, 0.0), (30.0, 180.0), (60.0, 45.0), (85.0, 300.0)] {
+            let wi = dir(ti, pi);
+            assert_eq!(b.eval(wi, wo), typed.eval(wi, wo), "{ti},{pi} {to}");
+            assert_eq!(b.pdf(wi, wo), typed.pdf(wi, wo));
+        }
+        for u in [[0.1f32, 0.9], [0.6, 0.3]] {
+            assert_eq!(b.sample(wo, u), typed.sample(wo, u));
+        }
+    }
+}
