@@ -94,6 +94,7 @@ int main(void) {
     RadBrdf lam_rgb;
     check_status("lambertian_rgb(0.8, 0.4, 0.1)", rad_brdf_lambertian_rgb(orange, &lam_rgb), RAD_STATUS_OK);
     float rgb[3];
+    RadBrdf bad_rgb;
     check_status("lambertian_rgb eval_rgb", rad_brdf_eval_rgb(&lam_rgb, n, dir(0.9, 1.0), rgb), RAD_STATUS_OK);
     check("  ... red = 0.8/pi", rgb[0], 0.8 / pi, 1e-6);
     check("  ... blue = 0.1/pi", rgb[2], 0.1 / pi, 1e-6);
@@ -107,6 +108,17 @@ int main(void) {
     rad_brdf_eval_rgb(&gold, dir(0.5236, 0.0), dir(0.5236, pi), rgb);
     printf("gold f(30 deg mirror) R G B = %.6g %.6g %.6g 1/sr\n", rgb[0], rgb[1], rgb[2]);
     check_le("  ... red above blue (gold): blue - red", rgb[2] - rgb[0], -0.3);
+    /* An RGB conductor (eta, k per channel, as RGB renderers tabulate metals). */
+    const float eta[3] = {0.2f, 0.92f, 1.1f}, k[3] = {3.9f, 2.45f, 2.14f};
+    RadBrdf copperish;
+    check_status("ggx rgb conductor", rad_brdf_microfacet_rgb(RAD_DISTRIBUTION_GGX, 0.3f, RAD_SHADOWING_HEIGHT_CORRELATED,
+                                                               RAD_FRESNEL_CONDUCTOR, eta, k, &copperish),
+                 RAD_STATUS_OK);
+    rad_brdf_eval_rgb(&copperish, dir(0.5236, 0.0), dir(0.5236, pi), rgb);
+    check_le("  ... red above blue: blue - red", rgb[2] - rgb[0], -0.05);
+    check_status("ggx rgb dielectric rejected (rad_brdf_microfacet takes it)",
+                 rad_brdf_microfacet_rgb(RAD_DISTRIBUTION_GGX, 0.3f, 0, RAD_FRESNEL_DIELECTRIC, eta, k, &bad_rgb),
+                 RAD_STATUS_UNKNOWN_KIND);
     RadBrdfSample sc;
     check_status("gold sample_rgb", rad_brdf_sample_rgb(&gold, wo, 0.3f, 0.8f, &sc), RAD_STATUS_OK);
     rad_brdf_eval_rgb(&gold, sc.wi, wo, rgb);

@@ -564,6 +564,29 @@ enum RadStatus rad_brdf_sheen(float color, float roughness, struct RadBrdf *out)
 // to a writable `RadBrdf` (unchanged on error).
 enum RadStatus rad_brdf_lambertian_rgb(const float *albedo, struct RadBrdf *out);
 
+// [`rad_brdf_microfacet`] with coloured Fresnel parameters: `fresnel` is
+// `RAD_FRESNEL_SCHLICK` (`fresnel_a[3]` = `f0` per channel, `fresnel_b`
+// unused, may be null), `RAD_FRESNEL_CONDUCTOR` (`fresnel_a[3]` = `η`,
+// `fresnel_b[3]` = `k` per channel, as RGB renderers tabulate metals) or
+// `RAD_FRESNEL_F82` (`f0[3]`, the tint `f82[3]`); any other Fresnel is
+// `RAD_STATUS_UNKNOWN_KIND` (`rad_brdf_microfacet` takes them, and
+// `RAD_FRESNEL_METAL` for a measured metal). The monochrome calls use the
+// Rec. 709 luminance of each parameter triple (for a conductor a stand-in,
+// not a reduction of its reflectance: prefer `RAD_FRESNEL_METAL` where the
+// monochrome value matters).
+//
+// # Safety
+// `fresnel_a` is null or points to 3 readable `float`s, as `fresnel_b`
+// (null allowed with Schlick); `out` is null or points to a writable
+// `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_microfacet_rgb(uint32_t distribution,
+                                       float alpha,
+                                       uint32_t shadowing,
+                                       uint32_t fresnel,
+                                       const float *fresnel_a,
+                                       const float *fresnel_b,
+                                       struct RadBrdf *out);
+
 // [`rad_brdf_eon`] with an RGB albedo colour `rho[3]` (each channel a lobe).
 //
 // # Safety

@@ -669,6 +669,64 @@ pub unsafe extern "C" fn rad_brdf_lambertian_rgb(albedo: *const f32, out: *mut R
     unsafe { construct_rgb(RAD_BRDF_LAMBERTIAN, albedo, 0.0, out) }
 }
 
+/// [`rad_brdf_microfacet`] with coloured Fresnel parameters: `fresnel` is
+/// `RAD_FRESNEL_SCHLICK` (`fresnel_a[3]` = `f0` per channel, `fresnel_b`
+/// unused, may be null), `RAD_FRESNEL_CONDUCTOR` (`fresnel_a[3]` = `η`,
+/// `fresnel_b[3]` = `k` per channel, as RGB renderers tabulate metals) or
+/// `RAD_FRESNEL_F82` (`f0[3]`, the tint `f82[3]`); any other Fresnel is
+/// `RAD_STATUS_UNKNOWN_KIND` (`rad_brdf_microfacet` takes them, and
+/// `RAD_FRESNEL_METAL` for a measured metal). The monochrome calls use the
+/// Rec. 709 luminance of each parameter triple (for a conductor a stand-in,
+/// not a reduction of its reflectance: prefer `RAD_FRESNEL_METAL` where the
+/// monochrome value matters).
+///
+/// # Safety
+/// `fresnel_a` is null or points to 3 readable `float`s, as `fresnel_b`
+/// (null allowed with Schlick); `out` is null or points to a writable
+/// `RadBrdf` (unchanged on error).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_brdf_microfacet_rgb(
+    distribution: u32,
+    alpha: f32,
+    shadowing: u32,
+    fresnel: u32,
+    fresnel_a: *const f32,
+    fresnel_b: *const f32,
+    out: *mut RadBrdf,
+) -> RadStatus {
+    if !matches!(
+        fresnel,
+        RAD_FRESNEL_SCHLICK | RAD_FRESNEL_CONDUCTOR | RAD_FRESNEL_F82
+    ) {
+        return RadStatus::UnknownKind;
+    }
+    // SAFETY: forwarded caller contract (the colours are copied before `out` is borrowed).
+    let a = match unsafe { rgb_arg(fresnel_a) } {
+        Ok(c) => c,
+        Err(s) => return s,
+    };
+    let b = if fresnel == RAD_FRESNEL_SCHLICK && fresnel_b.is_null() {
+        [0.0; 3]
+    } else {
+        // SAFETY: as above.
+        match unsafe { rgb_arg(fresnel_b) } {
+            Ok(c) => c,
+            Err(s) => return s,
+        }
+    };
+    let h = RadBrdf {
+        kind: RAD_BRDF_MICROFACET,
+        distribution,
+        shadowing,
+        fresnel,
+        metal: 0,
+        params: [alpha, luminance(a), luminance(b)],
+        rgb: [a, b],
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { construct(h, out) }
+}
+
 /// [`rad_brdf_eon`] with an RGB albedo colour `rho[3]` (each channel a lobe).
 ///
 /// # Safety

@@ -1299,3 +1299,71 @@ fn rgb_calls_report_bad_input() {
         RadStatus::OutOfRange
     );
 }
+
+/// Coloured Fresnel parameters: Schlick `f0[3]`, a conductor's `η[3]`, `k[3]` and F82-tint `f0[3]`, `f82[3]` equal
+/// the Rust `Vec3` Fresnel terms bit for bit; other Fresnel kinds and bad channels are statuses.
+#[test]
+fn rgb_fresnel_parameters_equal_the_rust_plugins() {
+    let mk = |fresnel: u32, a: [f32; 3], b: Option<[f32; 3]>| {
+        let mut h = RadBrdf::default();
+        let bp = b.as_ref().map_or(null(), |b| b.as_ptr());
+        let s = unsafe {
+            rad_brdf_microfacet_rgb(
+                RAD_DISTRIBUTION_GGX,
+                0.25,
+                RAD_SHADOWING_HEIGHT_CORRELATED,
+                fresnel,
+                a.as_ptr(),
+                bp,
+                &mut h,
+            )
+        };
+        (s, h)
+    };
+    let g = || Ggx::new(0.25).unwrap();
+    let (s, h) = mk(RAD_FRESNEL_SCHLICK, [0.95, 0.64, 0.54], None);
+    ok(s);
+    let f0 = Vec3::new(0.95, 0.64, 0.54);
+    let r = Microfacet::<Ggx, HeightCorrelated, _>::new(g(), radiometry_brdfs::Schlick::new(f0).unwrap());
+    check_equal_rgb("schlick rgb", &h, &r);
+    let (eta, k) = ([0.2f32, 0.92, 1.1], [3.9f32, 2.45, 2.14]);
+    let (s, h) = mk(RAD_FRESNEL_CONDUCTOR, eta, Some(k));
+    ok(s);
+    let c = Conductor::new(Vec3::from_array(eta), Vec3::from_array(k)).unwrap();
+    check_equal_rgb(
+        "conductor rgb",
+        &h,
+        &Microfacet::<Ggx, HeightCorrelated, _>::new(g(), c),
+    );
+    // The monochrome calls: the luminance of η and of k.
+    let lum = |v: [f32; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+    assert_eq!(h.params, [0.25, lum(eta), lum(k)]);
+    let (t0, t82) = ([0.9f32, 0.7, 0.3], [0.8f32, 0.9, 1.0]);
+    let (s, h) = mk(RAD_FRESNEL_F82, t0, Some(t82));
+    ok(s);
+    let f = F82Tint::new(Vec3::from_array(t0), Vec3::from_array(t82)).unwrap();
+    check_equal_rgb(
+        "f82 rgb",
+        &h,
+        &Microfacet::<Ggx, HeightCorrelated, _>::new(g(), f),
+    );
+    for fresnel in [RAD_FRESNEL_NONE, RAD_FRESNEL_DIELECTRIC, RAD_FRESNEL_METAL, 99] {
+        assert_eq!(
+            mk(fresnel, [0.5; 3], Some([0.5; 3])).0,
+            RadStatus::UnknownKind,
+            "{fresnel}"
+        );
+    }
+    assert_eq!(
+        mk(RAD_FRESNEL_SCHLICK, [0.5, 1.5, 0.5], None).0,
+        RadStatus::OutOfRange
+    );
+    assert_eq!(
+        mk(RAD_FRESNEL_CONDUCTOR, [0.5; 3], None).0,
+        RadStatus::NullPointer
+    );
+    assert_eq!(
+        mk(RAD_FRESNEL_F82, [0.5, f32::NAN, 0.5], Some([1.0; 3])).0,
+        RadStatus::NotFinite
+    );
+}

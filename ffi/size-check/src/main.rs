@@ -409,6 +409,15 @@ fn rgb() {
         black_box(rad_brdf_oren_nayar_rgb(c.as_ptr(), black_box(0.5), &mut base));
         black_box(rad_brdf_sheen_rgb(c.as_ptr(), black_box(0.5), &mut base));
         black_box(rad_brdf_eon_rgb(c.as_ptr(), black_box(0.5), &mut base));
+        black_box(rad_brdf_microfacet_rgb(
+            black_box(0),
+            black_box(0.1),
+            black_box(0),
+            black_box(RAD_FRESNEL_CONDUCTOR),
+            c.as_ptr(),
+            c.as_ptr(),
+            &mut top,
+        ));
         black_box(rad_brdf_microfacet(
             black_box(0),
             black_box(0.1),
