@@ -760,6 +760,26 @@ enum RadStatus rad_brdf_sample_batch_rgb(const struct RadBrdf *brdf,
                                          struct RadBrdfSample *out,
                                          size_t n);
 
+// Structure-of-arrays form of [`rad_brdf_eval_batch_rgb`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+// `out_g[k]`, `out_b[k]`.
+//
+// # Safety
+// `brdf` points to a readable `RadBrdf`; each of the six input pointers to `n`
+// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_brdf_eval_batch_soa_rgb(const struct RadBrdf *brdf,
+                                           const float *wi_x,
+                                           const float *wi_y,
+                                           const float *wi_z,
+                                           const float *wo_x,
+                                           const float *wo_y,
+                                           const float *wo_z,
+                                           float *out_r,
+                                           float *out_g,
+                                           float *out_b,
+                                           size_t n);
+
 // Uniform sky of radiance `L` over the upper hemisphere: `E = π L`
 // (PBR 4th ed. eq. 4.8).
 //
@@ -1025,6 +1045,26 @@ enum RadStatus rad_material_sample_batch_rgb(const struct RadMaterial *material,
                                              struct RadBrdfSample *out,
                                              size_t n);
 
+// Structure-of-arrays form of [`rad_material_eval_batch_rgb`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+// `out_g[k]`, `out_b[k]`.
+//
+// # Safety
+// `material` points to a readable `RadMaterial`; each of the six input pointers to `n`
+// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_material_eval_batch_soa_rgb(const struct RadMaterial *material,
+                                               const float *wi_x,
+                                               const float *wi_y,
+                                               const float *wi_z,
+                                               const float *wo_x,
+                                               const float *wo_y,
+                                               const float *wo_z,
+                                               float *out_r,
+                                               float *out_g,
+                                               float *out_b,
+                                               size_t n);
+
 // Writes OpenPBR Surface 1.1's default parameters to `*out`: a white-ish
 // (`base_color` 0.8) dielectric base with a `specular_roughness` 0.3,
 // `specular_ior` 1.5 specular layer, no coat (`coat_ior` 1.6,
@@ -1202,6 +1242,26 @@ enum RadStatus rad_openpbr_sample_batch_rgb(const struct RadOpenPbr *material,
                                             const float *u,
                                             struct RadBrdfSample *out,
                                             size_t n);
+
+// Structure-of-arrays form of [`rad_openpbr_eval_batch_rgb`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+// `out_g[k]`, `out_b[k]`.
+//
+// # Safety
+// `material` points to a readable `RadOpenPbr`; each of the six input pointers to `n`
+// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_openpbr_eval_batch_soa_rgb(const struct RadOpenPbr *material,
+                                              const float *wi_x,
+                                              const float *wi_y,
+                                              const float *wi_z,
+                                              const float *wo_x,
+                                              const float *wo_y,
+                                              const float *wo_z,
+                                              float *out_r,
+                                              float *out_g,
+                                              float *out_b,
+                                              size_t n);
 
 // A static, NUL-terminated English description of a status code (any
 // integer: unknown codes get "unknown status"). Never null.

@@ -1085,6 +1085,89 @@ pub(crate) unsafe fn soa_batch<H: Handle>(
     })())
 }
 
+/// The body of `rad_*_eval_batch_soa_rgb`: the RGB values of the SoA
+/// directions into three arrays (R, G, B), through a stack buffer of 64
+/// values at a time (no heap).
+///
+/// # Safety
+/// As [`rad_brdf_eval_batch_soa_rgb`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn soa_batch_rgb<H: Handle>(
+    h: *const H,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out_r: *mut f32,
+    out_g: *mut f32,
+    out_b: *mut f32,
+    n: usize,
+) -> RadStatus {
+    status((|| {
+        // SAFETY: forwarded caller contract.
+        let h = unsafe { as_ref(h)? };
+        // SAFETY: forwarded caller contract.
+        let s = |p| unsafe { slice(p, n) };
+        let (ix, iy, iz, ox, oy, oz) = (s(wi_x)?, s(wi_y)?, s(wi_z)?, s(wo_x)?, s(wo_y)?, s(wo_z)?);
+        let inputs = [ix, iy, iz, ox, oy, oz].map(span);
+        // SAFETY: forwarded caller contract; each output is checked to overlap no input and no other output.
+        let r = unsafe { slice_mut_disjoint(out_r, n, &inputs)? };
+        let with_r = [
+            inputs[0],
+            inputs[1],
+            inputs[2],
+            inputs[3],
+            inputs[4],
+            inputs[5],
+            span(r),
+        ];
+        // SAFETY: as above.
+        let g = unsafe { slice_mut_disjoint(out_g, n, &with_r)? };
+        let with_g = [
+            inputs[0],
+            inputs[1],
+            inputs[2],
+            inputs[3],
+            inputs[4],
+            inputs[5],
+            with_r[6],
+            span(g),
+        ];
+        // SAFETY: as above.
+        let b = unsafe { slice_mut_disjoint(out_b, n, &with_g)? };
+        h.with::<Vec3, _>(|brdf| {
+            const CHUNK: usize = 64;
+            let mut buf = [Vec3::ZERO; CHUNK];
+            let mut start = 0;
+            while start < n {
+                let end = (start + CHUNK).min(n);
+                let (Some(wi), Some(wo)) = (
+                    ix.get(start..end)
+                        .zip(iy.get(start..end))
+                        .zip(iz.get(start..end))
+                        .map(|((x, y), z)| Vec3Soa { x, y, z }),
+                    ox.get(start..end)
+                        .zip(oy.get(start..end))
+                        .zip(oz.get(start..end))
+                        .map(|((x, y), z)| Vec3Soa { x, y, z }),
+                ) else {
+                    break;
+                };
+                let out = &mut buf[..end - start];
+                brdf.eval_batch_soa(wi, wo, out);
+                for (k, v) in (start..end).zip(out.iter()) {
+                    if let (Some(r), Some(g), Some(b)) = (r.get_mut(k), g.get_mut(k), b.get_mut(k)) {
+                        (*r, *g, *b) = (v.x, v.y, v.z);
+                    }
+                }
+                start = end;
+            }
+        })
+    })())
+}
+
 /// Structure-of-arrays form of [`rad_brdf_eval_batch`] (wavefront
 /// renderers): direction `k` is `(wi_x[k], wi_y[k], wi_z[k])`.
 ///
@@ -1259,4 +1342,31 @@ pub unsafe extern "C" fn rad_brdf_sample_batch_rgb(
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
     unsafe { sample_batch::<_, Vec3>(brdf, wo, u, out, n) }
+}
+
+/// Structure-of-arrays form of [`rad_brdf_eval_batch_rgb`]: direction `k` is
+/// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+/// `out_g[k]`, `out_b[k]`.
+///
+/// # Safety
+/// `brdf` points to a readable `RadBrdf`; each of the six input pointers to `n`
+/// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+/// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn rad_brdf_eval_batch_soa_rgb(
+    brdf: *const RadBrdf,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out_r: *mut f32,
+    out_g: *mut f32,
+    out_b: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { soa_batch_rgb(brdf, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out_r, out_g, out_b, n) }
 }

@@ -19,7 +19,7 @@
 
 use crate::brdf::{
     Channels, DynBrdf, Handle, check_rgb, eval_batch_rgb, eval_one, eval_one_rgb, pair_batch, pdf_one,
-    pdf_one_rgb, sample_batch, sample_one, sample_one_rgb, soa_batch, with_plugin_shared,
+    pdf_one_rgb, sample_batch, sample_one, sample_one_rgb, soa_batch, soa_batch_rgb, with_plugin_shared,
 };
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdf, RadBrdfSample, RadStatus, RadVec3};
@@ -629,4 +629,35 @@ pub unsafe extern "C" fn rad_material_sample_batch_rgb(
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
     unsafe { sample_batch::<_, Vec3>(material, wo, u, out, n) }
+}
+
+/// Structure-of-arrays form of [`rad_material_eval_batch_rgb`]: direction `k` is
+/// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+/// `out_g[k]`, `out_b[k]`.
+///
+/// # Safety
+/// `material` points to a readable `RadMaterial`; each of the six input pointers to `n`
+/// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+/// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn rad_material_eval_batch_soa_rgb(
+    material: *const RadMaterial,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out_r: *mut f32,
+    out_g: *mut f32,
+    out_b: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        soa_batch_rgb(
+            material, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out_r, out_g, out_b, n,
+        )
+    }
 }

@@ -1367,3 +1367,120 @@ fn rgb_fresnel_parameters_equal_the_rust_plugins() {
         RadStatus::NotFinite
     );
 }
+
+/// The SoA RGB batches equal the AoS RGB batches bit for bit, for a plugin, a material and OpenPBR; outputs that
+/// overlap an input or each other are `RAD_STATUS_OVERLAP`.
+#[test]
+fn rgb_soa_batches_equal_the_aos_batches() {
+    let n = 150;
+    let (wi, wo) = (directions(n, 0.21), directions(n, 0.47));
+    let comp = |v: &[RadVec3], f: fn(&RadVec3) -> f32| v.iter().map(f).collect::<Vec<f32>>();
+    let (ix, iy, iz) = (comp(&wi, |v| v.x), comp(&wi, |v| v.y), comp(&wi, |v| v.z));
+    let (ox, oy, oz) = (comp(&wo, |v| v.x), comp(&wo, |v| v.y), comp(&wo, |v| v.z));
+    type Soa<H> = unsafe extern "C" fn(
+        *const H,
+        *const f32,
+        *const f32,
+        *const f32,
+        *const f32,
+        *const f32,
+        *const f32,
+        *mut f32,
+        *mut f32,
+        *mut f32,
+        usize,
+    ) -> RadStatus;
+    fn check<H: CHandleRgb>(
+        name: &str,
+        h: &H,
+        soa: Soa<H>,
+        inputs: [&[f32]; 6],
+        wi: &[RadVec3],
+        wo: &[RadVec3],
+    ) {
+        let n = wi.len();
+        let (mut r, mut g, mut b) = (vec![f32::NAN; n], vec![f32::NAN; n], vec![f32::NAN; n]);
+        let [ix, iy, iz, ox, oy, oz] = inputs.map(|s| s.as_ptr());
+        ok(unsafe {
+            soa(
+                h,
+                ix,
+                iy,
+                iz,
+                ox,
+                oy,
+                oz,
+                r.as_mut_ptr(),
+                g.as_mut_ptr(),
+                b.as_mut_ptr(),
+                n,
+            )
+        });
+        let aos = h.eval_batch_rgb(wi, wo);
+        for k in 0..n {
+            let got = [r[k], g[k], b[k]].map(f32::to_bits);
+            assert_eq!(
+                got,
+                [aos[3 * k], aos[3 * k + 1], aos[3 * k + 2]].map(f32::to_bits),
+                "{name} k={k}"
+            );
+        }
+        let s = unsafe {
+            soa(
+                h,
+                ix,
+                iy,
+                iz,
+                ox,
+                oy,
+                oz,
+                r.as_mut_ptr(),
+                r.as_mut_ptr(),
+                b.as_mut_ptr(),
+                n,
+            )
+        };
+        assert_eq!(s, RadStatus::Overlap, "{name}: out_g over out_r");
+        let s = unsafe {
+            soa(
+                h,
+                ix,
+                iy,
+                iz,
+                ox,
+                oy,
+                oz,
+                r.as_mut_ptr(),
+                g.as_mut_ptr(),
+                ix as *mut f32,
+                n,
+            )
+        };
+        assert_eq!(s, RadStatus::Overlap, "{name}: out_b over wi_x");
+    }
+    let inputs: [&[f32]; 6] = [&ix, &iy, &iz, &ox, &oy, &oz];
+    let gold = c_ggx(0.3, RAD_FRESNEL_METAL, RAD_METAL_AU as f32, 0.0);
+    check("gold", &gold, rad_brdf_eval_batch_soa_rgb, inputs, &wi, &wo);
+    let base = c_rgb(rad_brdf_eon_rgb, [0.7, 0.3, 0.1], 0.4);
+    let coat = c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0);
+    check(
+        "plastic",
+        &c_coated(&coat, &base, 0.9, 1.5),
+        rad_material_eval_batch_soa_rgb,
+        inputs,
+        &wi,
+        &wo,
+    );
+    let red = RadOpenPbrParams {
+        base_color: [0.8, 0.1, 0.1],
+        ..c_defaults()
+    };
+    check(
+        "openpbr",
+        &c_openpbr(&red),
+        rad_openpbr_eval_batch_soa_rgb,
+        inputs,
+        &wi,
+        &wo,
+    );
+}

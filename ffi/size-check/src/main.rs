@@ -402,6 +402,7 @@ fn rgb() {
     let (wis, wos, u) = (black_box([wi; 4]), black_box([wo; 4]), black_box([0.5f32; 8]));
     let n = black_box(4usize);
     let c = black_box([0.8f32, 0.4, 0.1]);
+    let d = black_box([0.5f32; 4]);
     // SAFETY: valid, aligned, exclusive pointers to locals; `n` is their length (3n floats for RGB values).
     unsafe {
         black_box(rad_brdf_lambertian_rgb(c.as_ptr(), &mut base));
@@ -429,13 +430,28 @@ fn rgb() {
         ));
         let (top, base) = (black_box(top), black_box(base));
         macro_rules! calls {
-            ($h:expr, $e:ident, $p:ident, $s:ident, $eb:ident, $pb:ident, $sb:ident) => {
+            ($h:expr, $e:ident, $p:ident, $s:ident, $eb:ident, $pb:ident, $sb:ident, $soa:ident) => {
                 black_box($e($h, wi, wo, f.as_mut_ptr()));
                 black_box($p($h, wi, wo, &mut f[3]));
                 black_box($s($h, wo, black_box(0.3), black_box(0.7), &mut s[0]));
                 black_box($eb($h, wis.as_ptr(), wos.as_ptr(), f.as_mut_ptr(), n));
                 black_box($pb($h, wis.as_ptr(), wos.as_ptr(), f.as_mut_ptr(), n));
                 black_box($sb($h, wos.as_ptr(), u.as_ptr(), s.as_mut_ptr(), n));
+                let (r, g, b) = f.split_at_mut(4);
+                let (g, b) = g.split_at_mut(4);
+                black_box($soa(
+                    $h,
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    r.as_mut_ptr(),
+                    g.as_mut_ptr(),
+                    b.as_mut_ptr(),
+                    n,
+                ));
             };
         }
         calls!(
@@ -445,7 +461,8 @@ fn rgb() {
             rad_brdf_sample_rgb,
             rad_brdf_eval_batch_rgb,
             rad_brdf_pdf_batch_rgb,
-            rad_brdf_sample_batch_rgb
+            rad_brdf_sample_batch_rgb,
+            rad_brdf_eval_batch_soa_rgb
         );
         black_box(rad_material_coated(
             &top,
@@ -462,7 +479,8 @@ fn rgb() {
             rad_material_sample_rgb,
             rad_material_eval_batch_rgb,
             rad_material_pdf_batch_rgb,
-            rad_material_sample_batch_rgb
+            rad_material_sample_batch_rgb,
+            rad_material_eval_batch_soa_rgb
         );
         black_box(rad_openpbr_default_params(&mut p));
         black_box(rad_openpbr_new(&black_box(p), &mut o));
@@ -474,7 +492,8 @@ fn rgb() {
             rad_openpbr_sample_rgb,
             rad_openpbr_eval_batch_rgb,
             rad_openpbr_pdf_batch_rgb,
-            rad_openpbr_sample_batch_rgb
+            rad_openpbr_sample_batch_rgb,
+            rad_openpbr_eval_batch_soa_rgb
         );
     }
     black_box((f, s));
