@@ -437,8 +437,8 @@ fn rgb() {
                 black_box($eb($h, wis.as_ptr(), wos.as_ptr(), f.as_mut_ptr(), n));
                 black_box($pb($h, wis.as_ptr(), wos.as_ptr(), f.as_mut_ptr(), n));
                 black_box($sb($h, wos.as_ptr(), u.as_ptr(), s.as_mut_ptr(), n));
-                let (r, g, b) = f.split_at_mut(4);
-                let (g, b) = g.split_at_mut(4);
+                let (r, rest) = f.split_at_mut(4);
+                let (g, b) = rest.split_at_mut(4);
                 black_box($soa(
                     $h,
                     d.as_ptr(),
