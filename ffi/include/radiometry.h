@@ -237,7 +237,9 @@ typedef struct RadBrdf {
   // Fresnel's first parameter (`f0`, `η`) of a microfacet BRDF; `rgb[1]`
   // `ks` (Phong, Blinn–Phong) or the Fresnel's second parameter (`k`, the
   // F82 tint). The scalar parameters (roughness, exponent, `σ`) are
-  // `params`' for both; unused slots 0.
+  // `params`' for both. Slots a kind does not use are 0, except that a
+  // microfacet BRDF without a coloured Fresnel term (none, dielectric)
+  // repeats its `fresnel_a`, `fresnel_b` there (unread).
   float rgb[2][3];
 } RadBrdf;
 
