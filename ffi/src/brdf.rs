@@ -1140,31 +1140,28 @@ pub(crate) unsafe fn soa_batch_rgb<H: Handle>(
         // SAFETY: as above.
         let b = unsafe { slice_mut_disjoint(out_b, n, &with_g)? };
         h.with::<Vec3, _>(|brdf| {
+            // Chunk iterators and zips, not indexing: no panic path (the
+            // no-panic proof covers this function).
             const CHUNK: usize = 64;
             let mut buf = [Vec3::ZERO; CHUNK];
-            let mut start = 0;
-            while start < n {
-                let end = (start + CHUNK).min(n);
-                let (Some(wi), Some(wo)) = (
-                    ix.get(start..end)
-                        .zip(iy.get(start..end))
-                        .zip(iz.get(start..end))
-                        .map(|((x, y), z)| Vec3Soa { x, y, z }),
-                    ox.get(start..end)
-                        .zip(oy.get(start..end))
-                        .zip(oz.get(start..end))
-                        .map(|((x, y), z)| Vec3Soa { x, y, z }),
-                ) else {
+            let wi = ix.chunks(CHUNK).zip(iy.chunks(CHUNK)).zip(iz.chunks(CHUNK));
+            let wo = ox.chunks(CHUNK).zip(oy.chunks(CHUNK)).zip(oz.chunks(CHUNK));
+            let out = r
+                .chunks_mut(CHUNK)
+                .zip(g.chunks_mut(CHUNK))
+                .zip(b.chunks_mut(CHUNK));
+            for ((((ax, ay), az), ((bx, by), bz)), ((r, g), b)) in wi.zip(wo).zip(out) {
+                let Some(vals) = buf.get_mut(..ax.len()) else {
                     break;
                 };
-                let out = &mut buf[..end - start];
-                brdf.eval_batch_soa(wi, wo, out);
-                for (k, v) in (start..end).zip(out.iter()) {
-                    if let (Some(r), Some(g), Some(b)) = (r.get_mut(k), g.get_mut(k), b.get_mut(k)) {
-                        (*r, *g, *b) = (v.x, v.y, v.z);
-                    }
+                brdf.eval_batch_soa(
+                    Vec3Soa { x: ax, y: ay, z: az },
+                    Vec3Soa { x: bx, y: by, z: bz },
+                    vals,
+                );
+                for (((v, r), g), b) in vals.iter().zip(r.iter_mut()).zip(g.iter_mut()).zip(b.iter_mut()) {
+                    (*r, *g, *b) = (v.x, v.y, v.z);
                 }
-                start = end;
             }
         })
     })())
