@@ -8,12 +8,12 @@
 //! reflect all light (`ρ = 1`); the single-scattering lobe loses what
 //! multiple bounces would have returned (GGX `α = 1`: `ρ(0°) = 1 − ln 2`).
 
-use crate::model::{self, AnyBrdf};
+use crate::model::{self, AnyBrdf, RunTimeSpectrum};
 use crate::spec::{self, BrdfSpec, MultipleScattering};
 use plotters::prelude::*;
-use radiometry::Brdf;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrand, Integrator};
+use radiometry::{Brdf, Spectrum, WideSpectrum};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -33,6 +33,11 @@ pub struct FurnaceArgs {
     /// sampling map) and the added lobe (adaptive cubature on the hemisphere).
     #[arg(long, default_value_t = 40_000)]
     budget: u32,
+    /// One table (the Rec. 709 luminance path) even for a colour spec (a named metal,
+    /// `conductor(metal=…)`). Without it a colour spec gives a row per channel (R, G, B: linear sRGB) and a
+    /// curve per channel; a grey spec always gives one.
+    #[arg(long)]
+    mono: bool,
 }
 
 /// One row of the furnace table.
@@ -86,8 +91,8 @@ fn with_ms(s: &BrdfSpec, ms: MultipleScattering) -> Option<BrdfSpec> {
 }
 
 /// `ρ(θo)` of `b` by `Adaptive::new(0, 0).warped()` (refine until the budget
-/// is spent): `(value, error estimate)`.
-fn albedo(b: &AnyBrdf, theta_deg: f64, budget: u32) -> Result<(f64, f64), String> {
+/// is spent): `(value, error estimate)` per channel.
+fn albedo<S: Spectrum>(b: &AnyBrdf<S>, theta_deg: f64, budget: u32) -> Result<(S::Wide, S::Wide), String> {
     let a = Adaptive::new(0.0, 0.0).map_err(|e| e.to_string())?.warped();
     let e = a
         .integrate(
@@ -109,17 +114,17 @@ fn dir(theta_deg: f64) -> Vec3 {
 
 /// The added lobe `(f − f_ss)(ωi, ωo) cos θi` of a compensated BRDF: broad
 /// and smooth, so it is integrated on the plain hemisphere.
-struct Lobe<'a> {
-    compensated: &'a AnyBrdf,
-    single: &'a AnyBrdf,
+struct Lobe<'a, S: Spectrum> {
+    compensated: &'a AnyBrdf<S>,
+    single: &'a AnyBrdf<S>,
     wo: Vec3,
 }
 
-impl Integrand for Lobe<'_> {
-    type Spectrum = f32;
-    fn eval(&self, w: Vec3) -> f32 {
+impl<S: Spectrum> Integrand for Lobe<'_, S> {
+    type Spectrum = S;
+    fn eval(&self, w: Vec3) -> S {
         if w.z <= 0.0 {
-            return 0.0;
+            return S::zero();
         }
         (self.compensated.eval(w, self.wo) - self.single.eval(w, self.wo)) * w.z
     }
@@ -134,13 +139,13 @@ impl Integrand for Lobe<'_> {
 /// rule integrates poorly (GGX `α = 1`, `θo = 45°`: `1.0006 ± 0.0002` at
 /// 10⁶ evaluations, against `0.99940` from both the plain adaptive and
 /// the Gauss–Legendre product rule).
-fn compensated_albedo(
-    comp: &AnyBrdf,
-    single: &AnyBrdf,
+fn compensated_albedo<S: Spectrum>(
+    comp: &AnyBrdf<S>,
+    single: &AnyBrdf<S>,
     theta_deg: f64,
-    ss: (f64, f64),
+    ss: (S::Wide, S::Wide),
     budget: u32,
-) -> Result<(f64, f64), String> {
+) -> Result<(S::Wide, S::Wide), String> {
     let a = Adaptive::new(0.0, 0.0).map_err(|e| e.to_string())?;
     let lobe = Lobe {
         compensated: comp,
@@ -150,34 +155,46 @@ fn compensated_albedo(
     let e = a
         .integrate(&lobe, budget)
         .map_err(|e| format!("θo = {theta_deg}°: {e}"))?;
-    Ok((ss.0 + e.value, ss.1 + e.error))
+    let add = |a: S::Wide, b: S::Wide| a.zip(b, |x, y| x + y);
+    Ok((add(ss.0, e.value), add(ss.1, e.error)))
 }
 
-/// The furnace table of a parsed microfacet spec.
-pub fn table(text: &str, parsed: &BrdfSpec, angles: &[f64], budget: u32) -> Result<Vec<Row>, String> {
+/// The furnace tables of a parsed microfacet spec in the spectrum `S`: one
+/// table per channel (`f32`: one; `Vec3`: R, G, B).
+pub fn table_as<S: RunTimeSpectrum>(
+    text: &str,
+    parsed: &BrdfSpec,
+    angles: &[f64],
+    budget: u32,
+) -> Result<Vec<Vec<Row>>, String> {
     let not_micro = || format!("`{text}`: the furnace test needs a microfacet spec (ggx or beckmann)");
     let s = with_ms(parsed, MultipleScattering::Single).ok_or_else(not_micro)?;
     let c = with_ms(parsed, MultipleScattering::KullaConty).ok_or_else(not_micro)?;
-    let single = model::build_brdf(text, &s).map_err(|e| e.to_string())?;
-    let comp = model::build_brdf(text, &c).map_err(|e| e.to_string())?;
-    angles
-        .iter()
-        .map(|&t| {
-            let ss = albedo(&single, t, budget)?;
-            Ok(Row {
+    let single = model::build_brdf_as::<S>(text, &s).map_err(|e| e.to_string())?;
+    let comp = model::build_brdf_as::<S>(text, &c).map_err(|e| e.to_string())?;
+    let mut tables = vec![Vec::with_capacity(angles.len()); S::CHANNELS];
+    for &t in angles {
+        let ss = albedo(&single, t, budget)?;
+        let cc = compensated_albedo(&comp, &single, t, ss, budget)?;
+        for (ch, rows) in tables.iter_mut().enumerate() {
+            rows.push(Row {
                 theta_o: t,
-                single: ss,
-                compensated: compensated_albedo(&comp, &single, t, ss, budget)?,
-            })
-        })
-        .collect()
+                single: (ss.0.channel(ch), ss.1.channel(ch)),
+                compensated: (cc.0.channel(ch), cc.1.channel(ch)),
+            });
+        }
+    }
+    Ok(tables)
 }
 
 /// Which albedo of a [`Row`] a plotted series shows.
 type Column = fn(&Row) -> f64;
 
-/// Draws albedo over θo: single scattering, compensated, and the line ρ = 1.
-pub fn plot(path: &Path, title: &str, rows: &[Row]) -> Result<(), String> {
+/// Draws albedo over θo: single scattering, compensated, and the line ρ = 1,
+/// for each channel's table: one table (monochrome) in blue (single
+/// scattering) and red (compensated); three tables (R, G, B) each in its
+/// colour, thin for single scattering and thick for compensated.
+pub fn plot(path: &Path, title: &str, tables: &[Vec<Row>]) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Display| format!("plot {}: {e}", path.display());
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| err(&e))?;
@@ -201,12 +218,27 @@ pub fn plot(path: &Path, title: &str, rows: &[Row]) -> Result<(), String> {
     chart
         .draw_series(LineSeries::new([(0.0, 1.0), (90.0, 1.0)], one))
         .map_err(|e| err(&e))?;
-    let series: [(&str, RGBColor, Column); 2] = [
-        ("single scattering", BLUE, |r| r.single.0),
-        ("Kulla–Conty compensated", RED, |r| r.compensated.0),
-    ];
-    for (name, color, value) in series {
-        let style = ShapeStyle::from(&color).stroke_width(2);
+    let mut series: Vec<(String, RGBColor, u32, Column, &[Row])> = Vec::new();
+    let single: Column = |r| r.single.0;
+    let compensated: Column = |r| r.compensated.0;
+    if let [rows] = tables {
+        series.push(("single scattering".into(), BLUE, 2, single, rows));
+        series.push(("Kulla–Conty compensated".into(), RED, 2, compensated, rows));
+    } else {
+        let channels = [("R", RED), ("G", RGBColor(0, 150, 0)), ("B", BLUE)];
+        for ((name, color), rows) in channels.into_iter().zip(tables) {
+            series.push((format!("single scattering ({name})"), color, 1, single, rows));
+            series.push((
+                format!("Kulla–Conty compensated ({name})"),
+                color,
+                3,
+                compensated,
+                rows,
+            ));
+        }
+    }
+    for (name, color, width, value, rows) in series {
+        let style = ShapeStyle::from(&color).stroke_width(width);
         chart
             .draw_series(LineSeries::new(rows.iter().map(|r| (r.theta_o, value(r))), style))
             .map_err(|e| err(&e))?
@@ -247,7 +279,13 @@ pub fn run(a: FurnaceArgs) -> ExitCode {
         eprintln!("error: --budget must be at least {}", Adaptive::MIN_BUDGET);
         return ExitCode::from(2);
     }
-    let rows = match table(&a.spec, &parsed, &angles, a.budget) {
+    let colour = !a.mono && !parsed.is_grey();
+    let tables = if colour {
+        table_as::<Vec3>(&a.spec, &parsed, &angles, a.budget)
+    } else {
+        table_as::<f32>(&a.spec, &parsed, &angles, a.budget)
+    };
+    let tables = match tables {
         Ok(r) => r,
         Err(e) => {
             eprintln!("error: {e}");
@@ -259,15 +297,17 @@ pub fn run(a: FurnaceArgs) -> ExitCode {
         }
     };
     println!(
-        "white furnace: {} (adaptive-warped, budget {} per albedo)",
-        a.spec, a.budget
+        "white furnace: {} (adaptive-warped, budget {} per albedo{})",
+        a.spec,
+        a.budget,
+        if colour {
+            "; a row per channel R, G, B, linear sRGB"
+        } else {
+            ""
+        }
     );
-    println!(
-        "{:>8}  {:>10}  {:>8}  {:>12}  {:>8}  {:>10}",
-        "theta_o", "single", "±", "compensated", "±", "1 - comp"
-    );
-    for r in &rows {
-        println!(
+    let row = |r: &Row| {
+        format!(
             "{:>8.2}  {:>10.6}  {:>8.1e}  {:>12.6}  {:>8.1e}  {:>10.2e}",
             r.theta_o,
             r.single.0,
@@ -275,9 +315,30 @@ pub fn run(a: FurnaceArgs) -> ExitCode {
             r.compensated.0,
             r.compensated.1,
             1.0 - r.compensated.0
+        )
+    };
+    if let [rows] = tables.as_slice() {
+        println!(
+            "{:>8}  {:>10}  {:>8}  {:>12}  {:>8}  {:>10}",
+            "theta_o", "single", "±", "compensated", "±", "1 - comp"
         );
+        for r in rows {
+            println!("{}", row(r));
+        }
+    } else {
+        println!(
+            "{:>8}  {:>10}  {:>8}  {:>12}  {:>8}  {:>10}  {:>7}",
+            "theta_o", "single", "±", "compensated", "±", "1 - comp", "channel"
+        );
+        for i in 0..angles.len() {
+            for (name, rows) in ["R", "G", "B"].iter().zip(&tables) {
+                if let Some(r) = rows.get(i) {
+                    println!("{}  {name:>7}", row(r));
+                }
+            }
+        }
     }
-    match plot(&a.svg, &format!("White furnace: {}", a.spec), &rows) {
+    match plot(&a.svg, &format!("White furnace: {}", a.spec), &tables) {
         Ok(()) => {
             println!("plot: {}", a.svg.display());
             ExitCode::SUCCESS
@@ -292,6 +353,11 @@ pub fn run(a: FurnaceArgs) -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The furnace table of a parsed microfacet spec (monochrome).
+    fn table(text: &str, parsed: &BrdfSpec, angles: &[f64], budget: u32) -> Result<Vec<Row>, String> {
+        Ok(table_as::<f32>(text, parsed, angles, budget)?.swap_remove(0))
+    }
 
     #[test]
     fn angles_cover_zero_to_89() {
@@ -313,10 +379,34 @@ mod tests {
         }
         let dir = std::env::temp_dir().join(format!("radiometry-furnace-{}", std::process::id()));
         let path = dir.join("furnace.svg");
-        plot(&path, "test", &rows).unwrap();
+        plot(&path, "test", &[rows]).unwrap();
         let svg = std::fs::read_to_string(&path).unwrap();
         assert!(svg.starts_with("<svg") && svg.contains("Kulla"));
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A named metal gives a table per channel: gold's red albedo above its
+    /// blue, each channel below the white furnace and raised by the
+    /// compensation; `--mono` (the f32 tables) is the luminance conductor.
+    #[test]
+    fn gold_furnace_per_channel() {
+        let text = "ggx(alpha=0.5, fresnel=conductor(metal=Au))";
+        let parsed = spec::parse_brdf(text).unwrap();
+        let rgb = table_as::<Vec3>(text, &parsed, &[0.0, 60.0], 20_000).unwrap();
+        assert_eq!(rgb.len(), 3);
+        for i in 0..2 {
+            let (r, b) = (rgb[0][i], rgb[2][i]);
+            assert!(r.single.0 > 1.5 * b.single.0, "{r:?} {b:?}");
+            for t in &rgb {
+                assert!(
+                    t[i].single.0 < t[i].compensated.0 && t[i].compensated.0 < 1.0,
+                    "{t:?}"
+                );
+            }
+        }
+        let mono = table(text, &parsed, &[0.0, 60.0], 20_000).unwrap();
+        assert_eq!(mono.len(), 2);
+        assert!(mono[0].single.0 < rgb[0][0].single.0 && mono[0].single.0 > rgb[2][0].single.0);
     }
 
     #[test]

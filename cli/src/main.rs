@@ -20,9 +20,9 @@ mod tabulate_cmd;
 use radiometry_cli::{model, spec, tradeoff};
 
 use clap::{Parser, Subcommand, ValueEnum};
-use radiometry::Brdf;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{DEFAULT_MAX_BUDGET, DirectionalAlbedo, Integrator, integrate_to_tolerance};
+use radiometry::{Brdf, Spectrum, WideSpectrum};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -120,9 +120,15 @@ enum Command {
         #[arg(long, default_value_t = model::DEFAULT_SEED)]
         seed: u64,
         /// Output format (json keys: value, error, evaluations, seconds, integrator, budget, stopped, status,
-        /// status_reason).
+        /// status_reason; for a colour spec value, error and confirmation are [R, G, B] arrays and "channels" is
+        /// "linear-srgb").
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// One value (the Rec. 709 luminance path) even for a colour spec. Without it a spec with an rgb() colour,
+        /// a named metal or a MERL file gives one value per channel (R G B, linear sRGB); a grey spec always
+        /// gives one value.
+        #[arg(long)]
+        mono: bool,
     },
     /// Evaluate f_r(ωi → ωo) [1/sr] of a BRDF.
     #[command(after_help = spec::BRDF_SPEC_HELP)]
@@ -135,9 +141,15 @@ enum Command {
         /// Outgoing direction THETA,PHI in degrees.
         #[arg(long, allow_hyphen_values = true)]
         wo: String,
-        /// Output format (json keys: value, wi, wo).
+        /// Output format (json keys: value, wi, wo; for a colour spec value is an [R, G, B] array and "channels"
+        /// is "linear-srgb").
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// One value (the Rec. 709 luminance path) even for a colour spec. Without it a spec with an rgb() colour,
+        /// a named metal or a MERL file prints one value per channel (R G B, linear sRGB); a grey spec always
+        /// prints one value.
+        #[arg(long)]
+        mono: bool,
     },
     /// Irradiance E on a surface with normal +Z from a light spec (sum of lights), in closed form.
     #[command(after_help = spec::LIGHT_SPEC_HELP)]
@@ -204,13 +216,15 @@ fn json_num(x: f64) -> serde_json::Value {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Eval { spec, wi, wo, format } => {
+        Command::Eval {
+            spec,
+            wi,
+            wo,
+            format,
+            mono,
+        } => {
             let parsed = match spec::parse_brdf(&spec) {
                 Ok(p) => p,
-                Err(e) => return spec_error(e),
-            };
-            let brdf = match model::build_brdf(&spec, &parsed) {
-                Ok(b) => b,
                 Err(e) => return spec_error(e),
             };
             let (ti, pi) = match spec::parse_angles(&wi) {
@@ -221,7 +235,32 @@ fn main() -> ExitCode {
                 Ok(a) => a,
                 Err(e) => return spec_error(e),
             };
-            let f = brdf.eval(dir(ti, pi), dir(to, po));
+            let (wi, wo) = (dir(ti, pi), dir(to, po));
+            if colour(&parsed, mono) {
+                let brdf = match model::build_brdf_rgb(&spec, &parsed) {
+                    Ok(b) => b,
+                    Err(e) => return spec_error(e),
+                };
+                let f = brdf.eval(wi, wo);
+                match format {
+                    Format::Text => println!("{} {} {}", f.x, f.y, f.z),
+                    Format::Json => println!(
+                        "{}",
+                        serde_json::json!({
+                            "value": f.to_array().map(|v| json_num(v as f64)),
+                            "channels": CHANNELS,
+                            "wi": [ti, pi],
+                            "wo": [to, po],
+                        })
+                    ),
+                }
+                return ExitCode::SUCCESS;
+            }
+            let brdf = match model::build_brdf(&spec, &parsed) {
+                Ok(b) => b,
+                Err(e) => return spec_error(e),
+            };
+            let f = brdf.eval(wi, wo);
             match format {
                 Format::Text => println!("{f}"),
                 Format::Json => println!(
@@ -239,104 +278,31 @@ fn main() -> ExitCode {
             tol,
             seed,
             format,
+            mono,
         } => {
             let parsed = match spec::parse_brdf(&spec) {
                 Ok(p) => p,
                 Err(e) => return spec_error(e),
             };
-            let brdf = match model::build_brdf(&spec, &parsed) {
-                Ok(b) => b,
-                Err(e) => return spec_error(e),
+            let a = AlbedoArgs {
+                theta_o,
+                integrator,
+                budget,
+                tol,
+                seed,
+                format,
             };
-            if !(0.0..=90.0).contains(&theta_o) {
-                return usage_error(&format!("--theta-o {theta_o} is outside [0, 90] degrees"));
-            }
-            if let Some(t) = tol
-                && !(t.is_finite() && t > 0.0)
-            {
-                return usage_error(&format!("--tol {t} must be a positive finite number"));
-            }
-            let Some(integ) = model::integrator_by_name(&integrator, seed, tol.unwrap_or(0.0)) else {
-                let names: Vec<_> = model::all_integrators(seed, 0.0)
-                    .iter()
-                    .map(|i| i.name())
-                    .collect();
-                return usage_error(&format!(
-                    "unknown integrator `{integrator}`; expected one of: {}",
-                    names.join(", ")
-                ));
-            };
-            let g = DirectionalAlbedo {
-                brdf: &brdf,
-                wo: dir(theta_o, 0.0),
-            };
-            let t0 = Instant::now();
-            let (est, used_budget, stopped, total) = if let Some(t) = tol {
-                match integrate_to_tolerance(&integ, &g, t, 64, DEFAULT_MAX_BUDGET) {
-                    Ok(o) => (o.estimate, o.budget, Some(o), o.total_evaluations),
-                    Err(e) => {
-                        eprintln!("error: {}: {e}", integ.name());
-                        return ExitCode::from(1);
-                    }
+            if colour(&parsed, mono) {
+                match model::build_brdf_rgb(&spec, &parsed) {
+                    Ok(b) => albedo(&b, a),
+                    Err(e) => spec_error(e),
                 }
             } else {
-                let b = budget.unwrap_or(4096);
-                match integ.integrate(&g, b) {
-                    Ok(e) => (e, b, None, e.evaluations),
-                    Err(e) => {
-                        eprintln!("error: {}: {e}", integ.name());
-                        return ExitCode::from(1);
-                    }
-                }
-            };
-            let secs = t0.elapsed().as_secs_f64();
-            match format {
-                Format::Text => {
-                    print!(
-                        "albedo = {} ± {}  ({} evaluations, {:.6} s, {}, budget {})",
-                        est.value,
-                        est.error,
-                        total,
-                        secs,
-                        integ.name(),
-                        used_budget
-                    );
-                    if let Some(o) = stopped {
-                        print!(", stopped: {}", o.stop.as_str());
-                        if let Some(c) = o.confirmation {
-                            print!(" (confirmed: moved {c:.3e} from the previous run)");
-                        }
-                    }
-                    if !est.status.is_resolved() {
-                        print!(", {}", est.status);
-                    }
-                    println!();
-                }
-                Format::Json => {
-                    let mut j = serde_json::json!({
-                        "value": json_num(est.value),
-                        "error": json_num(est.error),
-                        "evaluations": total,
-                        "seconds": json_num(secs),
-                        "integrator": integ.name(),
-                        "budget": used_budget,
-                        "final_run_evaluations": est.evaluations,
-                        "status": est.status.as_str(),
-                        "status_reason": est.status.reason(),
-                    });
-                    if let Some(o) = stopped {
-                        j["stopped"] = serde_json::Value::String(o.stop.as_str().into());
-                        j["runs"] = serde_json::Value::from(o.runs);
-                        if let Some(c) = o.confirmation {
-                            j["confirmation"] = json_num(c);
-                        }
-                        j["tol"] = json_num(tol.unwrap_or(0.0));
-                        j["max_budget"] = serde_json::Value::from(DEFAULT_MAX_BUDGET);
-                    }
-                    println!("{j}");
+                match model::build_brdf(&spec, &parsed) {
+                    Ok(b) => albedo(&b, a),
+                    Err(e) => spec_error(e),
                 }
             }
-            ExitCode::SUCCESS
         }
         Command::Irradiance { light, format } => {
             let lights = match spec::parse_lights(&light) {
@@ -415,4 +381,145 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// The options of `radiometry albedo` after the spec.
+struct AlbedoArgs {
+    theta_o: f64,
+    integrator: String,
+    budget: Option<u32>,
+    tol: Option<f64>,
+    seed: u64,
+    format: Format,
+}
+
+/// What the channels of a colour result are (the JSON key "channels").
+const CHANNELS: &str = "linear-srgb";
+
+/// Whether a spec is printed per channel: it has a colour (an rgb() colour, a named metal or a MERL file) and
+/// `--mono` was not given.
+fn colour(parsed: &spec::BrdfSpec, mono: bool) -> bool {
+    !mono && !parsed.is_grey()
+}
+
+/// A result as text: the number (one channel) or the channels separated by spaces.
+fn wide_text<W: WideSpectrum>(w: &W, channels: usize, f: impl Fn(f64) -> String) -> String {
+    (0..channels)
+        .map(|c| f(w.channel(c)))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A result as JSON: the number (one channel) or the array of the channels.
+fn wide_json<W: WideSpectrum>(w: &W, channels: usize) -> serde_json::Value {
+    if channels == 1 {
+        json_num(w.channel(0))
+    } else {
+        serde_json::Value::Array((0..channels).map(|c| json_num(w.channel(c))).collect())
+    }
+}
+
+/// `radiometry albedo` with the run-time BRDF built (monochrome or RGB).
+fn albedo<S: Spectrum>(brdf: &model::AnyBrdf<S>, a: AlbedoArgs) -> ExitCode {
+    let AlbedoArgs {
+        theta_o,
+        integrator,
+        budget,
+        tol,
+        seed,
+        format,
+    } = a;
+    if !(0.0..=90.0).contains(&theta_o) {
+        return usage_error(&format!("--theta-o {theta_o} is outside [0, 90] degrees"));
+    }
+    if let Some(t) = tol
+        && !(t.is_finite() && t > 0.0)
+    {
+        return usage_error(&format!("--tol {t} must be a positive finite number"));
+    }
+    let Some(integ) = model::integrator_by_name(&integrator, seed, tol.unwrap_or(0.0)) else {
+        let names: Vec<_> = model::all_integrators(seed, 0.0)
+            .iter()
+            .map(|i| i.name())
+            .collect();
+        return usage_error(&format!(
+            "unknown integrator `{integrator}`; expected one of: {}",
+            names.join(", ")
+        ));
+    };
+    let g = DirectionalAlbedo {
+        brdf: &brdf,
+        wo: dir(theta_o, 0.0),
+    };
+    let t0 = Instant::now();
+    let (est, used_budget, stopped, total) = if let Some(t) = tol {
+        match integrate_to_tolerance(&integ, &g, t, 64, DEFAULT_MAX_BUDGET) {
+            Ok(o) => (o.estimate, o.budget, Some(o), o.total_evaluations),
+            Err(e) => {
+                eprintln!("error: {}: {e}", integ.name());
+                return ExitCode::from(1);
+            }
+        }
+    } else {
+        let b = budget.unwrap_or(4096);
+        match integ.integrate(&g, b) {
+            Ok(e) => (e, b, None, e.evaluations),
+            Err(e) => {
+                eprintln!("error: {}: {e}", integ.name());
+                return ExitCode::from(1);
+            }
+        }
+    };
+    let secs = t0.elapsed().as_secs_f64();
+    match format {
+        Format::Text => {
+            print!(
+                "albedo = {} ± {}  ({} evaluations, {:.6} s, {}, budget {})",
+                wide_text(&est.value, S::CHANNELS, |v| format!("{v}")),
+                wide_text(&est.error, S::CHANNELS, |v| format!("{v}")),
+                total,
+                secs,
+                integ.name(),
+                used_budget
+            );
+            if let Some(o) = stopped {
+                print!(", stopped: {}", o.stop.as_str());
+                if let Some(c) = o.confirmation {
+                    let c = wide_text(&c, S::CHANNELS, |v| format!("{v:.3e}"));
+                    print!(" (confirmed: moved {c} from the previous run)");
+                }
+            }
+            if !est.status.is_resolved() {
+                print!(", {}", est.status);
+            }
+            println!();
+        }
+        Format::Json => {
+            let mut j = serde_json::json!({
+                "value": wide_json(&est.value, S::CHANNELS),
+                "error": wide_json(&est.error, S::CHANNELS),
+                "evaluations": total,
+                "seconds": json_num(secs),
+                "integrator": integ.name(),
+                "budget": used_budget,
+                "final_run_evaluations": est.evaluations,
+                "status": est.status.as_str(),
+                "status_reason": est.status.reason(),
+            });
+            if let Some(o) = stopped {
+                j["stopped"] = serde_json::Value::String(o.stop.as_str().into());
+                j["runs"] = serde_json::Value::from(o.runs);
+                if let Some(c) = o.confirmation {
+                    j["confirmation"] = wide_json(&c, S::CHANNELS);
+                }
+                j["tol"] = json_num(tol.unwrap_or(0.0));
+                j["max_budget"] = serde_json::Value::from(DEFAULT_MAX_BUDGET);
+            }
+            if S::CHANNELS > 1 {
+                j["channels"] = serde_json::Value::from(CHANNELS);
+            }
+            println!("{j}");
+        }
+    }
+    ExitCode::SUCCESS
 }

@@ -15,7 +15,8 @@ use std::process::ExitCode;
 /// Arguments of `radiometry tabulate`.
 #[derive(clap::Args, Debug)]
 pub struct TabulateArgs {
-    /// BRDF spec to tabulate, e.g. `ggx(alpha=0.3)` (monochrome: written to all three channels).
+    /// BRDF spec to tabulate, e.g. `ggx(alpha=0.3)`, in RGB: a colour spec (an rgb() colour, a named metal)
+    /// writes its channels, a grey spec the same values to all three.
     spec: String,
     /// Output file (MERL `.binary`: three i32 dims, then f64 red, green, blue blocks divided by the MERL
     /// scales 1/1500, 1.15/1500, 1.66/1500).
@@ -29,17 +30,17 @@ pub struct TabulateArgs {
     grid: Vec<usize>,
 }
 
-/// The spec's BRDF (replicated to RGB) plus `ρ/π`.
+/// The spec's RGB BRDF plus `ρ/π`.
 struct WithDiffuse<B> {
     brdf: B,
     rho_over_pi: Vec3,
 }
 
-impl<B: Brdf<Spectrum = f32>> Brdf for WithDiffuse<B> {
+impl<B: Brdf<Spectrum = Vec3>> Brdf for WithDiffuse<B> {
     type Spectrum = Vec3;
     fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
         let above = wi.z > 0.0 && wo.z > 0.0;
-        Vec3::splat(self.brdf.eval(wi, wo)) + if above { self.rho_over_pi } else { Vec3::ZERO }
+        self.brdf.eval(wi, wo) + if above { self.rho_over_pi } else { Vec3::ZERO }
     }
 }
 
@@ -49,7 +50,8 @@ pub fn run(a: TabulateArgs) -> ExitCode {
         Ok(p) => p,
         Err(e) => return crate::spec_error(e),
     };
-    let brdf = match model::build_brdf(&a.spec, &parsed) {
+    // RGB: a grey spec's channels are its monochrome values, bit for bit.
+    let brdf = match model::build_brdf_rgb(&a.spec, &parsed) {
         Ok(b) => b,
         Err(e) => return crate::spec_error(e),
     };

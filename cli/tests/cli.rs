@@ -477,3 +477,157 @@ fn tradeoff_quick_writes_csv_svg_and_summary() {
     assert!(std::fs::metadata(dir.join("references.csv")).is_ok());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A colour spec prints one value per channel (text: three numbers; JSON: an array and `"channels"`),
+/// `--mono` and grey specs print one value: closed forms of a coloured Lambertian, `ρ/π` per channel.
+#[test]
+fn eval_colour_specs_per_channel() {
+    let spec = "lambertian(albedo=rgb(0.8, 0.4, 0.1))";
+    let o = run(&["eval", spec, "--wi", "30,0", "--wo", "45,90"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: Vec<f64> = stdout(&o)
+        .split_whitespace()
+        .map(|t| t.parse().expect("a number"))
+        .collect();
+    assert_eq!(v.len(), 3, "{}", stdout(&o));
+    for (got, rho) in v.iter().zip([0.8, 0.4, 0.1]) {
+        assert!((got - rho / PI).abs() < 1e-7, "{v:?}");
+    }
+    let o = run(&["eval", spec, "--wi", "30,0", "--wo", "45,90", "--format", "json"]);
+    let j = json(&o);
+    let arr = j["value"].as_array().expect("an array");
+    assert_eq!(arr.len(), 3);
+    assert_eq!(j["channels"], "linear-srgb");
+    for (got, want) in arr.iter().zip(&v) {
+        assert_eq!(got.as_f64().unwrap() as f32, *want as f32);
+    }
+    // --mono: the Rec. 709 luminance of the colour.
+    let o = run(&[
+        "eval", spec, "--wi", "30,0", "--wo", "45,90", "--mono", "--format", "json",
+    ]);
+    let m = json(&o)["value"].as_f64().expect("a number");
+    let lum = 0.2126 * 0.8 + 0.7152 * 0.4 + 0.0722 * 0.1;
+    assert!((m - lum / PI).abs() < 1e-7, "{m}");
+    // A grey rgb() is one value.
+    let o = run(&[
+        "eval",
+        "lambertian(albedo=rgb(0.5, 0.5, 0.5))",
+        "--wi",
+        "30,0",
+        "--wo",
+        "45,90",
+    ]);
+    let g: f64 = stdout(&o).trim().parse().expect("one number");
+    assert!((g - 0.5 / PI).abs() < 1e-7);
+}
+
+/// The target: gold at `--wi 30,0 --wo 30,180` prints three values, red above green above blue,
+/// and `--mono` one value between blue and red.
+#[test]
+fn eval_gold_prints_three_values() {
+    let spec = "ggx(alpha=0.3, fresnel=conductor(metal=Au))";
+    let o = run(&["eval", spec, "--wi", "30,0", "--wo", "30,180"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: Vec<f64> = stdout(&o)
+        .split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect();
+    assert_eq!(v.len(), 3);
+    assert!(v[0] > v[1] && v[1] > v[2] && v[2] > 0.0, "{v:?}");
+    let o = run(&["eval", spec, "--wi", "30,0", "--wo", "30,180", "--mono"]);
+    let m: f64 = stdout(&o).trim().parse().unwrap();
+    assert!(m < v[0] && m > v[2], "{m} {v:?}");
+}
+
+/// `albedo` of a colour spec: value, error and (with --tol) confirmation are arrays; the values are the
+/// colour (a Lambertian's albedo is ρ); a grey spec's JSON keeps numbers.
+#[test]
+fn albedo_colour_json_arrays() {
+    let spec = "lambertian(albedo=rgb(0.8, 0.4, 0.1))";
+    let o = run(&[
+        "albedo",
+        spec,
+        "--theta-o",
+        "40",
+        "--tol",
+        "1e-5",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let j = json(&o);
+    for k in ["value", "error", "confirmation"] {
+        assert_eq!(j[k].as_array().map(Vec::len), Some(3), "{k}: {j}");
+    }
+    for (got, want) in j["value"].as_array().unwrap().iter().zip([0.8, 0.4, 0.1]) {
+        assert!((got.as_f64().unwrap() - want).abs() < 1e-5, "{j}");
+    }
+    assert_eq!(j["channels"], "linear-srgb");
+    let o = run(&["albedo", spec, "--theta-o", "40"]);
+    let line = stdout(&o);
+    assert!(line.starts_with("albedo = 0.") && line.contains(" ± "), "{line}");
+    let before: Vec<&str> = line["albedo = ".len()..]
+        .split(" ± ")
+        .next()
+        .unwrap()
+        .split(' ')
+        .collect();
+    assert_eq!(before.len(), 3, "{line}");
+    let o = run(&["albedo", spec, "--theta-o", "40", "--mono", "--format", "json"]);
+    let m = json(&o)["value"].as_f64().expect("a number with --mono");
+    assert!(
+        (m - (0.2126 * 0.8 + 0.7152 * 0.4 + 0.0722 * 0.1)).abs() < 1e-5,
+        "{m}"
+    );
+    let o = run(&[
+        "albedo",
+        "lambertian(albedo=0.5)",
+        "--theta-o",
+        "40",
+        "--format",
+        "json",
+    ]);
+    let j = json(&o);
+    assert!(
+        j["value"].is_f64() && j["error"].is_f64() && j.get("channels").is_none(),
+        "{j}"
+    );
+}
+
+/// `furnace` of a named metal: a row per channel (the added `channel` column), one table with `--mono`.
+#[test]
+fn furnace_colour_rows_per_channel() {
+    let dir = std::env::temp_dir().join(format!("radiometry-cli-furnace-rgb-{}", std::process::id()));
+    let svg = dir.join("f.svg");
+    let spec = "ggx(alpha=0.5, fresnel=conductor(metal=Cu))";
+    let args = [
+        "furnace",
+        spec,
+        "--step",
+        "45",
+        "--budget",
+        "4000",
+        "--svg",
+        svg.to_str().unwrap(),
+    ];
+    let o = run(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = stdout(&o);
+    let rows: Vec<&str> = s
+        .lines()
+        .filter(|l| l.trim_end().ends_with(" R") || l.trim_end().ends_with(" B"))
+        .collect();
+    assert_eq!(rows.len(), 6, "{s}");
+    assert!(s.lines().nth(1).unwrap().contains("channel"), "{s}");
+    let single = |l: &str| l.split_whitespace().nth(1).unwrap().parse::<f64>().unwrap();
+    // Copper: red reflects more than blue at every angle.
+    assert!(single(rows[0]) > single(rows[1]), "{s}");
+    let svg_text = std::fs::read_to_string(&svg).unwrap();
+    assert!(svg_text.contains("(R)") && svg_text.contains("(B)"));
+    let mut mono = args.to_vec();
+    mono.push("--mono");
+    let o = run(&mono);
+    let s = stdout(&o);
+    assert!(!s.contains("channel") && s.lines().count() == 2 + 3 + 1, "{s}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -250,13 +250,22 @@ fn cli_tabulate_then_albedo_and_eval() {
     assert_eq!(std::fs::metadata(&path).unwrap().len(), 12 + 24 * 1_458_000);
     let spec = format!("tabulated(file={p})");
     // wi = (30°, 0°), wo = (30°, 180°): the mirror pair, θh = 0 (a node), θd = 30° (node 30).
-    let eval = |s: &str| -> f64 {
-        let o = run(&["eval", s, "--wi", "30,0", "--wo", "30,180"]);
+    // A MERL file has three channels: `eval` prints R G B (here all the grey GGX), `--mono` their luminance.
+    let eval = |args: &[&str]| -> Vec<f64> {
+        let o = run(&[&["eval"], args, &["--wi", "30,0", "--wo", "30,180"]].concat());
         assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8_lossy(&o.stdout).trim().parse().unwrap()
+        String::from_utf8_lossy(&o.stdout)
+            .split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect()
     };
-    let (ft, fg) = (eval(&spec), eval("ggx(alpha=0.3)"));
-    assert!((ft - fg).abs() <= 1e-5 * fg, "{ft} vs {fg}");
+    let fg = eval(&["ggx(alpha=0.3)"]);
+    assert_eq!(fg.len(), 1);
+    let (rgb, mono) = (eval(&[&spec]), eval(&[&spec, "--mono"]));
+    assert_eq!((rgb.len(), mono.len()), (3, 1));
+    for ft in rgb.into_iter().chain(mono) {
+        assert!((ft - fg[0]).abs() <= 1e-5 * fg[0], "{ft} vs {fg:?}");
+    }
     let o = run(&[
         "albedo",
         &spec,
@@ -271,10 +280,12 @@ fn cli_tabulate_then_albedo_and_eval() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let a = j["value"]
-        .as_f64()
-        .or_else(|| j["albedo"].as_f64())
-        .expect("albedo value");
+    let channels = j["value"].as_array().expect("an albedo per channel");
+    assert_eq!(channels.len(), 3);
+    let a = channels[1].as_f64().expect("albedo value");
+    for c in channels {
+        assert!((c.as_f64().unwrap() - a).abs() <= 1e-5 * a, "{j}");
+    }
     let model = RefModel::Microfacet {
         ggx: true,
         alpha: 0.3,
@@ -305,4 +316,33 @@ fn cli_tabulate_then_albedo_and_eval() {
     for f in [&path, &trunc] {
         let _ = std::fs::remove_file(f);
     }
+}
+
+/// `radiometry tabulate` of a colour spec writes its channels: gold's table read back gives gold's three values
+/// at a node direction (θh = 0, θd = 30°), within the f64 → f32 rounding of the file.
+#[test]
+fn cli_tabulate_keeps_colour() {
+    let path = tmp("cli_gold.binary");
+    let p = path.to_str().unwrap();
+    let gold = "ggx(alpha=0.3, fresnel=conductor(metal=Au))";
+    let o = run(&["tabulate", gold, "--out", p]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let eval = |s: &str| -> Vec<f64> {
+        let o = run(&["eval", s, "--wi", "30,0", "--wo", "30,180"]);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout)
+            .split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect()
+    };
+    let (table, direct) = (eval(&format!("tabulated(file={p})")), eval(gold));
+    assert_eq!((table.len(), direct.len()), (3, 3));
+    for c in 0..3 {
+        assert!(
+            (table[c] - direct[c]).abs() <= 1e-5 * direct[c],
+            "{table:?} vs {direct:?}"
+        );
+    }
+    assert!(table[0] > 2.0 * table[2], "gold: {table:?}");
+    std::fs::remove_file(&path).ok();
 }

@@ -61,8 +61,8 @@ static void albedo(const RadMaterial *m, RadVec3 wo, int n, double *mean, double
         for (int j = 0; j < n; j++) {
             RadBrdfSample smp;
             rad_material_sample(m, wo, (i + 0.5f) / n, (j + 0.5f) / n, &smp);
-            s += smp.weight;
-            s2 += (double)smp.weight * smp.weight;
+            s += smp.weight[0];
+            s2 += (double)smp.weight[0] * smp.weight[0];
         }
     }
     double k = (double)n * n;
@@ -83,8 +83,8 @@ static void openpbr_albedo(const RadOpenPbr *m, RadVec3 wo, int n, double *mean,
         for (int j = 0; j < n; j++) {
             RadBrdfSample smp;
             rad_openpbr_sample(m, wo, (i + 0.5f) / n, (j + 0.5f) / n, &smp);
-            s += smp.weight;
-            s2 += (double)smp.weight * smp.weight;
+            s += smp.weight[0];
+            s2 += (double)smp.weight[0] * smp.weight[0];
         }
     }
     double k = (double)n * n;
@@ -98,14 +98,14 @@ static void openpbr(void) {
     char line[128];
     RadOpenPbrParams p;
     check_status("rad_openpbr_default_params", rad_openpbr_default_params(&p), RAD_STATUS_OK);
-    check("default base_color", p.base_color, 0.8f, 0);
+    check("default base_color (grey)", p.base_color[0] + p.base_color[1] + p.base_color[2], 3 * 0.8f, 1e-7);
     check("default specular_roughness", p.specular_roughness, 0.3f, 0);
     check("default specular_ior", p.specular_ior, 1.5f, 0);
     check("default coat_weight, fuzz_weight (no coat, no fuzz)", p.coat_weight + p.fuzz_weight, 0.0, 0);
     check("default coat_ior", p.coat_ior, 1.6f, 0);
     check("default coat_darkening", p.coat_darkening, 1.0f, 0);
     check("default layering: energy-conserving (reciprocal = 0)", p.reciprocal, 0, 0);
-    check("sizeof(RadOpenPbr) (plain data, no pointers)", (double)sizeof(RadOpenPbr), 72, 0);
+    check("sizeof(RadOpenPbr) (plain data, no pointers)", (double)sizeof(RadOpenPbr), 104, 0);
 
     RadOpenPbr defaults;
     check_status("openpbr defaults (validates and stores the parameters)", rad_openpbr_new(&p, &defaults), RAD_STATUS_OK);
@@ -125,12 +125,14 @@ static void openpbr(void) {
      * absorbing coat. */
     RadOpenPbrParams metal = p;
     metal.base_metalness = 1.0f;
-    metal.base_color = 0.9f;
-    metal.specular_color = 0.95f;
+    metal.base_color[0] = 0.95f;
+    metal.base_color[1] = 0.8f;
+    metal.base_color[2] = 0.4f;
+    metal.specular_color[0] = metal.specular_color[1] = metal.specular_color[2] = 0.95f;
     metal.specular_roughness = 0.4f;
     metal.coat_weight = 1.0f;
     metal.coat_roughness = 0.1f;
-    metal.coat_color = 0.9f;
+    metal.coat_color[0] = metal.coat_color[1] = metal.coat_color[2] = 0.9f;
     RadOpenPbr coated_metal;
     check_status("openpbr coated metal", rad_openpbr_new(&metal, &coated_metal), RAD_STATUS_OK);
     double mean, se;
@@ -169,6 +171,25 @@ static void openpbr(void) {
     }
     check("openpbr pdf(sample) == sample.pdf, bit for bit (1 = all)", exact, 1, 0);
 
+    /* Colour: the coated metal's base colour per channel (the _rgb calls); the
+     * RGB sample's pdf is rad_openpbr_pdf_rgb's, bit for bit. */
+    float rgb[3];
+    check_status("openpbr eval_rgb", rad_openpbr_eval_rgb(&coated_metal, dir(0.5, pi), wo, rgb), RAD_STATUS_OK);
+    printf("openpbr coated metal f(mirror) R G B = %.6g %.6g %.6g 1/sr\n", rgb[0], rgb[1], rgb[2]);
+    check_le("  ... a gold-ish base: blue below red", rgb[2] - rgb[0], 0.0);
+    int exact_rgb = 1;
+    for (int k = 0; k < 256; k++) {
+        RadVec3 o = dir(1.5 * (k % 16) / 16.0, 0.3 * k);
+        RadBrdfSample s;
+        rad_openpbr_sample_rgb(&coated_metal, o, (k * 0.618034f) - (int)(k * 0.618034f),
+                               (k * 0.7548777f) - (int)(k * 0.7548777f), &s);
+        if (s.pdf == 0.0f) continue;
+        float q = -1.0f;
+        rad_openpbr_pdf_rgb(&coated_metal, s.wi, o, &q);
+        if (q != s.pdf) exact_rgb = 0;
+    }
+    check("openpbr pdf_rgb(sample_rgb) == sample.pdf, bit for bit (1 = all)", exact_rgb, 1, 0);
+
     /* A batch equals single calls, bit for bit (and rebuilds the material once). */
     enum { N = 64 };
     RadVec3 wis[N], wos[N];
@@ -190,7 +211,7 @@ static void openpbr(void) {
     q.specular_ior = 0.5f;
     check_status("openpbr specular_ior = 0.5 rejected", rad_openpbr_new(&q, &bad), RAD_STATUS_OUT_OF_RANGE);
     q = p;
-    q.base_color = NAN;
+    q.base_color[1] = NAN;
     check_status("openpbr base_color = NaN rejected", rad_openpbr_new(&q, &bad), RAD_STATUS_NOT_FINITE);
     RadOpenPbr scribbled = coated_metal;
     scribbled.params.reciprocal = 7;
@@ -216,7 +237,7 @@ int main(void) {
     RadMaterial plastic;
     check_status("coated(coat, eon) (stores the lobes and the coat parameters)",
                  rad_material_coated(&coat, &eon, 1.0f, 1.5f, &plastic), RAD_STATUS_OK);
-    check("sizeof(RadMaterial) (plain data, no pointers)", (double)sizeof(RadMaterial), 84, 0);
+    check("sizeof(RadMaterial) (plain data, no pointers)", (double)sizeof(RadMaterial), 132, 0);
     RadMaterial plastic_rec;
     check_status("coated_reciprocal(coat, eon)", rad_material_coated_reciprocal(&coat, &eon, 1.0f, 1.5f, &plastic_rec),
                  RAD_STATUS_OK);
@@ -264,7 +285,7 @@ int main(void) {
         rad_material_pdf(&plastic, s.wi, o, &p);
         if (p != s.pdf) exact = 0;
         double w = eval(&plastic, s.wi, o) * s.wi.z / s.pdf;
-        double d = fabs(w - s.weight) / fmax(w, 1e-3);
+        double d = fabs(w - s.weight[0]) / fmax(w, 1e-3);
         if (d > worst_w) worst_w = d;
     }
     check("plastic pdf(sample) == sample.pdf, bit for bit (1 = all)", exact, 1, 0);

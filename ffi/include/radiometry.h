@@ -72,7 +72,10 @@
 // constructor fits the monochrome `η`, `k` whose Fresnel curve has the
 // luminance of the metal's measured reflectance at normal incidence and at
 // 82° (what the spec grammar's `conductor(metal=Au)` builds) and stores them
-// in `params[1]`, `params[2]`, the id in `RadBrdf::metal`.
+// in `params[1]`, `params[2]`; per channel the `η`, `k` whose Fresnel curve
+// passes through the metal's reflectance reduced to linear sRGB (CIE 1931 2°
+// under D65) at the same two angles, in `rgb[0]` (`η`) and `rgb[1]` (`k`)
+// (`Conductor::<Vec3>::metal`); the id in `RadBrdf::metal`.
 #define RAD_FRESNEL_METAL 5
 
 // Gold (Johnson & Christy 1972), for [`RAD_FRESNEL_METAL`].
@@ -118,7 +121,7 @@
 #define RAD_MATERIAL_COATED 4
 
 // `RadOpenPbr::kind` of a handle filled in by [`rad_openpbr_new`]: OpenPBR
-// Surface 1.1's reflection layer, monochrome.
+// Surface 1.1's reflection layer.
 #define RAD_OPENPBR_REFLECTION 1
 
 // `RadSpectrum::kind`: CIE standard illuminant D65 (relative SPD, 300–830 nm,
@@ -208,11 +211,12 @@ typedef struct RadSpectrum {
   size_t len;
 } RadSpectrum;
 
-// A BRDF plugin: plain data (32 bytes, 4-byte aligned: eight 32-bit
+// A BRDF plugin: plain data (56 bytes, 4-byte aligned: fourteen 32-bit
 // fields), filled in by one of the `rad_brdf_*` constructors. Treat the
 // fields as read-only; a zeroed struct is an invalid handle
-// (`RAD_STATUS_BAD_HANDLE`). Every call re-validates the fields (a few range
-// comparisons) and rebuilds the plugin from them.
+// (`RAD_STATUS_BAD_HANDLE`). Every call re-validates the fields it uses (a
+// few range comparisons: `params` for the monochrome calls, `params` and
+// `rgb` for the `_rgb` calls) and rebuilds the plugin from them.
 typedef struct RadBrdf {
   // One of the `RAD_BRDF_*` kinds.
   uint32_t kind;
@@ -224,9 +228,19 @@ typedef struct RadBrdf {
   uint32_t fresnel;
   // `RAD_METAL_*` with `RAD_FRESNEL_METAL`; 0 otherwise.
   uint32_t metal;
-  // The parameters, by kind (see the `RAD_BRDF_*` constants; unused
-  // slots 0).
+  // The monochrome parameters, by kind (see the `RAD_BRDF_*` constants;
+  // unused slots 0): a colour as its Rec. 709 luminance.
   float params[3];
+  // The colour parameters per channel (R, G, B, linear sRGB), for the
+  // `_rgb` calls: `rgb[0]` the albedo (Lambertian), `rho` (EON, FON,
+  // Oren–Nayar), the colour (sheen), `kd` (Phong, Blinn–Phong) or the
+  // Fresnel's first parameter (`f0`, `η`) of a microfacet BRDF; `rgb[1]`
+  // `ks` (Phong, Blinn–Phong) or the Fresnel's second parameter (`k`, the
+  // F82 tint). The scalar parameters (roughness, exponent, `σ`) are
+  // `params`' for both. Slots a kind does not use are 0, except that a
+  // microfacet BRDF without a coloured Fresnel term (none, dielectric)
+  // repeats its `fresnel_a`, `fresnel_b` there (unread).
+  float rgb[2][3];
 } RadBrdf;
 
 // A 3-vector of `f32` (a direction in the local shading frame: normal on +Z,
@@ -241,20 +255,21 @@ typedef struct RadVec3 {
 } RadVec3;
 
 // One importance sample: `wi` drawn with density `pdf` (per steradian) and
-// Monte Carlo weight `weight = f_r(wi, wo) cos θi / pdf`. `pdf = 0` (and
-// `wi = weight = 0`) means the plugin returned no sample for this `wo, u`
-// (e.g. `wo` below the horizon).
+// Monte Carlo weight `weight = f_r(wi, wo) cos θi / pdf` per channel (R, G,
+// B; the monochrome calls write their one weight to all three). `pdf = 0`
+// (and `wi = weight = 0`) means the plugin returned no sample for this `wo,
+// u` (e.g. `wo` below the horizon).
 typedef struct RadBrdfSample {
   // The sampled incident direction (unit, local frame).
   struct RadVec3 wi;
   // Its solid-angle density (> 0 for a valid sample).
   float pdf;
-  // `f_r · cos θi / pdf`.
-  float weight;
+  // `f_r · cos θi / pdf`, per channel.
+  float weight[3];
 } RadBrdfSample;
 
 // A material: one or two [`RadBrdf`] lobes and how they combine. Plain data
-// (84 bytes, 4-byte aligned: five 32-bit fields and two `RadBrdf`s, no
+// (132 bytes, 4-byte aligned: five 32-bit fields and two `RadBrdf`s, no
 // padding), filled in by `rad_material_brdf`, `rad_material_sum`,
 // `rad_material_mix`, `rad_material_coated` or
 // `rad_material_coated_reciprocal`; copy it
@@ -286,8 +301,9 @@ typedef struct RadMaterial {
 } RadMaterial;
 
 // The parameters of OpenPBR Surface 1.1's reflection layer, with the
-// specification's names (monochrome: every colour is one `float`), and
-// the layering mode. Plain data (68 bytes: 16 `float`s and a `uint32_t`);
+// specification's names (every colour is a `float[3]`, R, G, B, linear
+// sRGB; the monochrome calls use its Rec. 709 luminance), and the layering
+// mode. Plain data (100 bytes: 24 `float`s and a `uint32_t`);
 // `rad_openpbr_default_params` fills in OpenPBR's defaults. Domains: every
 // weight, colour, roughness, `base_metalness` and `coat_darkening` in `[0,
 // 1]`; `specular_ior` and `coat_ior` in `[1, 1000]`; `reciprocal` 0 or 1.
@@ -302,7 +318,7 @@ typedef struct RadOpenPbrParams {
   float base_weight;
   // `base_color` (default 0.8): the diffuse albedo and the metal's
   // reflectance at normal incidence.
-  float base_color;
+  float base_color[3];
   // `base_metalness` (default 0): the mix of metal and glossy-diffuse.
   float base_metalness;
   // `base_diffuse_roughness` (default 0): the EON diffuse's `σ`.
@@ -312,7 +328,7 @@ typedef struct RadOpenPbrParams {
   float specular_weight;
   // `specular_color` (default 1): tints the dielectric's reflection; the
   // metal's F82 tint.
-  float specular_color;
+  float specular_color[3];
   // `specular_roughness` (default 0.3): `α = r²`.
   float specular_roughness;
   // `specular_ior` (default 1.5).
@@ -321,7 +337,7 @@ typedef struct RadOpenPbrParams {
   float coat_weight;
   // `coat_color` (default 1): the coat's absorption (the square of its
   // transmittance at normal incidence).
-  float coat_color;
+  float coat_color[3];
   // `coat_roughness` (default 0): `α = r²`.
   float coat_roughness;
   // `coat_ior` (default 1.6).
@@ -332,7 +348,7 @@ typedef struct RadOpenPbrParams {
   // `fuzz_weight` (default 0).
   float fuzz_weight;
   // `fuzz_color` (default 1).
-  float fuzz_color;
+  float fuzz_color[3];
   // `fuzz_roughness` (default 0.5).
   float fuzz_roughness;
   // The layering (not an OpenPBR parameter; default 0): 0 for OpenPBR's
@@ -542,6 +558,62 @@ enum RadStatus rad_brdf_oren_nayar(float rho, float sigma_rad, struct RadBrdf *o
 // `out` is null or points to a writable `RadBrdf` (unchanged on error).
 enum RadStatus rad_brdf_sheen(float color, float roughness, struct RadBrdf *out);
 
+// [`rad_brdf_lambertian`] with an RGB albedo `albedo[3]`, each channel in
+// `[0, 1]` (the monochrome calls use its Rec. 709 luminance).
+//
+// # Safety
+// `albedo` is null or points to 3 readable `float`s; `out` is null or points
+// to a writable `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_lambertian_rgb(const float *albedo, struct RadBrdf *out);
+
+// [`rad_brdf_microfacet`] with coloured Fresnel parameters: `fresnel` is
+// `RAD_FRESNEL_SCHLICK` (`fresnel_a[3]` = `f0` per channel, `fresnel_b`
+// unused, may be null), `RAD_FRESNEL_CONDUCTOR` (`fresnel_a[3]` = `η`,
+// `fresnel_b[3]` = `k` per channel, as RGB renderers tabulate metals) or
+// `RAD_FRESNEL_F82` (`f0[3]`, the tint `f82[3]`); any other Fresnel is
+// `RAD_STATUS_UNKNOWN_KIND` (`rad_brdf_microfacet` takes them, and
+// `RAD_FRESNEL_METAL` for a measured metal). The monochrome calls use the
+// Rec. 709 luminance of each parameter triple (for a conductor a stand-in,
+// not a reduction of its reflectance: prefer `RAD_FRESNEL_METAL` where the
+// monochrome value matters).
+//
+// # Safety
+// `fresnel_a` is null or points to 3 readable `float`s, as `fresnel_b`
+// (null allowed with Schlick); `out` is null or points to a writable
+// `RadBrdf` (unchanged on error).
+enum RadStatus rad_brdf_microfacet_rgb(uint32_t distribution,
+                                       float alpha,
+                                       uint32_t shadowing,
+                                       uint32_t fresnel,
+                                       const float *fresnel_a,
+                                       const float *fresnel_b,
+                                       struct RadBrdf *out);
+
+// [`rad_brdf_eon`] with an RGB albedo colour `rho[3]` (each channel a lobe).
+//
+// # Safety
+// As [`rad_brdf_lambertian_rgb`].
+enum RadStatus rad_brdf_eon_rgb(const float *rho, float sigma, struct RadBrdf *out);
+
+// [`rad_brdf_fon`] with an RGB albedo colour `rho[3]`.
+//
+// # Safety
+// As [`rad_brdf_lambertian_rgb`].
+enum RadStatus rad_brdf_fon_rgb(const float *rho, float sigma, struct RadBrdf *out);
+
+// [`rad_brdf_oren_nayar`] with an RGB albedo colour `rho[3]` (every channel
+// within the energy bound).
+//
+// # Safety
+// As [`rad_brdf_lambertian_rgb`].
+enum RadStatus rad_brdf_oren_nayar_rgb(const float *rho, float sigma_rad, struct RadBrdf *out);
+
+// [`rad_brdf_sheen`] with an RGB colour `color[3]`.
+//
+// # Safety
+// As [`rad_brdf_lambertian_rgb`].
+enum RadStatus rad_brdf_sheen_rgb(const float *color, float roughness, struct RadBrdf *out);
+
 // `*out = f_r(wi → wo)` in 1/sr.
 //
 // # Safety
@@ -625,6 +697,90 @@ enum RadStatus rad_brdf_sample_batch(const struct RadBrdf *brdf,
                                      const float *u,
                                      struct RadBrdfSample *out,
                                      size_t n);
+
+// `out[0..3] = f_r(wi → wo)` per channel (R, G, B) in 1/sr, from the RGB
+// form of the handle (its `rgb` colours; a grey handle gives the value of
+// [`rad_brdf_eval`] on each channel).
+//
+// # Safety
+// `brdf` is null or points to a readable `RadBrdf`; `out` is null or points
+// to 3 writable `float`s.
+enum RadStatus rad_brdf_eval_rgb(const struct RadBrdf *brdf,
+                                 struct RadVec3 wi,
+                                 struct RadVec3 wo,
+                                 float *out);
+
+// `*out` = the solid-angle density with which [`rad_brdf_sample_rgb`] draws
+// `wi` given `wo`.
+//
+// # Safety
+// As [`rad_brdf_eval`].
+enum RadStatus rad_brdf_pdf_rgb(const struct RadBrdf *brdf,
+                                struct RadVec3 wi,
+                                struct RadVec3 wo,
+                                float *out);
+
+// [`rad_brdf_sample`] of the RGB form: the weight per channel.
+//
+// # Safety
+// As [`rad_brdf_sample`].
+enum RadStatus rad_brdf_sample_rgb(const struct RadBrdf *brdf,
+                                   struct RadVec3 wo,
+                                   float u0,
+                                   float u1,
+                                   struct RadBrdfSample *out);
+
+// `out[3k..3k+3] = f_r(wi[k] → wo[k])` per channel for `k < n` (RGB form).
+//
+// # Safety
+// `brdf` points to a readable `RadBrdf`; `wi`, `wo` to `n` readable
+// `RadVec3`; `out` to `3n` writable `float`s not overlapping the inputs
+// (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_brdf_eval_batch_rgb(const struct RadBrdf *brdf,
+                                       const struct RadVec3 *wi,
+                                       const struct RadVec3 *wo,
+                                       float *out,
+                                       size_t n);
+
+// `out[k] = pdf(wi[k], wo[k])` of the RGB form for `k < n`.
+//
+// # Safety
+// As [`rad_brdf_eval_batch`].
+enum RadStatus rad_brdf_pdf_batch_rgb(const struct RadBrdf *brdf,
+                                      const struct RadVec3 *wi,
+                                      const struct RadVec3 *wo,
+                                      float *out,
+                                      size_t n);
+
+// [`rad_brdf_sample_batch`] of the RGB form: the weights per channel.
+//
+// # Safety
+// As [`rad_brdf_sample_batch`].
+enum RadStatus rad_brdf_sample_batch_rgb(const struct RadBrdf *brdf,
+                                         const struct RadVec3 *wo,
+                                         const float *u,
+                                         struct RadBrdfSample *out,
+                                         size_t n);
+
+// Structure-of-arrays form of [`rad_brdf_eval_batch_rgb`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+// `out_g[k]`, `out_b[k]`.
+//
+// # Safety
+// `brdf` points to a readable `RadBrdf`; each of the six input pointers to `n`
+// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_brdf_eval_batch_soa_rgb(const struct RadBrdf *brdf,
+                                           const float *wi_x,
+                                           const float *wi_y,
+                                           const float *wi_z,
+                                           const float *wo_x,
+                                           const float *wo_y,
+                                           const float *wo_z,
+                                           float *out_r,
+                                           float *out_g,
+                                           float *out_b,
+                                           size_t n);
 
 // Uniform sky of radiance `L` over the upper hemisphere: `E = π L`
 // (PBR 4th ed. eq. 4.8).
@@ -827,6 +983,90 @@ enum RadStatus rad_material_sample_batch(const struct RadMaterial *material,
                                          struct RadBrdfSample *out,
                                          size_t n);
 
+// `out[0..3] = f_r(wi → wo)` of the material per channel (R, G, B) in 1/sr,
+// from its RGB form (a grey material gives [`rad_material_eval`]'s value on each channel).
+//
+// # Safety
+// `material` is null or points to a readable `RadMaterial`; `out` is null or
+// points to 3 writable `float`s.
+enum RadStatus rad_material_eval_rgb(const struct RadMaterial *material,
+                                     struct RadVec3 wi,
+                                     struct RadVec3 wo,
+                                     float *out);
+
+// `*out` = the solid-angle density with which [`rad_material_sample_rgb`] draws
+// `wi` given `wo` (the lobes picked by their per-channel albedos).
+//
+// # Safety
+// As [`rad_material_eval`].
+enum RadStatus rad_material_pdf_rgb(const struct RadMaterial *material,
+                                    struct RadVec3 wi,
+                                    struct RadVec3 wo,
+                                    float *out);
+
+// [`rad_material_sample`] of the RGB form: the weight per channel; its pdf is
+// [`rad_material_pdf_rgb`]'s.
+//
+// # Safety
+// As [`rad_material_sample`].
+enum RadStatus rad_material_sample_rgb(const struct RadMaterial *material,
+                                       struct RadVec3 wo,
+                                       float u0,
+                                       float u1,
+                                       struct RadBrdfSample *out);
+
+// `out[3k..3k+3] = f_r(wi[k] → wo[k])` per channel for `k < n` (RGB form).
+//
+// # Safety
+// `material` points to a readable `RadMaterial`; `wi`, `wo` to `n` readable
+// `RadVec3`; `out` to `3n` writable `float`s not overlapping the inputs
+// (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_material_eval_batch_rgb(const struct RadMaterial *material,
+                                           const struct RadVec3 *wi,
+                                           const struct RadVec3 *wo,
+                                           float *out,
+                                           size_t n);
+
+// `out[k] = pdf(wi[k], wo[k])` of the RGB form for `k < n`.
+//
+// # Safety
+// As [`rad_material_eval_batch`].
+enum RadStatus rad_material_pdf_batch_rgb(const struct RadMaterial *material,
+                                          const struct RadVec3 *wi,
+                                          const struct RadVec3 *wo,
+                                          float *out,
+                                          size_t n);
+
+// [`rad_material_sample_batch`] of the RGB form: the weights per channel.
+//
+// # Safety
+// As [`rad_material_sample_batch`].
+enum RadStatus rad_material_sample_batch_rgb(const struct RadMaterial *material,
+                                             const struct RadVec3 *wo,
+                                             const float *u,
+                                             struct RadBrdfSample *out,
+                                             size_t n);
+
+// Structure-of-arrays form of [`rad_material_eval_batch_rgb`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+// `out_g[k]`, `out_b[k]`.
+//
+// # Safety
+// `material` points to a readable `RadMaterial`; each of the six input pointers to `n`
+// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_material_eval_batch_soa_rgb(const struct RadMaterial *material,
+                                               const float *wi_x,
+                                               const float *wi_y,
+                                               const float *wi_z,
+                                               const float *wo_x,
+                                               const float *wo_y,
+                                               const float *wo_z,
+                                               float *out_r,
+                                               float *out_g,
+                                               float *out_b,
+                                               size_t n);
+
 // Writes OpenPBR Surface 1.1's default parameters to `*out`: a white-ish
 // (`base_color` 0.8) dielectric base with a `specular_roughness` 0.3,
 // `specular_ior` 1.5 specular layer, no coat (`coat_ior` 1.6,
@@ -940,6 +1180,90 @@ enum RadStatus rad_openpbr_sample_batch(const struct RadOpenPbr *material,
                                         const float *u,
                                         struct RadBrdfSample *out,
                                         size_t n);
+
+// `out[0..3] = f_r(wi → wo)` of the material per channel (R, G, B) in 1/sr,
+// from its RGB form (a grey material gives [`rad_openpbr_eval`]'s value on each channel).
+//
+// # Safety
+// `material` is null or points to a readable `RadOpenPbr`; `out` is null or
+// points to 3 writable `float`s.
+enum RadStatus rad_openpbr_eval_rgb(const struct RadOpenPbr *material,
+                                    struct RadVec3 wi,
+                                    struct RadVec3 wo,
+                                    float *out);
+
+// `*out` = the solid-angle density with which [`rad_openpbr_sample_rgb`] draws
+// `wi` given `wo` (the lobes picked by their per-channel albedos).
+//
+// # Safety
+// As [`rad_openpbr_eval`].
+enum RadStatus rad_openpbr_pdf_rgb(const struct RadOpenPbr *material,
+                                   struct RadVec3 wi,
+                                   struct RadVec3 wo,
+                                   float *out);
+
+// [`rad_openpbr_sample`] of the RGB form: the weight per channel; its pdf is
+// [`rad_openpbr_pdf_rgb`]'s.
+//
+// # Safety
+// As [`rad_openpbr_sample`].
+enum RadStatus rad_openpbr_sample_rgb(const struct RadOpenPbr *material,
+                                      struct RadVec3 wo,
+                                      float u0,
+                                      float u1,
+                                      struct RadBrdfSample *out);
+
+// `out[3k..3k+3] = f_r(wi[k] → wo[k])` per channel for `k < n` (RGB form).
+//
+// # Safety
+// `material` points to a readable `RadOpenPbr`; `wi`, `wo` to `n` readable
+// `RadVec3`; `out` to `3n` writable `float`s not overlapping the inputs
+// (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_openpbr_eval_batch_rgb(const struct RadOpenPbr *material,
+                                          const struct RadVec3 *wi,
+                                          const struct RadVec3 *wo,
+                                          float *out,
+                                          size_t n);
+
+// `out[k] = pdf(wi[k], wo[k])` of the RGB form for `k < n`.
+//
+// # Safety
+// As [`rad_openpbr_eval_batch`].
+enum RadStatus rad_openpbr_pdf_batch_rgb(const struct RadOpenPbr *material,
+                                         const struct RadVec3 *wi,
+                                         const struct RadVec3 *wo,
+                                         float *out,
+                                         size_t n);
+
+// [`rad_openpbr_sample_batch`] of the RGB form: the weights per channel.
+//
+// # Safety
+// As [`rad_openpbr_sample_batch`].
+enum RadStatus rad_openpbr_sample_batch_rgb(const struct RadOpenPbr *material,
+                                            const struct RadVec3 *wo,
+                                            const float *u,
+                                            struct RadBrdfSample *out,
+                                            size_t n);
+
+// Structure-of-arrays form of [`rad_openpbr_eval_batch_rgb`]: direction `k` is
+// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+// `out_g[k]`, `out_b[k]`.
+//
+// # Safety
+// `material` points to a readable `RadOpenPbr`; each of the six input pointers to `n`
+// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+enum RadStatus rad_openpbr_eval_batch_soa_rgb(const struct RadOpenPbr *material,
+                                              const float *wi_x,
+                                              const float *wi_y,
+                                              const float *wi_z,
+                                              const float *wo_x,
+                                              const float *wo_y,
+                                              const float *wo_z,
+                                              float *out_r,
+                                              float *out_g,
+                                              float *out_b,
+                                              size_t n);
 
 // A static, NUL-terminated English description of a status code (any
 // integer: unknown codes get "unknown status"). Never null.

@@ -15,13 +15,14 @@ flash() { llvm-size "$img" 2>/dev/null | awk 'NR==2 {print $1 + $2}' || size "$i
 build
 base=$(flash)
 printf "%-58s %6s bytes flash (text + data)\n" "baseline image (empty reset handler)" "$base"
-for f in als correction brdf material openpbr; do
+for f in als correction brdf material openpbr rgb; do
     case $f in
         als) what="ALS: from_reference + set_spectral_correction + lux" ;;
         correction) what="ALS + spectral correction (CIE V, D65, A; 1 nm integrals)" ;;
         brdf) what="every BRDF plugin: eval/pdf/sample, single + batched" ;;
         material) what="materials (sum, mix, coated) of every plugin, all calls" ;;
         openpbr) what="OpenPBR reflection: defaults, new, all calls" ;;
+        rgb) what="colour: _rgb constructors + every _rgb call (all handles)" ;;
     esac
     build --features "$f"
     size_f=$(flash)
@@ -32,7 +33,7 @@ for f in als correction brdf material openpbr; do
     fi
 done
 # The proof: an image calling every exported C function (all groups and `others`), at opt-level "s" and 3.
-build --features correction,brdf,material,openpbr,others,prove-no-panic
-cargo build --profile release-o3 --target $t -q --features correction,brdf,material,openpbr,others,prove-no-panic \
+build --features correction,brdf,material,openpbr,rgb,others,prove-no-panic
+cargo build --profile release-o3 --target $t -q --features correction,brdf,material,openpbr,rgb,others,prove-no-panic \
     2> >(grep -v -e 'dropping unsupported crate type' -e '^$' >&2)
 echo "prove-no-panic: the image calling every C API function links at opt-level \"s\" and 3, so no panic path survives"

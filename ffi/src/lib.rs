@@ -23,6 +23,14 @@
 //! * Irradiance closed forms: uniform sky, directional light, spherical cap
 //!   ([`irradiance`]).
 //!
+//! Colour: every handle holds its colours per channel (R, G, B, linear sRGB)
+//! beside their monochrome values. The `rad_*_eval`, `_pdf`, `_sample` calls
+//! and their batches are monochrome (`f32`, each colour by its Rec. 709
+//! luminance: the cheap path); the `rad_*_eval_rgb`, `_pdf_rgb`,
+//! `_sample_rgb` calls and their batches evaluate per channel
+//! (`RadBrdfSample::weight` is `float[3]` in both; a batch of RGB values is
+//! `3n` floats). A grey handle gives the monochrome value on each channel.
+//!
 //! The header `include/radiometry.h` is generated from this crate by cbindgen
 //! (`cbindgen --config cbindgen.toml --output include/radiometry.h` in `ffi/`).
 //!

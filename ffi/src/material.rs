@@ -5,7 +5,7 @@
 //! [`RadBrdf`]s.
 //!
 //! Like a `RadBrdf`, a `RadMaterial` is caller-allocated plain data (no
-//! pointers, no heap; 84 bytes, 4-byte aligned), filled in once by a
+//! pointers, no heap; 132 bytes, 4-byte aligned), filled in once by a
 //! `rad_material_*` constructor. Every call re-validates it (the lobes'
 //! parameters as for a `RadBrdf`, the weight and coat parameters) and
 //! rebuilds the composite from it, in O(1): a coat reads its top's
@@ -18,14 +18,15 @@
 //! sample reported, bit for bit.
 
 use crate::brdf::{
-    DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch, with_plugin_shared,
+    Channels, DynBrdf, Handle, check_rgb, eval_batch_rgb, eval_one, eval_one_rgb, pair_batch, pdf_one,
+    pdf_one_rgb, sample_batch, sample_one, sample_one_rgb, soa_batch, soa_batch_rgb, with_plugin_shared,
 };
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdf, RadBrdfSample, RadStatus, RadVec3};
 use radiometry::batch::Vec3Soa;
 use radiometry::compose::{Coated, Layering, Mix, Sum};
 use radiometry::glam::Vec3;
-use radiometry::{Albedo, Brdf, BrdfSample};
+use radiometry::{Albedo, Brdf, BrdfSample, Spectrum};
 
 /// `RadMaterial::kind`: one lobe, `lobes[0]`.
 pub const RAD_MATERIAL_BRDF: u32 = 1;
@@ -37,11 +38,12 @@ pub const RAD_MATERIAL_MIX: u32 = 3;
 pub const RAD_MATERIAL_COATED: u32 = 4;
 
 // The layouts the header documents.
-const _: () = assert!(core::mem::size_of::<RadBrdf>() == 32 && core::mem::align_of::<RadBrdf>() == 4);
-const _: () = assert!(core::mem::size_of::<RadMaterial>() == 84 && core::mem::align_of::<RadMaterial>() == 4);
+const _: () = assert!(core::mem::size_of::<RadBrdf>() == 56 && core::mem::align_of::<RadBrdf>() == 4);
+const _: () =
+    assert!(core::mem::size_of::<RadMaterial>() == 132 && core::mem::align_of::<RadMaterial>() == 4);
 
 /// A material: one or two [`RadBrdf`] lobes and how they combine. Plain data
-/// (84 bytes, 4-byte aligned: five 32-bit fields and two `RadBrdf`s, no
+/// (132 bytes, 4-byte aligned: five 32-bit fields and two `RadBrdf`s, no
 /// padding), filled in by `rad_material_brdf`, `rad_material_sum`,
 /// `rad_material_mix`, `rad_material_coated` or
 /// `rad_material_coated_reciprocal`; copy it
@@ -89,17 +91,24 @@ impl Default for RadMaterial {
 }
 
 /// A plugin behind the object-safe view, as a `Brdf` the combinators take.
-#[derive(Clone, Copy)]
-struct Lobe<'a>(&'a dyn DynBrdf);
+struct Lobe<'a, S>(&'a dyn DynBrdf<S>);
 
-impl Brdf for Lobe<'_> {
-    type Spectrum = f32;
+impl<S> Clone for Lobe<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S> Copy for Lobe<'_, S> {}
+
+impl<S: Spectrum> Brdf for Lobe<'_, S> {
+    type Spectrum = S;
     #[inline]
-    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
         DynBrdf::eval(self.0, wi, wo)
     }
     #[inline]
-    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         DynBrdf::sample(self.0, wo, u)
     }
     #[inline]
@@ -107,11 +116,11 @@ impl Brdf for Lobe<'_> {
         DynBrdf::pdf(self.0, wi, wo)
     }
     #[inline]
-    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         DynBrdf::eval_batch(self.0, wi, wo, out)
     }
     #[inline]
-    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [f32]) {
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
         DynBrdf::eval_batch_soa(self.0, wi, wo, out)
     }
     #[inline]
@@ -119,7 +128,7 @@ impl Brdf for Lobe<'_> {
         DynBrdf::pdf_batch(self.0, wi, wo, out)
     }
     #[inline]
-    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
         DynBrdf::sample_batch(self.0, wo, u, out)
     }
     #[inline]
@@ -127,17 +136,20 @@ impl Brdf for Lobe<'_> {
         DynBrdf::is_smooth(self.0)
     }
     #[inline]
-    fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         DynBrdf::directional_albedo(self.0, wo)
     }
     #[inline]
-    fn average_albedo(&self) -> f32 {
+    fn average_albedo(&self) -> S {
         DynBrdf::average_albedo(self.0)
     }
 }
 
 /// Builds both lobes of `m` and runs `f` on them.
-fn two<R>(m: &RadMaterial, f: impl FnOnce(Lobe<'_>, Lobe<'_>) -> R) -> Result<R, RadStatus> {
+fn two<S: Channels, R>(
+    m: &RadMaterial,
+    f: impl FnOnce(Lobe<'_, S>, Lobe<'_, S>) -> R,
+) -> Result<R, RadStatus> {
     let [a, b] = &m.lobes;
     with_plugin_shared(a, |a| with_plugin_shared(b, |b| f(Lobe(a), Lobe(b))))?
 }
@@ -155,7 +167,7 @@ fn check_coat(coat_color: f32, coat_ior: f32) -> Result<(), RadStatus> {
 }
 
 impl Handle for RadMaterial {
-    fn with<R>(&self, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+    fn with<S: Channels, R>(&self, f: impl FnOnce(&dyn DynBrdf<S>) -> R) -> Result<R, RadStatus> {
         match self.kind {
             RAD_MATERIAL_BRDF => {
                 if self.lobes[1] != RadBrdf::default() {
@@ -177,7 +189,7 @@ impl Handle for RadMaterial {
                     // A clear coat is `Coated::new`'s layer (as the spec
                     // grammar builds `coat_color=1`).
                     Ok(if self.coat_color < 1.0 {
-                        f(&layer.absorbing(self.coat_color, self.coat_ior)?)
+                        f(&layer.absorbing(S::splat(self.coat_color), self.coat_ior)?)
                     } else {
                         f(&layer)
                     })
@@ -214,7 +226,12 @@ unsafe fn construct(
             ..RadMaterial::default()
         };
         fill(&mut m)?;
-        m.with(|_| ())?;
+        m.with::<f32, _>(|_| ())?;
+        // The lobes' colours (the composite's own parameters are checked above and are grey).
+        check_rgb(&m.lobes[0])?;
+        if m.lobes[1] != RadBrdf::default() {
+            check_rgb(&m.lobes[1])?;
+        }
         // SAFETY: forwarded caller contract.
         let out = unsafe { as_mut(out)? };
         *out = m;
@@ -442,7 +459,7 @@ pub unsafe extern "C" fn rad_material_eval_batch(
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
     unsafe {
-        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+        pair_batch::<_, f32>(material, wi, wo, out, n, |b, wi, wo, out| {
             b.eval_batch(wi, wo, out)
         })
     }
@@ -462,7 +479,7 @@ pub unsafe extern "C" fn rad_material_pdf_batch(
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
     unsafe {
-        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+        pair_batch::<_, f32>(material, wi, wo, out, n, |b, wi, wo, out| {
             b.pdf_batch(wi, wo, out)
         })
     }
@@ -507,5 +524,140 @@ pub unsafe extern "C" fn rad_material_sample_batch(
     n: usize,
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
-    unsafe { sample_batch(material, wo, u, out, n) }
+    unsafe { sample_batch::<_, f32>(material, wo, u, out, n) }
+}
+
+/// `out[0..3] = f_r(wi → wo)` of the material per channel (R, G, B) in 1/sr,
+/// from its RGB form (a grey material gives [`rad_material_eval`]'s value on each channel).
+///
+/// # Safety
+/// `material` is null or points to a readable `RadMaterial`; `out` is null or
+/// points to 3 writable `float`s.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_eval_rgb(
+    material: *const RadMaterial,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_one_rgb(material, wi, wo, out) }
+}
+
+/// `*out` = the solid-angle density with which [`rad_material_sample_rgb`] draws
+/// `wi` given `wo` (the lobes picked by their per-channel albedos).
+///
+/// # Safety
+/// As [`rad_material_eval`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_pdf_rgb(
+    material: *const RadMaterial,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { pdf_one_rgb(material, wi, wo, out) }
+}
+
+/// [`rad_material_sample`] of the RGB form: the weight per channel; its pdf is
+/// [`rad_material_pdf_rgb`]'s.
+///
+/// # Safety
+/// As [`rad_material_sample`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_sample_rgb(
+    material: *const RadMaterial,
+    wo: RadVec3,
+    u0: f32,
+    u1: f32,
+    out: *mut RadBrdfSample,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_one_rgb(material, wo, [u0, u1], out) }
+}
+
+/// `out[3k..3k+3] = f_r(wi[k] → wo[k])` per channel for `k < n` (RGB form).
+///
+/// # Safety
+/// `material` points to a readable `RadMaterial`; `wi`, `wo` to `n` readable
+/// `RadVec3`; `out` to `3n` writable `float`s not overlapping the inputs
+/// (checked: `RAD_STATUS_OVERLAP`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_eval_batch_rgb(
+    material: *const RadMaterial,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_batch_rgb(material, wi, wo, out, n) }
+}
+
+/// `out[k] = pdf(wi[k], wo[k])` of the RGB form for `k < n`.
+///
+/// # Safety
+/// As [`rad_material_eval_batch`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_pdf_batch_rgb(
+    material: *const RadMaterial,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        pair_batch::<_, Vec3>(material, wi, wo, out, n, |b, wi, wo, out| {
+            b.pdf_batch(wi, wo, out)
+        })
+    }
+}
+
+/// [`rad_material_sample_batch`] of the RGB form: the weights per channel.
+///
+/// # Safety
+/// As [`rad_material_sample_batch`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_material_sample_batch_rgb(
+    material: *const RadMaterial,
+    wo: *const RadVec3,
+    u: *const f32,
+    out: *mut RadBrdfSample,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_batch::<_, Vec3>(material, wo, u, out, n) }
+}
+
+/// Structure-of-arrays form of [`rad_material_eval_batch_rgb`]: direction `k` is
+/// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+/// `out_g[k]`, `out_b[k]`.
+///
+/// # Safety
+/// `material` points to a readable `RadMaterial`; each of the six input pointers to `n`
+/// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+/// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn rad_material_eval_batch_soa_rgb(
+    material: *const RadMaterial,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out_r: *mut f32,
+    out_g: *mut f32,
+    out_b: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        soa_batch_rgb(
+            material, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out_r, out_g, out_b, n,
+        )
+    }
 }

@@ -1,10 +1,13 @@
 //! OpenPBR Surface's reflection layer behind one plain C struct,
-//! [`RadOpenPbr`]: the Rust `radiometry_brdfs::OpenPbr` (monochrome), with
-//! OpenPBR's parameter names and defaults in [`RadOpenPbrParams`].
+//! [`RadOpenPbr`]: the Rust `radiometry_brdfs::OpenPbr`, with OpenPBR's
+//! parameter names and defaults in [`RadOpenPbrParams`] (colours per
+//! channel, R, G, B). The monochrome calls (`rad_openpbr_eval`, …) build
+//! `OpenPbr<f32>` from each colour's Rec. 709 luminance; the `_rgb` calls
+//! build `OpenPbr<Vec3>` from the colours.
 //!
 //! Building an `OpenPbr` is O(1): the parameters' validation and a few reads
 //! of the crate's global albedo tables. [`rad_openpbr_new`] validates the
-//! parameters and keeps them in the caller's `RadOpenPbr` (plain data, 72
+//! parameters and keeps them in the caller's `RadOpenPbr` (plain data, 104
 //! bytes: no pointers, no heap, no tables). Every call re-validates the
 //! struct and builds the material from it with `OpenPbr::new` (or
 //! `OpenPbr::with_layering` for the reciprocal mode): the values are the
@@ -12,23 +15,29 @@
 //! equals the sample's pdf, bit for bit. Batch calls build once per batch.
 //! During a call the built material lives on the stack.
 
-use crate::brdf::{DynBrdf, Handle, eval_one, pair_batch, pdf_one, sample_batch, sample_one, soa_batch};
+use crate::brdf::{
+    Channels, DynBrdf, Handle, eval_batch_rgb, eval_one, eval_one_rgb, luminance, pair_batch, pdf_one,
+    pdf_one_rgb, sample_batch, sample_one, sample_one_rgb, soa_batch, soa_batch_rgb,
+};
 use crate::ptr::{as_mut, as_ref};
 use crate::{RadBrdfSample, RadStatus, RadVec3};
+use radiometry::glam::Vec3;
 use radiometry_brdfs::openpbr::{Layering, OpenPbr, OpenPbrParams};
 
 /// `RadOpenPbr::kind` of a handle filled in by [`rad_openpbr_new`]: OpenPBR
-/// Surface 1.1's reflection layer, monochrome.
+/// Surface 1.1's reflection layer.
 pub const RAD_OPENPBR_REFLECTION: u32 = 1;
 
 // The layouts the header documents.
-const _: () =
-    assert!(core::mem::size_of::<RadOpenPbrParams>() == 68 && core::mem::align_of::<RadOpenPbrParams>() == 4);
-const _: () = assert!(core::mem::size_of::<RadOpenPbr>() == 72 && core::mem::align_of::<RadOpenPbr>() == 4);
+const _: () = assert!(
+    core::mem::size_of::<RadOpenPbrParams>() == 100 && core::mem::align_of::<RadOpenPbrParams>() == 4
+);
+const _: () = assert!(core::mem::size_of::<RadOpenPbr>() == 104 && core::mem::align_of::<RadOpenPbr>() == 4);
 
 /// The parameters of OpenPBR Surface 1.1's reflection layer, with the
-/// specification's names (monochrome: every colour is one `float`), and
-/// the layering mode. Plain data (68 bytes: 16 `float`s and a `uint32_t`);
+/// specification's names (every colour is a `float[3]`, R, G, B, linear
+/// sRGB; the monochrome calls use its Rec. 709 luminance), and the layering
+/// mode. Plain data (100 bytes: 24 `float`s and a `uint32_t`);
 /// `rad_openpbr_default_params` fills in OpenPBR's defaults. Domains: every
 /// weight, colour, roughness, `base_metalness` and `coat_darkening` in `[0,
 /// 1]`; `specular_ior` and `coat_ior` in `[1, 1000]`; `reciprocal` 0 or 1.
@@ -45,7 +54,7 @@ pub struct RadOpenPbrParams {
     pub base_weight: f32,
     /// `base_color` (default 0.8): the diffuse albedo and the metal's
     /// reflectance at normal incidence.
-    pub base_color: f32,
+    pub base_color: [f32; 3],
     /// `base_metalness` (default 0): the mix of metal and glossy-diffuse.
     pub base_metalness: f32,
     /// `base_diffuse_roughness` (default 0): the EON diffuse's `σ`.
@@ -55,7 +64,7 @@ pub struct RadOpenPbrParams {
     pub specular_weight: f32,
     /// `specular_color` (default 1): tints the dielectric's reflection; the
     /// metal's F82 tint.
-    pub specular_color: f32,
+    pub specular_color: [f32; 3],
     /// `specular_roughness` (default 0.3): `α = r²`.
     pub specular_roughness: f32,
     /// `specular_ior` (default 1.5).
@@ -64,7 +73,7 @@ pub struct RadOpenPbrParams {
     pub coat_weight: f32,
     /// `coat_color` (default 1): the coat's absorption (the square of its
     /// transmittance at normal incidence).
-    pub coat_color: f32,
+    pub coat_color: [f32; 3],
     /// `coat_roughness` (default 0): `α = r²`.
     pub coat_roughness: f32,
     /// `coat_ior` (default 1.6).
@@ -75,7 +84,7 @@ pub struct RadOpenPbrParams {
     /// `fuzz_weight` (default 0).
     pub fuzz_weight: f32,
     /// `fuzz_color` (default 1).
-    pub fuzz_color: f32,
+    pub fuzz_color: [f32; 3],
     /// `fuzz_roughness` (default 0.5).
     pub fuzz_roughness: f32,
     /// The layering (not an OpenPBR parameter; default 0): 0 for OpenPBR's
@@ -92,49 +101,71 @@ impl Default for RadOpenPbrParams {
 }
 
 impl From<RadOpenPbrParams> for OpenPbrParams<f32> {
+    /// The monochrome parameters: each colour's Rec. 709 luminance (a grey
+    /// colour exactly its value).
     #[inline]
     fn from(p: RadOpenPbrParams) -> Self {
+        p.params::<f32>()
+    }
+}
+
+impl From<RadOpenPbrParams> for OpenPbrParams<Vec3> {
+    /// The RGB parameters: the colours as given.
+    #[inline]
+    fn from(p: RadOpenPbrParams) -> Self {
+        p.params::<Vec3>()
+    }
+}
+
+impl RadOpenPbrParams {
+    /// The parameters in the spectrum `S` (`f32`: each colour's Rec. 709
+    /// luminance; `Vec3`: the colours).
+    #[inline]
+    fn params<S: Channels>(&self) -> OpenPbrParams<S> {
+        let p = self;
+        let c = |v: [f32; 3]| S::colour(luminance(v), v);
         OpenPbrParams {
             base_weight: p.base_weight,
-            base_color: p.base_color,
+            base_color: c(p.base_color),
             base_metalness: p.base_metalness,
             base_diffuse_roughness: p.base_diffuse_roughness,
             specular_weight: p.specular_weight,
-            specular_color: p.specular_color,
+            specular_color: c(p.specular_color),
             specular_roughness: p.specular_roughness,
             specular_ior: p.specular_ior,
             coat_weight: p.coat_weight,
-            coat_color: p.coat_color,
+            coat_color: c(p.coat_color),
             coat_roughness: p.coat_roughness,
             coat_ior: p.coat_ior,
             coat_darkening: p.coat_darkening,
             fuzz_weight: p.fuzz_weight,
-            fuzz_color: p.fuzz_color,
+            fuzz_color: c(p.fuzz_color),
             fuzz_roughness: p.fuzz_roughness,
         }
     }
 }
 
 impl From<OpenPbrParams<f32>> for RadOpenPbrParams {
-    /// The parameters, in the energy-conserving layering (`reciprocal` 0).
+    /// The parameters (each colour grey), in the energy-conserving layering
+    /// (`reciprocal` 0).
     #[inline]
     fn from(p: OpenPbrParams<f32>) -> Self {
         RadOpenPbrParams {
             base_weight: p.base_weight,
-            base_color: p.base_color,
+            base_color: [p.base_color; 3],
             base_metalness: p.base_metalness,
             base_diffuse_roughness: p.base_diffuse_roughness,
             specular_weight: p.specular_weight,
-            specular_color: p.specular_color,
+            specular_color: [p.specular_color; 3],
             specular_roughness: p.specular_roughness,
             specular_ior: p.specular_ior,
             coat_weight: p.coat_weight,
-            coat_color: p.coat_color,
+            coat_color: [p.coat_color; 3],
             coat_roughness: p.coat_roughness,
             coat_ior: p.coat_ior,
             coat_darkening: p.coat_darkening,
             fuzz_weight: p.fuzz_weight,
-            fuzz_color: p.fuzz_color,
+            fuzz_color: [p.fuzz_color; 3],
             fuzz_roughness: p.fuzz_roughness,
             reciprocal: 0,
         }
@@ -144,13 +175,13 @@ impl From<OpenPbrParams<f32>> for RadOpenPbrParams {
 impl RadOpenPbrParams {
     /// The material: the parameters checked in the order of the fields (the
     /// first bad one gives the status), `reciprocal` last.
-    fn build(&self) -> Result<OpenPbr<f32>, RadStatus> {
+    fn build<S: Channels>(&self) -> Result<OpenPbr<S>, RadStatus> {
         let layering = match self.reciprocal {
             0 => Some(Layering::EnergyConserving),
             1 => Some(Layering::Reciprocal),
             _ => None,
         };
-        let m = OpenPbr::with_layering((*self).into(), layering.unwrap_or_default())?;
+        let m = OpenPbr::with_layering(self.params::<S>(), layering.unwrap_or_default())?;
         if layering.is_none() {
             return Err(RadStatus::OutOfRange);
         }
@@ -181,20 +212,20 @@ impl Default for RadOpenPbr {
             kind: 0,
             params: RadOpenPbrParams {
                 base_weight: 0.0,
-                base_color: 0.0,
+                base_color: [0.0; 3],
                 base_metalness: 0.0,
                 base_diffuse_roughness: 0.0,
                 specular_weight: 0.0,
-                specular_color: 0.0,
+                specular_color: [0.0; 3],
                 specular_roughness: 0.0,
                 specular_ior: 0.0,
                 coat_weight: 0.0,
-                coat_color: 0.0,
+                coat_color: [0.0; 3],
                 coat_roughness: 0.0,
                 coat_ior: 0.0,
                 coat_darkening: 0.0,
                 fuzz_weight: 0.0,
-                fuzz_color: 0.0,
+                fuzz_color: [0.0; 3],
                 fuzz_roughness: 0.0,
                 reciprocal: 0,
             },
@@ -204,11 +235,11 @@ impl Default for RadOpenPbr {
 
 impl Handle for RadOpenPbr {
     #[inline]
-    fn with<R>(&self, f: impl FnOnce(&dyn DynBrdf) -> R) -> Result<R, RadStatus> {
+    fn with<S: Channels, R>(&self, f: impl FnOnce(&dyn DynBrdf<S>) -> R) -> Result<R, RadStatus> {
         if self.kind != RAD_OPENPBR_REFLECTION {
             return Err(RadStatus::BadHandle);
         }
-        let m = self.params.build()?;
+        let m = self.params.build::<S>()?;
         Ok(f(&m))
     }
 }
@@ -253,7 +284,8 @@ pub unsafe extern "C" fn rad_openpbr_new(params: *const RadOpenPbrParams, out: *
         // SAFETY: forwarded caller contract; the parameters are copied out
         // before `out` is borrowed (C may pass overlapping pointers).
         let p = unsafe { *as_ref(params)? };
-        p.build()?;
+        p.build::<f32>()?;
+        p.build::<Vec3>()?;
         // SAFETY: forwarded caller contract.
         let out = unsafe { as_mut(out)? };
         *out = RadOpenPbr {
@@ -336,7 +368,7 @@ pub unsafe extern "C" fn rad_openpbr_eval_batch(
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
     unsafe {
-        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+        pair_batch::<_, f32>(material, wi, wo, out, n, |b, wi, wo, out| {
             b.eval_batch(wi, wo, out)
         })
     }
@@ -356,7 +388,7 @@ pub unsafe extern "C" fn rad_openpbr_pdf_batch(
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
     unsafe {
-        pair_batch(material, wi, wo, out, n, |b, wi, wo, out| {
+        pair_batch::<_, f32>(material, wi, wo, out, n, |b, wi, wo, out| {
             b.pdf_batch(wi, wo, out)
         })
     }
@@ -401,5 +433,140 @@ pub unsafe extern "C" fn rad_openpbr_sample_batch(
     n: usize,
 ) -> RadStatus {
     // SAFETY: forwarded caller contract.
-    unsafe { sample_batch(material, wo, u, out, n) }
+    unsafe { sample_batch::<_, f32>(material, wo, u, out, n) }
+}
+
+/// `out[0..3] = f_r(wi → wo)` of the material per channel (R, G, B) in 1/sr,
+/// from its RGB form (a grey material gives [`rad_openpbr_eval`]'s value on each channel).
+///
+/// # Safety
+/// `material` is null or points to a readable `RadOpenPbr`; `out` is null or
+/// points to 3 writable `float`s.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_eval_rgb(
+    material: *const RadOpenPbr,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_one_rgb(material, wi, wo, out) }
+}
+
+/// `*out` = the solid-angle density with which [`rad_openpbr_sample_rgb`] draws
+/// `wi` given `wo` (the lobes picked by their per-channel albedos).
+///
+/// # Safety
+/// As [`rad_openpbr_eval`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_pdf_rgb(
+    material: *const RadOpenPbr,
+    wi: RadVec3,
+    wo: RadVec3,
+    out: *mut f32,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { pdf_one_rgb(material, wi, wo, out) }
+}
+
+/// [`rad_openpbr_sample`] of the RGB form: the weight per channel; its pdf is
+/// [`rad_openpbr_pdf_rgb`]'s.
+///
+/// # Safety
+/// As [`rad_openpbr_sample`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_sample_rgb(
+    material: *const RadOpenPbr,
+    wo: RadVec3,
+    u0: f32,
+    u1: f32,
+    out: *mut RadBrdfSample,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_one_rgb(material, wo, [u0, u1], out) }
+}
+
+/// `out[3k..3k+3] = f_r(wi[k] → wo[k])` per channel for `k < n` (RGB form).
+///
+/// # Safety
+/// `material` points to a readable `RadOpenPbr`; `wi`, `wo` to `n` readable
+/// `RadVec3`; `out` to `3n` writable `float`s not overlapping the inputs
+/// (checked: `RAD_STATUS_OVERLAP`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_eval_batch_rgb(
+    material: *const RadOpenPbr,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { eval_batch_rgb(material, wi, wo, out, n) }
+}
+
+/// `out[k] = pdf(wi[k], wo[k])` of the RGB form for `k < n`.
+///
+/// # Safety
+/// As [`rad_openpbr_eval_batch`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_pdf_batch_rgb(
+    material: *const RadOpenPbr,
+    wi: *const RadVec3,
+    wo: *const RadVec3,
+    out: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        pair_batch::<_, Vec3>(material, wi, wo, out, n, |b, wi, wo, out| {
+            b.pdf_batch(wi, wo, out)
+        })
+    }
+}
+
+/// [`rad_openpbr_sample_batch`] of the RGB form: the weights per channel.
+///
+/// # Safety
+/// As [`rad_openpbr_sample_batch`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rad_openpbr_sample_batch_rgb(
+    material: *const RadOpenPbr,
+    wo: *const RadVec3,
+    u: *const f32,
+    out: *mut RadBrdfSample,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe { sample_batch::<_, Vec3>(material, wo, u, out, n) }
+}
+
+/// Structure-of-arrays form of [`rad_openpbr_eval_batch_rgb`]: direction `k` is
+/// `(wi_x[k], wi_y[k], wi_z[k])`, its value per channel goes to `out_r[k]`,
+/// `out_g[k]`, `out_b[k]`.
+///
+/// # Safety
+/// `material` points to a readable `RadOpenPbr`; each of the six input pointers to `n`
+/// readable `float`s; `out_r`, `out_g`, `out_b` to `n` writable `float`s each,
+/// overlapping no input and no other output (checked: `RAD_STATUS_OVERLAP`).
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn rad_openpbr_eval_batch_soa_rgb(
+    material: *const RadOpenPbr,
+    wi_x: *const f32,
+    wi_y: *const f32,
+    wi_z: *const f32,
+    wo_x: *const f32,
+    wo_y: *const f32,
+    wo_z: *const f32,
+    out_r: *mut f32,
+    out_g: *mut f32,
+    out_b: *mut f32,
+    n: usize,
+) -> RadStatus {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        soa_batch_rgb(
+            material, wi_x, wi_y, wi_z, wo_x, wo_y, wo_z, out_r, out_g, out_b, n,
+        )
+    }
 }

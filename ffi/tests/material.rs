@@ -183,7 +183,7 @@ fn same_sample(c: RadBrdfSample, r: Option<BrdfSample<f32>>) -> bool {
                 && c.wi.y.to_bits() == r.wi.y.to_bits()
                 && c.wi.z.to_bits() == r.wi.z.to_bits()
                 && c.pdf.to_bits() == r.pdf.to_bits()
-                && c.weight.to_bits() == r.weight.to_bits()
+                && c.weight.iter().all(|w| w.to_bits() == r.weight.to_bits())
         }
     }
 }
@@ -218,7 +218,10 @@ fn check_equal(name: &str, c: &impl CHandle, r: &impl Brdf<Spectrum = f32>) {
                 s.pdf.to_bits(),
                 "{name}: pdf(sample) k={k}"
             );
-            assert!(s.weight.is_finite() && s.weight >= 0.0, "{name} {s:?}");
+            assert!(
+                s.weight.iter().all(|w| w.is_finite() && *w >= 0.0),
+                "{name} {s:?}"
+            );
         }
     }
     assert!(drawn > n / 2, "{name}: {drawn} samples of {n}");
@@ -407,7 +410,7 @@ fn a_plastic_keeps_energy_and_its_reciprocal_form_is_reciprocal() {
         let n = 20_000;
         let w: Vec<f64> = us(n)
             .into_iter()
-            .map(|u| f64::from(plastic.sample(wo, u).weight))
+            .map(|u| f64::from(plastic.sample(wo, u).weight[0]))
             .collect();
         let mean = w.iter().sum::<f64>() / n as f64;
         let var = w.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
@@ -576,7 +579,7 @@ fn c_openpbr(p: &RadOpenPbrParams) -> RadOpenPbr {
 fn c_defaults() -> RadOpenPbrParams {
     // Start from garbage: the call writes every field.
     let mut p = RadOpenPbrParams {
-        base_color: f32::NAN,
+        base_color: [f32::NAN; 3],
         ..RadOpenPbrParams::default()
     };
     ok(unsafe { rad_openpbr_default_params(&mut p) });
@@ -597,17 +600,17 @@ fn openpbr_variety() -> Vec<RadOpenPbrParams> {
         // A coated metal.
         RadOpenPbrParams {
             base_metalness: 1.0,
-            base_color: 0.9,
-            specular_color: 0.8,
+            base_color: [0.9; 3],
+            specular_color: [0.8; 3],
             coat_weight: 1.0,
             coat_roughness: 0.2,
-            coat_color: 0.7,
+            coat_color: [0.7; 3],
             ..d
         },
         RadOpenPbrParams {
             fuzz_weight: 0.8,
             fuzz_roughness: 0.4,
-            fuzz_color: 0.9,
+            fuzz_color: [0.9; 3],
             coat_weight: 0.5,
             ..d
         },
@@ -625,20 +628,20 @@ fn openpbr_variety() -> Vec<RadOpenPbrParams> {
         // Every layer, away from the defaults.
         RadOpenPbrParams {
             base_weight: 0.7,
-            base_color: 0.5,
+            base_color: [0.5; 3],
             base_metalness: 0.5,
             base_diffuse_roughness: 1.0,
             specular_weight: 0.8,
-            specular_color: 0.9,
+            specular_color: [0.9; 3],
             specular_roughness: 0.6,
             specular_ior: 2.2,
             coat_weight: 0.6,
-            coat_color: 0.3,
+            coat_color: [0.3; 3],
             coat_roughness: 0.4,
             coat_ior: 1.3,
             coat_darkening: 0.4,
             fuzz_weight: 0.4,
-            fuzz_color: 0.6,
+            fuzz_color: [0.6; 3],
             fuzz_roughness: 0.9,
             reciprocal: 0,
         },
@@ -646,7 +649,7 @@ fn openpbr_variety() -> Vec<RadOpenPbrParams> {
         RadOpenPbrParams {
             base_metalness: 0.3,
             coat_weight: 0.7,
-            coat_color: 0.6,
+            coat_color: [0.6; 3],
             coat_roughness: 0.3,
             coat_darkening: 0.0,
             fuzz_weight: 0.5,
@@ -661,20 +664,20 @@ fn openpbr_defaults_are_openpbrs() {
     let p = c_defaults();
     let want = RadOpenPbrParams {
         base_weight: 1.0,
-        base_color: 0.8,
+        base_color: [0.8; 3],
         base_metalness: 0.0,
         base_diffuse_roughness: 0.0,
         specular_weight: 1.0,
-        specular_color: 1.0,
+        specular_color: [1.0; 3],
         specular_roughness: 0.3,
         specular_ior: 1.5,
         coat_weight: 0.0,
-        coat_color: 1.0,
+        coat_color: [1.0; 3],
         coat_roughness: 0.0,
         coat_ior: 1.6,
         coat_darkening: 1.0,
         fuzz_weight: 0.0,
-        fuzz_color: 1.0,
+        fuzz_color: [1.0; 3],
         fuzz_roughness: 0.5,
         reciprocal: 0,
     };
@@ -736,20 +739,20 @@ type Field = fn(&mut RadOpenPbrParams) -> &mut f32;
 fn openpbr_fields() -> [(&'static str, Field); 16] {
     [
         ("base_weight", |p| &mut p.base_weight),
-        ("base_color", |p| &mut p.base_color),
+        ("base_color", |p| &mut p.base_color[1]),
         ("base_metalness", |p| &mut p.base_metalness),
         ("base_diffuse_roughness", |p| &mut p.base_diffuse_roughness),
         ("specular_weight", |p| &mut p.specular_weight),
-        ("specular_color", |p| &mut p.specular_color),
+        ("specular_color", |p| &mut p.specular_color[1]),
         ("specular_roughness", |p| &mut p.specular_roughness),
         ("specular_ior", |p| &mut p.specular_ior),
         ("coat_weight", |p| &mut p.coat_weight),
-        ("coat_color", |p| &mut p.coat_color),
+        ("coat_color", |p| &mut p.coat_color[1]),
         ("coat_roughness", |p| &mut p.coat_roughness),
         ("coat_ior", |p| &mut p.coat_ior),
         ("coat_darkening", |p| &mut p.coat_darkening),
         ("fuzz_weight", |p| &mut p.fuzz_weight),
-        ("fuzz_color", |p| &mut p.fuzz_color),
+        ("fuzz_color", |p| &mut p.fuzz_color[1]),
         ("fuzz_roughness", |p| &mut p.fuzz_roughness),
     ]
 }
@@ -825,7 +828,7 @@ fn scribbled_openpbr_handles_are_reported() {
         ("coat ior", |m| m.params.coat_ior = 0.0, RadStatus::OutOfRange),
         (
             "base colour",
-            |m| m.params.base_color = 1.5,
+            |m| m.params.base_color = [1.5; 3],
             RadStatus::OutOfRange,
         ),
         (
@@ -905,4 +908,579 @@ fn scribbled_openpbr_handles_are_reported() {
             RadStatus::Misaligned
         );
     }
+}
+
+// ---- Colour: the `_rgb` calls equal the Rust `Vec3` plugins and composites bit for bit. ----
+
+/// A handle's RGB calls, for the shared checks.
+trait CHandleRgb {
+    fn eval_rgb(&self, wi: RadVec3, wo: RadVec3) -> [f32; 3];
+    fn pdf_rgb(&self, wi: RadVec3, wo: RadVec3) -> f32;
+    fn sample_rgb(&self, wo: RadVec3, u: [f32; 2]) -> RadBrdfSample;
+    fn eval_batch_rgb(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32>;
+    fn pdf_batch_rgb(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32>;
+    fn sample_batch_rgb(&self, wo: &[RadVec3], u: &[[f32; 2]]) -> Vec<RadBrdfSample>;
+}
+
+macro_rules! c_handle_rgb {
+    ($t:ty, $eval:ident, $pdf:ident, $sample:ident, $eb:ident, $pb:ident, $sb:ident) => {
+        impl CHandleRgb for $t {
+            fn eval_rgb(&self, wi: RadVec3, wo: RadVec3) -> [f32; 3] {
+                let mut f = [f32::NAN; 3];
+                ok(unsafe { $eval(self, wi, wo, f.as_mut_ptr()) });
+                f
+            }
+            fn pdf_rgb(&self, wi: RadVec3, wo: RadVec3) -> f32 {
+                let mut p = f32::NAN;
+                ok(unsafe { $pdf(self, wi, wo, &mut p) });
+                p
+            }
+            fn sample_rgb(&self, wo: RadVec3, u: [f32; 2]) -> RadBrdfSample {
+                let mut s = RadBrdfSample::default();
+                ok(unsafe { $sample(self, wo, u[0], u[1], &mut s) });
+                s
+            }
+            fn eval_batch_rgb(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32> {
+                let mut out = vec![f32::NAN; 3 * wi.len()];
+                ok(unsafe { $eb(self, wi.as_ptr(), wo.as_ptr(), out.as_mut_ptr(), wi.len()) });
+                out
+            }
+            fn pdf_batch_rgb(&self, wi: &[RadVec3], wo: &[RadVec3]) -> Vec<f32> {
+                let mut out = vec![f32::NAN; wi.len()];
+                ok(unsafe { $pb(self, wi.as_ptr(), wo.as_ptr(), out.as_mut_ptr(), wi.len()) });
+                out
+            }
+            fn sample_batch_rgb(&self, wo: &[RadVec3], u: &[[f32; 2]]) -> Vec<RadBrdfSample> {
+                let mut out = vec![RadBrdfSample::default(); wo.len()];
+                let u = u.as_ptr().cast::<f32>();
+                ok(unsafe { $sb(self, wo.as_ptr(), u, out.as_mut_ptr(), wo.len()) });
+                out
+            }
+        }
+    };
+}
+
+c_handle_rgb!(
+    RadBrdf,
+    rad_brdf_eval_rgb,
+    rad_brdf_pdf_rgb,
+    rad_brdf_sample_rgb,
+    rad_brdf_eval_batch_rgb,
+    rad_brdf_pdf_batch_rgb,
+    rad_brdf_sample_batch_rgb
+);
+c_handle_rgb!(
+    RadMaterial,
+    rad_material_eval_rgb,
+    rad_material_pdf_rgb,
+    rad_material_sample_rgb,
+    rad_material_eval_batch_rgb,
+    rad_material_pdf_batch_rgb,
+    rad_material_sample_batch_rgb
+);
+c_handle_rgb!(
+    RadOpenPbr,
+    rad_openpbr_eval_rgb,
+    rad_openpbr_pdf_rgb,
+    rad_openpbr_sample_rgb,
+    rad_openpbr_eval_batch_rgb,
+    rad_openpbr_pdf_batch_rgb,
+    rad_openpbr_sample_batch_rgb
+);
+
+fn same_sample_rgb(c: RadBrdfSample, r: Option<BrdfSample<Vec3>>) -> bool {
+    match r {
+        None => c == RadBrdfSample::default(),
+        Some(r) => {
+            let bits = |v: [f32; 3]| v.map(f32::to_bits);
+            bits([c.wi.x, c.wi.y, c.wi.z]) == bits(r.wi.to_array())
+                && c.pdf.to_bits() == r.pdf.to_bits()
+                && bits(c.weight) == bits(r.weight.to_array())
+        }
+    }
+}
+
+/// `c` through the RGB calls and `r` (the Rust `Vec3` plugin or composite) give the same bits for eval, pdf and
+/// sample, single and batched; a sample's pdf is `pdf_rgb` at its direction, bit for bit.
+fn check_equal_rgb(name: &str, c: &impl CHandleRgb, r: &impl Brdf<Spectrum = Vec3>) {
+    let n = 203;
+    let (wi, wo, u) = (directions(n, 0.13), directions(n, 0.71), us(n));
+    let (eb, pb, sb) = (
+        c.eval_batch_rgb(&wi, &wo),
+        c.pdf_batch_rgb(&wi, &wo),
+        c.sample_batch_rgb(&wo, &u),
+    );
+    for k in 0..n {
+        let (a, b) = (Vec3::from(wi[k]), Vec3::from(wo[k]));
+        let want = r.eval(a, b).to_array().map(f32::to_bits);
+        assert_eq!(
+            c.eval_rgb(wi[k], wo[k]).map(f32::to_bits),
+            want,
+            "{name} eval k={k}"
+        );
+        assert_eq!(
+            [eb[3 * k], eb[3 * k + 1], eb[3 * k + 2]].map(f32::to_bits),
+            want,
+            "{name} batch k={k}"
+        );
+        assert_eq!(
+            c.pdf_rgb(wi[k], wo[k]).to_bits(),
+            r.pdf(a, b).to_bits(),
+            "{name} pdf k={k}"
+        );
+        assert_eq!(pb[k].to_bits(), r.pdf(a, b).to_bits(), "{name} pdf batch k={k}");
+        let s = c.sample_rgb(wo[k], u[k]);
+        assert!(
+            same_sample_rgb(s, r.sample(b, u[k])),
+            "{name} sample k={k}: {s:?}"
+        );
+        assert_eq!(sb[k], s, "{name} sample batch k={k}");
+        if s.pdf > 0.0 {
+            assert_eq!(
+                c.pdf_rgb(s.wi, wo[k]).to_bits(),
+                s.pdf.to_bits(),
+                "{name} pdf(sample) k={k}"
+            );
+        }
+    }
+}
+
+fn c_rgb(
+    f: unsafe extern "C" fn(*const f32, f32, *mut RadBrdf) -> RadStatus,
+    c: [f32; 3],
+    p: f32,
+) -> RadBrdf {
+    let mut h = RadBrdf::default();
+    ok(unsafe { f(c.as_ptr(), p, &mut h) });
+    h
+}
+
+/// The RGB plugins: coloured lobes from the `_rgb` constructors and a named metal equal the Rust `Vec3` plugins
+/// (gold: `Conductor::<Vec3>::metal`, red above blue); a Lambertian is ρ/π per channel and its luminance in
+/// the monochrome calls.
+#[test]
+fn rgb_plugins_equal_the_rust_plugins_bit_for_bit() {
+    let orange = [0.8f32, 0.4, 0.1];
+    let mut lam = RadBrdf::default();
+    ok(unsafe { rad_brdf_lambertian_rgb(orange.as_ptr(), &mut lam) });
+    check_equal_rgb(
+        "lambertian",
+        &lam,
+        &Lambertian::new(Vec3::from_array(orange)).unwrap(),
+    );
+    let (wi, wo) = (directions(8, 0.3)[3], directions(8, 0.9)[5]);
+    assert_eq!(lam.eval_rgb(wi, wo), orange.map(|c| c / PI));
+    let mut mono = f32::NAN;
+    ok(unsafe { rad_brdf_eval(&lam, wi, wo, &mut mono) });
+    assert_eq!(mono, (0.2126 * 0.8 + 0.7152 * 0.4 + 0.0722 * 0.1) / PI);
+    let rho = Vec3::new(0.2, 0.5, 0.7);
+    check_equal_rgb(
+        "eon",
+        &c_rgb(rad_brdf_eon_rgb, rho.to_array(), 0.5),
+        &Eon::new(rho, 0.5).unwrap(),
+    );
+    check_equal_rgb(
+        "fon",
+        &c_rgb(rad_brdf_fon_rgb, rho.to_array(), 0.8),
+        &Fon::new(rho, 0.8).unwrap(),
+    );
+    check_equal_rgb(
+        "oren-nayar",
+        &c_rgb(rad_brdf_oren_nayar_rgb, rho.to_array(), 0.3),
+        &OrenNayar::new(rho, 0.3).unwrap(),
+    );
+    check_equal_rgb(
+        "sheen",
+        &c_rgb(rad_brdf_sheen_rgb, rho.to_array(), 0.4),
+        &Sheen::new(rho, 0.4).unwrap(),
+    );
+    for m in Metal::ALL {
+        let id = [
+            Metal::Au,
+            Metal::Ag,
+            Metal::Cu,
+            Metal::Al,
+            Metal::Cr,
+            Metal::Fe,
+            Metal::Ni,
+            Metal::Ti,
+            Metal::Pt,
+        ]
+        .iter()
+        .position(|&x| x == m)
+        .map_or(RAD_METAL_BRASS, |i| i as u32 + 1);
+        let c = c_ggx(0.3, RAD_FRESNEL_METAL, id as f32, 0.0);
+        let r =
+            Microfacet::<Ggx, HeightCorrelated, _>::new(Ggx::new(0.3).unwrap(), Conductor::<Vec3>::metal(m));
+        check_equal_rgb(m.name(), &c, &r);
+    }
+    let gold = c_ggx(0.3, RAD_FRESNEL_METAL, RAD_METAL_AU as f32, 0.0);
+    let n = RadVec3 {
+        x: 0.0,
+        y: 0.0,
+        z: 1.0,
+    };
+    let f = gold.eval_rgb(n, n);
+    assert!(f[0] > f[1] && f[1] > f[2], "{f:?}");
+}
+
+/// A grey handle (every scalar constructor) gives the monochrome value on each RGB channel, bit for bit.
+#[test]
+fn grey_handles_give_the_monochrome_values_per_channel() {
+    let plugins = [
+        c_plugin(rad_brdf_eon, 0.7, 0.5),
+        c_plugin(rad_brdf_fon, 0.7, 0.5),
+        c_plugin(rad_brdf_sheen, 0.8, 0.3),
+        c_ggx(0.3, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0),
+        c_ggx(0.2, RAD_FRESNEL_SCHLICK, 0.04, 0.0),
+        c_ggx(0.4, RAD_FRESNEL_CONDUCTOR, 0.2, 3.9),
+        c_ggx(0.5, RAD_FRESNEL_F82, 0.9, 0.7),
+        c_ggx(0.5, RAD_FRESNEL_NONE, 0.0, 0.0),
+    ];
+    let (wi, wo) = (directions(61, 0.2), directions(61, 0.6));
+    for h in &plugins {
+        for k in 0..wi.len() {
+            let mut m = f32::NAN;
+            ok(unsafe { rad_brdf_eval(h, wi[k], wo[k], &mut m) });
+            assert_eq!(
+                h.eval_rgb(wi[k], wo[k]).map(f32::to_bits),
+                [m.to_bits(); 3],
+                "{h:?} k={k}"
+            );
+        }
+    }
+    let coat = c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0);
+    let m = c_coated(&coat, &plugins[0], 0.6, 1.5);
+    for k in 0..wi.len() {
+        let mut v = f32::NAN;
+        ok(unsafe { rad_material_eval(&m, wi[k], wo[k], &mut v) });
+        assert_eq!(
+            m.eval_rgb(wi[k], wo[k]).map(f32::to_bits),
+            [v.to_bits(); 3],
+            "coated k={k}"
+        );
+    }
+}
+
+/// RGB materials equal the Rust `Vec3` composites bit for bit (pick probabilities from the lobes' RGB albedos).
+#[test]
+fn rgb_materials_equal_the_rust_composites_bit_for_bit() {
+    let rho = Vec3::new(0.7, 0.3, 0.1);
+    let base = c_rgb(rad_brdf_eon_rgb, rho.to_array(), 0.4);
+    let coat = c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0);
+    let gold = c_ggx(0.3, RAD_FRESNEL_METAL, RAD_METAL_AU as f32, 0.0);
+    let r_base = Eon::new(rho, 0.4).unwrap();
+    let r_coat = Microfacet::<Ggx, HeightCorrelated, _>::new(
+        Ggx::new(0.1).unwrap(),
+        radiometry_brdfs::microfacet::Achromatic::<_, Vec3>::new(Dielectric::new(1.5).unwrap()),
+    );
+    let r_gold = Microfacet::<Ggx, HeightCorrelated, _>::new(
+        Ggx::new(0.3).unwrap(),
+        Conductor::<Vec3>::metal(Metal::Au),
+    );
+    let plastic = c_coated(&coat, &base, 0.8, 1.6);
+    check_equal_rgb(
+        "red plastic",
+        &plastic,
+        &Coated::new(r_coat, r_base)
+            .absorbing(Vec3::splat(0.8), 1.6)
+            .unwrap(),
+    );
+    let mut mix = RadMaterial::default();
+    ok(unsafe { rad_material_mix(0.3, &gold, &base, &mut mix) });
+    check_equal_rgb("mix", &mix, &Mix::new(0.3, r_gold, r_base).unwrap());
+    let mut sum = RadMaterial::default();
+    ok(unsafe { rad_material_sum(&coat, &gold, &mut sum) });
+    check_equal_rgb("sum", &sum, &Sum::new(r_coat, r_gold));
+    let mut reciprocal = RadMaterial::default();
+    ok(unsafe { rad_material_coated_reciprocal(&coat, &gold, 1.0, 1.5, &mut reciprocal) });
+    check_equal_rgb(
+        "reciprocal coated gold",
+        &reciprocal,
+        &Coated::new(r_coat, r_gold).with_layering(Layering::Reciprocal),
+    );
+}
+
+/// The target: `openpbr(base_color=rgb(0.8, 0.1, 0.1))` through the C API equals `OpenPbr<Vec3>` bit for
+/// bit; every colour of the parameters reaches its channel.
+#[test]
+fn rgb_openpbr_equals_the_rust_plugin_bit_for_bit() {
+    let red = RadOpenPbrParams {
+        base_color: [0.8, 0.1, 0.1],
+        ..c_defaults()
+    };
+    let want = OpenPbrParams::<Vec3> {
+        base_color: Vec3::new(0.8, 0.1, 0.1),
+        ..OpenPbrParams::default()
+    };
+    assert_eq!(OpenPbrParams::<Vec3>::from(red), want);
+    check_equal_rgb("red openpbr", &c_openpbr(&red), &OpenPbr::new(want).unwrap());
+    let all = RadOpenPbrParams {
+        base_color: [0.9, 0.6, 0.2],
+        base_metalness: 0.6,
+        specular_color: [1.0, 0.9, 0.8],
+        coat_weight: 0.8,
+        coat_color: [0.9, 0.95, 0.7],
+        fuzz_weight: 0.4,
+        fuzz_color: [0.3, 0.3, 1.0],
+        reciprocal: 1,
+        ..c_defaults()
+    };
+    let p = OpenPbrParams::<Vec3>::from(all);
+    assert_eq!(
+        (p.base_color, p.specular_color, p.coat_color, p.fuzz_color),
+        (
+            Vec3::new(0.9, 0.6, 0.2),
+            Vec3::new(1.0, 0.9, 0.8),
+            Vec3::new(0.9, 0.95, 0.7),
+            Vec3::new(0.3, 0.3, 1.0)
+        )
+    );
+    check_equal_rgb(
+        "openpbr, every layer",
+        &c_openpbr(&all),
+        &OpenPbr::with_layering(p, Layering::Reciprocal).unwrap(),
+    );
+    // The monochrome calls use each colour's luminance.
+    let mono = OpenPbrParams::<f32>::from(red);
+    assert_eq!(mono.base_color, 0.2126 * 0.8 + 0.7152 * 0.1 + 0.0722 * 0.1);
+}
+
+/// Bad colours, pointers and buffers of the RGB calls are statuses.
+#[test]
+fn rgb_calls_report_bad_input() {
+    let mut h = RadBrdf::default();
+    for (c, want) in [
+        ([0.5, f32::NAN, 0.5], RadStatus::NotFinite),
+        ([0.5, 1.2, 0.5], RadStatus::OutOfRange),
+        ([-0.1, 0.5, 0.5], RadStatus::OutOfRange),
+    ] {
+        assert_eq!(
+            unsafe { rad_brdf_lambertian_rgb(c.as_ptr(), &mut h) },
+            want,
+            "{c:?}"
+        );
+    }
+    assert_eq!(
+        unsafe { rad_brdf_lambertian_rgb(null(), &mut h) },
+        RadStatus::NullPointer
+    );
+    // An Oren–Nayar channel above the energy bound.
+    assert_eq!(
+        unsafe { rad_brdf_oren_nayar_rgb([0.5, 1.0, 0.5].as_ptr(), 0.3, &mut h) },
+        RadStatus::Constraint
+    );
+    assert_eq!(h, RadBrdf::default(), "unchanged on error");
+    let lam = c_rgb(rad_brdf_eon_rgb, [0.2, 0.4, 0.6], 0.5);
+    let w = directions(4, 0.1);
+    assert_eq!(
+        unsafe { rad_brdf_eval_rgb(&lam, w[0], w[1], null_mut()) },
+        RadStatus::NullPointer
+    );
+    assert_eq!(
+        unsafe { rad_brdf_eval_rgb(null(), w[0], w[1], [0.0f32; 3].as_mut_ptr()) },
+        RadStatus::NullPointer
+    );
+    // The output of 3n floats may not overlap the inputs (here: out over wi).
+    let mut buf = vec![0.0f32; 3 * 4 * 2];
+    let wi = buf.as_ptr().cast::<RadVec3>();
+    let s = unsafe { rad_brdf_eval_batch_rgb(&lam, wi, w.as_ptr(), buf.as_mut_ptr(), 4) };
+    assert_eq!(s, RadStatus::Overlap);
+    // 3n overflows.
+    let s =
+        unsafe { rad_brdf_eval_batch_rgb(&lam, w.as_ptr(), w.as_ptr(), buf.as_mut_ptr(), usize::MAX / 2) };
+    assert!(s == RadStatus::TooLong, "{s:?}");
+    // A scribbled colour is reported by the RGB calls.
+    let mut bad = lam;
+    bad.rgb[0][2] = 2.0;
+    let mut f = [0.0f32; 3];
+    assert_eq!(
+        unsafe { rad_brdf_eval_rgb(&bad, w[0], w[1], f.as_mut_ptr()) },
+        RadStatus::OutOfRange
+    );
+}
+
+/// Coloured Fresnel parameters: Schlick `f0[3]`, a conductor's `η[3]`, `k[3]` and F82-tint `f0[3]`, `f82[3]` equal
+/// the Rust `Vec3` Fresnel terms bit for bit; other Fresnel kinds and bad channels are statuses.
+#[test]
+fn rgb_fresnel_parameters_equal_the_rust_plugins() {
+    let mk = |fresnel: u32, a: [f32; 3], b: Option<[f32; 3]>| {
+        let mut h = RadBrdf::default();
+        let bp = b.as_ref().map_or(null(), |b| b.as_ptr());
+        let s = unsafe {
+            rad_brdf_microfacet_rgb(
+                RAD_DISTRIBUTION_GGX,
+                0.25,
+                RAD_SHADOWING_HEIGHT_CORRELATED,
+                fresnel,
+                a.as_ptr(),
+                bp,
+                &mut h,
+            )
+        };
+        (s, h)
+    };
+    let g = || Ggx::new(0.25).unwrap();
+    let (s, h) = mk(RAD_FRESNEL_SCHLICK, [0.95, 0.64, 0.54], None);
+    ok(s);
+    let f0 = Vec3::new(0.95, 0.64, 0.54);
+    let r = Microfacet::<Ggx, HeightCorrelated, _>::new(g(), radiometry_brdfs::Schlick::new(f0).unwrap());
+    check_equal_rgb("schlick rgb", &h, &r);
+    let (eta, k) = ([0.2f32, 0.92, 1.1], [3.9f32, 2.45, 2.14]);
+    let (s, h) = mk(RAD_FRESNEL_CONDUCTOR, eta, Some(k));
+    ok(s);
+    let c = Conductor::new(Vec3::from_array(eta), Vec3::from_array(k)).unwrap();
+    check_equal_rgb(
+        "conductor rgb",
+        &h,
+        &Microfacet::<Ggx, HeightCorrelated, _>::new(g(), c),
+    );
+    // The monochrome calls: the luminance of η and of k.
+    let lum = |v: [f32; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+    assert_eq!(h.params, [0.25, lum(eta), lum(k)]);
+    let (t0, t82) = ([0.9f32, 0.7, 0.3], [0.8f32, 0.9, 1.0]);
+    let (s, h) = mk(RAD_FRESNEL_F82, t0, Some(t82));
+    ok(s);
+    let f = F82Tint::new(Vec3::from_array(t0), Vec3::from_array(t82)).unwrap();
+    check_equal_rgb(
+        "f82 rgb",
+        &h,
+        &Microfacet::<Ggx, HeightCorrelated, _>::new(g(), f),
+    );
+    for fresnel in [RAD_FRESNEL_NONE, RAD_FRESNEL_DIELECTRIC, RAD_FRESNEL_METAL, 99] {
+        assert_eq!(
+            mk(fresnel, [0.5; 3], Some([0.5; 3])).0,
+            RadStatus::UnknownKind,
+            "{fresnel}"
+        );
+    }
+    assert_eq!(
+        mk(RAD_FRESNEL_SCHLICK, [0.5, 1.5, 0.5], None).0,
+        RadStatus::OutOfRange
+    );
+    assert_eq!(
+        mk(RAD_FRESNEL_CONDUCTOR, [0.5; 3], None).0,
+        RadStatus::NullPointer
+    );
+    assert_eq!(
+        mk(RAD_FRESNEL_F82, [0.5, f32::NAN, 0.5], Some([1.0; 3])).0,
+        RadStatus::NotFinite
+    );
+}
+
+/// The SoA RGB batches equal the AoS RGB batches bit for bit, for a plugin, a material and OpenPBR; outputs that
+/// overlap an input or each other are `RAD_STATUS_OVERLAP`.
+#[test]
+fn rgb_soa_batches_equal_the_aos_batches() {
+    let n = 150;
+    let (wi, wo) = (directions(n, 0.21), directions(n, 0.47));
+    let comp = |v: &[RadVec3], f: fn(&RadVec3) -> f32| v.iter().map(f).collect::<Vec<f32>>();
+    let (ix, iy, iz) = (comp(&wi, |v| v.x), comp(&wi, |v| v.y), comp(&wi, |v| v.z));
+    let (ox, oy, oz) = (comp(&wo, |v| v.x), comp(&wo, |v| v.y), comp(&wo, |v| v.z));
+    type Soa<H> = unsafe extern "C" fn(
+        *const H,
+        *const f32,
+        *const f32,
+        *const f32,
+        *const f32,
+        *const f32,
+        *const f32,
+        *mut f32,
+        *mut f32,
+        *mut f32,
+        usize,
+    ) -> RadStatus;
+    fn check<H: CHandleRgb>(
+        name: &str,
+        h: &H,
+        soa: Soa<H>,
+        inputs: [&[f32]; 6],
+        wi: &[RadVec3],
+        wo: &[RadVec3],
+    ) {
+        let n = wi.len();
+        let (mut r, mut g, mut b) = (vec![f32::NAN; n], vec![f32::NAN; n], vec![f32::NAN; n]);
+        let [ix, iy, iz, ox, oy, oz] = inputs.map(|s| s.as_ptr());
+        ok(unsafe {
+            soa(
+                h,
+                ix,
+                iy,
+                iz,
+                ox,
+                oy,
+                oz,
+                r.as_mut_ptr(),
+                g.as_mut_ptr(),
+                b.as_mut_ptr(),
+                n,
+            )
+        });
+        let aos = h.eval_batch_rgb(wi, wo);
+        for k in 0..n {
+            let got = [r[k], g[k], b[k]].map(f32::to_bits);
+            assert_eq!(
+                got,
+                [aos[3 * k], aos[3 * k + 1], aos[3 * k + 2]].map(f32::to_bits),
+                "{name} k={k}"
+            );
+        }
+        let s = unsafe {
+            soa(
+                h,
+                ix,
+                iy,
+                iz,
+                ox,
+                oy,
+                oz,
+                r.as_mut_ptr(),
+                r.as_mut_ptr(),
+                b.as_mut_ptr(),
+                n,
+            )
+        };
+        assert_eq!(s, RadStatus::Overlap, "{name}: out_g over out_r");
+        let s = unsafe {
+            soa(
+                h,
+                ix,
+                iy,
+                iz,
+                ox,
+                oy,
+                oz,
+                r.as_mut_ptr(),
+                g.as_mut_ptr(),
+                ix as *mut f32,
+                n,
+            )
+        };
+        assert_eq!(s, RadStatus::Overlap, "{name}: out_b over wi_x");
+    }
+    let inputs: [&[f32]; 6] = [&ix, &iy, &iz, &ox, &oy, &oz];
+    let gold = c_ggx(0.3, RAD_FRESNEL_METAL, RAD_METAL_AU as f32, 0.0);
+    check("gold", &gold, rad_brdf_eval_batch_soa_rgb, inputs, &wi, &wo);
+    let base = c_rgb(rad_brdf_eon_rgb, [0.7, 0.3, 0.1], 0.4);
+    let coat = c_ggx(0.1, RAD_FRESNEL_DIELECTRIC, 1.5, 0.0);
+    check(
+        "plastic",
+        &c_coated(&coat, &base, 0.9, 1.5),
+        rad_material_eval_batch_soa_rgb,
+        inputs,
+        &wi,
+        &wo,
+    );
+    let red = RadOpenPbrParams {
+        base_color: [0.8, 0.1, 0.1],
+        ..c_defaults()
+    };
+    check(
+        "openpbr",
+        &c_openpbr(&red),
+        rad_openpbr_eval_batch_soa_rgb,
+        inputs,
+        &wi,
+        &wo,
+    );
 }

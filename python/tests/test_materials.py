@@ -46,11 +46,13 @@ def test_material_eval_equals_the_cli_bit_for_bit(spec):
         out = subprocess.run(
             [exe, "eval", spec, "--wi", wi, "--wo", wo], capture_output=True, text=True, check=True
         )
-        want = np.float32(out.stdout.strip())
+        # One value, or R G B for a colour spec (a named metal, an rgb() colour).
+        want = np.array([np.float32(t) for t in out.stdout.split()], dtype=np.float32)
         ti, pi_ = map(float, wi.split(","))
         to, po = map(float, wo.split(","))
-        got = b.eval(rust_dir(ti, pi_), rust_dir(to, po))[0]
-        assert bits(got) == bits(want), (spec, wi, wo, got, want)
+        got = np.atleast_1d(b.eval(rust_dir(ti, pi_), rust_dir(to, po))[0])
+        assert got.shape == want.shape == (b.channels,)
+        assert np.array_equal(bits(got), bits(want)), (spec, wi, wo, got, want)
 
 
 @pytest.mark.parametrize("spec", MATERIALS)
@@ -84,14 +86,19 @@ def test_material_sampling_is_consistent_with_pdf_eval_and_albedo(spec):
     else:
         assert np.allclose(p, pdf[ok], rtol=1e-5, atol=0)
     f = b.eval(wi[ok], wo[ok])
-    assert np.allclose(weight[ok], f.astype(np.float64) * wi[ok, 2] / pdf[ok], rtol=1e-4, atol=1e-7)
-    # E[weight] = the directional albedo (within 5 standard errors of the mean
-    # and the albedo's own error estimate).
+    # Colour specs: f and weight have a column per channel.
+    cos_over_pdf = wi[ok, 2] / pdf[ok]
+    if b.channels > 1:
+        cos_over_pdf = cos_over_pdf[:, None]
+    assert np.allclose(weight[ok], f.astype(np.float64) * cos_over_pdf, rtol=1e-4, atol=1e-7)
+    # E[weight] = the directional albedo per channel (within 5 standard errors
+    # of the mean and the albedo's own error estimate).
     w = weight.astype(np.float64)
-    mean, se = w.mean(), w.std() / math.sqrt(n)
+    mean, se = np.atleast_1d(w.mean(axis=0)), np.atleast_1d(w.std(axis=0) / math.sqrt(n))
     a = b.albedo(theta_o)
-    assert abs(mean - a["value"]) < 5 * se + a["error"] + 1e-4, (mean, se, a)
-    assert mean <= 1.0 + 5 * se
+    value, error = np.atleast_1d(a["value"]), np.atleast_1d(a["error"])
+    assert np.all(np.abs(mean - value) < 5 * se + error + 1e-4), (mean, se, a)
+    assert np.all(mean <= 1.0 + 5 * se)
 
 
 @pytest.mark.parametrize("theta", [0.0, 45.0, 80.0, 89.0])

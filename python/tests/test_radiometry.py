@@ -284,3 +284,102 @@ def test_tradeoff_quick_returns_the_report_rows(tmp_path):
     # The CLI's filters.
     few = radiometry.tradeoff(quick=True, out=str(tmp_path / "few"), threads=2, cases=["lambertian"], integrators=["adaptive"])
     assert few and all("lambertian" in r["case"] and "adaptive" in r["integrator"] for r in few)
+
+
+# Colour: a spec with a non-grey rgb() colour, a named metal or a MERL file is evaluated per channel.
+
+COLOUR_SPECS = [
+    "lambertian(albedo=rgb(0.8, 0.4, 0.1))",
+    "ggx(alpha=0.3, fresnel=conductor(metal=Au))",
+    "openpbr(base_color=rgb(0.8, 0.1, 0.1))",
+    "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=rgb(0.2, 0.5, 0.7), sigma=0.3))",
+    "mix(0.5, ggx(alpha=0.2, fresnel=conductor(metal=Cu)), lambertian(albedo=rgb(0.1, 0.2, 0.9)))",
+]
+
+
+@pytest.mark.parametrize("spec", COLOUR_SPECS)
+def test_colour_eval_is_n_by_3_and_bit_equal_to_scalar_eval(spec):
+    b = radiometry.Brdf(spec)
+    assert b.channels == 3
+    n = 1003
+    wi, wo = directions(n, 21, below=0.3), directions(n, 22)
+    got = b.eval(wi, wo)
+    assert got.dtype == np.float32 and got.shape == (n, 3)
+    want = np.array([b.eval_one(wi[k], wo[k]) for k in range(n)], dtype=np.float32)
+    assert want.shape == (n, 3)
+    assert np.array_equal(bits(got), bits(want))
+    assert np.all(np.isfinite(got)) and np.all(got >= 0.0)
+    assert np.all(got[wi[:, 2] < 0] == 0.0)
+    # mono=True: one channel, the cheap path.
+    m = radiometry.Brdf(spec, mono=True)
+    assert m.channels == 1 and m.eval(wi, wo).shape == (n,)
+
+
+def test_grey_specs_stay_one_channel():
+    for spec in SPECS + ["lambertian(albedo=rgb(0.3, 0.3, 0.3))", "openpbr(base_color=0.5)"]:
+        b = radiometry.Brdf(spec)
+        assert b.channels == 1, spec
+        assert b.eval(directions(4, 1), directions(4, 2)).shape == (4,)
+
+
+def test_rgb_lambertian_closed_form_per_channel_and_mono_luminance():
+    wi, wo = directions(50, 31), directions(50, 32)
+    f = radiometry.Brdf("lambertian(albedo=rgb(0.8, 0.4, 0.1))").eval(wi, wo)
+    for c, rho in enumerate([0.8, 0.4, 0.1]):
+        assert np.abs(f[:, c] - rho / math.pi).max() < 1e-7
+    m = radiometry.Brdf("lambertian(albedo=rgb(0.8, 0.4, 0.1))", mono=True).eval(wi, wo)
+    lum = 0.2126 * 0.8 + 0.7152 * 0.4 + 0.0722 * 0.1
+    assert np.abs(m - lum / math.pi).max() < 1e-7
+
+
+def test_gold_red_above_blue_and_equal_to_the_cli():
+    spec = "ggx(alpha=0.3, fresnel=conductor(metal=Au))"
+    b = radiometry.Brdf(spec)
+    f = b.eval(rust_dir(30, 0), rust_dir(30, 180))[0]
+    assert f[0] > f[1] > f[2] > 0.0
+    exe = cli()
+    out = subprocess.run(
+        [exe, "eval", spec, "--wi", "30,0", "--wo", "30,180"], capture_output=True, text=True, check=True
+    )
+    want = np.array([np.float32(t) for t in out.stdout.split()], dtype=np.float32)
+    assert want.shape == (3,) and np.array_equal(bits(f), bits(want))
+
+
+def test_colour_albedo_per_channel():
+    b = radiometry.Brdf("lambertian(albedo=rgb(0.8, 0.4, 0.1))")
+    r = b.albedo(40.0, tol=1e-6)
+    assert r["channels"] == "linear-srgb"
+    assert len(r["value"]) == 3 and len(r["error"]) == 3 and len(r["confirmation"]) == 3
+    for got, want in zip(r["value"], [0.8, 0.4, 0.1]):
+        assert abs(got - want) < 1e-5, r
+    r = b.albedo(40.0)
+    assert len(r["value"]) == 3 and r["status"] == "resolved"
+    m = radiometry.Brdf("lambertian(albedo=rgb(0.8, 0.4, 0.1))", mono=True).albedo(40.0)
+    assert isinstance(m["value"], float) and "channels" not in m
+
+
+def test_colour_sampling_weight_is_per_channel_and_consistent():
+    b = radiometry.Brdf("ggx(alpha=0.3, fresnel=conductor(metal=Cu))")
+    n = 4096
+    wo = directions(n, 41)
+    u = np.random.default_rng(42).random((n, 2), dtype=np.float32)
+    wi, pdf, weight = b.sample(wo, u)
+    assert wi.shape == (n, 3) and pdf.shape == (n,) and weight.shape == (n, 3)
+    ok = pdf > 0
+    assert ok.mean() > 0.5 and np.all(weight[~ok] == 0.0)
+    f = b.eval(wi[ok], wo[ok])
+    w = f.astype(np.float64) * wi[ok, 2:3] / pdf[ok, None]
+    assert np.allclose(weight[ok], w, rtol=1e-4, atol=1e-7)
+    assert np.all(weight[ok, 0] > weight[ok, 2])  # copper: red above blue
+
+
+def test_colour_batch_length_mismatch_is_a_value_error():
+    b = radiometry.Brdf("ggx(alpha=0.3, fresnel=conductor(metal=Au))")
+    with pytest.raises(ValueError, match="`wi` has 3 rows but `wo` has 2"):
+        b.eval(directions(3, 1), directions(2, 2))
+    with pytest.raises(ValueError, match="rows"):
+        b.pdf(directions(3, 1), directions(2, 2))
+    with pytest.raises(ValueError, match="rows"):
+        b.sample(directions(3, 1), np.zeros((4, 2), np.float32))
+    with pytest.raises(ValueError, match=r"shape \(N, 3\)"):
+        b.eval(np.zeros((3, 2), np.float32), directions(3, 2))

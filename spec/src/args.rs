@@ -4,6 +4,9 @@ use crate::SpecError;
 use crate::call::{Arg, Call, Value};
 use crate::error::err_span;
 
+/// A string argument and its span.
+pub(crate) type Spanned<'a> = (&'a str, (usize, usize));
+
 /// Reads the arguments of one call, checking names, types, duplicates and
 /// ranges, and remembering spans for later errors.
 pub(crate) struct Args<'a> {
@@ -141,7 +144,7 @@ impl<'a> Args<'a> {
     }
 
     /// A string `"..."` and its span, or `None` when absent.
-    pub(crate) fn string(&mut self, key: &str) -> Result<Option<(&'a str, (usize, usize))>, SpecError> {
+    pub(crate) fn string(&mut self, key: &str) -> Result<Option<Spanned<'a>>, SpecError> {
         let Some(a) = self.find(key) else {
             return Ok(None);
         };

@@ -59,10 +59,13 @@ pub enum FresnelSpec {
         k: f64,
     },
     /// `conductor(metal=Au)`: the exact conductor Fresnel of a named metal's
-    /// measured `η(λ), k(λ)`, reduced to one channel (the run-time BRDF is
-    /// monochrome): the `η`, `k` whose Fresnel curve has the luminance of the
-    /// metal's reflectance at normal incidence and at 82°
-    /// (`Conductor::metal_luminance` of `radiometry-brdfs`).
+    /// measured `η(λ), k(λ)`, reduced to the run-time BRDF's channels. RGB
+    /// ([`build_brdf_rgb`](crate::model::build_brdf_rgb)): per channel the `η`, `k`
+    /// whose Fresnel curve passes through the metal's spectral reflectance reduced
+    /// to linear sRGB (CIE 1931 2° observer under D65) at normal incidence and at
+    /// 82° (`Conductor::<Vec3>::metal` of `radiometry-brdfs`). Monochrome
+    /// ([`build_brdf`](crate::build_brdf)): the same fit to the luminance `Y` of
+    /// the reflectance (`Conductor::metal_luminance`).
     Metal {
         /// The metal (names case-insensitive).
         metal: Metal,
@@ -83,8 +86,8 @@ pub enum FresnelSpec {
 pub enum BrdfSpec {
     /// `lambertian(albedo=1)`.
     Lambertian {
-        /// Albedo ρ ∈ [0, 1].
-        albedo: f64,
+        /// Albedo ρ ∈ [0, 1] per channel (linear RGB; one number is grey).
+        albedo: [f64; 3],
     },
     /// `phong(exponent=N, ks=1, kd=0)`: modified Phong (Lafortune & Willems 1994).
     Phong {
@@ -125,16 +128,16 @@ pub enum BrdfSpec {
     /// `fon(rho=R, sigma=S)`: Fujii's improved Oren–Nayar (the EON paper's
     /// FON), σ ∈ [0, 1] dimensionless.
     Fon {
-        /// Albedo colour ρ ∈ [0, 1] (default 1).
-        rho: f64,
+        /// Albedo colour ρ ∈ [0, 1] per channel (default 1).
+        rho: [f64; 3],
         /// Roughness σ ∈ [0, 1] (dimensionless; required).
         sigma: f64,
     },
     /// `eon(rho=R, sigma=S)`: the energy-preserving Oren–Nayar (Portsmouth,
     /// Kutz & Hill 2025), σ ∈ [0, 1] dimensionless.
     Eon {
-        /// Albedo colour ρ ∈ [0, 1] (default 1).
-        rho: f64,
+        /// Albedo colour ρ ∈ [0, 1] per channel (default 1).
+        rho: [f64; 3],
         /// Roughness σ ∈ [0, 1] (dimensionless; required).
         sigma: f64,
     },
@@ -142,24 +145,24 @@ pub enum BrdfSpec {
     /// as pbrt-v3 has it, σ in **radians**; ρ at most
     /// `OrenNayar::max_rho(σ)` (it gains energy above).
     OrenNayar {
-        /// Albedo colour ρ (default 1).
-        rho: f64,
+        /// Albedo colour ρ per channel (default 1).
+        rho: [f64; 3],
         /// Roughness σ ∈ [0, π/2] in radians (required).
         sigma_rad: f64,
     },
     /// `sheen(color=1, roughness=R)`: the microfacet sheen of Estevez &
     /// Kulla 2017 (Charlie distribution, fitted `Λ`).
     Sheen {
-        /// Colour (one number: the run-time BRDF is monochrome), in `[0, 1]`.
-        color: f64,
+        /// Colour, in `[0, 1]` per channel.
+        color: [f64; 3],
         /// Roughness `r ∈ [MIN_SHEEN_ROUGHNESS, 1]`.
         roughness: f64,
     },
     /// `ltc-sheen(color=1, roughness=0.5)`: the LTC sheen of Zeltner, Burley & Chiang 2022
     /// (OpenPBR's recommended fuzz lobe; `radiometry_brdfs::LtcSheen`).
     LtcSheen {
-        /// Colour (one number: the run-time BRDF is monochrome), in `[0, 1]` (default 1).
-        color: f64,
+        /// Colour, in `[0, 1]` per channel (default 1).
+        color: [f64; 3],
         /// Roughness `r ∈ [0, 1]` (default 0.5).
         roughness: f64,
     },
@@ -202,9 +205,9 @@ pub enum BrdfSpec {
 }
 
 /// The parameters of `openpbr(...)`, with OpenPBR Surface 1.1's names and defaults (see
-/// `radiometry_brdfs::openpbr`). Colours are `rgb(R, G, B)` or one number; the run-time BRDF is
-/// monochrome, so [`build_brdf`](crate::build_brdf) uses each colour's Rec. 709 luminance
-/// ([`luminance`]).
+/// `radiometry_brdfs::openpbr`). Colours are `rgb(R, G, B)` or one number: the RGB run-time BRDF
+/// ([`build_brdf_rgb`](crate::model::build_brdf_rgb)) keeps them, the monochrome one
+/// ([`build_brdf`](crate::build_brdf)) uses each colour's Rec. 709 luminance ([`luminance`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OpenPbrSpec {
     /// `base_weight` (1).
@@ -281,7 +284,8 @@ const OPENPBR_OUTSIDE: [&str; 11] = [
 ];
 
 /// The Rec. 709 / sRGB luminance `Y = 0.2126 R + 0.7152 G + 0.0722 B` of a linear colour (how a
-/// colour enters the monochrome run-time BRDF).
+/// colour enters the monochrome run-time BRDF, [`build_brdf`](crate::build_brdf); the RGB one,
+/// [`build_brdf_rgb`](crate::model::build_brdf_rgb), keeps the channels).
 /// A grey colour (three equal channels) is its value exactly.
 pub fn luminance(c: [f64; 3]) -> f64 {
     if c[0] == c[1] && c[1] == c[2] {
@@ -290,7 +294,47 @@ pub fn luminance(c: [f64; 3]) -> f64 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
+/// Whether a colour is grey: its three channels are equal.
+pub fn is_grey_colour(c: [f64; 3]) -> bool {
+    c[0] == c[1] && c[1] == c[2]
+}
+
 impl BrdfSpec {
+    /// Whether the spec is grey: every colour in it has three equal channels, and it names no
+    /// metal (`conductor(metal=…)`, coloured by its spectral `η`, `k`) and no MERL file
+    /// (`tabulated(file=…)`, three channels of data). A grey spec reflects every channel alike, so
+    /// the monochrome run-time BRDF ([`build_brdf`](crate::build_brdf)) gives the value of each
+    /// channel of the RGB one ([`build_brdf_rgb`](crate::model::build_brdf_rgb)): front ends print one
+    /// value for it.
+    ///
+    /// ```
+    /// use radiometry_spec::parse_brdf;
+    /// assert!(parse_brdf("lambertian(albedo=rgb(0.5, 0.5, 0.5))")?.is_grey());
+    /// assert!(!parse_brdf("lambertian(albedo=rgb(0.8, 0.1, 0.1))")?.is_grey());
+    /// assert!(!parse_brdf("ggx(alpha=0.3, fresnel=conductor(metal=Au))")?.is_grey());
+    /// assert!(parse_brdf("ggx(alpha=0.3, fresnel=conductor(eta=0.2, k=3.9))")?.is_grey());
+    /// # Ok::<(), radiometry_spec::SpecError>(())
+    /// ```
+    pub fn is_grey(&self) -> bool {
+        match self {
+            BrdfSpec::Lambertian { albedo: c }
+            | BrdfSpec::Fon { rho: c, .. }
+            | BrdfSpec::Eon { rho: c, .. }
+            | BrdfSpec::OrenNayar { rho: c, .. }
+            | BrdfSpec::Sheen { color: c, .. }
+            | BrdfSpec::LtcSheen { color: c, .. } => is_grey_colour(*c),
+            BrdfSpec::Phong { .. } | BrdfSpec::BlinnPhong { .. } => true,
+            BrdfSpec::Microfacet { fresnel, .. } => !matches!(fresnel, FresnelSpec::Metal { .. }),
+            BrdfSpec::OpenPbr(p) => [p.base_color, p.specular_color, p.coat_color, p.fuzz_color]
+                .into_iter()
+                .all(is_grey_colour),
+            BrdfSpec::Tabulated { .. } => false,
+            BrdfSpec::Sum(parts) => parts.iter().all(BrdfSpec::is_grey),
+            BrdfSpec::Mix { a, b, .. } => a.is_grey() && b.is_grey(),
+            BrdfSpec::Coated { top, base, .. } => top.is_grey() && base.is_grey(),
+        }
+    }
+
     /// The path of a `tabulated(file=PATH)` spec, sliced from `text` (the
     /// string that was parsed); `None` for other BRDFs or a span that does
     /// not fit `text`.
@@ -317,8 +361,9 @@ pub const MIN_SHEEN_ROUGHNESS: f64 = 0.07;
 pub const BRDF_SPEC_HELP: &str = "BRDF spec, e.g. `lambertian(albedo=0.5)`, `phong(exponent=100, ks=1, kd=0)`, \
 `blinn-phong(exponent=100, ks=1, kd=0)`, `ggx(alpha=0.1, g=height-correlated|separable, \
 fresnel=none|schlick(f0=0.04)|dielectric(eta=1.5)|conductor(eta=0.2,k=3.9)|conductor(metal=Au)|f82(f0=0.9,f82=0.8), \
-ms=none|kulla-conty, kd=0)` (metals: Au, Ag, Cu, Al, Cr, Fe, Ni, Ti, Pt, Brass, reduced to their luminance; \
-the run-time BRDF is monochrome: a colour is one number or rgb(R, G, B), which enters as its Rec. 709 luminance), \
+ms=none|kulla-conty, kd=0)` (metals: Au, Ag, Cu, Al, Cr, Fe, Ni, Ti, Pt, Brass, \
+reduced to linear sRGB under D65, or to their luminance in monochrome; a colour is one number or rgb(R, G, B), linear; \
+a spec with a colour, a named metal or a MERL file is evaluated per channel, or as its Rec. 709 luminance in monochrome), \
 `beckmann(...)` (same parameters as ggx), `tabulated(file=PATH)` (a MERL .binary file; the path runs to the last `)`), \
 `eon(rho=1, sigma=0.5)` (energy-preserving Oren–Nayar), `fon(rho=1, sigma=0.5)` (Fujii's Oren–Nayar), \
 `oren-nayar(rho=0.9, sigma_rad=0.35)` (classic, pbrt-v3), `sheen(color=1, roughness=0.5)` (Estevez & Kulla 2017 \
@@ -453,7 +498,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
     match name {
         "lambertian" | "lambert" => {
             let mut a = Args::new(spec, call, &["albedo"])?;
-            let albedo = luminance(a.colour("albedo", Some(1.0))?);
+            let albedo = a.colour("albedo", Some(1.0))?;
             Ok(BrdfSpec::Lambertian { albedo })
         }
         "phong" | "blinn-phong" => {
@@ -538,7 +583,7 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
         }
         "fon" | "eon" => {
             let mut a = Args::new(spec, call, &["rho", "sigma"])?;
-            let rho = luminance(a.colour("rho", Some(1.0))?);
+            let rho = a.colour("rho", Some(1.0))?;
             let sigma = a.num("sigma", None, 0.0, 1.0, false)?;
             Ok(if name == "fon" {
                 BrdfSpec::Fon { rho, sigma }
@@ -548,10 +593,11 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
         }
         "oren-nayar" => {
             let mut a = Args::new(spec, call, &["rho", "sigma_rad"])?;
-            let rho = luminance(a.colour("rho", Some(1.0))?);
+            let rho = a.colour("rho", Some(1.0))?;
             let sigma_rad = a.num("sigma_rad", None, 0.0, core::f64::consts::FRAC_PI_2, false)?;
             let max = radiometry_brdfs::OrenNayar::max_rho(sigma_rad as f32) as f64;
-            if rho as f32 as f64 > max {
+            // Each channel is one Oren–Nayar lobe: the brightest must keep the bound.
+            if let Some(&rho) = rho.iter().find(|&&v| v as f32 as f64 > max) {
                 let span = call
                     .args
                     .iter()
@@ -630,13 +676,13 @@ fn plugin(spec: &str, call: &Call) -> Result<BrdfSpec, SpecError> {
         }
         "sheen" => {
             let mut a = Args::new(spec, call, &["color", "roughness"])?;
-            let color = luminance(a.colour("color", Some(1.0))?);
+            let color = a.colour("color", Some(1.0))?;
             let roughness = a.num("roughness", None, MIN_SHEEN_ROUGHNESS, 1.0, false)?;
             Ok(BrdfSpec::Sheen { color, roughness })
         }
         "ltc-sheen" => {
             let mut a = Args::new(spec, call, &["color", "roughness"])?;
-            let color = luminance(a.colour("color", Some(1.0))?);
+            let color = a.colour("color", Some(1.0))?;
             let roughness = a.num("roughness", Some(0.5), 0.0, 1.0, false)?;
             Ok(BrdfSpec::LtcSheen { color, roughness })
         }
@@ -726,7 +772,7 @@ mod tests {
 
     #[test]
     fn compositions_parse_with_carets_on_errors() {
-        let l = |albedo| BrdfSpec::Lambertian { albedo };
+        let l = |albedo| BrdfSpec::Lambertian { albedo: [albedo; 3] };
         assert_eq!(
             parse_brdf("lambertian(albedo=0.2) + lambertian(albedo=0.3)+lambertian").unwrap(),
             BrdfSpec::Sum(vec![l(0.2), l(0.3), l(1.0)])
@@ -811,7 +857,7 @@ mod tests {
     fn brdf_examples_from_the_issue() {
         assert_eq!(
             parse_brdf("lambertian(albedo=0.5)").unwrap(),
-            BrdfSpec::Lambertian { albedo: 0.5 }
+            BrdfSpec::Lambertian { albedo: [0.5; 3] }
         );
         assert_eq!(
             parse_brdf("phong(exponent=100, ks=1, kd=0)").unwrap(),
@@ -875,7 +921,7 @@ mod tests {
         );
         assert_eq!(
             parse_brdf("lambertian").unwrap(),
-            BrdfSpec::Lambertian { albedo: 1.0 }
+            BrdfSpec::Lambertian { albedo: [1.0; 3] }
         );
         assert_eq!(
             parse_brdf("ggx(alpha=1, fresnel=none)").unwrap(),
@@ -993,15 +1039,15 @@ mod tests {
     }
 
     #[test]
-    fn plugin_colours_accept_rgb_as_luminance() {
+    fn plugin_colours_stay_colours() {
         assert_eq!(
             parse_brdf("lambertian(albedo=rgb(0.5, 0.5, 0.5))").unwrap(),
-            BrdfSpec::Lambertian { albedo: 0.5 }
+            BrdfSpec::Lambertian { albedo: [0.5; 3] }
         );
         let BrdfSpec::Eon { rho, .. } = parse_brdf("eon(rho=rgb(1, 0, 0), sigma=0.5)").unwrap() else {
             panic!()
         };
-        assert_eq!(rho, 0.2126);
+        assert_eq!(rho, [1.0, 0.0, 0.0]);
         assert_eq!(luminance([0.3; 3]), 0.3);
         assert!((luminance([1.0, 1.0, 0.0]) - 0.9278).abs() < 1e-12);
         assert!(parse_brdf("sheen(color=rgb(1, 1, 2), roughness=0.5)").is_err());
@@ -1012,14 +1058,14 @@ mod tests {
         assert_eq!(
             parse_brdf("sheen(color=1, roughness=0.5)").unwrap(),
             BrdfSpec::Sheen {
-                color: 1.0,
+                color: [1.0; 3],
                 roughness: 0.5
             }
         );
         assert_eq!(
             parse_brdf("sheen(roughness=1)").unwrap(),
             BrdfSpec::Sheen {
-                color: 1.0,
+                color: [1.0; 3],
                 roughness: 1.0
             }
         );
@@ -1041,14 +1087,14 @@ mod tests {
         assert_eq!(
             parse_brdf("ltc-sheen(color=0.8, roughness=0.3)").unwrap(),
             BrdfSpec::LtcSheen {
-                color: 0.8,
+                color: [0.8; 3],
                 roughness: 0.3
             }
         );
         assert_eq!(
             parse_brdf("ltc-sheen()").unwrap(),
             BrdfSpec::LtcSheen {
-                color: 1.0,
+                color: [1.0; 3],
                 roughness: 0.5
             }
         );
@@ -1112,23 +1158,29 @@ mod tests {
     fn rough_diffuse_specs() {
         assert_eq!(
             parse_brdf("eon(rho=0.8, sigma=0.5)").unwrap(),
-            BrdfSpec::Eon { rho: 0.8, sigma: 0.5 }
+            BrdfSpec::Eon {
+                rho: [0.8; 3],
+                sigma: 0.5
+            }
         );
         assert_eq!(
             parse_brdf("fon(sigma=1)").unwrap(),
-            BrdfSpec::Fon { rho: 1.0, sigma: 1.0 }
+            BrdfSpec::Fon {
+                rho: [1.0; 3],
+                sigma: 1.0
+            }
         );
         assert_eq!(
             parse_brdf("oren-nayar(rho=0.9, sigma_rad=0.35)").unwrap(),
             BrdfSpec::OrenNayar {
-                rho: 0.9,
+                rho: [0.9; 3],
                 sigma_rad: 0.35
             }
         );
         assert_eq!(
             parse_brdf("oren-nayar(sigma_rad=1.2)").unwrap(),
             BrdfSpec::OrenNayar {
-                rho: 1.0,
+                rho: [1.0; 3],
                 sigma_rad: 1.2
             }
         );

@@ -26,7 +26,7 @@
 //! ```
 //! use radiometry_spec::{BrdfSpec, parse_brdf};
 //!
-//! assert_eq!(parse_brdf("lambertian(albedo=0.5)")?, BrdfSpec::Lambertian { albedo: 0.5 });
+//! assert_eq!(parse_brdf("lambertian(albedo=0.5)")?, BrdfSpec::Lambertian { albedo: [0.5; 3] });
 //! let e = parse_brdf("lambertian(albdo=0.5)").unwrap_err();
 //! assert_eq!(&e.spec[e.start..e.end], "albdo");
 //! // Display shows the message, the spec, and carets under the offending token.
@@ -52,12 +52,15 @@ pub mod mtlx;
 pub use angles::parse_angles;
 pub use brdf::{
     BRDF_SPEC_HELP, BrdfSpec, Distribution, FresnelSpec, G2Kind, MAX_ALPHA, MAX_EXPONENT, MIN_ALPHA,
-    MultipleScattering, OPENPBR_PARAMS, OpenPbrSpec, luminance, parse_brdf,
+    MultipleScattering, OPENPBR_PARAMS, OpenPbrSpec, is_grey_colour, luminance, parse_brdf,
 };
 pub use call::{Arg, Call, Value, parse_call, parse_sum};
 pub use error::SpecError;
 pub use light::{LIGHT_SPEC_HELP, LightSpec, parse_lights};
-pub use model::{AnyBrdf, AnyIntegrator, DynBrdf, all_integrators, build_brdf, integrator_by_name};
+pub use model::{
+    AnyBrdf, AnyBrdfRgb, AnyIntegrator, DynBrdf, RunTimeSpectrum, all_integrators, build_brdf, build_brdf_as,
+    build_brdf_rgb, integrator_by_name,
+};
 
 /// The crate README's examples, compiled and run as doctests.
 #[cfg(doctest)]

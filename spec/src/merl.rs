@@ -44,8 +44,10 @@ use radiometry::Brdf;
 use radiometry::Spectrum;
 use radiometry::glam::Vec3;
 use radiometry_brdfs::tabulated::{RusinkiewiczGrid, TabulatedError};
+use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock};
 
 /// Per-channel scales of MERL files: a stored value times its channel's
 /// scale is `f_r` [sr⁻¹] (red, green, blue).
@@ -335,40 +337,65 @@ pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
 /// The monochrome [`Tabulated`](radiometry_brdfs::tabulated::Tabulated)
 /// BRDF (Rec. 709 luminance of the RGB table, [`LUMINANCE`]) of a MERL
 /// file, with half-vector sampling: what `tabulated(file=PATH)` builds in
-/// the CLI and the Python module.
+/// the monochrome run-time BRDF ([`build_brdf`](crate::build_brdf)).
 ///
 /// The plugin borrows its table, and the CLI's type-erased BRDFs are
 /// `'static`, so the table and sampling buffer are leaked (kept for the
 /// process lifetime) and cached by (canonical path, size, modification
 /// time): building the same unchanged file again reuses them, so the
 /// memory held is bounded by the number of distinct files (≈ 5.8 MB for a
-/// 90 × 90 × 180 table).
+/// 90 × 90 × 180 table; ≈ 17 MB more for its RGB form,
+/// [`load_tabulated_rgb`]).
 ///
 /// # Errors
 /// A message naming the file and the [`MerlError`] or
 /// [`TabulatedError`] (missing file, truncated, bad dimensions, NaN).
 pub fn load_tabulated(path: &str) -> Result<radiometry_brdfs::tabulated::Tabulated<'static, f32>, String> {
+    static CACHE: Cache<f32> = OnceLock::new();
+    load_cached(path, &CACHE, |v| {
+        LUMINANCE[0] * v.x + LUMINANCE[1] * v.y + LUMINANCE[2] * v.z
+    })
+}
+
+/// The RGB [`Tabulated`](radiometry_brdfs::tabulated::Tabulated) BRDF of a
+/// MERL file (its three channels, in `f_r` units), with half-vector sampling
+/// (whose density follows the channels' average): what `tabulated(file=PATH)`
+/// builds in the RGB run-time BRDF
+/// ([`build_brdf_rgb`](crate::model::build_brdf_rgb)). Leaked and cached as
+/// [`load_tabulated`] (its own cache).
+///
+/// # Errors
+/// As [`load_tabulated`].
+pub fn load_tabulated_rgb(
+    path: &str,
+) -> Result<radiometry_brdfs::tabulated::Tabulated<'static, Vec3>, String> {
+    static CACHE: Cache<Vec3> = OnceLock::new();
+    load_cached(path, &CACHE, |v| v)
+}
+
+type CacheKey = (PathBuf, u64, Option<std::time::SystemTime>);
+type Cache<S> = OnceLock<Mutex<HashMap<CacheKey, radiometry_brdfs::tabulated::Tabulated<'static, S>>>>;
+
+/// Reads the MERL file at `path` (or takes it from `cache`), converts each
+/// RGB entry with `convert`, leaks the values and the sampling buffer.
+fn load_cached<S: Spectrum>(
+    path: &str,
+    cache: &'static Cache<S>,
+    convert: impl Fn(Vec3) -> S,
+) -> Result<radiometry_brdfs::tabulated::Tabulated<'static, S>, String> {
     use radiometry_brdfs::tabulated::Tabulated;
-    use std::collections::HashMap;
-    use std::sync::{Mutex, OnceLock};
-    type Key = (PathBuf, u64, Option<std::time::SystemTime>);
-    static CACHE: OnceLock<Mutex<HashMap<Key, Tabulated<'static, f32>>>> = OnceLock::new();
     let p = Path::new(path);
     let meta = std::fs::metadata(p).map_err(|e| format!("cannot read MERL file `{path}`: {e}"))?;
     let canonical = std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
     let key = (canonical, meta.len(), meta.modified().ok());
-    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    let cache = cache.get_or_init(|| Mutex::new(HashMap::new()));
     if let Some(t) = cache.lock().ok().and_then(|c| c.get(&key).copied()) {
         return Ok(t);
     }
     let table = read(p).map_err(|e| format!("cannot read MERL file `{path}`: {e}"))?;
-    let mono: Vec<f32> = table
-        .values
-        .iter()
-        .map(|v| LUMINANCE[0] * v.x + LUMINANCE[1] * v.y + LUMINANCE[2] * v.z)
-        .collect();
-    let values: &'static [f32] = Vec::leak(mono);
-    let buf: &'static mut [f32] = Vec::leak(vec![0.0f32; Tabulated::<f32>::sampling_buffer_len(&table.grid)]);
+    let converted: Vec<S> = table.values.iter().map(|&v| convert(v)).collect();
+    let values: &'static [S] = Vec::leak(converted);
+    let buf: &'static mut [f32] = Vec::leak(vec![0.0f32; Tabulated::<S>::sampling_buffer_len(&table.grid)]);
     let t = Tabulated::new(table.grid, values)
         .and_then(|t| t.with_sampling(buf))
         .map_err(|e| format!("invalid table in `{path}`: {e}"))?;

@@ -5,8 +5,18 @@
 //! erases their types behind [`AnyBrdf`] (a boxed trait object; one virtual call per
 //! evaluation, or per batch through the batch methods the integrators use) and picks integrators through [`AnyIntegrator`] (an enum,
 //! statically dispatched per variant).
+//!
+//! The run-time BRDF is generic over its spectrum ([`RunTimeSpectrum`]):
+//! [`build_brdf`] builds the monochrome `AnyBrdf` (= `AnyBrdf<f32>`, the cheap
+//! path: colours as their Rec. 709 luminance), [`build_brdf_rgb`] the linear-RGB
+//! [`AnyBrdfRgb`] (= `AnyBrdf<Vec3>`: colours, named metals and MERL tables per
+//! channel). Both come from one generic builder, [`build_brdf_as`]; a grey spec
+//! ([`BrdfSpec::is_grey`]) gives the monochrome value on every RGB channel.
 
 mod with_diffuse;
+
+#[cfg(test)]
+mod colour_tests;
 
 use crate::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
 use radiometry::BrdfSample;
@@ -16,7 +26,9 @@ use radiometry::integrator::{
     Adaptive, Auto, Estimate, GaussLegendre, Heuristic, Integrand, IntegrateError, Integrator, MonteCarlo,
     PointSet, Strategy, ToleranceOutcome, WarpedGaussLegendre, WideOf,
 };
-use radiometry::{Albedo, Brdf};
+use radiometry::{Albedo, Brdf, Spectrum};
+use radiometry_brdfs::metals::Metal;
+use radiometry_brdfs::microfacet::Achromatic;
 use radiometry_brdfs::{
     Beckmann, BlinnPhong, BrdfError, Conductor, Dielectric, Eon, F82Tint, Fon, Fresnel, Ggx,
     HeightCorrelated, KullaConty, Lambertian, LtcSheen, Microfacet, MicrofacetDistribution, ModifiedPhong,
@@ -24,65 +36,72 @@ use radiometry_brdfs::{
     microfacet::EnergyTable,
 };
 
-/// Object-safe view of a monochrome BRDF.
-pub trait DynBrdf: Send + Sync {
+/// Object-safe view of a BRDF whose values are the spectrum `S` (`f32` by
+/// default: monochrome; `Vec3`: linear RGB).
+pub trait DynBrdf<S: Spectrum = f32>: Send + Sync {
     /// See [`Brdf::eval`].
-    fn eval_dyn(&self, wi: Vec3, wo: Vec3) -> f32;
+    fn eval_dyn(&self, wi: Vec3, wo: Vec3) -> S;
     /// See [`Brdf::sample`].
-    fn sample_dyn(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>>;
+    fn sample_dyn(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>>;
     /// See [`Brdf::pdf`].
     fn pdf_dyn(&self, wi: Vec3, wo: Vec3) -> f32;
     /// See [`Brdf::eval_batch`] (one virtual call per batch, so the
     /// plugin's vector kernel runs).
-    fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]);
+    fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]);
     /// See [`Brdf::pdf_batch`].
     fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]);
     /// See [`Brdf::sample_batch`].
-    fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]);
+    fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]);
     /// See [`Brdf::is_smooth`].
     fn is_smooth_dyn(&self) -> bool;
     /// See [`Brdf::directional_albedo`].
-    fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<f32>;
+    fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<S>;
 }
 
-impl<B: Brdf<Spectrum = f32> + Send + Sync> DynBrdf for B {
-    fn eval_dyn(&self, wi: Vec3, wo: Vec3) -> f32 {
+impl<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync> DynBrdf<S> for B {
+    fn eval_dyn(&self, wi: Vec3, wo: Vec3) -> S {
         self.eval(wi, wo)
     }
-    fn sample_dyn(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+    fn sample_dyn(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         self.sample(wo, u)
     }
     fn pdf_dyn(&self, wi: Vec3, wo: Vec3) -> f32 {
         self.pdf(wi, wo)
     }
-    fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         self.eval_batch(wi, wo, out)
     }
     fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
         self.pdf_batch(wi, wo, out)
     }
-    fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
+    fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
         self.sample_batch(wo, u, out)
     }
     fn is_smooth_dyn(&self) -> bool {
         self.is_smooth()
     }
-    fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<f32> {
+    fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<S> {
         self.directional_albedo(wo)
     }
 }
 
-/// A type-erased plugin BRDF.
-pub struct AnyBrdf(Box<dyn DynBrdf>);
+/// A type-erased plugin BRDF with values of the spectrum `S`: `AnyBrdf` (=
+/// `AnyBrdf<f32>`, monochrome, from [`build_brdf`]) or [`AnyBrdfRgb`] (linear
+/// RGB, from [`build_brdf_rgb`]).
+pub struct AnyBrdf<S: Spectrum = f32>(Box<dyn DynBrdf<S>>);
 
-impl Brdf for AnyBrdf {
-    type Spectrum = f32;
+/// The RGB run-time BRDF: every channel of a spec's colours, named metals and
+/// MERL tables kept ([`build_brdf_rgb`]).
+pub type AnyBrdfRgb = AnyBrdf<Vec3>;
+
+impl<S: Spectrum> Brdf for AnyBrdf<S> {
+    type Spectrum = S;
     #[inline]
-    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
         self.0.eval_dyn(wi, wo)
     }
     #[inline]
-    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         self.0.sample_dyn(wo, u)
     }
     #[inline]
@@ -90,7 +109,7 @@ impl Brdf for AnyBrdf {
         self.0.pdf_dyn(wi, wo)
     }
     #[inline]
-    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         self.0.eval_batch_dyn(wi, wo, out)
     }
     #[inline]
@@ -98,31 +117,108 @@ impl Brdf for AnyBrdf {
         self.0.pdf_batch_dyn(wi, wo, out)
     }
     #[inline]
-    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<f32>>]) {
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
         self.0.sample_batch_dyn(wo, u, out)
     }
     fn is_smooth(&self) -> bool {
         self.0.is_smooth_dyn()
     }
-    fn directional_albedo(&self, wo: Vec3) -> Albedo<f32> {
+    fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         self.0.directional_albedo_dyn(wo)
     }
 }
 
-fn boxed<B: Brdf<Spectrum = f32> + Send + Sync + 'static>(b: B) -> AnyBrdf {
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for radiometry::glam::Vec3 {}
+}
+
+/// The spectra the run-time BRDF is built in: how a spec's colours, scalar
+/// Fresnel terms, named metals and MERL tables become values of the spectrum.
+/// Implemented (sealed) for `f32` (monochrome: each colour by its Rec. 709
+/// luminance, [`crate::luminance`]; a metal fitted to the luminance of its
+/// reflectance; a MERL table by the luminance of its channels) and `Vec3`
+/// (linear RGB: the channels as given; a metal's spectral reflectance reduced
+/// to linear sRGB under D65 with the CIE 1931 2° observer, per channel; a
+/// MERL table's three channels).
+///
+/// One generic builder ([`build_brdf_as`]) serves both, so the two cannot
+/// drift apart, and a grey spec builds, for `Vec3`, the same plugins with the
+/// same scalar parameters on every channel.
+pub trait RunTimeSpectrum: Spectrum + Send + Sync + sealed::Sealed + 'static {
+    /// A monochrome Fresnel term (no Fresnel, Schlick, dielectric, a conductor
+    /// of one `η`, `k`, F82) as a term of this spectrum: itself for `f32`,
+    /// [`Achromatic`] for `Vec3`.
+    type Achromatic<F: Fresnel<Spectrum = f32> + Send + Sync + 'static>: Fresnel<Spectrum = Self>
+        + Send
+        + Sync
+        + 'static;
+    /// Wraps a monochrome Fresnel term.
+    fn achromatic<F: Fresnel<Spectrum = f32> + Send + Sync + 'static>(f: F) -> Self::Achromatic<F>;
+    /// A linear RGB colour of a spec (channels in `[0, 1]`).
+    fn colour(c: [f64; 3]) -> Self;
+    /// The conductor of a named metal.
+    fn metal(metal: Metal) -> Conductor<Self>;
+    /// The MERL file at `path` (see [`crate::merl::load_tabulated`]).
+    ///
+    /// # Errors
+    /// A message naming the file and what is wrong with it.
+    fn tabulated(path: &str) -> Result<AnyBrdf<Self>, String>;
+}
+
+impl RunTimeSpectrum for f32 {
+    type Achromatic<F: Fresnel<Spectrum = f32> + Send + Sync + 'static> = F;
+    fn achromatic<F: Fresnel<Spectrum = f32> + Send + Sync + 'static>(f: F) -> F {
+        f
+    }
+    fn colour(c: [f64; 3]) -> f32 {
+        crate::brdf::luminance(c) as f32
+    }
+    fn metal(metal: Metal) -> Conductor<f32> {
+        Conductor::metal_luminance(metal)
+    }
+    fn tabulated(path: &str) -> Result<AnyBrdf<f32>, String> {
+        crate::merl::load_tabulated(path).map(boxed)
+    }
+}
+
+impl RunTimeSpectrum for Vec3 {
+    type Achromatic<F: Fresnel<Spectrum = f32> + Send + Sync + 'static> = Achromatic<F, Vec3>;
+    fn achromatic<F: Fresnel<Spectrum = f32> + Send + Sync + 'static>(f: F) -> Achromatic<F, Vec3> {
+        Achromatic::new(f)
+    }
+    fn colour(c: [f64; 3]) -> Vec3 {
+        Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)
+    }
+    /// `Conductor::<Vec3>::metal`: per channel the `η`, `k` whose exact
+    /// Fresnel reflectance equals the metal's measured spectral reflectance
+    /// reduced to linear sRGB (CIE 1931 2°, D65, clamped to `[0, 1]`) at
+    /// normal incidence and at 82°.
+    fn metal(metal: Metal) -> Conductor<Vec3> {
+        Conductor::metal(metal)
+    }
+    fn tabulated(path: &str) -> Result<AnyBrdf<Vec3>, String> {
+        crate::merl::load_tabulated_rgb(path).map(boxed)
+    }
+}
+
+fn boxed<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync + 'static>(b: B) -> AnyBrdf<S> {
     AnyBrdf(Box::new(b))
 }
 
-fn with_g<D, G>(d: D, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf, BrdfError>
+fn with_g<S, D, G>(d: D, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf<S>, BrdfError>
 where
+    S: RunTimeSpectrum,
     D: MicrofacetDistribution + EnergyTable<G> + Send + Sync + 'static,
     G: ShadowingMasking + Send + Sync + 'static,
 {
-    fn mk<D, G, F>(d: D, f: F, ms: MultipleScattering) -> AnyBrdf
+    fn mk<S, D, G, F>(d: D, f: F, ms: MultipleScattering) -> AnyBrdf<S>
     where
+        S: RunTimeSpectrum,
         D: MicrofacetDistribution + EnergyTable<G> + Send + Sync + 'static,
         G: ShadowingMasking + Send + Sync + 'static,
-        F: Fresnel<Spectrum = f32> + Send + Sync + 'static,
+        F: Fresnel<Spectrum = S> + Send + Sync + 'static,
     {
         match ms {
             MultipleScattering::Single => boxed(Microfacet::<D, G, F>::new(d, f)),
@@ -130,17 +226,24 @@ where
         }
     }
     Ok(match f {
-        FresnelSpec::None => mk::<D, G, _>(d, NoFresnel, ms),
-        FresnelSpec::Schlick { f0 } => mk::<D, G, _>(d, Schlick::new(f0 as f32)?, ms),
-        FresnelSpec::Dielectric { eta } => mk::<D, G, _>(d, Dielectric::new(eta as f32)?, ms),
-        FresnelSpec::Conductor { eta, k } => mk::<D, G, _>(d, Conductor::new(eta as f32, k as f32)?, ms),
-        FresnelSpec::Metal { metal } => mk::<D, G, _>(d, Conductor::metal_luminance(metal), ms),
-        FresnelSpec::F82 { f0, f82 } => mk::<D, G, _>(d, F82Tint::new(f0 as f32, f82 as f32)?, ms),
+        FresnelSpec::None => mk::<S, D, G, _>(d, S::achromatic(NoFresnel), ms),
+        FresnelSpec::Schlick { f0 } => mk::<S, D, G, _>(d, S::achromatic(Schlick::new(f0 as f32)?), ms),
+        FresnelSpec::Dielectric { eta } => {
+            mk::<S, D, G, _>(d, S::achromatic(Dielectric::new(eta as f32)?), ms)
+        }
+        FresnelSpec::Conductor { eta, k } => {
+            mk::<S, D, G, _>(d, S::achromatic(Conductor::new(eta as f32, k as f32)?), ms)
+        }
+        FresnelSpec::Metal { metal } => mk::<S, D, G, _>(d, S::metal(metal), ms),
+        FresnelSpec::F82 { f0, f82 } => {
+            mk::<S, D, G, _>(d, S::achromatic(F82Tint::new(f0 as f32, f82 as f32)?), ms)
+        }
     })
 }
 
-fn with_d<D>(d: D, g: G2Kind, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf, BrdfError>
+fn with_d<S, D>(d: D, g: G2Kind, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf<S>, BrdfError>
 where
+    S: RunTimeSpectrum,
     D: MicrofacetDistribution
         + EnergyTable<HeightCorrelated>
         + EnergyTable<Separable>
@@ -149,15 +252,22 @@ where
         + 'static,
 {
     match g {
-        G2Kind::HeightCorrelated => with_g::<D, HeightCorrelated>(d, f, ms),
-        G2Kind::Separable => with_g::<D, Separable>(d, f, ms),
+        G2Kind::HeightCorrelated => with_g::<S, D, HeightCorrelated>(d, f, ms),
+        G2Kind::Separable => with_g::<S, D, Separable>(d, f, ms),
     }
 }
 
 /// The monochrome `OpenPbr` parameters and layering of an `openpbr(...)`
 /// spec (each colour by its Rec. 709 luminance).
 pub fn openpbr_params(p: &crate::brdf::OpenPbrSpec) -> (OpenPbrParams<f32>, Layering) {
-    let c = |v: [f64; 3]| crate::brdf::luminance(v) as f32;
+    openpbr_params_as::<f32>(p)
+}
+
+/// The `OpenPbr` parameters and layering of an `openpbr(...)` spec in the
+/// spectrum `S` (monochrome: each colour by its Rec. 709 luminance; RGB: the
+/// colours as given).
+pub fn openpbr_params_as<S: RunTimeSpectrum>(p: &crate::brdf::OpenPbrSpec) -> (OpenPbrParams<S>, Layering) {
+    let c = S::colour;
     let layering = if p.reciprocal {
         Layering::Reciprocal
     } else {
@@ -186,24 +296,64 @@ pub fn openpbr_params(p: &crate::brdf::OpenPbrSpec) -> (OpenPbrParams<f32>, Laye
     )
 }
 
-/// Builds the plugin BRDF for a parsed spec. A constructor's [`BrdfError`]
-/// is reported as a [`SpecError`] pointing at the parameter it names (or at
-/// the whole spec).
+/// Builds the monochrome plugin BRDF for a parsed spec: each colour enters as
+/// its Rec. 709 luminance, a named metal as the conductor fitted to the
+/// luminance of its reflectance, a MERL file as the luminance of its
+/// channels (the cheap path; for a grey spec, see [`BrdfSpec::is_grey`], it
+/// is every channel of [`build_brdf_rgb`]). A constructor's [`BrdfError`] is
+/// reported as a [`SpecError`] pointing at the parameter it names (or at the
+/// whole spec).
 pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
+    build_brdf_as::<f32>(text, spec)
+}
+
+/// Builds the linear-RGB plugin BRDF for a parsed spec: colours keep their
+/// channels, a named metal is evaluated per channel (its measured spectral
+/// reflectance reduced to linear sRGB under D65 with the CIE 1931 2° observer,
+/// see [`FresnelSpec::Metal`]), a MERL file keeps its three channels. The
+/// same plugins as [`build_brdf`], in `Vec3`; a grey spec
+/// ([`BrdfSpec::is_grey`]) gives the monochrome values on every channel.
+///
+/// ```
+/// use radiometry::Brdf;
+/// use radiometry::glam::Vec3;
+/// use radiometry_spec::{model::build_brdf_rgb, parse_brdf};
+/// let text = "ggx(alpha=0.3, fresnel=conductor(metal=Au))";
+/// let gold = build_brdf_rgb(text, &parse_brdf(text)?)?;
+/// let f = gold.eval(Vec3::new(0.5, 0.0, 0.866_025_4), Vec3::new(-0.5, 0.0, 0.866_025_4));
+/// assert!(f.x > f.y && f.y > f.z); // gold: red above green above blue
+/// # Ok::<(), radiometry_spec::SpecError>(())
+/// ```
+///
+/// # Errors
+/// As [`build_brdf`].
+pub fn build_brdf_rgb(text: &str, spec: &BrdfSpec) -> Result<AnyBrdfRgb, SpecError> {
+    build_brdf_as::<Vec3>(text, spec)
+}
+
+/// Builds the plugin BRDF for a parsed spec in the spectrum `S` (`f32`:
+/// [`build_brdf`]; `Vec3`: [`build_brdf_rgb`]).
+///
+/// # Errors
+/// A constructor's [`BrdfError`] as a [`SpecError`] pointing at the parameter
+/// it names (or at the whole spec); an unreadable MERL file as a [`SpecError`]
+/// on its path.
+pub fn build_brdf_as<S: RunTimeSpectrum>(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf<S>, SpecError> {
     let whole = |message: String| SpecError {
         spec: text.to_string(),
         start: 0,
         end: text.len(),
         message,
     };
+    let c = S::colour;
     let r = match *spec {
         BrdfSpec::Sum(ref parts) => {
-            let mut lobes = parts.iter().map(|p| build_brdf(text, p));
+            let mut lobes = parts.iter().map(|p| build_brdf_as::<S>(text, p));
             let first = lobes.next().ok_or_else(|| whole("an empty sum".to_string()))??;
             return lobes.try_fold(first, |acc, b| Ok(boxed(Sum::new(acc, b?))));
         }
         BrdfSpec::Mix { weight, ref a, ref b } => {
-            let (a, b) = (build_brdf(text, a)?, build_brdf(text, b)?);
+            let (a, b) = (build_brdf_as::<S>(text, a)?, build_brdf_as::<S>(text, b)?);
             return Mix::new(weight as f32, a, b)
                 .map(boxed)
                 .map_err(|e| whole(e.to_string()));
@@ -215,7 +365,7 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
             coat_ior,
             reciprocal,
         } => {
-            let (top, base) = (build_brdf(text, top)?, build_brdf(text, base)?);
+            let (top, base) = (build_brdf_as::<S>(text, top)?, build_brdf_as::<S>(text, base)?);
             let layering = if reciprocal {
                 Layering::Reciprocal
             } else {
@@ -224,35 +374,33 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
             if coat_color >= 1.0 {
                 return Ok(boxed(Coated::new(top, base).with_layering(layering)));
             }
-            return Coated::with_absorption(top, base, coat_color as f32, coat_ior as f32)
+            return Coated::with_absorption(top, base, S::splat(coat_color as f32), coat_ior as f32)
                 .map(|c| boxed(c.with_layering(layering)))
                 .map_err(|e| whole(e.to_string()));
         }
         BrdfSpec::Tabulated { file: (start, end) } => {
-            return crate::merl::load_tabulated(text.get(start..end).unwrap_or(""))
-                .map(boxed)
-                .map_err(|message| SpecError {
-                    spec: text.to_string(),
-                    start,
-                    end,
-                    message,
-                });
+            return S::tabulated(text.get(start..end).unwrap_or("")).map_err(|message| SpecError {
+                spec: text.to_string(),
+                start,
+                end,
+                message,
+            });
         }
-        BrdfSpec::Lambertian { albedo } => Lambertian::new(albedo as f32).map(boxed),
-        BrdfSpec::Fon { rho, sigma } => Fon::new(rho as f32, sigma as f32).map(boxed),
-        BrdfSpec::Eon { rho, sigma } => Eon::new(rho as f32, sigma as f32).map(boxed),
-        BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(rho as f32, sigma_rad as f32).map(boxed),
-        BrdfSpec::Sheen { color, roughness } => Sheen::new(color as f32, roughness as f32).map(boxed),
-        BrdfSpec::LtcSheen { color, roughness } => LtcSheen::new(color as f32, roughness as f32).map(boxed),
+        BrdfSpec::Lambertian { albedo } => Lambertian::new(c(albedo)).map(boxed),
+        BrdfSpec::Fon { rho, sigma } => Fon::new(c(rho), sigma as f32).map(boxed),
+        BrdfSpec::Eon { rho, sigma } => Eon::new(c(rho), sigma as f32).map(boxed),
+        BrdfSpec::OrenNayar { rho, sigma_rad } => OrenNayar::new(c(rho), sigma_rad as f32).map(boxed),
+        BrdfSpec::Sheen { color, roughness } => Sheen::new(c(color), roughness as f32).map(boxed),
+        BrdfSpec::LtcSheen { color, roughness } => LtcSheen::new(c(color), roughness as f32).map(boxed),
         BrdfSpec::OpenPbr(ref p) => {
-            let (params, layering) = openpbr_params(p);
+            let (params, layering) = openpbr_params_as::<S>(p);
             OpenPbr::with_layering(params, layering).map(boxed)
         }
         BrdfSpec::Phong { exponent, ks, kd } => {
-            ModifiedPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)
+            ModifiedPhong::new(S::splat(kd as f32), S::splat(ks as f32), exponent as f32).map(boxed)
         }
         BrdfSpec::BlinnPhong { exponent, ks, kd } => {
-            BlinnPhong::new(kd as f32, ks as f32, exponent as f32).map(boxed)
+            BlinnPhong::new(S::splat(kd as f32), S::splat(ks as f32), exponent as f32).map(boxed)
         }
         BrdfSpec::Microfacet {
             distribution,
@@ -262,13 +410,17 @@ pub fn build_brdf(text: &str, spec: &BrdfSpec) -> Result<AnyBrdf, SpecError> {
             ms,
             kd,
         } => match distribution {
-            Distribution::Ggx => Ggx::new(alpha as f32).and_then(|d| with_d(d, g, fresnel, ms)),
-            Distribution::Beckmann => Beckmann::new(alpha as f32).and_then(|d| with_d(d, g, fresnel, ms)),
+            Distribution::Ggx => Ggx::new(alpha as f32).and_then(|d| with_d::<S, _>(d, g, fresnel, ms)),
+            Distribution::Beckmann => {
+                Beckmann::new(alpha as f32).and_then(|d| with_d::<S, _>(d, g, fresnel, ms))
+            }
         }
         .and_then(|specular| {
             if kd > 0.0 {
-                let diffuse = Lambertian::new(kd as f32)?;
-                Ok(boxed(with_diffuse::WithDiffuse::new(diffuse, specular)))
+                let diffuse = Lambertian::new(S::splat(kd as f32))?;
+                Ok(boxed(with_diffuse::WithDiffuse::new(
+                    diffuse, kd as f32, specular,
+                )))
             } else {
                 Ok(specular)
             }
@@ -508,7 +660,7 @@ mod tests {
         // The classic Oren–Nayar's energy bound, reached through a spec built by hand.
         let text = "oren-nayar(rho=1, sigma_rad=0.2)";
         let spec = BrdfSpec::OrenNayar {
-            rho: 1.0,
+            rho: [1.0; 3],
             sigma_rad: 0.2,
         };
         let e = build_brdf(text, &spec).err().expect("energy gain rejected");

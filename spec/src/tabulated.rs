@@ -124,7 +124,7 @@ mod tests {
             parse_brdf("tabulated(file=x)").unwrap(),
             BrdfSpec::Tabulated { file: (15, 16) }
         );
-        assert_eq!(BrdfSpec::Lambertian { albedo: 1.0 }.file("x"), None);
+        assert_eq!(BrdfSpec::Lambertian { albedo: [1.0; 3] }.file("x"), None);
     }
 
     #[test]

@@ -10,7 +10,8 @@ use radiometry_ffi as _;
     feature = "brdf",
     feature = "material",
     feature = "openpbr",
-    feature = "others"
+    feature = "others",
+    feature = "rgb"
 ))]
 use core::hint::black_box;
 
@@ -28,6 +29,8 @@ pub extern "C" fn _start() -> ! {
     others();
     #[cfg(feature = "openpbr")]
     openpbr();
+    #[cfg(feature = "rgb")]
+    rgb();
     loop {
         core::hint::spin_loop();
     }
@@ -378,6 +381,120 @@ fn openpbr() {
             f.as_mut_ptr(),
             n,
         ));
+    }
+    black_box((f, s));
+}
+
+/// The colour calls: the `_rgb` constructors and every `_rgb` call of plugins, materials and OpenPBR.
+#[cfg(feature = "rgb")]
+fn rgb() {
+    use radiometry_ffi::brdf::*;
+    use radiometry_ffi::material::*;
+    use radiometry_ffi::openpbr::*;
+    use radiometry_ffi::{RadBrdf, RadBrdfSample, RadMaterial, RadOpenPbr, RadOpenPbrParams, RadVec3};
+    let (mut top, mut base) = (RadBrdf::default(), RadBrdf::default());
+    let mut m = RadMaterial::default();
+    let (mut p, mut o) = (RadOpenPbrParams::default(), RadOpenPbr::default());
+    let v = |x: f32, y: f32, z: f32| black_box(RadVec3 { x, y, z });
+    let (wi, wo) = (v(0.1, 0.2, 0.9), v(-0.3, 0.1, 0.8));
+    let mut f = [0.0f32; 12];
+    let mut s = [RadBrdfSample::default(); 4];
+    let (wis, wos, u) = (black_box([wi; 4]), black_box([wo; 4]), black_box([0.5f32; 8]));
+    let n = black_box(4usize);
+    let c = black_box([0.8f32, 0.4, 0.1]);
+    let d = black_box([0.5f32; 4]);
+    // SAFETY: valid, aligned, exclusive pointers to locals; `n` is their length (3n floats for RGB values).
+    unsafe {
+        black_box(rad_brdf_lambertian_rgb(c.as_ptr(), &mut base));
+        black_box(rad_brdf_fon_rgb(c.as_ptr(), black_box(0.5), &mut base));
+        black_box(rad_brdf_oren_nayar_rgb(c.as_ptr(), black_box(0.5), &mut base));
+        black_box(rad_brdf_sheen_rgb(c.as_ptr(), black_box(0.5), &mut base));
+        black_box(rad_brdf_eon_rgb(c.as_ptr(), black_box(0.5), &mut base));
+        black_box(rad_brdf_microfacet_rgb(
+            black_box(0),
+            black_box(0.1),
+            black_box(0),
+            black_box(RAD_FRESNEL_CONDUCTOR),
+            c.as_ptr(),
+            c.as_ptr(),
+            &mut top,
+        ));
+        black_box(rad_brdf_microfacet(
+            black_box(0),
+            black_box(0.1),
+            black_box(0),
+            black_box(RAD_FRESNEL_METAL),
+            black_box(1.0),
+            black_box(0.0),
+            &mut top,
+        ));
+        let (top, base) = (black_box(top), black_box(base));
+        macro_rules! calls {
+            ($h:expr, $e:ident, $p:ident, $s:ident, $eb:ident, $pb:ident, $sb:ident, $soa:ident) => {
+                black_box($e($h, wi, wo, f.as_mut_ptr()));
+                black_box($p($h, wi, wo, &mut f[3]));
+                black_box($s($h, wo, black_box(0.3), black_box(0.7), &mut s[0]));
+                black_box($eb($h, wis.as_ptr(), wos.as_ptr(), f.as_mut_ptr(), n));
+                black_box($pb($h, wis.as_ptr(), wos.as_ptr(), f.as_mut_ptr(), n));
+                black_box($sb($h, wos.as_ptr(), u.as_ptr(), s.as_mut_ptr(), n));
+                let (r, rest) = f.split_at_mut(4);
+                let (g, b) = rest.split_at_mut(4);
+                black_box($soa(
+                    $h,
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    d.as_ptr(),
+                    r.as_mut_ptr(),
+                    g.as_mut_ptr(),
+                    b.as_mut_ptr(),
+                    n,
+                ));
+            };
+        }
+        calls!(
+            &top,
+            rad_brdf_eval_rgb,
+            rad_brdf_pdf_rgb,
+            rad_brdf_sample_rgb,
+            rad_brdf_eval_batch_rgb,
+            rad_brdf_pdf_batch_rgb,
+            rad_brdf_sample_batch_rgb,
+            rad_brdf_eval_batch_soa_rgb
+        );
+        black_box(rad_material_coated(
+            &top,
+            &base,
+            black_box(0.8),
+            black_box(1.5),
+            &mut m,
+        ));
+        let m = black_box(m);
+        calls!(
+            &m,
+            rad_material_eval_rgb,
+            rad_material_pdf_rgb,
+            rad_material_sample_rgb,
+            rad_material_eval_batch_rgb,
+            rad_material_pdf_batch_rgb,
+            rad_material_sample_batch_rgb,
+            rad_material_eval_batch_soa_rgb
+        );
+        black_box(rad_openpbr_default_params(&mut p));
+        black_box(rad_openpbr_new(&black_box(p), &mut o));
+        let o = black_box(o);
+        calls!(
+            &o,
+            rad_openpbr_eval_rgb,
+            rad_openpbr_pdf_rgb,
+            rad_openpbr_sample_rgb,
+            rad_openpbr_eval_batch_rgb,
+            rad_openpbr_pdf_batch_rgb,
+            rad_openpbr_sample_batch_rgb,
+            rad_openpbr_eval_batch_soa_rgb
+        );
     }
     black_box((f, s));
 }

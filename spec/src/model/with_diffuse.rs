@@ -1,7 +1,7 @@
 //! The additive diffuse + specular BRDF of a microfacet spec with `kd > 0`.
 
 use radiometry::glam::Vec3;
-use radiometry::{Brdf, BrdfSample};
+use radiometry::{Brdf, BrdfSample, Spectrum};
 use radiometry_brdfs::Lambertian;
 
 /// `f_r(ωi, ωo) = kd/π + f_s(ωi, ωo)`: a Lambertian lobe of albedo `kd` added
@@ -26,17 +26,16 @@ use radiometry_brdfs::Lambertian;
 /// assert!((sum.eval(wi, wo) - want).abs() <= 1e-6 * want);
 /// # Ok::<(), radiometry_spec::SpecError>(())
 /// ```
-pub(crate) struct WithDiffuse<B> {
-    diffuse: Lambertian,
+pub(crate) struct WithDiffuse<B, S: Spectrum = f32> {
+    diffuse: Lambertian<S>,
     specular: B,
     /// Probability `kd/(kd + 1)` of sampling the cosine lobe.
     p_diffuse: f32,
 }
 
-impl<B: Brdf<Spectrum = f32>> WithDiffuse<B> {
-    /// The sum of `diffuse` (albedo `kd`) and `specular`.
-    pub(crate) fn new(diffuse: Lambertian, specular: B) -> Self {
-        let kd = diffuse.albedo();
+impl<S: Spectrum, B: Brdf<Spectrum = S>> WithDiffuse<B, S> {
+    /// The sum of `diffuse` (albedo `kd` on every channel) and `specular`.
+    pub(crate) fn new(diffuse: Lambertian<S>, kd: f32, specular: B) -> Self {
         WithDiffuse {
             diffuse,
             specular,
@@ -51,12 +50,12 @@ impl<B: Brdf<Spectrum = f32>> WithDiffuse<B> {
     }
 }
 
-impl<B: Brdf<Spectrum = f32>> Brdf for WithDiffuse<B> {
-    type Spectrum = f32;
+impl<S: Spectrum, B: Brdf<Spectrum = S>> Brdf for WithDiffuse<B, S> {
+    type Spectrum = S;
 
     /// `kd/π + f_s(ωi, ωo)`.
     #[inline]
-    fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    fn eval(&self, wi: Vec3, wo: Vec3) -> S {
         self.diffuse.eval(wi, wo) + self.specular.eval(wi, wo)
     }
 
@@ -67,7 +66,7 @@ impl<B: Brdf<Spectrum = f32>> Brdf for WithDiffuse<B> {
 
     /// Picks a strategy with `u[0]` (rescaled to `[0, 1)` for the chosen one),
     /// then returns the mixture density and `f_r cos θi / pdf`.
-    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<f32>> {
+    fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         let pd = self.p_diffuse;
         let wi = if u[0] < pd {
             let u0 = (u[0] / pd).min(1.0 - f32::EPSILON / 2.0);
@@ -99,6 +98,7 @@ mod tests {
     fn sum() -> WithDiffuse<Microfacet<Ggx, HeightCorrelated, Schlick>> {
         WithDiffuse::new(
             Lambertian::new(0.3).unwrap(),
+            0.3,
             Microfacet::new(Ggx::new(0.2).unwrap(), Schlick::new(0.5).unwrap()),
         )
     }
