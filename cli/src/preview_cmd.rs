@@ -187,9 +187,15 @@ pub struct PreviewArgs {
     /// checker toggles a clear coat. Prints the time per hit spent constructing the material.
     #[arg(long)]
     textured: bool,
-    /// A typed colour material instead of SPEC (an RGB picture).
-    #[arg(long, value_enum)]
-    material: Option<MaterialArg>,
+    /// A typed colour material instead of SPEC (an RGB picture): gold, copper or red-plastic; with --mtlx, the name
+    /// of the document's material (a surfacematerial or an open_pbr_surface node).
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
+    /// An OpenPBR material from a MaterialX document (`.mtlx`): the constant reflection inputs of its
+    /// open_pbr_surface node (--material picks one when the document has several); inputs outside a
+    /// reflection-only BRDF are named in warnings, textures and node graphs refused.
+    #[arg(long, value_name = "FILE")]
+    mtlx: Option<PathBuf>,
     /// Colour of the sun, linear sRGB `R,G,B` (an RGB picture).
     #[arg(long, alias = "sun-color", value_parser = parse_rgb)]
     sun_colour: Option<[f32; 3]>,
@@ -239,32 +245,89 @@ pub struct PreviewArgs {
     response: ResponseCurve,
 }
 
-/// The ball's material: a spec (monochrome run-time BRDF) or a typed preset.
+/// The ball's material: a grey spec (monochrome run-time BRDF), a colour
+/// spec (the RGB run-time BRDF) or a typed preset.
 enum Ball {
     Spec(spec::BrdfSpec, model::AnyBrdf),
+    SpecRgb(model::AnyBrdfRgb),
     Preset(Preset),
+}
+
+/// A spec's ball: grey specs in the monochrome run-time BRDF, colour specs
+/// in RGB.
+fn spec_ball(s: &str) -> Result<Ball, ExitCode> {
+    let parsed = spec::parse_brdf(s).map_err(crate::spec_error)?;
+    if parsed.is_grey() {
+        model::build_brdf(s, &parsed)
+            .map(|b| Ball::Spec(parsed, b))
+            .map_err(crate::spec_error)
+    } else {
+        model::build_brdf_rgb(s, &parsed)
+            .map(Ball::SpecRgb)
+            .map_err(crate::spec_error)
+    }
+}
+
+/// The spec of `--mtlx FILE [--material NAME]`, `openpbr(file="FILE",
+/// material="NAME")`, after printing the document's warnings.
+fn mtlx_spec(path: &std::path::Path, material: Option<&str>) -> Result<String, ExitCode> {
+    let text = path.display().to_string();
+    if text.contains('"') {
+        return Err(crate::usage_error("--mtlx: the file name must not contain `\"`"));
+    }
+    let xml = std::fs::read_to_string(path)
+        .map_err(|e| crate::usage_error(&format!("--mtlx: cannot read {text}: {e}")))?;
+    let m = spec::mtlx::read_openpbr(&xml, material)
+        .map_err(|e| crate::usage_error(&format!("--mtlx {text}: {e}")))?;
+    for w in &m.warnings {
+        eprintln!("warning: {text}, material `{}`: {w}", m.name);
+    }
+    if m.name.contains('"') {
+        return Err(crate::usage_error(
+            "--mtlx: the material's name must not contain `\"`",
+        ));
+    }
+    Ok(format!(r#"openpbr(file="{text}", material="{}")"#, m.name))
 }
 
 /// Runs `radiometry preview`.
 pub fn run(a: PreviewArgs) -> ExitCode {
-    let ball = match (&a.spec, a.material) {
+    let mut a = a;
+    if let Some(path) = a.mtlx.clone() {
+        if a.spec.is_some() {
+            return crate::usage_error("give either SPEC or --mtlx, not both");
+        }
+        match mtlx_spec(&path, a.material.as_deref()) {
+            Ok(s) => a.spec = Some(s),
+            Err(code) => return code,
+        }
+        a.material = None;
+    }
+    let preset = match a.material.as_deref().map(|m| MaterialArg::from_str(m, true)) {
+        None => None,
+        Some(Ok(m)) => Some(m),
+        Some(Err(_)) => {
+            return crate::usage_error(&format!(
+                "--material {}: one of gold, copper, red-plastic (or a material of --mtlx FILE)",
+                a.material.as_deref().unwrap_or("")
+            ));
+        }
+    };
+    let ball = match (&a.spec, preset) {
         (Some(_), Some(_)) => return crate::usage_error("give either SPEC or --material, not both"),
-        (None, None) => return crate::usage_error("give a BRDF SPEC or --material gold|copper|red-plastic"),
+        (None, None) => {
+            return crate::usage_error("give a BRDF SPEC, --mtlx FILE or --material gold|copper|red-plastic");
+        }
         (None, Some(m)) => match Preset::new(m.kind()) {
             Ok(p) => Ball::Preset(p),
             Err(e) => return crate::usage_error(&e.to_string()),
         },
-        (Some(s), None) => {
-            let parsed = match spec::parse_brdf(s) {
-                Ok(p) => p,
-                Err(e) => return crate::spec_error(e),
-            };
-            match model::build_brdf(s, &parsed) {
-                Ok(b) => Ball::Spec(parsed, b),
-                Err(e) => return crate::spec_error(e),
-            }
-        }
+        (Some(s), None) => match spec_ball(s) {
+            Ok(b) => b,
+            Err(code) => return code,
+        },
     };
+    let a = a;
     if !(a.exposure.is_finite() && a.exposure > 0.0) {
         return crate::usage_error(&format!(
             "--exposure {} must be a positive finite number",
@@ -288,6 +351,7 @@ pub fn run(a: PreviewArgs) -> ExitCode {
     };
     let colour_out = a.rgb
         || a.material.is_some()
+        || matches!(ball, Ball::SpecRgb(_))
         || a.sun_colour.is_some()
         || a.sky_colour.is_some()
         || a.ground_colour.is_some()
@@ -416,9 +480,9 @@ pub fn run(a: PreviewArgs) -> ExitCode {
 
 /// The common part of the command line, for the PNG's description.
 fn describe(a: &PreviewArgs, opt: &Options) -> String {
-    let what = match (&a.spec, a.material) {
+    let what = match (&a.spec, &a.material) {
         (Some(s), _) => format!("'{s}'"),
-        (None, Some(m)) => format!("--material {}", m.kind().name()),
+        (None, Some(m)) => format!("--material {m}"),
         (None, None) => String::new(),
     };
     format!(
@@ -464,6 +528,11 @@ fn run_colour(
         };
         let r = match ball {
             Ball::Spec(_, b) => camera::render_camera(&AsGrey(b), opt, &cam),
+            Ball::SpecRgb(_) => {
+                return crate::usage_error(
+                    "--camera renders grey specs and --material presets (a colour spec is not uplifted to spectra yet)",
+                );
+            }
             Ball::Preset(p) => camera::render_camera(p, opt, &cam),
         };
         let r = match r {
@@ -563,6 +632,7 @@ G {:.4} B {:.4}; EMVA prediction through the matrix R {:.4} G {:.4} B {:.4}",
         };
         let img = match ball {
             Ball::Spec(_, b) => colour::render_rgb_env(&AsRgb(b), &opt, &map, a.env_scale, colours.sun),
+            Ball::SpecRgb(b) => colour::render_rgb_env(b, &opt, &map, a.env_scale, colours.sun),
             Ball::Preset(p) => match p.rgb() {
                 Ok(m) => colour::render_rgb_env(&m, &opt, &map, a.env_scale, colours.sun),
                 Err(e) => Err(e),
@@ -602,6 +672,12 @@ G {:.4} B {:.4}; EMVA prediction through the matrix R {:.4} G {:.4} B {:.4}",
     }
     let img: Result<RgbImage, _> = match (ball, a.spectral) {
         (Ball::Spec(_, b), None) => colour::render_rgb(&AsRgb(b), opt, colours),
+        (Ball::SpecRgb(b), None) => colour::render_rgb(b, opt, colours),
+        (Ball::SpecRgb(_), Some(_)) => {
+            return crate::usage_error(
+                "--spectral renders grey specs and --material presets (a colour spec is not uplifted to spectra yet)",
+            );
+        }
         (Ball::Preset(p), None) => match p.rgb() {
             Ok(m) => colour::render_rgb(&m, opt, colours),
             Err(e) => Err(e),

@@ -311,3 +311,81 @@ fn a_grey_spec_gives_the_same_bytes_in_rgb() {
     let _ = std::fs::remove_file(grey);
     let _ = std::fs::remove_file(rgb);
 }
+
+/// `--mtlx FILE [--material NAME]`: an OpenPBR material from a MaterialX
+/// document renders in colour; skipped inputs are named in warnings; a
+/// texture, an unknown material and an ambiguous document are refused; a
+/// colour spec renders in RGB and its red ball is red.
+#[test]
+fn preview_reads_materialx_documents_and_colour_specs() {
+    let doc = tmp("two.mtlx");
+    std::fs::write(
+        &doc,
+        r#"<?xml version="1.0"?><materialx version="1.39">
+          <surfacematerial name="Red" type="material">
+            <input name="surfaceshader" type="surfaceshader" nodename="red_s" />
+          </surfacematerial>
+          <surfacematerial name="Tex" type="material">
+            <input name="surfaceshader" type="surfaceshader" nodename="tex_s" />
+          </surfacematerial>
+          <open_pbr_surface name="red_s" type="surfaceshader">
+            <input name="base_color" type="color3" value="0.8, 0.05, 0.05" />
+            <input name="transmission_weight" type="float" value="0.5" />
+          </open_pbr_surface>
+          <open_pbr_surface name="tex_s" type="surfaceshader">
+            <input name="base_color" type="color3" nodename="image1" />
+          </open_pbr_surface>
+        </materialx>"#,
+    )
+    .unwrap();
+    let d = doc.to_str().unwrap();
+    let out = tmp("mtlx.png");
+    let o = run(&[
+        "preview",
+        "--mtlx",
+        d,
+        "--material",
+        "Red",
+        "--size",
+        "16",
+        "--samples",
+        "8",
+        "--no-progress",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("warning") && err.contains("transmission_weight"),
+        "{err}"
+    );
+    let px = png_samples(&out);
+    assert_eq!(png_kind(&std::fs::read(&out).unwrap()).0, 2, "an RGB picture");
+    // The centre pixel of the red ball: red above green and blue.
+    let c = (8 * 16 + 8) * 3;
+    assert!(px[c] > px[c + 1] && px[c] > px[c + 2], "{:?}", &px[c..c + 3]);
+    for (args, needle) in [
+        (vec!["--material", "Tex"], "connected"),
+        (vec!["--material", "Blue"], "no material `Blue`"),
+        (vec![], "choose a material"),
+    ] {
+        let mut all = vec!["preview", "--mtlx", d, "--out", out.to_str().unwrap()];
+        all.extend(args);
+        let o = run(&all);
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    let o = run(&[
+        "preview",
+        "lambertian",
+        "--mtlx",
+        d,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let _ = std::fs::remove_file(out);
+    let _ = std::fs::remove_file(doc);
+}
