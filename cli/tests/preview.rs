@@ -389,3 +389,46 @@ fn preview_reads_materialx_documents_and_colour_specs() {
     let _ = std::fs::remove_file(out);
     let _ = std::fs::remove_file(doc);
 }
+
+/// A MaterialX document with constant inputs renders the same ball as the
+/// equivalent `openpbr(...)` spec, pixel for pixel.
+#[test]
+fn a_materialx_ball_is_its_openpbr_spec_ball() {
+    let doc = tmp("same.mtlx");
+    std::fs::write(
+        &doc,
+        r#"<?xml version="1.0"?><materialx version="1.39" colorspace="lin_rec709">
+          <open_pbr_surface name="paint" type="surfaceshader">
+            <input name="base_color" type="color3" value="0.8, 0.05, 0.05" />
+            <input name="specular_roughness" type="float" value="0.2" />
+            <input name="coat_weight" type="float" value="0.5" />
+          </open_pbr_surface>
+        </materialx>"#,
+    )
+    .unwrap();
+    let (a, b) = (tmp("same-mtlx.png"), tmp("same-spec.png"));
+    let common = ["--size", "16", "--samples", "8", "--no-progress", "--daylight"];
+    let mut args = vec![
+        "preview",
+        "--mtlx",
+        doc.to_str().unwrap(),
+        "--out",
+        a.to_str().unwrap(),
+    ];
+    args.extend(common);
+    assert_eq!(run(&args).status.code(), Some(0));
+    let mut args = vec![
+        "preview",
+        "openpbr(base_color=rgb(0.8, 0.05, 0.05), specular_roughness=0.2, coat_weight=0.5)",
+        "--out",
+        b.to_str().unwrap(),
+    ];
+    args.extend(common);
+    assert_eq!(run(&args).status.code(), Some(0));
+    let (pa, pb) = (png_samples(&a), png_samples(&b));
+    assert_eq!(pa.len(), 16 * 16 * 3);
+    assert_eq!(pa, pb);
+    for f in [a, b, doc] {
+        let _ = std::fs::remove_file(f);
+    }
+}
