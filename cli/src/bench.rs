@@ -49,6 +49,9 @@ Plugins (F = 1 unless a Fresnel term is named):
   plastic-ggx0.1-eon           coated(GGX α 0.1 dielectric η 1.5, Eon ρ 0.8 σ 0.5): radiometry::compose::Coated (f32)
   openpbr-defaults             OpenPbr with OpenPBR Surface's default parameters (f32)
   openpbr-all-layers           OpenPbr, every layer on: metalness 0.5, coat 1 (r 0.2), fuzz 1 (f32)
+  openpbr-defaults-rgb         OpenPbr<Vec3> with OpenPBR Surface's default parameters (Vec3)
+  spec-openpbr-red-rgb         the spec grammar's RGB run-time BRDF (AnyBrdfRgb, one virtual call per
+                               element or batch) of openpbr(base_color=rgb(0.8, 0.1, 0.1)) (Vec3)
   (both OpenPbr rows also time the paths construct — OpenPbr::new with a roughness from u per
   element — and hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
   hit with textured parameters; and the plastic's row construct for Coated::new)
@@ -482,6 +485,20 @@ impl Run<'_> {
                 self.plugin(name, &OpenPbr::new(params).expect(BAD));
                 self.material_hit(name, params);
             }
+        }
+        // Colour: the typed OpenPbr<Vec3> and the spec grammar's RGB
+        // run-time BRDF (a boxed trait object) of a red OpenPBR.
+        if self.wanted("openpbr-defaults-rgb") {
+            self.plugin(
+                "openpbr-defaults-rgb",
+                &OpenPbr::new(OpenPbrParams::<Vec3>::default()).expect(BAD),
+            );
+        }
+        if self.wanted("spec-openpbr-red-rgb") {
+            let text = "openpbr(base_color=rgb(0.8, 0.1, 0.1))";
+            let parsed = crate::spec::parse_brdf(text).expect(BAD);
+            let b = crate::model::build_brdf_rgb(text, &parsed).expect(BAD);
+            self.plugin("spec-openpbr-red-rgb", &b);
         }
     }
 
