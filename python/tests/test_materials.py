@@ -140,3 +140,26 @@ def test_bad_material_specs_give_the_cli_message(spec):
         radiometry.Brdf(spec)
     assert "^" in str(e.value)
     assert out.stderr.rstrip("\n") == "error: " + str(e.value)
+
+
+def test_materialx_document_is_its_openpbr_spec(tmp_path):
+    """An OpenPBR material read from a MaterialX document (the spec grammar's
+    `openpbr(file=..., material=...)`) evaluates bit for bit as the
+    equivalent `openpbr(...)` spec; an unknown material is a ValueError."""
+    doc = tmp_path / "paint.mtlx"
+    doc.write_text(
+        '<?xml version="1.0"?><materialx version="1.39">'
+        '<surfacematerial name="Paint" type="material">'
+        '<input name="surfaceshader" type="surfaceshader" nodename="paint_s" /></surfacematerial>'
+        '<open_pbr_surface name="paint_s" type="surfaceshader">'
+        '<input name="base_color" type="color3" value="0.8, 0.05, 0.05" />'
+        '<input name="coat_weight" type="float" value="0.5" />'
+        "</open_pbr_surface></materialx>"
+    )
+    wi, wo = directions(64, 41), directions(64, 42)
+    a = radiometry.Brdf(f'openpbr(file="{doc}", material="Paint")').eval(wi, wo)
+    b = radiometry.Brdf("openpbr(base_color=rgb(0.8, 0.05, 0.05), coat_weight=0.5)").eval(wi, wo)
+    assert a.shape == (64, 3)
+    assert np.array_equal(bits(a), bits(b))
+    with pytest.raises(ValueError, match="no material"):
+        radiometry.Brdf(f'openpbr(file="{doc}", material="Chrome")')
