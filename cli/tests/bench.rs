@@ -15,7 +15,7 @@ fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-const PLUGINS: [&str; 14] = [
+const PLUGINS: [&str; 16] = [
     "lambertian",
     "modified-phong-n100",
     "blinn-phong-n100",
@@ -30,6 +30,8 @@ const PLUGINS: [&str; 14] = [
     "plastic-ggx0.1-eon",
     "openpbr-defaults",
     "openpbr-all-layers",
+    "openpbr-defaults-rgb",
+    "spec-openpbr-red-rgb",
 ];
 /// The materials' extra paths (construction at every hit, a whole hit).
 const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
