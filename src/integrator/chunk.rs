@@ -250,13 +250,28 @@ impl Components {
     }
 }
 
+/// `S(t) = t² (3 − 2t)` and `S'(t) = 6 t (1 − t)`: a smooth monotone map
+/// of `[0, 1]` onto itself whose derivative vanishes at both ends. A
+/// component's map whose density vanishes like `cos θ` at the horizon (the
+/// cosine hemisphere, the Kulla–Conty lobe sampler: `cos θ ∝ √u` at the
+/// square's edge) meets there a mixture density that does not (the other
+/// components'), so its weight `c_k g/p ∝ cos θ ∝ √u` has a square-root
+/// singularity at the edge; through `S`, `√(S(t)) ∝ t` and the values
+/// `g/p · S'` are smooth.
+#[inline]
+fn smoothstep(t: f64) -> (f64, f64) {
+    (t * t * (3.0 - 2.0 * t), 6.0 * t * (1.0 - t))
+}
+
 /// The squares of a mixture map's components side by side,
-/// `[0, len] × [0, 1]` (see [`Components`]): `out[j] = c_k s'(a) s'(b)
-/// g(ω)/p(ω)` at `ω = ω_k(s(a), s(b))`, the draw of component `k` (square
-/// `⌊x_j⌋`, `a = x_j − ⌊x_j⌋`, `b = y_j`) through
-/// [`Integrand::component_sample_batch`], with `p` the mixture's density and
-/// `s(x) = x + κ x (1 − x)` the bend of [`bent_warped_values`] (`κ = 0`: none),
-/// zero where the component draws no direction, for `j < min(p.len(),
+/// `[0, len] × [0, 1]` (see [`Components`]): at the point `(x_j, y_j)` of
+/// square `⌊x_j⌋` (component `k`, weight `c_k`), with `a = x_j − ⌊x_j⌋`,
+/// `b = y_j`, each coordinate bent by `s(x) = x + κ x (1 − x)` (the bend of
+/// [`bent_warped_values`]; `κ = 0`: none) and then smoothed by
+/// [`smoothstep`] `S`, `out[j] = c_k (S∘s)'(a) (S∘s)'(b) g(ω)/p(ω)` at
+/// `ω = ω_k(S(s(a)), S(s(b)))`, the draw of component `k` through
+/// [`Integrand::component_sample_batch`] (`p` the mixture's density), zero
+/// where the component draws no direction, for `j < min(p.len(),
 /// out.len())`. Summed over the squares, `∫ Σ_k c_k g/p du = ∫_H g dω`
 /// exactly (`Σ_k c_k p_k = p`), and each square's integrand is as smooth as
 /// `g` and the densities: no seam at the pick thresholds.
@@ -286,9 +301,10 @@ pub(crate) fn component_warped_values<I: Integrand>(
             } else {
                 (bend(a), bend(y))
             };
-            *u = [to_unit_f32(sa.clamp(0.0, 1.0)), to_unit_f32(sb.clamp(0.0, 1.0))];
+            let ((ta, ea), (tb, eb)) = (smoothstep(sa.clamp(0.0, 1.0)), smoothstep(sb.clamp(0.0, 1.0)));
+            *u = [to_unit_f32(ta), to_unit_f32(tb)];
             *s = square;
-            *j = da * db;
+            *j = da * db * ea * eb;
         }
         // Runs of points of the same square go to the integrand together.
         let mut start = 0;
