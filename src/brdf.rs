@@ -201,6 +201,13 @@ pub trait Brdf {
     /// ∫_H g dω = Σ_k c_k ∫_[0,1]² g(ω_k(u)) / pdf(ω_k(u)) du.
     /// ```
     ///
+    /// The components are numbered in the order of `sample`'s pick: component
+    /// `k` is what `sample` draws for `u₀ ∈ [c₀ + … + c_{k−1}, c₀ + … + c_k)`
+    /// (rescaled onto `[0, 1)`), so `sample_component(ωo, k, u)` is
+    /// `sample(ωo, [c₀ + … + c_{k−1} + c_k u₀, u₁])`'s direction up to the
+    /// rounding of the rescaling; composites list their first lobe's
+    /// components first.
+    ///
     /// The default, 1, is the whole map as one component (weight 1,
     /// [`sample`](Brdf::sample)'s directions); a plugin that overrides one of
     /// the three methods overrides all three, consistently with its

@@ -435,15 +435,15 @@ where
         Some(BrdfSample { wi, pdf, weight })
     }
 
-    /// Two components: the single-scattering sampler (0, weight `1 − w`)
-    /// and the added lobe's sampler (1, weight `w = 1 − E(μo)`), the
-    /// mixture [`sample`](Brdf::sample) picks from by `u₀ < w`.
+    /// Two components, in the order of [`sample`](Brdf::sample)'s pick
+    /// (`u₀ < w`): the added lobe's sampler (0, weight `w = 1 − E(μo)`) and
+    /// the single-scattering sampler (1, weight `1 − w`).
     fn sampling_components(&self) -> usize {
         2
     }
 
-    /// `1 − w` for the single-scattering component 0, `w = 1 − E(μo)` for
-    /// the added lobe's component 1 (the weights [`pdf`](Brdf::pdf) mixes
+    /// `w = 1 − E(μo)` for the added lobe's component 0, `1 − w` for the
+    /// single-scattering component 1 (the weights [`pdf`](Brdf::pdf) mixes
     /// with); at a degenerate `wo` the single-scattering component alone.
     fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
         let w = match if is_unit(wo) { Some(wo) } else { unitize(wo) } {
@@ -451,14 +451,14 @@ where
             _ => 0.0,
         };
         match k {
-            0 => 1.0 - w,
-            1 => w,
+            0 => w,
+            1 => 1.0 - w,
             _ => 0.0,
         }
     }
 
-    /// The single-scattering sampler's direction (0) or the added lobe's
-    /// (1) at `u`, as [`sample`](Brdf::sample) draws them from its rescaled
+    /// The added lobe's sampler's direction (0) or the single-scattering
+    /// one (1) at `u`, as [`sample`](Brdf::sample) draws them from its rescaled
     /// `u₀`; `None` at or below the horizon.
     fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
         let wo_unit = if is_unit(wo) { wo } else { unitize(wo)? };
@@ -467,8 +467,8 @@ where
         }
         let (u0, u1) = (clamp01(u[0]).min(ONE_MINUS_EPS), clamp01(u[1]));
         let wi = match k {
-            0 => self.single.sample(wo, [u0, u1])?.wi,
-            1 => self.sample_lobe(u0, u1),
+            0 => self.sample_lobe(u0, u1),
+            1 => self.single.sample(wo, [u0, u1])?.wi,
             _ => return None,
         };
         let wi = if is_unit(wi) { wi } else { unitize(wi)? };

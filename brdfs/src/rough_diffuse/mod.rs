@@ -90,20 +90,20 @@
 /// methods, bit for bit); without it, the trait's scalar loops.
 macro_rules! rough_batch_methods {
     () => {
-        /// Two components: the cosine-weighted hemisphere (0, weight
-        /// `1 − p_u`) and the uniform one (1, weight `p_u`), the mixture
-        /// [`Brdf::sample`] picks from by `u₀ < p_u`.
+        /// Two components, in the order of [`Brdf::sample`]'s pick
+        /// (`u₀ < p_u`): the uniform hemisphere (0, weight `p_u`) and the
+        /// cosine-weighted one (1, weight `1 − p_u`).
         fn sampling_components(&self) -> usize {
             2
         }
 
-        /// `1 − p_u` for the cosine-weighted component 0, `p_u` for the
-        /// uniform component 1 (`p_u = k (1 − cos θo)³/2`).
+        /// `p_u` for the uniform component 0, `1 − p_u` for the
+        /// cosine-weighted component 1 (`p_u = k (1 − cos θo)³/2`).
         fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
             super::component_weight(self, wo, k)
         }
 
-        /// The cosine-weighted (0) or uniform (1) hemisphere at `u`.
+        /// The uniform (0) or cosine-weighted (1) hemisphere at `u`.
         fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
             super::sample_component(self, wo, k, u)
         }
@@ -363,9 +363,10 @@ pub(crate) fn sample<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<BrdfS
     Some(BrdfSample { wi, pdf, weight })
 }
 
-/// The weight of component `k` of the mixture sampler ([`sample`]): `1 − p_u`
-/// for the cosine-weighted hemisphere (`k = 0`), `p_u` for the uniform one
-/// (`k = 1`), 0 otherwise; at a degenerate `wo` the cosine component alone.
+/// The weight of component `k` of the mixture sampler ([`sample`]), in the
+/// order of its pick: `p_u` for the uniform hemisphere (`k = 0`), `1 − p_u`
+/// for the cosine-weighted one (`k = 1`), 0 otherwise; at a degenerate `wo`
+/// the cosine component alone.
 #[inline]
 pub(crate) fn component_weight<L: RoughLobe>(l: &L, wo: Vec3, k: usize) -> f32 {
     let p_u = match unit(wo) {
@@ -373,15 +374,15 @@ pub(crate) fn component_weight<L: RoughLobe>(l: &L, wo: Vec3, k: usize) -> f32 {
         _ => 0.0,
     };
     match k {
-        0 => 1.0 - p_u,
-        1 => p_u,
+        0 => p_u,
+        1 => 1.0 - p_u,
         _ => 0.0,
     }
 }
 
 /// The direction of component `k` of the mixture sampler at `u` (the map
-/// [`sample`] applies to its rescaled `u₀`): the cosine-weighted hemisphere
-/// (`k = 0`) or the uniform one (`k = 1`); `None` when `wo` is not above the
+/// [`sample`] applies to its rescaled `u₀`): the uniform hemisphere (`k = 0`)
+/// or the cosine-weighted one (`k = 1`); `None` when `wo` is not above the
 /// horizon, the direction lands on the horizon or `k > 1`.
 #[inline]
 pub(crate) fn sample_component<L: RoughLobe>(l: &L, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
@@ -392,8 +393,8 @@ pub(crate) fn sample_component<L: RoughLobe>(l: &L, wo: Vec3, k: usize, u: [f32;
     }
     let u = [u[0].clamp(0.0, ONE_MINUS_EPSILON), u[1]];
     let wi = match k {
-        0 => square_to_cosine_hemisphere(u),
-        1 => square_to_uniform_hemisphere(u),
+        0 => square_to_uniform_hemisphere(u),
+        1 => square_to_cosine_hemisphere(u),
         _ => return None,
     };
     let wi_unit = unit(wi)?;
