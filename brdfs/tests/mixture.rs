@@ -255,3 +255,30 @@ fn warped_rule_converges_on_mixtures() {
         "coat: {e:?} vs {reference:?}"
     );
 }
+
+/// The environment light's reflection integrand forwards the BRDF's components: the warped rule
+/// on EON under a sky brighter at the zenith agrees with the plain rule.
+#[test]
+fn environment_integrand_forwards_the_components() {
+    use radiometry::light::{Environment, EnvironmentIntegrand};
+    let env = Environment::new(|w: Vec3| 1.0 + 0.5 * w.z);
+    let eon = Eon::new(0.9f32, 1.0).unwrap();
+    let g = EnvironmentIntegrand {
+        brdf: &eon,
+        wo: dir(75.0, 0.3),
+        light: &env,
+    };
+    assert_eq!(g.sampling_components(), 2);
+    assert!((g.component_weight(0) + g.component_weight(1) - 1.0).abs() < 1e-6);
+    let reference = Adaptive::new(0.0, 0.0).unwrap().integrate(&g, 1 << 18).unwrap();
+    let e = Adaptive::new(0.0, 0.0)
+        .unwrap()
+        .warped()
+        .integrate(&g, 1 << 16)
+        .unwrap();
+    assert!(reference.is_resolved() && e.is_resolved());
+    assert!(
+        (e.value - reference.value).abs() <= 2e-6 + reference.error,
+        "{e:?} vs {reference:?}"
+    );
+}

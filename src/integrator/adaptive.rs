@@ -808,16 +808,13 @@ impl Adaptive {
         // typical integrands (see the type's docs).
         let cut = if self.shifted { SHIFTED_CUT } else { FIRST_CUT };
         let span = |i: usize| if i == 0 { (0.0, cut) } else { (cut, 1.0) };
-        let (mut c0, mut h0) = ([[0.0; 2]; 4 * MAX_SQUARES], [[0.0; 2]; 4 * MAX_SQUARES]);
         // Square `s` is `[s, s + 1] × [0, 1]`; its regions are those of the
         // unit square shifted by `s` (exactly the unit square's for `s = 0`).
-        for (s, (c0, h0)) in c0
-            .chunks_exact_mut(4)
-            .zip(h0.chunks_exact_mut(4))
-            .take(squares)
-            .enumerate()
-        {
+        // Checked writes and `take(live)` below: `live ≤ N` holds
+        // by construction, and the code keeps no panic path for it.
+        for s in 0..squares {
             let x = s as f64;
+            let (mut c0, mut h0) = ([[0.0; 2]; 4], [[0.0; 2]; 4]);
             for ((c, h), (i, j)) in c0
                 .iter_mut()
                 .zip(h0.iter_mut())
@@ -827,16 +824,14 @@ impl Adaptive {
                 *c = [x + 0.5 * (x0 + x1), 0.5 * (y0 + y1)];
                 *h = [0.5 * (x1 - x0), 0.5 * (y1 - y0)];
             }
+            rules(&c0, &h0, &mut f, |r| {
+                if let Some(slot) = regions.get_mut(live) {
+                    *slot = r;
+                    live += 1;
+                }
+            })?;
         }
         let initial = 4 * squares;
-        // Checked writes and `take(live)` below: `live ≤ N` holds
-        // by construction, and the code keeps no panic path for it.
-        rules(head(&c0, initial), head(&h0, initial), &mut f, |r| {
-            if let Some(slot) = regions.get_mut(live) {
-                *slot = r;
-                live += 1;
-            }
-        })?;
         let mut evals = (initial * GM_POINTS) as u64;
         if edge {
             for r in regions.iter_mut().take(live) {
