@@ -178,6 +178,66 @@ pub trait Brdf {
         crate::batch::zero_tail(out, wo.len().min(u.len()));
     }
 
+    /// The number of components of the sampling map: [`Brdf::sample`] picks
+    /// component `k < sampling_components()` with probability
+    /// [`component_weight`](Brdf::component_weight)`(ωo, k)` (`c_k`) and then
+    /// draws `ωi` from that component's own map
+    /// [`sample_component`](Brdf::sample_component)`(ωo, k, ·)` (density
+    /// `p_k`), so that
+    ///
+    /// ```text
+    /// pdf(ωi, ωo) = Σ_k c_k(ωo) p_k(ωi, ωo),     Σ_k c_k(ωo) = 1.
+    /// ```
+    ///
+    /// A mixture map (EON's cosine/uniform mixture, Kulla–Conty's
+    /// microfacet/added-lobe mixture, the pick-a-lobe map of every
+    /// composite of [`compose`](crate::compose)) is discontinuous at the
+    /// pick thresholds `u₀ = c₀, c₀ + c₁, …`; each component's map is as
+    /// smooth as the lobe. The warped [`Adaptive`](crate::integrator::Adaptive)
+    /// rule integrates each component on its own unit square through the
+    /// balance-heuristic decomposition (exact, the integral is linear):
+    ///
+    /// ```text
+    /// ∫_H g dω = Σ_k c_k ∫_[0,1]² g(ω_k(u)) / pdf(ω_k(u)) du.
+    /// ```
+    ///
+    /// The components are numbered in the order of `sample`'s pick: component
+    /// `k` is what `sample` draws for `u₀ ∈ [c₀ + … + c_{k−1}, c₀ + … + c_k)`
+    /// (rescaled onto `[0, 1)`), so `sample_component(ωo, k, u)` is
+    /// `sample(ωo, [c₀ + … + c_{k−1} + c_k u₀, u₁])`'s direction up to the
+    /// rounding of the rescaling; composites list their first lobe's
+    /// components first.
+    ///
+    /// The default, 1, is the whole map as one component (weight 1,
+    /// [`sample`](Brdf::sample)'s directions); a plugin that overrides one of
+    /// the three methods overrides all three, consistently with its
+    /// `sample` and `pdf`.
+    fn sampling_components(&self) -> usize {
+        1
+    }
+
+    /// The probability `c_k(ωo) ∈ [0, 1]` that [`Brdf::sample`] draws from
+    /// component `k` (see [`sampling_components`](Brdf::sampling_components));
+    /// the weights sum to 1 over `k < sampling_components()`, and are 0 for
+    /// `k` out of range. The default: 1 for `k = 0`.
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        let _ = wo;
+        if k == 0 { 1.0 } else { 0.0 }
+    }
+
+    /// The direction that component `k` of the sampling map draws from
+    /// `u ∈ [0,1)²` (see [`sampling_components`](Brdf::sampling_components)),
+    /// or `None` where it draws none (or `k` is out of range). Its density
+    /// is the component's own `p_k`; [`Brdf::pdf`] is the mixture. The
+    /// default: component 0 is [`sample`](Brdf::sample)'s direction.
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        if k == 0 {
+            self.sample(wo, u).map(|s| s.wi)
+        } else {
+            None
+        }
+    }
+
     /// Whether `f_r(ωi, ωo) cos θi` is a smooth (analytic) function of `ωi`
     /// on the open upper hemisphere for every fixed `ωo` — no kinks, steps
     /// or table cells. A promise the [`Auto`](crate::integrator::Auto)
@@ -305,6 +365,18 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     #[inline]
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<Self::Spectrum>>]) {
         (**self).sample_batch(wo, u, out)
+    }
+    #[inline]
+    fn sampling_components(&self) -> usize {
+        (**self).sampling_components()
+    }
+    #[inline]
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        (**self).component_weight(wo, k)
+    }
+    #[inline]
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        (**self).sample_component(wo, k, u)
     }
     #[inline]
     fn is_smooth(&self) -> bool {

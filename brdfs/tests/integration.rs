@@ -8,6 +8,7 @@ mod batch;
 mod kulla_conty;
 mod ltc_sheen;
 mod microfacet_albedo;
+mod mixture;
 mod openpbr_conformance;
 mod sample_batch;
 mod sheen;

@@ -53,6 +53,13 @@ fn exercise<B: Brdf>(b: &B, acc: &mut f32) {
     if let Some(s) = b.sample(wo, black_box([0.25, 0.75])) {
         *acc += s.pdf + s.weight.average();
     }
+    // The mixture components (the warped rule's squares).
+    for k in 0..black_box(b.sampling_components()).min(9) {
+        *acc += b.component_weight(wo, k);
+        if let Some(w) = b.sample_component(wo, k, black_box([0.25, 0.75])) {
+            *acc += w.z;
+        }
+    }
 }
 
 use radiometry::Spectrum;
@@ -86,6 +93,15 @@ fn run() -> i32 {
     }
     if let Some(g) = cap_integrand() {
         acc += each_integrator(&g, budget);
+    }
+    // A mixture sampling map (EON's uniform/cosine): the warped adaptive rule's
+    // per-component squares.
+    if let Ok(b) = radiometry_brdfs::Eon::new(black_box(0.9f32), 1.0) {
+        let g = DirectionalAlbedo {
+            brdf: b,
+            wo: black_box(Vec3::new(0.9, 0.0, 0.436)),
+        };
+        acc += adaptive_warped(&g, budget);
     }
     // The light / BRDF / MIS integrand of a cap (the strategy is a run-time value).
     for s in [CapStrategy::Light, CapStrategy::Brdf, CapStrategy::Mis] {

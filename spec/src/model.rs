@@ -54,6 +54,12 @@ pub trait DynBrdf<S: Spectrum = f32>: Send + Sync {
     fn sample_batch_dyn(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]);
     /// See [`Brdf::is_smooth`].
     fn is_smooth_dyn(&self) -> bool;
+    /// See [`Brdf::sampling_components`].
+    fn sampling_components_dyn(&self) -> usize;
+    /// See [`Brdf::component_weight`].
+    fn component_weight_dyn(&self, wo: Vec3, k: usize) -> f32;
+    /// See [`Brdf::sample_component`].
+    fn sample_component_dyn(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3>;
     /// See [`Brdf::directional_albedo`].
     fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<S>;
 }
@@ -79,6 +85,15 @@ impl<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync> DynBrdf<S> for B {
     }
     fn is_smooth_dyn(&self) -> bool {
         self.is_smooth()
+    }
+    fn sampling_components_dyn(&self) -> usize {
+        self.sampling_components()
+    }
+    fn component_weight_dyn(&self, wo: Vec3, k: usize) -> f32 {
+        self.component_weight(wo, k)
+    }
+    fn sample_component_dyn(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        self.sample_component(wo, k, u)
     }
     fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<S> {
         self.directional_albedo(wo)
@@ -122,6 +137,15 @@ impl<S: Spectrum> Brdf for AnyBrdf<S> {
     }
     fn is_smooth(&self) -> bool {
         self.0.is_smooth_dyn()
+    }
+    fn sampling_components(&self) -> usize {
+        self.0.sampling_components_dyn()
+    }
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        self.0.component_weight_dyn(wo, k)
+    }
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        self.0.sample_component_dyn(wo, k, u)
     }
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         self.0.directional_albedo_dyn(wo)

@@ -2,8 +2,8 @@
 //! OpenPBR's energy-conserving form or a reciprocal one ([`Layering`]).
 
 use super::{
-    ComposeError, Layering, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample,
-    pick_first, reciprocal_through,
+    ComposeError, Layering, eval_batch_pair, finish_sample, mixture_pdf, pair_components, pair_sample,
+    pair_weight, pdf_batch_pair, pick_and_sample, pick_first, reciprocal_through,
 };
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::frame::cos_theta;
@@ -324,6 +324,20 @@ where
 
     /// `false`: `τ` reads the top's albedo, which the plugins take from
     /// interpolated tables — not an analytic function of the directions.
+    /// The components of both lobes (flattened), lobe `A`'s first, weighted
+    /// by the pick probability (see [`Brdf::sampling_components`]).
+    fn sampling_components(&self) -> usize {
+        pair_components(&self.top, &self.base)
+    }
+
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        pair_weight(self.pick_probability(wo), &self.top, &self.base, wo, k)
+    }
+
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        pair_sample(&self.top, &self.base, wo, k, u)
+    }
+
     fn is_smooth(&self) -> bool {
         false
     }

@@ -1,7 +1,8 @@
 //! [`Mix`]: a weighted blend of two lobes.
 
 use super::{
-    ComposeError, eval_batch_pair, finish_sample, mixture_pdf, pdf_batch_pair, pick_and_sample, pick_first,
+    ComposeError, eval_batch_pair, finish_sample, mixture_pdf, pair_components, pair_sample, pair_weight,
+    pdf_batch_pair, pick_and_sample, pick_first,
 };
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::spectrum::Spectrum;
@@ -170,6 +171,20 @@ where
                 mixture_pdf(pick(w), x, y)
             });
         }
+    }
+
+    /// The components of both lobes (flattened), lobe `A`'s first, weighted
+    /// by the pick probability (see [`Brdf::sampling_components`]).
+    fn sampling_components(&self) -> usize {
+        pair_components(&self.a, &self.b)
+    }
+
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        pair_weight(self.pick_probability(wo), &self.a, &self.b, wo, k)
+    }
+
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        pair_sample(&self.a, &self.b, wo, k, u)
     }
 
     fn is_smooth(&self) -> bool {

@@ -248,6 +248,49 @@ pub(crate) fn finish_sample<S: Spectrum>(wi: Vec3, f: S, pdf: f32) -> Option<Brd
     Some(BrdfSample { wi, pdf, weight })
 }
 
+/// [`Brdf::sampling_components`] of a two-lobe mixture: the components of
+/// lobe `a`, then those of lobe `b` (flattened: nested composites list
+/// their leaves' components).
+#[inline]
+pub(crate) fn pair_components<A: Brdf + ?Sized, B: Brdf + ?Sized>(a: &A, b: &B) -> usize {
+    a.sampling_components().saturating_add(b.sampling_components())
+}
+
+/// [`Brdf::component_weight`] of a two-lobe mixture that picks `a` with
+/// probability `p` (the pick probability its `sample` and `pdf` use): `p`
+/// times `a`'s weight of component `k`, or `1 − p` times `b`'s weight of
+/// component `k − n_a` — so `Σ c_k p_k = p pdf_A + (1 − p) pdf_B`, the
+/// mixture density.
+#[inline]
+pub(crate) fn pair_weight<A, B>(p: f32, a: &A, b: &B, wo: Vec3, k: usize) -> f32
+where
+    A: Brdf + ?Sized,
+    B: Brdf + ?Sized,
+{
+    let na = a.sampling_components();
+    if k < na {
+        p * a.component_weight(wo, k)
+    } else {
+        (1.0 - p) * b.component_weight(wo, k - na)
+    }
+}
+
+/// [`Brdf::sample_component`] of a two-lobe mixture: component `k` of `a`,
+/// or component `k − n_a` of `b`.
+#[inline]
+pub(crate) fn pair_sample<A, B>(a: &A, b: &B, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3>
+where
+    A: Brdf + ?Sized,
+    B: Brdf + ?Sized,
+{
+    let na = a.sampling_components();
+    if k < na {
+        a.sample_component(wo, k, u)
+    } else {
+        b.sample_component(wo, k - na, u)
+    }
+}
+
 /// Sum of two albedos with their errors (bounded only if both are).
 #[inline]
 pub(crate) fn add_albedo<S: Spectrum>(a: Albedo<S>, b: Albedo<S>) -> Albedo<S> {

@@ -121,6 +121,15 @@ impl<B: Brdf> Brdf for Precomputed<B> {
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<B::Spectrum>>]) {
         self.lobe.sample_batch(wo, u, out)
     }
+    fn sampling_components(&self) -> usize {
+        self.lobe.sampling_components()
+    }
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        self.lobe.component_weight(wo, k)
+    }
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        self.lobe.sample_component(wo, k, u)
+    }
     fn is_smooth(&self) -> bool {
         self.lobe.is_smooth()
     }

@@ -101,6 +101,21 @@ impl<B: Brdf<Spectrum = S>, S: Spectrum> Brdf for Scaled<B, S> {
         self.lobe.pdf_batch(wi, wo, out);
     }
 
+    #[inline]
+    fn sampling_components(&self) -> usize {
+        self.lobe.sampling_components()
+    }
+
+    #[inline]
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        self.lobe.component_weight(wo, k)
+    }
+
+    #[inline]
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        self.lobe.sample_component(wo, k, u)
+    }
+
     fn is_smooth(&self) -> bool {
         self.lobe.is_smooth()
     }

@@ -40,6 +40,12 @@ pub const TINY_REGIONS: usize = 33;
 /// Largest budget run with the [`TINY_REGIONS`] table: `34 (N − 2) − 1`.
 pub const TINY_REGIONS_BUDGET: u32 = (TINY_REGIONS as u32 - 2) * 2 * GM_POINTS as u32 - 1;
 
+/// Most unit squares of one run: the components of a mixture sampling map
+/// that the warped rule integrates each on its own square (see
+/// [`Integrand::sampling_components`]); a map with more components with a
+/// positive weight is integrated whole.
+pub const MAX_SQUARES: usize = chunk::MAX_COMPONENTS;
+
 /// Most evaluations an [`Adaptive`] run spends (`2²⁰`).
 pub const MAX_ADAPTIVE_EVALUATIONS: u32 = 1 << 20;
 
@@ -362,7 +368,11 @@ fn locate_step<W: WideSpectrum>(
 /// (The adaptive analogue of the edge-gap bound of the plain warped
 /// Gauss–Legendre rule.) Returns the evaluations spent
 /// (≤ [`EDGE_POINTS`]).
-fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Result<u64, IntegrateError> {
+fn edge_gaps<W: WideSpectrum>(
+    r: &mut Region<W>,
+    squares: usize,
+    f: &mut impl BatchFn<W>,
+) -> Result<u64, IntegrateError> {
     let l3 = libm::sqrt(0.9);
     let n = r.n as f64;
     // Sides on the boundary: the normal axis of each.
@@ -371,10 +381,24 @@ fn edge_gaps<W: WideSpectrum>(r: &mut Region<W>, f: &mut impl BatchFn<W>) -> Res
     let mut m = 0;
     for ax in 0..2 {
         for sign in [-1.0, 1.0] {
+            // The domain is `[0, squares] × [0, 1]`, one unit square per
+            // component of the sampling map: its sides are at integers.
             let edge = r.c[ax] + sign * r.h[ax];
-            if m < 2 && (edge <= EDGE_EPS || edge >= 1.0 - EDGE_EPS) {
+            let near = libm::round(edge);
+            if m < 2 && (edge - near).abs() <= EDGE_EPS {
+                let top = if ax == 0 { squares as f64 } else { 1.0 };
                 let mut e = r.c;
-                e[ax] = if sign < 0.0 { 0.0 } else { 1.0 };
+                // `+ 0.0`: a left side at `−0.0` is the point `0.0`. A right
+                // side inside the domain (the seam between two components'
+                // squares) is taken just below the integer, in the square
+                // of the region (see `square_of`).
+                e[ax] = if sign < 0.0 {
+                    near + 0.0
+                } else if near < top {
+                    f64::from_bits(near.to_bits().saturating_sub(1))
+                } else {
+                    near
+                };
                 let mut x = r.c;
                 x[ax] = r.c[ax] + sign * (r.h[ax] - (1.0 - l3) * r.h[ax] / n);
                 pts[2 * m] = e;
@@ -716,19 +740,30 @@ impl Adaptive {
     /// status is resolved, and returns that difference; otherwise the new
     /// value becomes the checkpoint and refinement continues (up to the
     /// budget). The regions are refined once, never recomputed.
+    ///
+    /// `squares`: the domain is `[0, squares] × [0, 1]`, `squares` unit
+    /// squares side by side (one per component of a mixture sampling map,
+    /// see [`Integrand::sampling_components`]), each started as the single
+    /// square is (4 regions cut at the first cut); `1` is the unit square.
     fn run<W: WideSpectrum>(
         &self,
         budget: u32,
         probe: &[([f64; 2], f64)],
+        squares: usize,
         f: impl BatchFn<W>,
         confirm: Option<f64>,
     ) -> Result<Staged<W>, IntegrateError> {
-        if budget <= TINY_REGIONS_BUDGET {
-            self.run_with::<W, TINY_REGIONS>(budget, probe, f, confirm)
-        } else if budget <= SMALL_REGIONS_BUDGET {
-            self.run_with::<W, SMALL_REGIONS>(budget, probe, f, confirm)
+        // `K` squares start with `4 K` regions instead of 4: the table of
+        // `N` regions cannot fill below `34 (N − 2 K)`, which is the single
+        // square's bound at a budget larger by `68 (K − 1)`.
+        let squares = squares.clamp(1, MAX_SQUARES);
+        let sized = budget.saturating_add(2 * GM_POINTS as u32 * 2 * (squares as u32 - 1));
+        if sized <= TINY_REGIONS_BUDGET {
+            self.run_with::<W, TINY_REGIONS>(budget, probe, squares, f, confirm)
+        } else if sized <= SMALL_REGIONS_BUDGET {
+            self.run_with::<W, SMALL_REGIONS>(budget, probe, squares, f, confirm)
         } else {
-            self.run_with::<W, MAX_REGIONS>(budget, probe, f, confirm)
+            self.run_with::<W, MAX_REGIONS>(budget, probe, squares, f, confirm)
         }
     }
 
@@ -739,18 +774,19 @@ impl Adaptive {
         &self,
         budget: u32,
         probe: &[([f64; 2], f64)],
+        squares: usize,
         mut f: impl BatchFn<W>,
         confirm: Option<f64>,
     ) -> Result<Staged<W>, IntegrateError> {
+        let squares = squares.clamp(1, MAX_SQUARES);
         // Edge-gap checks on the warped square (see `edge_gaps`), on every
         // new region on the boundary, from the initial regions on: the
         // warped rule's minimum budget pays for them.
         let edge = self.warped;
         let edge_cost = if edge { EDGE_POINTS } else { 0 };
-        if budget < self.min_budget() {
-            return Err(IntegrateError::BudgetTooSmall {
-                minimum: self.min_budget(),
-            });
+        let minimum = self.min_budget().saturating_mul(squares as u32);
+        if budget < minimum {
+            return Err(IntegrateError::BudgetTooSmall { minimum });
         }
         let budget = budget.min(MAX_ADAPTIVE_EVALUATIONS) as u64;
         let zero = W::splat(0.0);
@@ -772,24 +808,34 @@ impl Adaptive {
         // typical integrands (see the type's docs).
         let cut = if self.shifted { SHIFTED_CUT } else { FIRST_CUT };
         let span = |i: usize| if i == 0 { (0.0, cut) } else { (cut, 1.0) };
-        let (mut c0, mut h0) = ([[0.0; 2]; 4], [[0.0; 2]; 4]);
-        for (k, (i, j)) in [(0, 0), (0, 1), (1, 0), (1, 1)].into_iter().enumerate() {
-            let ((x0, x1), (y0, y1)) = (span(i), span(j));
-            c0[k] = [0.5 * (x0 + x1), 0.5 * (y0 + y1)];
-            h0[k] = [0.5 * (x1 - x0), 0.5 * (y1 - y0)];
-        }
+        // Square `s` is `[s, s + 1] × [0, 1]`; its regions are those of the
+        // unit square shifted by `s` (exactly the unit square's for `s = 0`).
         // Checked writes and `take(live)` below: `live ≤ N` holds
         // by construction, and the code keeps no panic path for it.
-        rules(&c0, &h0, &mut f, |r| {
-            if let Some(slot) = regions.get_mut(live) {
-                *slot = r;
-                live += 1;
+        for s in 0..squares {
+            let x = s as f64;
+            let (mut c0, mut h0) = ([[0.0; 2]; 4], [[0.0; 2]; 4]);
+            for ((c, h), (i, j)) in c0
+                .iter_mut()
+                .zip(h0.iter_mut())
+                .zip([(0, 0), (0, 1), (1, 0), (1, 1)])
+            {
+                let ((x0, x1), (y0, y1)) = (span(i), span(j));
+                *c = [x + 0.5 * (x0 + x1), 0.5 * (y0 + y1)];
+                *h = [0.5 * (x1 - x0), 0.5 * (y1 - y0)];
             }
-        })?;
-        let mut evals = 4 * GM_POINTS as u64;
+            rules(&c0, &h0, &mut f, |r| {
+                if let Some(slot) = regions.get_mut(live) {
+                    *slot = r;
+                    live += 1;
+                }
+            })?;
+        }
+        let initial = 4 * squares;
+        let mut evals = (initial * GM_POINTS) as u64;
         if edge {
             for r in regions.iter_mut().take(live) {
-                evals += edge_gaps(r, &mut f)?;
+                evals += edge_gaps(r, squares, &mut f)?;
             }
         }
         let mut splits = 0u64;
@@ -881,7 +927,7 @@ impl Adaptive {
                 let mut q = composite(r.c, r.h, n, r.axis, &mut f)?;
                 evals += cost;
                 if edge {
-                    evals += edge_gaps(&mut q, &mut f)?;
+                    evals += edge_gaps(&mut q, squares, &mut f)?;
                 }
                 splits += 1;
                 // Two-level check against the coarser rule.
@@ -912,7 +958,7 @@ impl Adaptive {
             let [mut a, mut b] = ab;
             evals += 2 * GM_POINTS as u64;
             if edge {
-                evals += edge_gaps(&mut a, &mut f)? + edge_gaps(&mut b, &mut f)?;
+                evals += edge_gaps(&mut a, squares, &mut f)? + edge_gaps(&mut b, squares, &mut f)?;
                 if nonzero(&a.abs) != nonzero(&b.abs) && evals + CUT_POINTS <= budget {
                     evals += cut_gaps(&mut a, &mut b, ax, &mut f)?;
                 }
@@ -977,10 +1023,27 @@ impl Adaptive {
             if !g.has_sampling_map() {
                 return Err(IntegrateError::NoSamplingMap);
             }
+            // A mixture map: each component on its own square (no seam), when
+            // the budget pays for the squares' initial regions.
+            let comps = chunk::Components::of(g);
+            let k = comps.len();
+            if k > 1 && budget >= self.min_budget().saturating_mul(k as u32) {
+                let bend = if self.shifted { SHIFTED_BEND } else { 0.0 };
+                return self.run(
+                    budget,
+                    &[],
+                    k,
+                    |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
+                        chunk::component_warped_values(g, &comps, bend, p, out)
+                    },
+                    confirm,
+                );
+            }
             if self.shifted {
                 return self.run(
                     budget,
                     &[],
+                    1,
                     |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
                         chunk::bent_warped_values(g, p, SHIFTED_BEND, out)
                     },
@@ -990,6 +1053,7 @@ impl Adaptive {
             self.run(
                 budget,
                 &[],
+                1,
                 |p: &[[f64; 2]], out: &mut [WideOf<I>]| chunk::warped_values(g, p, out),
                 confirm,
             )
@@ -1043,6 +1107,7 @@ impl Adaptive {
         let (mut e, confirmed) = self.run(
             rule_budget,
             pts.get(..n).unwrap_or_default(),
+            1,
             |p: &[[f64; 2]], out: &mut [WideOf<I>]| {
                 chunk::mapped_hemisphere_values(g, p, |x, b| map.forward(x, b), out)
             },
@@ -1394,22 +1459,22 @@ mod tests {
             Adaptive::new(1e-12, 0.0).unwrap().warped(),
         ] {
             for budget in [a.min_budget(), 500, 1000, 1024, TINY_REGIONS_BUDGET] {
-                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], f, None).unwrap();
+                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], 1, f, None).unwrap();
                 assert_eq!(
-                    a.run_with::<f64, TINY_REGIONS>(budget, &[], f, None).unwrap(),
+                    a.run_with::<f64, TINY_REGIONS>(budget, &[], 1, f, None).unwrap(),
                     max,
                     "{budget}"
                 );
                 assert_eq!(
-                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], f, None).unwrap(),
+                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], 1, f, None).unwrap(),
                     max,
                     "{budget}"
                 );
             }
             for budget in [TINY_REGIONS_BUDGET + 1, 1300, SMALL_REGIONS_BUDGET] {
-                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], f, None).unwrap();
+                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], 1, f, None).unwrap();
                 assert_eq!(
-                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], f, None).unwrap(),
+                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], 1, f, None).unwrap(),
                     max,
                     "{budget}"
                 );

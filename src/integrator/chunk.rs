@@ -187,6 +187,150 @@ pub(crate) fn warped_values<I: Integrand>(
     Ok(())
 }
 
+/// Most components of a mixture sampling map integrated each on its own
+/// square ([`Components`]).
+pub(crate) const MAX_COMPONENTS: usize = 8;
+
+/// Most components [`Components::of`] asks the weight of (a map that
+/// declares more is integrated whole).
+const MAX_DECLARED: usize = 64;
+
+/// The components of an integrand's sampling map with a positive weight
+/// ([`Integrand::sampling_components`]): the `i`-th square of a warped
+/// run is component `index[i]`, weight `weight[i]`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Components {
+    index: [usize; MAX_COMPONENTS],
+    weight: [f64; MAX_COMPONENTS],
+    n: usize,
+}
+
+impl Components {
+    /// The components of `g` with a positive weight, in order; none (length
+    /// 0: integrate the whole map) when `g` declares one component, more
+    /// than [`MAX_DECLARED`], or more than [`MAX_COMPONENTS`] have a
+    /// positive weight.
+    pub(crate) fn of<I: Integrand>(g: &I) -> Self {
+        let mut c = Self {
+            index: [0; MAX_COMPONENTS],
+            weight: [0.0; MAX_COMPONENTS],
+            n: 0,
+        };
+        let declared = g.sampling_components();
+        if declared <= 1 || declared > MAX_DECLARED {
+            return c;
+        }
+        for k in 0..declared {
+            let w = g.component_weight(k);
+            if !(w.is_finite() && w > 0.0) {
+                continue;
+            }
+            let (Some(i), Some(x)) = (c.index.get_mut(c.n), c.weight.get_mut(c.n)) else {
+                c.n = 0;
+                return c;
+            };
+            *i = k;
+            *x = w;
+            c.n += 1;
+        }
+        c
+    }
+
+    /// The number of squares (components with a positive weight).
+    pub(crate) fn len(&self) -> usize {
+        self.n
+    }
+
+    /// The square of the point `x ∈ [0, len]` of the first coordinate and
+    /// the point's coordinate in it: square `⌊x⌋` (the last one for
+    /// `x = len`), `x − ⌊x⌋`.
+    fn square_of(&self, x: f64) -> (usize, f64) {
+        let s = (libm::floor(x).max(0.0) as usize).min(self.n.saturating_sub(1));
+        (s, (x - s as f64).clamp(0.0, 1.0))
+    }
+}
+
+/// `S(t) = t² (3 − 2t)` and `S'(t) = 6 t (1 − t)`: a smooth monotone map
+/// of `[0, 1]` onto itself whose derivative vanishes at both ends. A
+/// component's map whose density vanishes like `cos θ` at the horizon (the
+/// cosine hemisphere, the Kulla–Conty lobe sampler: `cos θ ∝ √u` at the
+/// square's edge) meets there a mixture density that does not (the other
+/// components'), so its weight `c_k g/p ∝ cos θ ∝ √u` has a square-root
+/// singularity at the edge; through `S`, `√(S(t)) ∝ t` and the values
+/// `g/p · S'` are smooth.
+#[inline]
+fn smoothstep(t: f64) -> (f64, f64) {
+    (t * t * (3.0 - 2.0 * t), 6.0 * t * (1.0 - t))
+}
+
+/// The squares of a mixture map's components side by side,
+/// `[0, len] × [0, 1]` (see [`Components`]): at the point `(x_j, y_j)` of
+/// square `⌊x_j⌋` (component `k`, weight `c_k`), with `a = x_j − ⌊x_j⌋`,
+/// `b = y_j`, each coordinate bent by `s(x) = x + κ x (1 − x)` (the bend of
+/// [`bent_warped_values`]; `κ = 0`: none) and then smoothed by
+/// [`smoothstep`] `S`, `out[j] = c_k (S∘s)'(a) (S∘s)'(b) g(ω)/p(ω)` at
+/// `ω = ω_k(S(s(a)), S(s(b)))`, the draw of component `k` through
+/// [`Integrand::component_sample_batch`] (`p` the mixture's density), zero
+/// where the component draws no direction, for `j < min(p.len(),
+/// out.len())`. Summed over the squares, `∫ Σ_k c_k g/p du = ∫_H g dω`
+/// exactly (`Σ_k c_k p_k = p`), and each square's integrand is as smooth as
+/// `g` and the densities: no seam at the pick thresholds.
+pub(crate) fn component_warped_values<I: Integrand>(
+    g: &I,
+    comps: &Components,
+    kappa: f64,
+    p: &[[f64; 2]],
+    out: &mut [WideOf<I>],
+) -> Result<(), IntegrateError> {
+    let mut us = [[0.0f32; 2]; CHUNK];
+    let mut sq = [0usize; CHUNK];
+    let mut jac = [1.0f64; CHUNK];
+    let mut ss = [None; CHUNK];
+    let bend = |x: f64| (x + kappa * x * (1.0 - x), 1.0 + kappa * (1.0 - 2.0 * x));
+    for (p, out) in p.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        let n = p.len().min(out.len());
+        for (((u, s), j), &[x, y]) in head_mut(&mut us, n)
+            .iter_mut()
+            .zip(sq.iter_mut())
+            .zip(jac.iter_mut())
+            .zip(p)
+        {
+            let (square, a) = comps.square_of(x);
+            let ((sa, da), (sb, db)) = if kappa == 0.0 {
+                ((a, 1.0), (y, 1.0))
+            } else {
+                (bend(a), bend(y))
+            };
+            let ((ta, ea), (tb, eb)) = (smoothstep(sa.clamp(0.0, 1.0)), smoothstep(sb.clamp(0.0, 1.0)));
+            *u = [to_unit_f32(ta), to_unit_f32(tb)];
+            *s = square;
+            *j = da * db * ea * eb;
+        }
+        // Runs of points of the same square go to the integrand together.
+        let mut start = 0;
+        while start < n {
+            let square = sq.get(start).copied().unwrap_or(0);
+            let mut end = start + 1;
+            while end < n && sq.get(end) == Some(&square) {
+                end += 1;
+            }
+            let k = comps.index.get(square).copied().unwrap_or(0);
+            if let (Some(u), Some(s)) = (us.get(start..end), ss.get_mut(start..end)) {
+                g.component_sample_batch(k, u, s);
+            }
+            start = end;
+        }
+        for (((o, &s), &square), &j) in out.iter_mut().zip(head(&ss, n)).zip(sq.iter()).zip(jac.iter()) {
+            let c = comps.weight.get(square).copied().unwrap_or(0.0) * j;
+            *o = match sample_weight(s)? {
+                Some((_, _, w)) => w.map(|x| x * c),
+                None => WideOf::<I>::splat(0.0),
+            };
+        }
+    }
+    Ok(())
+}
+
 /// `out[k] = f_r(wi[k], wo)` where `wi[k]` is `Some` (other elements are
 /// left untouched), for `k < min(wi.len(), out.len())`: one
 /// [`Brdf::eval_batch`] per [`CHUNK`] over the compacted directions, so
@@ -253,6 +397,60 @@ pub(crate) fn brdf_sample_batch<B: Brdf>(
                 pdf: s.pdf,
                 value: value(s),
             });
+        }
+    }
+}
+
+/// `out[j]` = the integrand sample `(ω, pdf(ω), f_r(ω, wo) cos θ)` at
+/// `ω = brdf.sample_component(wo, k, u[j])` where that direction is above
+/// the horizon and its (mixture) density positive, else `None`, for
+/// `j < min(u.len(), out.len())`; the rest of `out` is set to `None`. One
+/// [`Brdf::eval_batch`] and one [`Brdf::pdf_batch`] per [`CHUNK`] over the
+/// compacted directions.
+pub(crate) fn brdf_component_batch<B: Brdf>(
+    brdf: &B,
+    wo: Vec3,
+    k: usize,
+    u: &[[f32; 2]],
+    out: &mut [Option<IntegrandSample<B::Spectrum>>],
+) {
+    crate::batch::zero_tail(out, 0);
+    let wos = [wo; CHUNK];
+    let mut dense = [Vec3::ZERO; CHUNK];
+    let mut index = [0usize; CHUNK];
+    let mut vals = [B::Spectrum::zero(); CHUNK];
+    let mut pdfs = [0.0f32; CHUNK];
+    for (u, out) in u.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        // Checked writes: `m ≤ j < CHUNK` by construction, and the code
+        // keeps no panic path for it.
+        let mut m = 0;
+        for (j, &v) in u.iter().take(out.len()).enumerate() {
+            if let Some(w) = brdf.sample_component(wo, k, v)
+                && crate::frame::cos_theta(w) > 0.0
+                && let (Some(d), Some(i)) = (dense.get_mut(m), index.get_mut(m))
+            {
+                *d = w;
+                *i = j;
+                m += 1;
+            }
+        }
+        let m = m.min(CHUNK);
+        brdf.eval_batch(head(&dense, m), head(&wos, m), head_mut(&mut vals, m));
+        brdf.pdf_batch(head(&dense, m), head(&wos, m), head_mut(&mut pdfs, m));
+        for ((&j, &w), (&f, &p)) in head(&index, m)
+            .iter()
+            .zip(head(&dense, m))
+            .zip(head(&vals, m).iter().zip(head(&pdfs, m)))
+        {
+            if p > 0.0
+                && let Some(o) = out.get_mut(j)
+            {
+                *o = Some(IntegrandSample {
+                    w,
+                    pdf: p,
+                    value: f * crate::frame::cos_theta(w),
+                });
+            }
         }
     }
 }

@@ -101,6 +101,47 @@ pub trait Integrand {
         None
     }
 
+    /// The number of components of the sampling map, `K ≥ 1`: a mixture map
+    /// picks component `k` with probability
+    /// [`component_weight`](Integrand::component_weight)`(k)` (`c_k`, summing
+    /// to 1) and draws from that component's own map
+    /// ([`component_sample_batch`](Integrand::component_sample_batch)), so
+    /// that [`Integrand::pdf`] is `Σ_k c_k p_k` (see
+    /// [`Brdf::sampling_components`]). The warped [`Adaptive`] rule then
+    /// integrates `Σ_k c_k ∫ g(ω_k(u))/pdf(ω_k(u)) du`, each term on its own
+    /// smooth square, instead of the whole map with its seams. Default 1
+    /// (the whole map).
+    fn sampling_components(&self) -> usize {
+        1
+    }
+
+    /// The weight `c_k ∈ [0, 1]` of component `k` of the sampling map (see
+    /// [`sampling_components`](Integrand::sampling_components)); 0 for `k`
+    /// out of range. Default: 1 for `k = 0`.
+    fn component_weight(&self, k: usize) -> f64 {
+        if k == 0 { 1.0 } else { 0.0 }
+    }
+
+    /// [`Integrand::sample_batch`] through component `k` of the sampling map:
+    /// `out[j]` is the draw of component `k` at `u[j]` with its direction
+    /// `w`, the *mixture* density `pdf = pdf(w)` (not the component's own)
+    /// and `value = g(w)`, or `None` where the component draws no direction
+    /// (or the mixture density there is not positive); elements past
+    /// `u.len()` are set to `None`. Default: component 0 is
+    /// [`Integrand::sample_batch`], every other `None`.
+    fn component_sample_batch(
+        &self,
+        k: usize,
+        u: &[[f32; 2]],
+        out: &mut [Option<IntegrandSample<Self::Spectrum>>],
+    ) {
+        if k == 0 {
+            self.sample_batch(u, out);
+        } else {
+            crate::batch::zero_tail(out, 0);
+        }
+    }
+
     /// Density of [`Integrand::sample`] at `w` [sr⁻¹]. Default: `0`.
     fn pdf(&self, w: Vec3) -> f32 {
         let _ = w;
@@ -196,6 +237,23 @@ impl<T: Integrand + ?Sized> Integrand for &T {
     #[inline]
     fn sample(&self, u: [f32; 2]) -> Option<IntegrandSample<Self::Spectrum>> {
         (**self).sample(u)
+    }
+    #[inline]
+    fn sampling_components(&self) -> usize {
+        (**self).sampling_components()
+    }
+    #[inline]
+    fn component_weight(&self, k: usize) -> f64 {
+        (**self).component_weight(k)
+    }
+    #[inline]
+    fn component_sample_batch(
+        &self,
+        k: usize,
+        u: &[[f32; 2]],
+        out: &mut [Option<IntegrandSample<Self::Spectrum>>],
+    ) {
+        (**self).component_sample_batch(k, u, out)
     }
     #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
@@ -401,6 +459,42 @@ impl<B: Brdf> Integrand for DirectionalAlbedo<B> {
     #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         self.brdf.pdf(w, self.wo)
+    }
+
+    /// The BRDF's components ([`Brdf::sampling_components`]).
+    fn sampling_components(&self) -> usize {
+        self.brdf.sampling_components()
+    }
+
+    /// [`Brdf::component_weight`] at `ωo`.
+    fn component_weight(&self, k: usize) -> f64 {
+        let c = self.brdf.component_weight(self.wo, k);
+        if c.is_finite() {
+            c.clamp(0.0, 1.0) as f64
+        } else {
+            0.0
+        }
+    }
+
+    /// [`Brdf::sample_component`]'s directions above the horizon, then one
+    /// [`Brdf::eval_batch`] and one [`Brdf::pdf_batch`] per [`CHUNK`] over
+    /// them (`value = f_r cos θi`, `pdf` the mixture's). A BRDF of one
+    /// component: [`Integrand::sample_batch`].
+    fn component_sample_batch(
+        &self,
+        k: usize,
+        u: &[[f32; 2]],
+        out: &mut [Option<IntegrandSample<B::Spectrum>>],
+    ) {
+        if self.brdf.sampling_components() <= 1 {
+            if k == 0 {
+                self.sample_batch(u, out);
+            } else {
+                crate::batch::zero_tail(out, 0);
+            }
+            return;
+        }
+        chunk::brdf_component_batch(&self.brdf, self.wo, k, u, out);
     }
 
     /// [`Brdf::eval_batch`] with `wo` broadcast, then `· cos θi` (zero at

@@ -3,7 +3,7 @@
 use super::{Light, LightPart, PartVisitor};
 use crate::brdf::Brdf;
 use crate::frame::try_normalize;
-use crate::integrator::chunk::{brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
+use crate::integrator::chunk::{brdf_component_batch, brdf_eval_where, brdf_pdf_batch, brdf_sample_batch};
 use crate::integrator::{CHUNK, Integrand, IntegrandSample, IntegrateError};
 use crate::spectrum::Spectrum;
 use crate::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
@@ -169,6 +169,43 @@ impl<B: Brdf, L: Light<Spectrum = B::Spectrum> + ?Sized> Integrand for Environme
     #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         self.brdf.pdf(w, self.wo)
+    }
+
+    /// The BRDF's components ([`Brdf::sampling_components`]).
+    fn sampling_components(&self) -> usize {
+        self.brdf.sampling_components()
+    }
+
+    /// [`Brdf::component_weight`] at `ωo`.
+    fn component_weight(&self, k: usize) -> f64 {
+        let c = self.brdf.component_weight(self.wo, k);
+        if c.is_finite() {
+            c.clamp(0.0, 1.0) as f64
+        } else {
+            0.0
+        }
+    }
+
+    /// As [`DirectionalAlbedo`](crate::integrator::DirectionalAlbedo)'s,
+    /// times the radiance at each direction.
+    fn component_sample_batch(
+        &self,
+        k: usize,
+        u: &[[f32; 2]],
+        out: &mut [Option<IntegrandSample<B::Spectrum>>],
+    ) {
+        if self.brdf.sampling_components() <= 1 {
+            if k == 0 {
+                self.sample_batch(u, out);
+            } else {
+                crate::batch::zero_tail(out, 0);
+            }
+            return;
+        }
+        brdf_component_batch(&self.brdf, self.wo, k, u, out);
+        for s in out.iter_mut().flatten() {
+            s.value *= self.light.radiance(s.w);
+        }
     }
 
     /// As [`Integrand::eval`]: [`Light::radiance`] point by point, then one

@@ -118,11 +118,51 @@ impl MsRow {
 mod tests {
     extern crate std;
     use super::super::albedo_table::{EnergyTable, alpha_node, mu_node, node_scale, rescale_mu};
-    use super::super::kulla_conty::lobe_sampler;
     use super::super::{Ggx, HeightCorrelated};
     use super::*;
     use std::fmt::Write as _;
     use std::string::String;
+
+    /// `max(ℓ − δ, 0)`, the loss the Kulla–Conty lobe restores.
+    fn margined_loss(loss: f32) -> f32 {
+        (loss - super::super::LOSS_MARGIN).max(0.0)
+    }
+
+    /// The piecewise-constant cell sampler of the rows (cell heights
+    /// `v_j = max(ℓ_j, ℓ_{j+1}) + 10⁻³ max v`), as `KullaConty` built it per
+    /// instance when these rows were generated.
+    fn lobe_sampler(nodes: &[f32; N_MU], loss: &[f32; N_MU]) -> ([f32; N_MU], [f32; N_MU], [f32; N_MU - 1]) {
+        let mu_sq: [f32; N_MU] = core::array::from_fn(|j| nodes[j] * nodes[j]);
+        let mut v: [f32; N_MU - 1] =
+            core::array::from_fn(|j| margined_loss(loss[j]).max(margined_loss(loss[j + 1])));
+        let top = v.iter().fold(0.0f32, |m, &x| m.max(x));
+        let floor = if top > 0.0 { 1e-3f32 * top } else { 1.0 };
+        for x in &mut v {
+            *x += floor;
+        }
+        // f32 throughout (63 positive terms: relative rounding ≲ 63 ε), so
+        // firmware without a double-precision FPU pulls in no f64 helpers.
+        let mass: [f32; N_MU - 1] = core::array::from_fn(|j| v[j] * (mu_sq[j + 1] - mu_sq[j]).max(0.0));
+        let total: f32 = mass.iter().sum();
+        let mut cdf = [0.0f32; N_MU];
+        let mut acc = 0.0f32;
+        for j in 0..N_MU - 1 {
+            acc += mass[j];
+            cdf[j + 1] = if total > 0.0 {
+                (acc / total).min(1.0)
+            } else {
+                (j + 1) as f32 / (N_MU - 1) as f32
+            };
+        }
+        cdf[N_MU - 1] = 1.0;
+        let norm = if total > 0.0 {
+            core::f32::consts::FRAC_1_PI / total
+        } else {
+            0.0
+        };
+        let dens: [f32; N_MU - 1] = core::array::from_fn(|j| v[j] * norm);
+        (mu_sq, cdf, dens)
+    }
 
     /// Row `k` from the table, as [`KullaConty`](super::super::KullaConty)
     /// builds its sampler at `α = α_k`.

@@ -1033,6 +1033,67 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         })
     }
 
+    /// The number of components of the sampling map
+    /// ([`Brdf::sampling_components`]): the fuzz, the coat, the metal's
+    /// single scattering, the metal's multiple-scattering cosine lobe, the
+    /// dielectric specular lobe, and the diffuse lobe's two (EON's uniform and
+    /// cosine-weighted hemispheres) — in the order of [`sample`](Self::sample)'s pick.
+    pub const COMPONENTS: usize = LOBES + 1;
+
+    /// The pick probability of lobe `k` where the mixture density counts it
+    /// (the `prob(k)` of [`pdf`](Self::pdf)), else 0.
+    fn lobe_weight(&self, k: usize) -> f32 {
+        let m = self.m;
+        let counted = match k {
+            FUZZ | COAT => m.on.get(k).copied().unwrap_or(false),
+            METAL | METAL_MS => m.metal.is_some(),
+            _ => m.on[SPEC],
+        };
+        if !self.valid || !counted {
+            return 0.0;
+        }
+        let lo = k
+            .checked_sub(1)
+            .and_then(|i| self.cdf.get(i))
+            .copied()
+            .unwrap_or(0.0);
+        (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
+    }
+
+    /// The weight of component `k` (see [`COMPONENTS`](Self::COMPONENTS)):
+    /// the lobe's pick probability, times the diffuse lobe's own component
+    /// weight for the last two — the weights [`pdf`](Self::pdf) mixes with.
+    pub fn component_weight(&self, k: usize) -> f32 {
+        match k {
+            DIFFUSE | LOBES => {
+                self.lobe_weight(DIFFUSE) * self.m.diffuse.component_weight(self.wo, k - DIFFUSE)
+            }
+            k if k < DIFFUSE => self.lobe_weight(k),
+            _ => 0.0,
+        }
+    }
+
+    /// The direction component `k` draws at `u` (the lobe's own sampler, as
+    /// [`sample`](Self::sample) draws it from its rescaled `u₀`), or `None`.
+    pub fn sample_component(&self, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        if !self.valid {
+            return None;
+        }
+        let m = self.m;
+        let wo = self.wo;
+        let u = [u[0].clamp(0.0, 1.0 - f32::EPSILON / 2.0), u[1]];
+        let wi = match k {
+            FUZZ => m.fuzz_sample(wo, u)?.wi,
+            COAT => m.coat.sample(wo, u)?.wi,
+            METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, u))?.wi,
+            METAL_MS => m.metal.as_ref()?.ms_sample(u),
+            SPEC => m.spec.sample(wo, u)?.wi,
+            DIFFUSE | LOBES => m.diffuse.sample_component(wo, k - DIFFUSE, u)?,
+            _ => return None,
+        };
+        (wi.z > 0.0).then_some(wi)
+    }
+
     /// The material's directional albedo at `ωo`, estimated from the lobes'
     /// albedos and the layers' factors at `μo` (the diffuse lobe's `1 − E_s`
     /// and the coat's absorption taken at `μo`).
@@ -1090,6 +1151,19 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
     /// `false`: the layers read tabulated albedos.
     fn is_smooth(&self) -> bool {
         false
+    }
+    /// Seven components: the six lobes, the diffuse one as EON's two
+    /// ([`OpenPbrView::component_weight`]).
+    fn sampling_components(&self) -> usize {
+        OpenPbrView::<S>::COMPONENTS
+    }
+
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        self.prepare(wo).component_weight(k)
+    }
+
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        self.prepare(wo).sample_component(k, u)
     }
 
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {

@@ -90,6 +90,24 @@
 /// methods, bit for bit); without it, the trait's scalar loops.
 macro_rules! rough_batch_methods {
     () => {
+        /// Two components, in the order of [`Brdf::sample`]'s pick
+        /// (`u₀ < p_u`): the uniform hemisphere (0, weight `p_u`) and the
+        /// cosine-weighted one (1, weight `1 − p_u`).
+        fn sampling_components(&self) -> usize {
+            2
+        }
+
+        /// `p_u` for the uniform component 0, `1 − p_u` for the
+        /// cosine-weighted component 1 (`p_u = k (1 − cos θo)³/2`).
+        fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+            super::component_weight(self, wo, k)
+        }
+
+        /// The uniform (0) or cosine-weighted (1) hemisphere at `u`.
+        fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+            super::sample_component(self, wo, k, u)
+        }
+
         /// With the `simd` feature a vector kernel ([`crate::simd`]);
         /// results equal [`Brdf::eval`] bit for bit.
         #[cfg(feature = "simd")]
@@ -343,6 +361,44 @@ pub(crate) fn sample<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<BrdfS
     }
     let weight = eval(l, wi, wo) * (wi_unit.z / pdf);
     Some(BrdfSample { wi, pdf, weight })
+}
+
+/// The weight of component `k` of the mixture sampler ([`sample`]), in the
+/// order of its pick: `p_u` for the uniform hemisphere (`k = 0`), `1 − p_u`
+/// for the cosine-weighted one (`k = 1`), 0 otherwise; at a degenerate `wo`
+/// the cosine component alone.
+#[inline]
+pub(crate) fn component_weight<L: RoughLobe>(l: &L, wo: Vec3, k: usize) -> f32 {
+    let p_u = match unit(wo) {
+        Some(w) if w.z > 0.0 => p_uniform(l.uniform_weight(), w.z).clamp(0.0, 1.0),
+        _ => 0.0,
+    };
+    match k {
+        0 => p_u,
+        1 => 1.0 - p_u,
+        _ => 0.0,
+    }
+}
+
+/// The direction of component `k` of the mixture sampler at `u` (the map
+/// [`sample`] applies to its rescaled `u₀`): the uniform hemisphere (`k = 0`)
+/// or the cosine-weighted one (`k = 1`); `None` when `wo` is not above the
+/// horizon, the direction lands on the horizon or `k > 1`.
+#[inline]
+pub(crate) fn sample_component<L: RoughLobe>(l: &L, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+    let _ = l;
+    let wo_unit = unit(wo)?;
+    if wo_unit.z <= 0.0 {
+        return None;
+    }
+    let u = [u[0].clamp(0.0, ONE_MINUS_EPSILON), u[1]];
+    let wi = match k {
+        0 => square_to_uniform_hemisphere(u),
+        1 => square_to_cosine_hemisphere(u),
+        _ => return None,
+    };
+    let wi_unit = unit(wi)?;
+    (wi_unit.z > 0.0).then_some(wi)
 }
 
 /// The closed-form albedo at the normalised `wo`; exactly zero at or below

@@ -88,6 +88,27 @@ impl<S: Spectrum, B: Brdf<Spectrum = S>> Brdf for WithDiffuse<B, S> {
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         self.mixture_pdf(wi, wo)
     }
+
+    /// The cosine lobe (component 0, weight `pd`), then the specular
+    /// lobe's components (weights `(1 − pd) c_k`): the mixture `pdf` is.
+    fn sampling_components(&self) -> usize {
+        1 + self.specular.sampling_components()
+    }
+
+    fn component_weight(&self, wo: Vec3, k: usize) -> f32 {
+        let pd = self.p_diffuse;
+        match k {
+            0 => pd,
+            _ => (1.0 - pd) * self.specular.component_weight(wo, k - 1),
+        }
+    }
+
+    fn sample_component(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3> {
+        match k {
+            0 => self.diffuse.sample(wo, u).map(|s| s.wi),
+            _ => self.specular.sample_component(wo, k - 1, u),
+        }
+    }
 }
 
 #[cfg(test)]
