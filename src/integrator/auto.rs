@@ -999,7 +999,7 @@ impl Integrator for Auto {
             evaluations: spent,
             runs,
         };
-        confirm::cross_confirm(g, tol, max_budget, first, last, spent)
+        confirm::cross_confirm(g, tol, max_budget, first, last, spent, !p.narrow)
     }
 }
 
