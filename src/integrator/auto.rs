@@ -970,17 +970,7 @@ impl Integrator for Auto {
                         prior
                     };
                     if confirm::mean_check_agrees(g, &best, tol, &mut sp)? {
-                        let mut est = best;
-                        est.error = est.error.zip(d, f64::max);
-                        est.evaluations = sp.evaluations;
-                        return Ok(ToleranceOutcome {
-                            estimate: est,
-                            budget: max_budget,
-                            stop: super::StopReason::ToleranceReached,
-                            total_evaluations: sp.evaluations,
-                            confirmation: Some(d),
-                            runs: sp.runs,
-                        });
+                        return Ok(confirm::reached(best, d, d, sp, max_budget));
                     }
                     spent = sp.evaluations;
                 }

@@ -324,17 +324,7 @@ pub(crate) fn cross_confirm<I: Integrand>(
             if !mean_check_agrees(g, &e, tol, &mut spent)? {
                 continue;
             }
-            let mut est = e;
-            est.error = est.error.zip(d, |a, b| a.max(b));
-            est.evaluations = spent.evaluations;
-            return Ok(ToleranceOutcome {
-                estimate: est,
-                budget: max_budget,
-                stop: StopReason::ToleranceReached,
-                total_evaluations: spent.evaluations,
-                confirmation: Some(d),
-                runs: spent.runs,
-            });
+            return Ok(reached(e, d, d, spent, max_budget));
         }
         // A non-smooth integrand's pair of one square (two warped rules that
         // share the map's seams, or two plain rules that can miss the same
@@ -355,17 +345,7 @@ pub(crate) fn cross_confirm<I: Integrand>(
                 && let Some(d) = randomised_agrees(m, &e, tol)
             {
                 let pair = acc::abs_diff(e.value, c.estimate.value);
-                let mut est = e;
-                est.error = est.error.zip(pair, f64::max).zip(d, f64::max);
-                est.evaluations = spent.evaluations;
-                return Ok(ToleranceOutcome {
-                    estimate: est,
-                    budget: max_budget,
-                    stop: StopReason::ToleranceReached,
-                    total_evaluations: spent.evaluations,
-                    confirmation: Some(d),
-                    runs: spent.runs,
-                });
+                return Ok(reached(e, pair.zip(d, f64::max), d, spent, max_budget));
             }
         }
         let cand = Candidate { estimate: e, family };
@@ -473,6 +453,28 @@ fn randomised_agrees<W: WideSpectrum>(m: &probe::MeanCheck<W>, e: &Estimate<W>, 
         .zip(m.sigma, |d, s| d + 4.0 * s)
         .zip(m.mean, |b, mm| b + mm.abs() / nf);
     stands.then_some(bound)
+}
+
+/// The outcome of a confirmed candidate `e`: [`StopReason::ToleranceReached`],
+/// its error raised to `bound` where that is larger (per channel), the
+/// confirmation `d`, every evaluation and run of `spent` counted.
+pub(crate) fn reached<W: WideSpectrum>(
+    mut e: Estimate<W>,
+    bound: W,
+    d: W,
+    spent: Spent,
+    max_budget: u32,
+) -> ToleranceOutcome<W> {
+    e.error = e.error.zip(bound, f64::max);
+    e.evaluations = spent.evaluations;
+    ToleranceOutcome {
+        estimate: e,
+        budget: max_budget,
+        stop: StopReason::ToleranceReached,
+        total_evaluations: spent.evaluations,
+        confirmation: Some(d),
+        runs: spent.runs,
+    }
 }
 
 /// Most draws of the mean check of an agreeing pair.
