@@ -78,10 +78,10 @@ pub(crate) fn s_over_t(wi: Dirs, wo: Dirs) -> (Vf, Vf, Vf) {
     (s.simd_gt(Vf::ZERO), s, s / t)
 }
 
-/// `p_u = 0.5 k (1 − cos θo)³` lane-wise (the scalar `p_uniform`).
+/// `p_u = 0.5 k max(1 − cos θo, 0)³` lane-wise (the scalar `p_uniform`).
 #[inline(always)]
 fn p_uniform(k: f32, mu_o: Vf) -> Vf {
-    let c = Vf::ONE - mu_o;
+    let c = max0(Vf::ONE - mu_o);
     Vf::splat(0.5 * k) * (c * c * c)
 }
 

@@ -682,3 +682,35 @@ fn spectral_channels() {
     }
     assert_eq!(rgb.rho_ms()[2], Eon::new(0.05f32, 0.6).unwrap().rho_ms());
 }
+
+/// A nearly-unit `wo` that the plugins accept as unit can have `cos θo` a
+/// rounding above 1 (found by the `brdf_eval` fuzz target: FON's pdf came out
+/// −3.4·10⁻²³); the mixture's uniform share must not go negative, so pdf and
+/// sample stay non-negative, scalar and batch alike.
+#[test]
+fn pdf_non_negative_when_cos_theta_o_rounds_above_one() {
+    let wo = Vec3::new(0.0, 6.018_531e-36, 1.000_000_1);
+    let wi = Vec3::new(0.25, 2.351_024_6e-38, 6.027_163_6e-36);
+    let lobes: [&dyn Fn(Vec3, Vec3) -> (f32, f32); 3] = [
+        &|wi, wo| {
+            let b = Fon::new(1.0f32, 1.0).unwrap();
+            (b.pdf(wi, wo), b.pdf(wi.normalize(), wo))
+        },
+        &|wi, wo| {
+            let b = Eon::new(1.0f32, 1.0).unwrap();
+            (b.pdf(wi, wo), b.pdf(wi.normalize(), wo))
+        },
+        &|wi, wo| {
+            let b = OrenNayar::new(1.0f32, 1.0).unwrap();
+            (b.pdf(wi, wo), b.pdf(wi.normalize(), wo))
+        },
+    ];
+    for f in lobes {
+        let (p, q) = f(wi, wo);
+        assert!(p >= 0.0 && q >= 0.0, "{p} {q}");
+    }
+    let b = Fon::new(1.0f32, 1.0).unwrap();
+    let mut out = [0.0f32; 1];
+    b.pdf_batch(&[wi], &[wo], &mut out);
+    assert!(out[0] >= 0.0 && out[0].to_bits() == b.pdf(wi, wo).to_bits());
+}
