@@ -53,8 +53,9 @@ Plugins (F = 1 unless a Fresnel term is named):
   spec-openpbr-red-rgb         the spec grammar's RGB run-time BRDF (AnyBrdfRgb, one virtual call per
                                element or batch) of openpbr(base_color=rgb(0.8, 0.1, 0.1)) (Vec3)
   (both OpenPbr rows also time the paths construct — OpenPbr::new with a roughness from u per
-  element — and hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
-  hit with textured parameters; and the plastic's row construct for Coated::new)
+  element — hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
+  hit with textured parameters — and hit-prepared — the same hit through one OpenPbr::prepare view,
+  as Adobe's prepare + eval + sample + pdf; and the plastic's row construct for Coated::new)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -532,6 +533,20 @@ impl Run<'_> {
             }
         });
         self.push(name, "hit", t);
+        // The same hit through one prepared view (`OpenPbr::prepare`), as a
+        // renderer that shades a light sample and a BSDF sample at one hit
+        // calls it, and as Adobe's `openpbr_prepare` is timed.
+        let t = measure(n, mt, || {
+            for k in 0..n {
+                let m = OpenPbr::new(black_box(with(k))).expect(BAD);
+                let view = m.prepare(wo[k]);
+                sink += view.eval(wi[k]);
+                if let Some(s) = view.sample(u[k]) {
+                    sink += s.weight + view.pdf(s.wi);
+                }
+            }
+        });
+        self.push(name, "hit-prepared", t);
         black_box(sink);
     }
 

@@ -69,8 +69,8 @@ mod tests;
 
 pub use achromatic::Achromatic;
 pub use albedo_table::{
-    ALBEDO_TABLE_ERROR, ALPHA_REF, AlbedoTable, EnergyTable, EnergyTables, N_ALPHA, N_MU, alpha_node,
-    mu_node, node_scale,
+    ALBEDO_TABLE_ERROR, ALPHA_REF, AlbedoReader, AlbedoTable, EnergyTable, EnergyTables, N_ALPHA, N_MU,
+    alpha_node, mu_node, node_scale,
 };
 #[cfg(feature = "simd")]
 #[doc(hidden)]

@@ -118,7 +118,8 @@
 mod tests;
 
 use crate::error::{BrdfError, check_range};
-use crate::microfacet::fresnel_table::{dielectric_albedo, dielectric_average};
+use crate::microfacet::AlbedoReader;
+use crate::microfacet::fresnel_table::{DielectricAlbedoReader, dielectric_average};
 use crate::microfacet::{
     Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
     MIN_ALPHA, Microfacet, MicrofacetDistribution,
@@ -212,7 +213,8 @@ struct Metal<S: Spectrum> {
     ms_scale: S,
     /// `F_ms` per channel (0 likewise): the lobe's albedo is `F_ms (1 − E₁(μo))`.
     f_ms: S,
-    alpha: f32,
+    /// `E₁(·, α)` of the global table at this roughness.
+    e1: AlbedoReader,
     /// The row of the global sampler of the lobe (`microfacet::ms_sampler`).
     ms_row: u8,
 }
@@ -245,7 +247,7 @@ impl<S: Spectrum> Metal<S> {
             single: Microfacet::new(ggx, fresnel),
             ms_scale,
             f_ms,
-            alpha,
+            e1: AlbedoReader::new(alpha),
             ms_row: crate::microfacet::ms_sampler::row_index(alpha),
         }
     }
@@ -253,7 +255,7 @@ impl<S: Spectrum> Metal<S> {
     /// `1 − E₁(μ)`.
     #[inline]
     fn loss(&self, mu: f32) -> f32 {
-        (1.0 - e1_table().albedo(mu, self.alpha)).clamp(0.0, 1.0)
+        (1.0 - self.e1.albedo(e1_table(), mu)).clamp(0.0, 1.0)
     }
 
     /// A direction of the multiple-scattering lobe's sampler: the global
@@ -314,6 +316,10 @@ pub struct OpenPbr<S: Spectrum = f32> {
     /// `(α_s, η_s)` and `(α_c, η_c)` for the tables.
     spec_ae: (f32, f32),
     coat_ae: (f32, f32),
+    /// `E_s(·)` and `E_C(·)` of the global tables (the coat's only read
+    /// when the coat is on).
+    spec_e: DielectricAlbedoReader,
+    coat_e: DielectricAlbedoReader,
     /// `1/(1 − Ē_s)`.
     inv_spec_avg: f32,
     /// Reciprocal mode: `1/(1 − Ē_C)`; the same for the fuzz (`w_F E_F`).
@@ -447,6 +453,12 @@ impl<S: Spectrum> OpenPbr<S> {
             None
         };
 
+        let spec_e = DielectricAlbedoReader::new(a_s, eta_s);
+        let coat_e = if w_c > 0.0 {
+            DielectricAlbedoReader::new(a_c, coat_ior)
+        } else {
+            spec_e
+        };
         let spec_avg = dielectric_average(a_s, eta_s);
         let coat_norm = if reciprocal && w_c > 0.0 {
             inv(1.0 - dielectric_average(a_c, coat_ior))
@@ -469,13 +481,9 @@ impl<S: Spectrum> OpenPbr<S> {
                     1.0
                 }
             };
-            let t_s = |mu: f32| 1.0 - dielectric_albedo(e1_table(), mu, a_s, eta_s);
+            let t_s = |mu: f32| 1.0 - spec_e.albedo(mu);
             let t_c = |mu: f32| {
-                if w_c > 0.0 {
-                    1.0 - dielectric_albedo(e1_table(), mu, a_c, coat_ior)
-                } else {
-                    1.0
-                }
+                if w_c > 0.0 { 1.0 - coat_e.albedo(mu) } else { 1.0 }
             };
             [
                 inv(gauss_legendre_average(|mu| t_f(mu) * t_s(mu))),
@@ -488,7 +496,7 @@ impl<S: Spectrum> OpenPbr<S> {
         // (only read under a coat).
         let (base_albedo_normal, k_r) = if w_c > 0.0 {
             let n = Vec3::Z;
-            let e_s1 = dielectric_albedo(e1_table(), 1.0, a_s, eta_s);
+            let e_s1 = spec_e.albedo(1.0);
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
                 x.single.directional_albedo(n).value + x.ms_scale * (core::f32::consts::PI * x.loss(1.0))
@@ -524,6 +532,8 @@ impl<S: Spectrum> OpenPbr<S> {
             xi,
             spec_ae: (a_s, eta_s),
             coat_ae: (a_c, coat_ior),
+            spec_e,
+            coat_e,
             inv_spec_avg: inv(1.0 - spec_avg),
             coat_norm,
             fuzz_norm,
@@ -548,13 +558,13 @@ impl<S: Spectrum> OpenPbr<S> {
     /// `E_s(μ)`: the dielectric specular lobe's albedo.
     #[inline]
     fn e_spec(&self, mu: f32) -> f32 {
-        dielectric_albedo(e1_table(), mu, self.spec_ae.0, self.spec_ae.1)
+        self.spec_e.albedo(mu)
     }
 
     /// `E_C(μ)`: the coat lobe's albedo.
     #[inline]
     fn e_coat(&self, mu: f32) -> f32 {
-        dielectric_albedo(e1_table(), mu, self.coat_ae.0, self.coat_ae.1)
+        self.coat_e.albedo(mu)
     }
 
     /// `w_F E_F(μ)`: the fuzz's untinted albedo, weighted.
