@@ -136,19 +136,6 @@ pub const fn alpha_node(k: usize) -> f32 {
     ALPHA_MIN + (1.0 - ALPHA_MIN) * (s * s * s)
 }
 
-/// The Catmull–Rom spline through `p0..p3` at `t ∈ [0, 1]` between `p1` and
-/// `p2` (Catmull & Rom 1974; uniform parametrisation):
-/// `½ (2p1 + (p2 − p0)t + (2p0 − 5p1 + 4p2 − p3)t² + (3p1 − p0 − 3p2 + p3)t³)`.
-#[inline]
-fn catmull_rom(p: [f32; 4], t: f32) -> f32 {
-    let [p0, p1, p2, p3] = p;
-    let a = 2.0 * p1;
-    let b = p2 - p0;
-    let c = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
-    let d = 3.0 * p1 - p0 - 3.0 * p2 + p3;
-    0.5 * (a + t * (b + t * (c + t * d)))
-}
-
 /// Cell index and fraction of `x ∈ [0, 1]` on `n` uniform nodes (`x` is
 /// clamped; NaN → 0).
 #[inline(always)]
@@ -178,27 +165,9 @@ impl AlbedoTable {
     /// Catmull–Rom spline in `∛(α − α_min)` (the outermost rows continued
     /// linearly). `α` is clamped to `[α_min, 1]` (NaN → `α_min`).
     pub fn albedo(&self, mu: f32, alpha: f32) -> f32 {
-        let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
-        let alpha = if alpha > ALPHA_MIN {
-            alpha.min(1.0)
-        } else {
-            ALPHA_MIN
-        };
-        let s2 = (1.0 - mu) * (1.0 + mu);
-        let (k, t) = cell(libm::cbrtf((alpha - ALPHA_MIN) / (1.0 - ALPHA_MIN)), N_ALPHA);
-        let at = |r: usize| {
-            let r = r.min(N_ALPHA - 1);
-            let ar = alpha_node(r);
-            // a-invariant μ' at α_r (tan θ' = (α/α_r) tan θ), then row r's node
-            // coordinate (tan θ_ref = ρ(α_r) tan θ'): one tangent scaling.
-            let q = node_scale(ar) * (alpha / ar);
-            lerp_row(&self.values[r], rescale_mu(mu, s2, q * q))
-        };
-        let p1 = at(k);
-        let p2 = at(k + 1);
-        let p0 = if k >= 1 { at(k - 1) } else { 2.0 * p1 - p2 };
-        let p3 = if k + 2 < N_ALPHA { at(k + 2) } else { 2.0 * p2 - p1 };
-        catmull_rom([p0, p1, p2, p3], t).clamp(0.0, 1.0)
+        // One code path for the plain and the prepared read: the reader's
+        // construction is the roughness half of the work.
+        AlbedoReader::new(alpha).albedo(self, mu)
     }
 }
 
@@ -258,16 +227,16 @@ impl AlbedoReader {
             w = [w[0], w[1] - w[3], w[2] + 2.0 * w[3], 0.0];
             rows[3] = k + 1;
         }
-        let k2 = rows.map(|r| {
-            let ar = alpha_node(r.min(N_ALPHA - 1));
+        let mut k2 = [0.0f32; 4];
+        let mut idx = [0u8; 4];
+        for ((k2, idx), &r) in k2.iter_mut().zip(&mut idx).zip(&rows) {
+            let r = r.min(N_ALPHA - 1);
+            let ar = alpha_node(r);
             let q = node_scale(ar) * (alpha / ar);
-            q * q
-        });
-        Self {
-            rows: rows.map(|r| r.min(N_ALPHA - 1) as u8),
-            k2,
-            w,
+            *k2 = q * q;
+            *idx = r as u8;
         }
+        Self { rows: idx, k2, w }
     }
 
     /// `E(μ, α)` from `table` for `μ = cos θo ∈ [0, 1]` (clamped, NaN → 0),
@@ -386,6 +355,76 @@ pub(crate) fn cosine_average(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The spline as [`AlbedoTable`]'s docs state it, summed by Horner's
+    /// rule from the four rows' values (the form the reader's basis weights
+    /// replace), written out here as the reader's reference.
+    /// The Catmull–Rom spline through `p0..p3` at `t ∈ [0, 1]` between `p1` and
+    /// `p2` (Catmull & Rom 1974; uniform parametrisation):
+    /// `½ (2p1 + (p2 − p0)t + (2p0 − 5p1 + 4p2 − p3)t² + (3p1 − p0 − 3p2 + p3)t³)`.
+    #[inline]
+    fn catmull_rom(p: [f32; 4], t: f32) -> f32 {
+        let [p0, p1, p2, p3] = p;
+        let a = 2.0 * p1;
+        let b = p2 - p0;
+        let c = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
+        let d = 3.0 * p1 - p0 - 3.0 * p2 + p3;
+        0.5 * (a + t * (b + t * (c + t * d)))
+    }
+
+    /// `E(μ, α)` by rows and Catmull–Rom (see [`AlbedoTable::albedo`]).
+    fn horner_albedo(tab: &AlbedoTable, mu: f32, alpha: f32) -> f32 {
+        let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
+        let alpha = if alpha > ALPHA_MIN {
+            alpha.min(1.0)
+        } else {
+            ALPHA_MIN
+        };
+        let s2 = (1.0 - mu) * (1.0 + mu);
+        let (k, t) = cell(libm::cbrtf((alpha - ALPHA_MIN) / (1.0 - ALPHA_MIN)), N_ALPHA);
+        let at = |r: usize| {
+            let r = r.min(N_ALPHA - 1);
+            let ar = alpha_node(r);
+            // a-invariant μ' at α_r (tan θ' = (α/α_r) tan θ), then row r's node
+            // coordinate (tan θ_ref = ρ(α_r) tan θ'): one tangent scaling.
+            let q = node_scale(ar) * (alpha / ar);
+            lerp_row(&tab.values[r], rescale_mu(mu, s2, q * q))
+        };
+        let p1 = at(k);
+        let p2 = at(k + 1);
+        let p0 = if k >= 1 { at(k - 1) } else { 2.0 * p1 - p2 };
+        let p3 = if k + 2 < N_ALPHA { at(k + 2) } else { 2.0 * p2 - p1 };
+        catmull_rom([p0, p1, p2, p3], t).clamp(0.0, 1.0)
+    }
+    /// The reader (the basis weights, the four-lane pass) equals the spline
+    /// summed by Horner's rule to rounding, on random `(μ, α)` and the
+    /// domain's edges (the outermost rows' continuation included).
+    #[test]
+    fn reader_equals_the_horner_spline() {
+        let table = &albedo_data::GGX_HEIGHT_CORRELATED;
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut u = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for n in 0..20_000 {
+            let alpha = match n % 40 {
+                0 => ALPHA_MIN,
+                1 => 1.0,
+                2 => alpha_node(1 + n % 30),
+                _ => u() * u() * u(),
+            };
+            let mu = match n % 11 {
+                0 => 0.0,
+                1 => 1.0,
+                _ => u() * u(),
+            };
+            let (a, b) = (table.albedo(mu, alpha), horner_albedo(table, mu, alpha));
+            assert!((a - b).abs() <= 2e-6, "μ {mu} α {alpha}: {a} vs {b}");
+        }
+    }
 
     #[test]
     fn cosine_average_is_exact_for_polynomials() {

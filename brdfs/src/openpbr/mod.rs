@@ -252,6 +252,26 @@ impl<S: Spectrum> Metal<S> {
         }
     }
 
+    /// The single-scattering lobe's directional albedo `E₁(μ) R_F(μ)` at
+    /// `ωo` (unit, above the horizon): the roughness's table reader times
+    /// the F82-tint ratio of the Fresnel moments
+    /// ([`linear_fresnel_ratio`](crate::microfacet::fresnel_table::linear_fresnel_ratio)),
+    /// as [`Brdf::directional_albedo`] of the lobe reads it (which it
+    /// falls back to where the Fresnel term has a kink).
+    #[inline]
+    fn single_albedo(&self, wo: Vec3) -> S {
+        use crate::microfacet::fresnel_table::{fresnel_moments, linear_fresnel_ratio};
+        match self.single.fresnel.form() {
+            crate::microfacet::FresnelForm::Linear { f0, a } => {
+                let mu = wo.z;
+                let e1 = self.e1.albedo(e1_table(), mu);
+                let m = fresnel_moments(mu, self.single.distribution.alpha());
+                S::from_fn(|c| (linear_fresnel_ratio(f0.channel(c), a.channel(c), m) * e1).clamp(0.0, 1.0))
+            }
+            _ => self.single.directional_albedo(wo).value,
+        }
+    }
+
     /// `1 − E₁(μ)`.
     #[inline]
     fn loss(&self, mu: f32) -> f32 {
@@ -499,7 +519,7 @@ impl<S: Spectrum> OpenPbr<S> {
             let e_s1 = spec_e.albedo(1.0);
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
-                x.single.directional_albedo(n).value + x.ms_scale * (core::f32::consts::PI * x.loss(1.0))
+                x.single_albedo(n) + x.ms_scale * (core::f32::consts::PI * x.loss(1.0))
             });
             let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
             (
@@ -698,7 +718,7 @@ impl<S: Spectrum> OpenPbr<S> {
         let u_s = under(Leaf::Specular);
         if let Some(metal) = &self.metal {
             let w = u_s * p.base_metalness * self.xi;
-            share[METAL] = w * metal.single.directional_albedo(wo).value.average();
+            share[METAL] = w * metal.single_albedo(wo).average();
             share[METAL_MS] = w * metal.f_ms.average() * view.metal_loss_o;
         }
         if self.on[SPEC] {
@@ -1125,7 +1145,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
         if let Some(metal) = m.metal.as_ref().filter(|_| m.on[METAL]) {
             let ms = metal.f_ms * self.metal_loss_o;
-            e += (metal.single.directional_albedo(wo).value + ms) * under_s * (p.base_metalness * m.xi);
+            e += (metal.single_albedo(wo) + ms) * under_s * (p.base_metalness * m.xi);
         }
         if m.on[SPEC] {
             let d = 1.0 - p.base_metalness;
