@@ -173,7 +173,7 @@ impl AlbedoTable {
 
 /// [`AlbedoTable::albedo`] at one roughness, with the roughness work done
 /// once: the four rows of the Catmull–Rom spline in `∛(α − α_min)`, each
-/// row's tangent scaling `k_r = (ρ(α_r) α/α_r)²`, and the spline's basis
+/// row's tangent scaling `k_r = (α ρ(α_r)/α_r)²`, and the spline's basis
 /// weights (the outermost rows' linear continuation folded in):
 ///
 /// ```text
@@ -198,6 +198,21 @@ pub struct AlbedoReader {
     k2: [f32; 4],
     w: [f32; 4],
 }
+
+/// `ρ(α_r)/α_r` per row `r` (see [`node_scale`]): row `r` is read at the
+/// tangent scaling `q = α ρ(α_r)/α_r`, so a reader's construction needs no
+/// division.
+const ROW_SCALE: [f32; N_ALPHA] = {
+    let mut t = [0.0f32; N_ALPHA];
+    let mut r = 0;
+    while r < N_ALPHA {
+        let ar = alpha_node(r);
+        let rho = if ar < ALPHA_REF { ar / ALPHA_REF } else { 1.0 };
+        t[r] = rho / ar;
+        r += 1;
+    }
+    t
+};
 
 impl AlbedoReader {
     /// The reader of `E(·, α)`; `α` is clamped to `[α_min, 1]` (NaN →
@@ -231,8 +246,7 @@ impl AlbedoReader {
         let mut idx = [0u8; 4];
         for ((k2, idx), &r) in k2.iter_mut().zip(&mut idx).zip(&rows) {
             let r = r.min(N_ALPHA - 1);
-            let ar = alpha_node(r);
-            let q = node_scale(ar) * (alpha / ar);
+            let q = alpha * ROW_SCALE.get(r).copied().unwrap_or(1.0);
             *k2 = q * q;
             *idx = r as u8;
         }

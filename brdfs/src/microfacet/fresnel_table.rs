@@ -275,24 +275,28 @@ impl DielectricAlbedoReader {
         r
     }
 
-    /// `x ∈ [0, 1]` of the `η < 1` table for roughness row `i` (0: `k`,
-    /// 1: `k + 1`): [`mu_coord`] with this reader's constants.
+    /// `x ∈ [0, 1]` of the `η < 1` table for both roughness rows (`k`,
+    /// `k + 1`): [`mu_coord`] with this reader's constants; the distance to
+    /// the critical cosine and its square-root term are the rows' common part.
     #[inline(always)]
-    fn x_inside(&self, mu: f32, i: usize) -> f32 {
-        let (inv_w, [n_lo, n_hi]) = (self.inv_w[i & 1], self.norm[i & 1]);
+    fn x_inside(&self, mu: f32) -> [f32; 2] {
         let mc = self.mc;
-        let side = |d: f32, span: f32, norm: f32| {
-            if span <= 0.0 {
-                return 0.0;
-            }
-            let d = d.max(0.0).min(span);
-            0.3 * libm::sqrtf(d / span) + 0.7 * libm::asinhf(d * inv_w) * norm
-        };
-        if mu <= mc {
-            0.5 - 0.5 * side(mc - mu, mc, n_lo)
+        let (below, d, span) = if mu <= mc {
+            (true, mc - mu, mc)
         } else {
-            0.5 + 0.5 * side(mu - mc, 1.0 - mc, n_hi)
+            (false, mu - mc, 1.0 - mc)
+        };
+        if span <= 0.0 {
+            return [0.5; 2];
         }
+        let d = d.max(0.0).min(span);
+        let root = 0.3 * libm::sqrtf(d / span);
+        let x = |i: usize| {
+            let (inv_w, [n_lo, n_hi]) = (self.inv_w[i & 1], self.norm[i & 1]);
+            let side = root + 0.7 * libm::asinhf(d * inv_w) * if below { n_lo } else { n_hi };
+            if below { 0.5 - 0.5 * side } else { 0.5 + 0.5 * side }
+        };
+        [x(0), x(1)]
     }
 
     /// `R(μ) = E_F/E₁` (see [`dielectric_ratio`]), in `[0, 1]`.
@@ -306,7 +310,8 @@ impl DielectricAlbedoReader {
         };
         let cell_at = |x: f32| cell_of(x * (nx - 1) as f32, nx);
         let cells = if self.inside {
-            [cell_at(self.x_inside(mu, 0)), cell_at(self.x_inside(mu, 1))]
+            let [x0, x1] = self.x_inside(mu);
+            [cell_at(x0), cell_at(x1)]
         } else {
             let c = cell_at(libm::sqrtf(mu));
             [c, c]
