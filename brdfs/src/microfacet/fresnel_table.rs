@@ -121,6 +121,7 @@ fn index_coord(eta: f32) -> (usize, f32, bool) {
 }
 
 /// The `μ` coordinate `x ∈ [0, 1]` of a table (see the module docs).
+#[cfg(test)]
 #[inline(always)]
 fn mu_coord(mu: f32, inside: bool, eta: f32, alpha: f32) -> f32 {
     let mu = mu.clamp(0.0, 1.0);
@@ -147,46 +148,7 @@ fn mu_coord(mu: f32, inside: bool, eta: f32, alpha: f32) -> f32 {
 /// `μ = cos θo` and roughness `α`, trilinear in the table's coordinates.
 /// In `[0, 1]`; `η = 1` gives 0.
 pub fn dielectric_ratio(mu: f32, alpha: f32, eta: f32) -> f32 {
-    let (l, fz, inside) = index_coord(eta);
-    let (k, fa) = alpha_coord(alpha);
-    let table: &[u16] = if inside {
-        &data::DIELECTRIC_IN
-    } else {
-        &data::DIELECTRIC_OUT
-    };
-    // Each `z` slice at its own x: the inside table's x depends on η only
-    // through μc, which is the η of the query for both slices (nodes on a
-    // line of constant x share the critical point).
-    // The inside table's x depends on α (the width of the rounded kink):
-    // each roughness row is read at its own node α, so that rows align in
-    // units of that width.
-    let at = |l: usize, k: usize| -> f32 {
-        let a_k = if inside { alpha_node_f32(k) } else { alpha };
-        let x = mu_coord(mu, inside, eta, a_k);
-        let (j, fx) = if inside {
-            cell_of(x * (FT_NX_IN - 1) as f32, FT_NX_IN)
-        } else {
-            cell_of(x * (FT_NX - 1) as f32, FT_NX)
-        };
-        let nx = if inside { FT_NX_IN } else { FT_NX };
-        // Wrapping index arithmetic: an index past the table reads 0 through
-        // `get` (no overflow check can panic; the cells keep it in range).
-        let base = l
-            .wrapping_mul(FT_NA)
-            .wrapping_add(k)
-            .wrapping_mul(nx)
-            .wrapping_add(j);
-        let a = table.get(base).copied().unwrap_or(0) as f32;
-        let b = table.get(base.wrapping_add(1)).copied().unwrap_or(0) as f32;
-        a + fx * (b - a)
-    };
-    let row = |l: usize| {
-        let a = at(l, k);
-        a + fa * (at(l, k.wrapping_add(1)) - a)
-    };
-    let a = row(l);
-    let v = a + fz * (row(l.wrapping_add(1)) - a);
-    (v * (1.0 / 65535.0)).clamp(0.0, 1.0)
+    DielectricRatioReader::new(alpha, eta).ratio(mu)
 }
 
 /// The directional albedo `E_F(μ, α, η) = E₁(μ, α) · R` of a GGX
@@ -220,6 +182,15 @@ pub fn dielectric_albedo(e1: &AlbedoTable, mu: f32, alpha: f32, eta: f32) -> f32
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DielectricAlbedoReader {
     e1: AlbedoReader,
+    ratio: DielectricRatioReader,
+}
+
+/// [`dielectric_ratio`] at one `(α, η)`: the ratio table's four `(z, α)`
+/// corners and their bilinear weights, and for `η < 1` each roughness row's
+/// critical-angle constants, computed once ([`dielectric_ratio`] is this
+/// reader built and read once).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DielectricRatioReader {
     /// Offsets of column 0 of the corners `(l, k)`, `(l, k+1)`, `(l+1, k)`,
     /// `(l+1, k+1)`.
     base: [u32; 4],
@@ -239,6 +210,30 @@ impl DielectricAlbedoReader {
     /// The reader of `E_F(·, α, η)` (the arguments clamped as
     /// [`dielectric_albedo`] clamps them).
     pub fn new(alpha: f32, eta: f32) -> Self {
+        Self {
+            e1: AlbedoReader::new(alpha),
+            ratio: DielectricRatioReader::new(alpha, eta),
+        }
+    }
+
+    /// `R(μ) = E_F/E₁` (see [`dielectric_ratio`]), in `[0, 1]`.
+    #[inline]
+    pub fn ratio(&self, mu: f32) -> f32 {
+        self.ratio.ratio(mu)
+    }
+
+    /// `E_F(μ, α, η) = E₁(μ, α) · R(μ)` (see [`dielectric_albedo`]), in `[0, 1]`.
+    #[inline]
+    pub fn albedo(&self, mu: f32) -> f32 {
+        let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        (self.e1.albedo(e1, mu) * self.ratio.ratio(mu)).clamp(0.0, 1.0)
+    }
+}
+
+impl DielectricRatioReader {
+    /// The reader of `R(·, α, η)` (the arguments clamped as
+    /// [`dielectric_ratio`] clamps them).
+    pub fn new(alpha: f32, eta: f32) -> Self {
         let (l, fz, inside) = index_coord(eta);
         let (k, fa) = alpha_coord(alpha);
         let nx = if inside { FT_NX_IN } else { FT_NX };
@@ -246,7 +241,6 @@ impl DielectricAlbedoReader {
         let base = [off(l, k), off(l, k + 1), off(l + 1, k), off(l + 1, k + 1)].map(|o| o as u32);
         let w = [(1.0 - fz) * (1.0 - fa), (1.0 - fz) * fa, fz * (1.0 - fa), fz * fa];
         let mut r = Self {
-            e1: AlbedoReader::new(alpha),
             base,
             w,
             inside,
@@ -326,13 +320,6 @@ impl DielectricAlbedoReader {
             acc += w * (a + fx * (bb - a));
         }
         (acc * (1.0 / 65535.0)).clamp(0.0, 1.0)
-    }
-
-    /// `E_F(μ, α, η) = E₁(μ, α) · R(μ)` (see [`dielectric_albedo`]), in `[0, 1]`.
-    #[inline]
-    pub fn albedo(&self, mu: f32) -> f32 {
-        let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
-        (self.e1.albedo(e1, mu) * self.ratio(mu)).clamp(0.0, 1.0)
     }
 }
 
@@ -423,6 +410,51 @@ mod tests {
         }
     }
 
+    /// The trilinear read as the module docs state it, corner by corner from
+    /// `μ`'s coordinate per roughness row (the readers' reference).
+    fn trilinear_ratio(mu: f32, alpha: f32, eta: f32) -> f32 {
+        let (l, fz, inside) = index_coord(eta);
+        let (k, fa) = alpha_coord(alpha);
+        let table: &[u16] = if inside {
+            &data::DIELECTRIC_IN
+        } else {
+            &data::DIELECTRIC_OUT
+        };
+        // Each `z` slice at its own x: the inside table's x depends on η only
+        // through μc, which is the η of the query for both slices (nodes on a
+        // line of constant x share the critical point).
+        // The inside table's x depends on α (the width of the rounded kink):
+        // each roughness row is read at its own node α, so that rows align in
+        // units of that width.
+        let at = |l: usize, k: usize| -> f32 {
+            let a_k = if inside { alpha_node_f32(k) } else { alpha };
+            let x = mu_coord(mu, inside, eta, a_k);
+            let (j, fx) = if inside {
+                cell_of(x * (FT_NX_IN - 1) as f32, FT_NX_IN)
+            } else {
+                cell_of(x * (FT_NX - 1) as f32, FT_NX)
+            };
+            let nx = if inside { FT_NX_IN } else { FT_NX };
+            // Wrapping index arithmetic: an index past the table reads 0 through
+            // `get` (no overflow check can panic; the cells keep it in range).
+            let base = l
+                .wrapping_mul(FT_NA)
+                .wrapping_add(k)
+                .wrapping_mul(nx)
+                .wrapping_add(j);
+            let a = table.get(base).copied().unwrap_or(0) as f32;
+            let b = table.get(base.wrapping_add(1)).copied().unwrap_or(0) as f32;
+            a + fx * (b - a)
+        };
+        let row = |l: usize| {
+            let a = at(l, k);
+            a + fa * (at(l, k.wrapping_add(1)) - a)
+        };
+        let a = row(l);
+        let v = a + fz * (row(l.wrapping_add(1)) - a);
+        (v * (1.0 / 65535.0)).clamp(0.0, 1.0)
+    }
+
     /// The prepared readers equal the plain reads up to rounding, on random
     /// `(μ, α, η)` on both sides of `η = 1` (roughness spread in `√α`, from
     /// near-delta to 1; `μ` spread in `√μ` so grazing is covered), with the
@@ -459,7 +491,10 @@ mod tests {
             let b = e1.albedo(mu, alpha);
             worst.0 = worst.0.max((a - b).abs());
             let r = DielectricAlbedoReader::new(alpha, eta);
-            let (c, d) = (r.albedo(mu), dielectric_albedo(e1, mu, alpha, eta));
+            let (c, d) = (
+                r.albedo(mu),
+                (e1.albedo(mu, alpha) * trilinear_ratio(mu, alpha, eta)).clamp(0.0, 1.0),
+            );
             worst.1 = worst.1.max((c - d).abs());
             assert!(
                 (a - b).abs() <= 2e-6 && (c - d).abs() <= 2e-6,
