@@ -301,9 +301,38 @@ fn compare_rough_diffuse(sigma: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -
     Ok(())
 }
 
+/// The composites (`radiometry::compose`): their batch paths run the lobes'
+/// own kernels (AoS and SoA) and combine element by element, so they too
+/// must equal the scalar path bit for bit.
+fn compare_composites(
+    alpha: f32,
+    sigma: f32,
+    pairs: &[(Vec3, Vec3)],
+    rep: &mut Report,
+) -> Result<(), TestCaseError> {
+    use radiometry::compose::{Coated, Mix, Scaled, Sum};
+    let coat =
+        Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(alpha).unwrap(), Dielectric::new(1.5).unwrap());
+    let eon = Eon::new(0.8f32, sigma).unwrap();
+    compare(&Coated::new(coat, eon), "coated-plastic", pairs, rep)?;
+    let reciprocal = Coated::new(coat, eon).with_layering(radiometry::compose::Layering::Reciprocal);
+    compare(&reciprocal, "coated-plastic-reciprocal", pairs, rep)?;
+    let metal = Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(alpha).unwrap(), NoFresnel);
+    let half = |x| Scaled::new(x, 0.5f32).unwrap();
+    compare(
+        &Sum::new(half(metal), Scaled::new(eon, 0.5f32).unwrap()),
+        "sum",
+        pairs,
+        rep,
+    )?;
+    compare(&Mix::new(0.3, metal, eon).unwrap(), "mix", pairs, rep)?;
+    Ok(())
+}
+
 fn compare_all(alpha: f32, n: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
     compare_microfacet(alpha, pairs, rep)?;
     compare_phong_family(n, pairs, rep)?;
+    compare_composites(alpha, ((alpha.log10() + 4.0) / 4.0).clamp(0.0, 1.0), pairs, rep)?;
     // The roughness range [10⁻⁴, 1] of α mapped onto σ ∈ [0, 1] (both ends).
     compare_rough_diffuse(((alpha.log10() + 4.0) / 4.0).clamp(0.0, 1.0), pairs, rep)
 }

@@ -2,9 +2,11 @@
 //! OpenPBR's energy-conserving form or a reciprocal one ([`Layering`]).
 
 use super::{
-    ComposeError, Layering, eval_batch_pair, finish_sample, mixture_pdf, pair_components, pair_sample,
-    pair_weight, pdf_batch_pair, pick_and_sample, pick_first, reciprocal_through,
+    ComposeError, Layering, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf,
+    pair_components, pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
+    reciprocal_through,
 };
+use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::frame::cos_theta;
 use crate::spectrum::Spectrum;
@@ -294,6 +296,18 @@ where
     /// them (element by element equal).
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         eval_batch_pair(&self.top, &self.base, wi, wo, out, |i, o, ft, fb| {
+            if Self::both_above(i, o) {
+                self.layer(i, o, ft, fb)
+            } else {
+                S::zero()
+            }
+        });
+    }
+
+    /// The lobes' own SoA kernels, layered element by element (equal to
+    /// [`eval`](Brdf::eval) element by element).
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        eval_batch_soa_pair(&self.top, &self.base, wi, wo, out, |i, o, ft, fb| {
             if Self::both_above(i, o) {
                 self.layer(i, o, ft, fb)
             } else {

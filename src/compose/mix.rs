@@ -1,9 +1,10 @@
 //! [`Mix`]: a weighted blend of two lobes.
 
 use super::{
-    ComposeError, eval_batch_pair, finish_sample, mixture_pdf, pair_components, pair_sample, pair_weight,
-    pdf_batch_pair, pick_and_sample, pick_first,
+    ComposeError, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf, pair_components,
+    pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
 };
+use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -152,6 +153,17 @@ where
         }
         let w = self.w;
         eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x * w + y * (1.0 - w));
+    }
+
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        if self.w == 0.0 {
+            return self.b.eval_batch_soa(wi, wo, out);
+        }
+        if self.w == 1.0 {
+            return self.a.eval_batch_soa(wi, wo, out);
+        }
+        let w = self.w;
+        eval_batch_soa_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x * w + y * (1.0 - w));
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed as [`pdf`](Brdf::pdf) mixes

@@ -89,6 +89,57 @@ pub(crate) fn eval_batch_pair<S, A, B>(
     crate::batch::zero_tail(out, wi.len().min(wo.len()));
 }
 
+/// [`eval_batch_pair`] for structure-of-arrays input: the lobes' own
+/// [`Brdf::eval_batch_soa`] kernels in chunks of [`CHUNK`], then `combine`
+/// element by element; equal to the scalar path element by element when each
+/// lobe's SoA batch equals its scalar `eval` (the plugins' do, bit for bit).
+#[inline]
+pub(crate) fn eval_batch_soa_pair<S, A, B>(
+    a: &A,
+    b: &B,
+    wi: crate::batch::Vec3Soa<'_>,
+    wo: crate::batch::Vec3Soa<'_>,
+    out: &mut [S],
+    combine: impl Fn(Vec3, Vec3, S, S) -> S,
+) where
+    S: Spectrum,
+    A: Brdf<Spectrum = S> + ?Sized,
+    B: Brdf<Spectrum = S> + ?Sized,
+{
+    let n = wi.len().min(wo.len()).min(out.len());
+    let (wi, wo) = (wi.truncate(n), wo.truncate(n));
+    let mut fa = [S::zero(); CHUNK];
+    let mut fb = [S::zero(); CHUNK];
+    for ((ci, co), out) in soa_chunks(wi).zip(soa_chunks(wo)).zip(out.chunks_mut(CHUNK)) {
+        a.eval_batch_soa(ci, co, &mut fa);
+        b.eval_batch_soa(ci, co, &mut fb);
+        for ((o, (&x, &y)), (i, j)) in out
+            .iter_mut()
+            .zip(fa.iter().zip(&fb))
+            .zip(soa_dirs(ci).zip(soa_dirs(co)))
+        {
+            *o = combine(i, j, x, y);
+        }
+    }
+    crate::batch::zero_tail(out, n);
+}
+
+/// Chunks of [`CHUNK`] directions of a structure-of-arrays view.
+fn soa_chunks(v: crate::batch::Vec3Soa<'_>) -> impl Iterator<Item = crate::batch::Vec3Soa<'_>> {
+    v.x.chunks(CHUNK)
+        .zip(v.y.chunks(CHUNK))
+        .zip(v.z.chunks(CHUNK))
+        .map(|((x, y), z)| crate::batch::Vec3Soa::new(x, y, z))
+}
+
+/// The directions of a structure-of-arrays view.
+fn soa_dirs(v: crate::batch::Vec3Soa<'_>) -> impl Iterator<Item = Vec3> + '_ {
+    v.x.iter()
+        .zip(v.y)
+        .zip(v.z)
+        .map(|((&x, &y), &z)| Vec3::new(x, y, z))
+}
+
 /// `out[k] = mix(wo[k], pdf_A[k], pdf_B[k])` with the lobes' densities from
 /// their [`Brdf::pdf_batch`] kernels (`None` for a lobe skips it: its
 /// density is taken as 0), in chunks; the batch length rule for the rest.

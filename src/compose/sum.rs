@@ -1,9 +1,10 @@
 //! [`Sum`]: two lobes added.
 
 use super::{
-    add_albedo, eval_batch_pair, finish_sample, mixture_pdf, pair_components, pair_sample, pair_weight,
-    pdf_batch_pair, pick_and_sample, pick_first,
+    add_albedo, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf, pair_components,
+    pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
 };
+use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -100,6 +101,10 @@ where
     /// element by element).
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x + y);
+    }
+
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        eval_batch_soa_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x + y);
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed with the pick probability
