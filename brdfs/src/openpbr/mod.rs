@@ -1046,7 +1046,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 })
             }),
             SPEC => m.spec.sample(wo, uu),
-            _ => m.diffuse.sample(wo, uu),
+            // The direction alone: its value and density come from the pass below.
+            _ => m.diffuse.sample_direction(wo, uu).map(|wi| BrdfSample {
+                wi,
+                pdf: 0.0,
+                weight: S::zero(),
+            }),
         }?;
         let (f, pdf) = self.eval_inner(s.wi, true, true);
         if pdf.is_nan() || pdf <= 0.0 {

@@ -97,6 +97,13 @@ pub struct Eon<S: Spectrum = f32> {
 }
 
 impl<S: Spectrum> Eon<S> {
+    /// The direction [`Brdf::sample`] draws at `u`, without its pdf and
+    /// value (for a material that evaluates its own mixture there).
+    #[inline]
+    pub(crate) fn sample_direction(&self, wo: Vec3, u: [f32; 2]) -> Option<Vec3> {
+        super::sample_direction(self, wo, u).map(|(wi, _)| wi)
+    }
+
     /// Builds the BRDF.
     ///
     /// # Errors

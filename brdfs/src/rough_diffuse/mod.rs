@@ -336,13 +336,10 @@ pub(crate) fn pdf<L: RoughLobe>(l: &L, wi: Vec3, wo: Vec3) -> f32 {
     (1.0 - p_u) * (wi.z * FRAC_1_PI) + p_u * (0.5 * FRAC_1_PI)
 }
 
-/// One sample of the mixture: the uniform hemisphere with probability `p_u`
-/// (`u₀ < p_u`, rescaled to `[0, 1)`), else the cosine-weighted one; the pdf
-/// is [`pdf`] of the returned direction (bit for bit), the weight
-/// `f_r cos θi/pdf`. `None` when `wo` is not above the horizon (or not
-/// finite) or the direction lands on the horizon.
+/// The direction [`sample`] draws (and its normalised form), without its
+/// pdf and value: for a caller that evaluates its own mixture at it.
 #[inline]
-pub(crate) fn sample<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<L::S>> {
+pub(crate) fn sample_direction<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<(Vec3, Vec3)> {
     let wo_unit = unit(wo)?;
     if wo_unit.z <= 0.0 {
         return None;
@@ -354,9 +351,17 @@ pub(crate) fn sample<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<BrdfS
         square_to_cosine_hemisphere([((u[0] - p_u) / (1.0 - p_u)).min(ONE_MINUS_EPSILON), u[1]])
     };
     let wi_unit = unit(wi)?;
-    if wi_unit.z <= 0.0 {
-        return None;
-    }
+    (wi_unit.z > 0.0).then_some((wi, wi_unit))
+}
+
+/// One sample of the mixture: the uniform hemisphere with probability `p_u`
+/// (`u₀ < p_u`, rescaled to `[0, 1)`), else the cosine-weighted one; the pdf
+/// is [`pdf`] of the returned direction (bit for bit), the weight
+/// `f_r cos θi/pdf`. `None` when `wo` is not above the horizon (or not
+/// finite) or the direction lands on the horizon.
+#[inline]
+pub(crate) fn sample<L: RoughLobe>(l: &L, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<L::S>> {
+    let (wi, wi_unit) = sample_direction(l, wo, u)?;
     let pdf = pdf(l, wi, wo);
     if pdf.is_nan() || pdf <= 0.0 {
         return None;
