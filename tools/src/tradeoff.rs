@@ -104,53 +104,200 @@ pub const GOLD_ETA: f64 = 0.18104;
 /// Imaginary part (extinction coefficient) of gold at 632.8 nm.
 pub const GOLD_K: f64 = 3.068099;
 
-/// The materials of the `materials` families: `(name, spec, f64 model)`.
+/// A material of the `materials` families.
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// Name (the case names' middle part; no commas).
+    pub name: &'static str,
+    /// BRDF spec given to the plugins.
+    pub spec: String,
+    /// The independent f64 model.
+    pub model: RefModel,
+    /// θo of its albedo cases, in degrees.
+    pub thetas: &'static [f64],
+    /// Its product cases: `(light elevation in degrees, view)` under both
+    /// the sun and the lamp; view `mirror` (the mirror direction of the
+    /// light's centre) or `off` (10° off it in azimuth).
+    pub products: &'static [(f64, &'static str)],
+}
+
+/// The materials of the `materials` families, with the θo of their albedo
+/// cases and their product cases.
 ///
 /// * `plastic`: a clear dielectric coat (GGX α = 0.1, height-correlated G2,
 ///   the exact Fresnel of η = 1.5) over EON (ρ = 0.8, σ = 0.5);
 /// * `coated-gold`: a clear dielectric coat (GGX α = 0.05, η = 1.5) over
 ///   GGX α = 0.3 with the exact conductor Fresnel of gold at 632.8 nm
-///   ([`GOLD_ETA`], [`GOLD_K`]).
+///   ([`GOLD_ETA`], [`GOLD_K`]);
+/// * the rough diffuse plugins `eon` (ρ = 0.9, σ = 1), `fon` (ρ = 0.8,
+///   σ = 0.7) and `oren-nayar` (ρ = 0.8, σ = 0.35 rad), whose albedos have
+///   closed forms ([`crate::reference::materials::Lobe::closed_albedo`]);
+/// * `sheen` (colour 1, roughness 0.3), `openpbr` (OpenPBR Surface's
+///   defaults) and `openpbr-all-layers` (metalness 0.5, coat 1 with
+///   roughness 0.2, fuzz 1, as the bench's row of that name): f64 quadrature
+///   of the plugin's own values ([`RefModel::PluginEval`]), independent of
+///   its sampling maps;
+/// * `sum`: GGX α = 0.2 with the exact Fresnel of η = 1.5 plus EON (ρ = 0.5,
+///   σ = 1); `mix`: 0.3 × gold GGX α = 0.05 + 0.7 × Oren–Nayar (ρ = 0.9,
+///   σ = 0.5 rad) — the weighted sums of the lobes' references.
 ///
-/// The references tabulate the coat's true directional albedo at the
-/// layer's nodes ([`crate::reference::materials`]).
-pub fn materials() -> [(&'static str, String, RefModel); 2] {
+/// The layered references tabulate the coat's true directional albedo at
+/// the layer's nodes ([`crate::reference::materials`]).
+pub fn materials() -> Vec<Material> {
     use crate::reference::materials::{Fresnel, Layer, Lobe};
     let glass = Fresnel::Dielectric { eta: 1.5 };
-    [
-        (
-            "plastic",
-            "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=0.8, sigma=0.5))".into(),
-            RefModel::Coated(Layer {
+    let gold = Fresnel::Conductor {
+        eta: GOLD_ETA,
+        k: GOLD_K,
+    };
+    let one = |lobe: Lobe| RefModel::Lobes([(1.0, lobe), (0.0, Lobe::Black)]);
+    const LAYERED: &[f64] = &[0.0, 60.0, 85.0];
+    const BOTH: &[(f64, &str)] = &[(45.0, "mirror"), (45.0, "off"), (10.0, "mirror"), (10.0, "off")];
+    const NEW_THETAS: &[f64] = &[0.0, 60.0, 85.0];
+    const NEW_PRODUCTS: &[(f64, &str)] = &[(45.0, "mirror"), (10.0, "off")];
+    vec![
+        Material {
+            name: "plastic",
+            spec: "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=0.8, sigma=0.5))".into(),
+            model: RefModel::Coated(Layer {
                 top: Lobe::Ggx {
                     alpha: 0.1,
                     fresnel: glass,
                 },
                 base: Lobe::Eon { rho: 0.8, sigma: 0.5 },
             }),
-        ),
-        (
-            "coated-gold",
-            format!(
+            thetas: LAYERED,
+            products: BOTH,
+        },
+        Material {
+            name: "coated-gold",
+            spec: format!(
                 "coated(ggx(alpha=0.05, fresnel=dielectric(eta=1.5)), \
                  ggx(alpha=0.3, fresnel=conductor(eta={GOLD_ETA}, k={GOLD_K})))"
             ),
-            RefModel::Coated(Layer {
+            model: RefModel::Coated(Layer {
                 top: Lobe::Ggx {
                     alpha: 0.05,
                     fresnel: glass,
                 },
                 base: Lobe::Ggx {
                     alpha: 0.3,
-                    fresnel: Fresnel::Conductor {
-                        eta: GOLD_ETA,
-                        k: GOLD_K,
-                    },
+                    fresnel: gold,
                 },
             }),
-        ),
+            thetas: LAYERED,
+            products: BOTH,
+        },
+        Material {
+            name: "eon",
+            spec: "eon(rho=0.9, sigma=1)".into(),
+            model: one(Lobe::Eon { rho: 0.9, sigma: 1.0 }),
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "fon",
+            spec: "fon(rho=0.8, sigma=0.7)".into(),
+            model: one(Lobe::Fon { rho: 0.8, sigma: 0.7 }),
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "oren-nayar",
+            spec: "oren-nayar(rho=0.8, sigma_rad=0.35)".into(),
+            model: one(Lobe::OrenNayar {
+                rho: 0.8,
+                sigma_rad: 0.35,
+            }),
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "sheen",
+            spec: SHEEN.into(),
+            model: RefModel::PluginEval {
+                spec: SHEEN,
+                peak: Some(0.05),
+                mu_break: Some(0.5),
+            },
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "sum",
+            spec: "ggx(alpha=0.2, fresnel=dielectric(eta=1.5)) + eon(rho=0.5, sigma=1)".into(),
+            model: RefModel::Lobes([
+                (
+                    1.0,
+                    Lobe::Ggx {
+                        alpha: 0.2,
+                        fresnel: glass,
+                    },
+                ),
+                (1.0, Lobe::Eon { rho: 0.5, sigma: 1.0 }),
+            ]),
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "mix",
+            spec: format!(
+                "mix(0.3, ggx(alpha=0.05, fresnel=conductor(eta={GOLD_ETA}, k={GOLD_K})), \
+                 oren-nayar(rho=0.9, sigma_rad=0.5))"
+            ),
+            model: RefModel::Lobes([
+                (
+                    0.3,
+                    Lobe::Ggx {
+                        alpha: 0.05,
+                        fresnel: gold,
+                    },
+                ),
+                (
+                    0.7,
+                    Lobe::OrenNayar {
+                        rho: 0.9,
+                        sigma_rad: 0.5,
+                    },
+                ),
+            ]),
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "openpbr",
+            spec: OPENPBR_DEFAULTS.into(),
+            model: RefModel::PluginEval {
+                spec: OPENPBR_DEFAULTS,
+                peak: Some(2.0 * 0.09),
+                mu_break: None,
+            },
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
+        Material {
+            name: "openpbr-all-layers",
+            spec: OPENPBR_ALL_LAYERS.into(),
+            model: RefModel::PluginEval {
+                spec: OPENPBR_ALL_LAYERS,
+                peak: Some(2.0 * 0.04),
+                mu_break: None,
+            },
+            thetas: NEW_THETAS,
+            products: NEW_PRODUCTS,
+        },
     ]
 }
+
+/// The sheen material of [`materials`].
+pub const SHEEN: &str = "sheen(color=1, roughness=0.3)";
+/// OpenPBR Surface with its default parameters (a dielectric specular
+/// layer of roughness 0.3, α = 0.09, over a diffuse base of colour 0.8).
+pub const OPENPBR_DEFAULTS: &str = "openpbr";
+/// OpenPBR with every layer on: metalness 0.5, a coat of weight 1 and
+/// roughness 0.2 (α = 0.04), fuzz of weight 1 (the bench's
+/// `openpbr-all-layers`).
+pub const OPENPBR_ALL_LAYERS: &str = "openpbr(base_metalness=0.5, coat_weight=1, coat_roughness=0.2, fuzz_weight=1)";
 
 /// One case of the suite.
 #[derive(Clone, Debug)]
@@ -251,9 +398,9 @@ pub fn suite(quick: bool) -> Vec<Case> {
         }
     }
     // Layered materials (see [`materials`]).
-    for (name, spec, model) in materials() {
-        for t in [0.0, 60.0, 85.0] {
-            push("materials", format!("-{name}"), spec.clone(), model, t);
+    for m in materials() {
+        for &t in m.thetas {
+            push("materials", format!("-{}", m.name), m.spec.clone(), m.model, t);
         }
     }
     if quick {

@@ -78,21 +78,20 @@ pub fn suite(quick: bool) -> Vec<ProductCase> {
     // Layered materials (`super::materials`) under the same lights, at
     // elevations 45° and 10°.
     for (family, deg) in [("materials-sun", SUN_DEG), ("materials-lamp", LAMP_DEG)] {
-        for (material, spec, model) in super::materials() {
-            for elev in [45.0, 10.0] {
-                for (view, dphi) in [("mirror", 0.0f64), ("off", 10.0)] {
-                    let ta = (90.0f64 - elev).to_radians();
-                    let p = std::f64::consts::PI + dphi.to_radians();
-                    v.push(ProductCase {
-                        name: format!("{family}-{material}-el{elev}-{view}"),
-                        family,
-                        spec: spec.clone(),
-                        model,
-                        wo: [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()],
-                        axis: [ta.sin(), 0.0, ta.cos()],
-                        sigma: deg.to_radians(),
-                    });
-                }
+        for m in super::materials() {
+            for &(elev, view) in m.products {
+                let dphi: f64 = if view == "mirror" { 0.0 } else { 10.0 };
+                let ta = (90.0f64 - elev).to_radians();
+                let p = std::f64::consts::PI + dphi.to_radians();
+                v.push(ProductCase {
+                    name: format!("{family}-{}-el{elev}-{view}", m.name),
+                    family,
+                    spec: m.spec.clone(),
+                    model: m.model,
+                    wo: [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()],
+                    axis: [ta.sin(), 0.0, ta.cos()],
+                    sigma: deg.to_radians(),
+                });
             }
         }
     }
