@@ -900,7 +900,7 @@ mod plugin_tests {
 /// rules cannot resolve below; the interval cap and the rules' stall test
 /// ([`adaptive`]) stop them there, and the bound (the two runs' difference
 /// plus the finer run's summed indicator) says how far they got.
-pub const PLUGIN_TOLERANCES: ((f64, f64), usize) = ((1e-7, 1e-9), 300);
+pub const PLUGIN_TOLERANCES: ((f64, f64), usize) = ((1e-6, 1e-8), 100);
 
 /// The run-time BRDF of a spec, built once per process (the references of
 /// [`RefModel::PluginEval`] read its values only).
@@ -1125,3 +1125,103 @@ fn integrate_split(
 /// Most intervals of each of [`integrate_split`]'s adaptive rules: the `f32`
 /// values' rounding noise (`≈ 10⁻⁷` relative) stops the rules long before.
 const SPLIT_MAX_INTERVALS: usize = 300;
+
+/// The references of the materials family that are not layers: closed forms
+/// and sums of lobes agree with an f64 quadrature of the plugins' own values
+/// (two independent routes to the same number), and the quadrature of a
+/// plugin's values converges (its bound is small and a looser run lands
+/// within its own bound of it).
+#[cfg(test)]
+mod material_reference_tests {
+    use super::*;
+    use crate::tradeoff::materials;
+
+    /// Every closed-form or lobe-sum reference of the suite equals the f64
+    /// quadrature of its plugin's values to the `f32` evaluation floor.
+    #[test]
+    fn lobe_references_match_the_plugins_values() {
+        for m in materials() {
+            let RefModel::Lobes(_) = m.model else { continue };
+            let spec: &'static str = Box::leak(m.spec.clone().into_boxed_str());
+            let peak = m.model.peak(1.0).map(|(_, w)| w);
+            for &deg in m.thetas {
+                let t = deg.to_radians();
+                let r = albedo(&m.model, t);
+                assert!(r.bound < 1e-10 * r.value, "{} {deg}: {r:?}", m.name);
+                let brdf = plugin(spec);
+                let wo = f32_wo(t);
+                let f = |wi: [f64; 3]| eval_f32(brdf, wi, wo);
+                let q = plugin_albedo(&f, t, peak, None, PLUGIN_TOLERANCES);
+                assert!(
+                    (q.value - r.value).abs() <= q.bound + r.bound + 1e-6 * r.value,
+                    "{} {deg}: plugin {q:?} vs reference {r:?}",
+                    m.name
+                );
+            }
+        }
+    }
+
+    /// The plugin-value references of the suite bound their error below
+    /// `10⁻⁷` relative, and a run at looser tolerances (`10⁻⁶`, `10⁻⁸`)
+    /// lands within its own bound of them.
+    #[test]
+    fn plugin_value_references_converge() {
+        for m in materials() {
+            let RefModel::PluginEval { spec, peak, mu_break } = m.model else {
+                continue;
+            };
+            for &deg in m.thetas {
+                let t = deg.to_radians();
+                let r = albedo(&m.model, t);
+                assert!(r.bound < 1e-7 * r.value, "{} {deg}: {r:?}", m.name);
+                let brdf = plugin(spec);
+                let wo = f32_wo(t);
+                let f = |wi: [f64; 3]| eval_f32(brdf, wi, wo);
+                let loose = plugin_albedo(&f, t, peak, mu_break, ((1e-6, 1e-8), 300));
+                assert!(
+                    (loose.value - r.value).abs() <= loose.bound,
+                    "{} {deg}: {loose:?} vs {r:?}",
+                    m.name
+                );
+            }
+        }
+    }
+
+    /// The quadrature of a plugin's values reproduces a closed form: EON's
+    /// albedo (the plugin evaluates in `f32`, so to its rounding).
+    #[test]
+    fn plugin_value_quadrature_reproduces_eon_closed_form() {
+        for deg in [0.0f64, 60.0, 85.0] {
+            let t = deg.to_radians();
+            let brdf = plugin("eon(rho=0.9, sigma=1)");
+            let wo = f32_wo(t);
+            let f = |wi: [f64; 3]| eval_f32(brdf, wi, wo);
+            let q = plugin_albedo(&f, t, None, None, PLUGIN_TOLERANCES);
+            let exact = materials::eon_albedo(0.9, 1.0, f64::from(wo.z) / f64::from(wo.length()));
+            assert!(q.bound < 1e-7, "{deg}: {q:?}");
+            assert!((q.value - exact).abs() <= q.bound + 5e-7 * exact, "{deg}: {q:?} vs {exact}");
+        }
+    }
+
+    /// Under a lamp, the lobe-sum reference of the `mix` material equals the
+    /// quadrature of the plugin's values over the cap.
+    #[test]
+    fn lobe_cap_reference_matches_the_plugins_values() {
+        let m = materials().into_iter().find(|m| m.name == "mix").expect("mix");
+        let spec: &'static str = Box::leak(m.spec.clone().into_boxed_str());
+        let ta = 45f64.to_radians();
+        let (wo, axis) = ([-ta.sin(), 0.0, ta.cos()], [ta.sin(), 0.0, ta.cos()]);
+        let sigma = 5f64.to_radians();
+        let r = cap_radiance(&m.model, wo, axis, sigma);
+        let peak = m.model.peak(wo[2]).map(|(_, w)| w);
+        let brdf = plugin(spec);
+        let wo32 = radiometry::glam::Vec3::new(wo[0] as f32, wo[1] as f32, wo[2] as f32);
+        let f = |wi: [f64; 3]| eval_f32(brdf, wi, wo32);
+        let q = plugin_cap_radiance(&f, peak, &[], wo, axis, sigma, PLUGIN_TOLERANCES);
+        assert!(r.bound < 1e-10 * r.value, "{r:?}");
+        assert!(
+            (q.value - r.value).abs() <= q.bound + r.bound + 2e-6 * r.value,
+            "plugin {q:?} vs reference {r:?}"
+        );
+    }
+}

@@ -119,6 +119,40 @@ pub struct Material {
     /// the sun and the lamp; view `mirror` (the mirror direction of the
     /// light's centre) or `off` (10° off it in azimuth).
     pub products: &'static [(f64, &'static str)],
+    /// The budgets of its cases ([`Budgets::FULL`] or
+    /// [`Budgets::COMPOSITE`]).
+    pub budgets: Budgets,
+}
+
+/// The largest budgets of a case: of its fixed-budget ladder, and of the
+/// last run of its to-tolerance runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budgets {
+    /// Largest budget of the fixed-budget ladder (the ladder stops there).
+    pub ladder: u32,
+    /// Most evaluations in the last run of a to-tolerance run.
+    pub tolerance: u32,
+}
+
+impl Budgets {
+    /// The whole ladder ([`FULL_BUDGETS`]) and the driver's
+    /// [`DEFAULT_MAX_BUDGET`](radiometry::integrator::DEFAULT_MAX_BUDGET), as
+    /// `radiometry albedo --tol`.
+    pub const FULL: Budgets = Budgets {
+        ladder: u32::MAX,
+        tolerance: radiometry::integrator::DEFAULT_MAX_BUDGET,
+    };
+    /// The composites added with the plugins' cases (EON … OpenPBR): the
+    /// ladder up to 2¹⁸ = 262,144 and at most 2¹⁸ evaluations in the last
+    /// to-tolerance run (the random-material check's
+    /// [`honesty::HONESTY_MAX_BUDGET`]). Their sampling maps cost up to
+    /// 2.4 µs per evaluation (an OpenPBR with every layer, a mix with a gold
+    /// lobe), so the full ladder and 2²² would take the report past ten
+    /// minutes; 2¹⁸ is 4× the goal's 65,536.
+    pub const COMPOSITE: Budgets = Budgets {
+        ladder: 262_144,
+        tolerance: 262_144,
+    };
 }
 
 /// The materials of the `materials` families, with the θo of their albedo
@@ -153,8 +187,15 @@ pub fn materials() -> Vec<Material> {
     let one = |lobe: Lobe| RefModel::Lobes([(1.0, lobe), (0.0, Lobe::Black)]);
     const LAYERED: &[f64] = &[0.0, 60.0, 85.0];
     const BOTH: &[(f64, &str)] = &[(45.0, "mirror"), (45.0, "off"), (10.0, "mirror"), (10.0, "off")];
-    const NEW_THETAS: &[f64] = &[0.0, 60.0, 85.0];
-    const NEW_PRODUCTS: &[(f64, &str)] = &[(45.0, "mirror"), (10.0, "off")];
+    // The rough diffuse lobes and the sheen are cheap to evaluate and
+    // sample: three θo, the last grazing. The sum, the mix and the OpenPBRs
+    // cost 0.5–2.4 µs per sample: two θo, one grazing. Under the lights
+    // (sun and lamp, elevation 45°, mirror view): every material but FON and
+    // Oren–Nayar (whose cap integrands are EON's kind).
+    const CHEAP: &[f64] = &[0.0, 60.0, 85.0];
+    const HEAVY: &[f64] = &[20.0, 80.0];
+    const LIT: &[(f64, &str)] = &[(45.0, "mirror")];
+    const UNLIT: &[(f64, &str)] = &[];
     vec![
         Material {
             name: "plastic",
@@ -168,6 +209,7 @@ pub fn materials() -> Vec<Material> {
             }),
             thetas: LAYERED,
             products: BOTH,
+            budgets: Budgets::FULL,
         },
         Material {
             name: "coated-gold",
@@ -187,20 +229,23 @@ pub fn materials() -> Vec<Material> {
             }),
             thetas: LAYERED,
             products: BOTH,
+            budgets: Budgets::FULL,
         },
         Material {
             name: "eon",
             spec: "eon(rho=0.9, sigma=1)".into(),
             model: one(Lobe::Eon { rho: 0.9, sigma: 1.0 }),
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: CHEAP,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "fon",
             spec: "fon(rho=0.8, sigma=0.7)".into(),
             model: one(Lobe::Fon { rho: 0.8, sigma: 0.7 }),
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: CHEAP,
+            products: UNLIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "oren-nayar",
@@ -209,8 +254,9 @@ pub fn materials() -> Vec<Material> {
                 rho: 0.8,
                 sigma_rad: 0.35,
             }),
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: CHEAP,
+            products: UNLIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "sheen",
@@ -220,8 +266,9 @@ pub fn materials() -> Vec<Material> {
                 peak: Some(0.05),
                 mu_break: Some(0.5),
             },
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: CHEAP,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "sum",
@@ -236,8 +283,9 @@ pub fn materials() -> Vec<Material> {
                 ),
                 (1.0, Lobe::Eon { rho: 0.5, sigma: 1.0 }),
             ]),
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "mix",
@@ -261,8 +309,9 @@ pub fn materials() -> Vec<Material> {
                     },
                 ),
             ]),
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "openpbr",
@@ -272,8 +321,9 @@ pub fn materials() -> Vec<Material> {
                 peak: Some(2.0 * 0.09),
                 mu_break: None,
             },
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
         },
         Material {
             name: "openpbr-all-layers",
@@ -283,8 +333,9 @@ pub fn materials() -> Vec<Material> {
                 peak: Some(2.0 * 0.04),
                 mu_break: None,
             },
-            thetas: NEW_THETAS,
-            products: NEW_PRODUCTS,
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
         },
     ]
 }
@@ -312,6 +363,8 @@ pub struct Case {
     pub model: RefModel,
     /// θo in degrees.
     pub theta_o: f64,
+    /// Its largest budgets.
+    pub budgets: Budgets,
 }
 
 fn fmt_num(x: f64) -> String {
@@ -323,14 +376,18 @@ fn fmt_num(x: f64) -> String {
 pub fn suite(quick: bool) -> Vec<Case> {
     let thetas = [0.0, 60.0, 85.0, 89.5, 89.9];
     let mut v = Vec::new();
-    let mut push = |family: &'static str, param: String, spec: String, model: RefModel, t: f64| {
+    let mut push_with = |family: &'static str, param: String, spec: String, model: RefModel, t: f64, budgets| {
         v.push(Case {
             name: format!("{family}{param}-to{}", fmt_num(t)),
             family,
             spec,
             model,
             theta_o: t,
+            budgets,
         });
+    };
+    let mut push = |family: &'static str, param: String, spec: String, model: RefModel, t: f64| {
+        push_with(family, param, spec, model, t, Budgets::FULL)
     };
     for &t in &thetas {
         push(
@@ -400,7 +457,14 @@ pub fn suite(quick: bool) -> Vec<Case> {
     // Layered materials (see [`materials`]).
     for m in materials() {
         for &t in m.thetas {
-            push("materials", format!("-{}", m.name), m.spec.clone(), m.model, t);
+            push_with(
+                "materials",
+                format!("-{}", m.name),
+                m.spec.clone(),
+                m.model,
+                t,
+                m.budgets,
+            );
         }
     }
     if quick {
@@ -457,12 +521,14 @@ pub type Measured = (u32, u64, f64, f64, f64, Status);
 
 fn measure(
     brdf: &AnyBrdf,
-    theta_o: f64,
+    case: &Case,
     integ: &AnyIntegrator,
     budgets: &[u32],
     quick: bool,
 ) -> (Vec<Measured>, Vec<String>) {
-    let t = theta_o.to_radians();
+    let budgets: Vec<u32> = budgets.iter().copied().filter(|&b| b <= case.budgets.ladder).collect();
+    let budgets = &budgets[..];
+    let t = case.theta_o.to_radians();
     let g = DirectionalAlbedo {
         brdf,
         wo: Vec3::new(t.sin() as f32, 0.0, t.cos() as f32),
@@ -695,7 +761,7 @@ pub fn run(opt: &Options) -> Result<(), String> {
             albedo.record(
                 ci,
                 ii,
-                measure(&brdfs[ci], cases[ci].theta_o, &integs[ii], budgets, opt.quick),
+                measure(&brdfs[ci], &cases[ci], &integs[ii], budgets, opt.quick),
             );
             progress.tick(&format!("{} {}", cases[ci].name, integs[ii].name()));
         } else {
@@ -843,6 +909,7 @@ pub fn run(opt: &Options) -> Result<(), String> {
             spec: c.spec.clone(),
             model: c.model,
             theta_o: c.wo[2].clamp(-1.0, 1.0).acos().to_degrees(),
+            budgets: c.budgets,
         })
         .collect();
     let preport = Report {
@@ -958,7 +1025,23 @@ mod tests {
         let s = suite(false);
         // θo ∈ {0, 60, 85, 89.5, 89.9}; Phong n ∈ {1, 10, 100, 1000};
         // microfacet α ∈ {0.001, 0.01, 0.05, 0.3, 1}.
-        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4 + 6);
+        // Materials: two layers at 3 θo, four cheap plugins at 3, four
+        // heavy composites at 2.
+        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4 + 6 + 4 * 3 + 4 * 2);
+        for name in [
+            "eon", "fon", "oren-nayar", "sheen", "sum", "mix", "openpbr", "openpbr-all-layers",
+        ] {
+            let of: Vec<&Case> = s
+                .iter()
+                .filter(|c| c.name.starts_with(&format!("materials-{name}-to")))
+                .collect();
+            assert!(of.len() >= 2, "{name}");
+            // Each is seen at a grazing angle too, and its spec is the plugin.
+            assert!(of.iter().any(|c| c.theta_o >= 75.0), "{name}");
+            assert!(of.iter().all(|c| c.budgets == Budgets::COMPOSITE), "{name}");
+        }
+        let openpbr = s.iter().find(|c| c.name == "materials-openpbr-to20").expect("case");
+        assert_eq!(openpbr.spec, "openpbr");
         assert!(s.iter().any(|c| c.name == "ggx-a0.001-to89.9"));
         assert!(s.iter().all(|c| !c.name.contains(',')));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();

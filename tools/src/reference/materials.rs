@@ -619,6 +619,41 @@ mod tests {
         }
     }
 
+    /// FON's and the qualitative Oren–Nayar's closed-form albedos against
+    /// the quadrature of their BRDFs (the Oren–Nayar one in its
+    /// trigonometric form, so the `max(0, s)/t` rewriting is checked too),
+    /// grazing views included.
+    #[test]
+    fn fon_and_oren_nayar_closed_forms_match_their_quadrature() {
+        for deg in [0.0f64, 30.0, 60.0, 75.0, 85.0, 89.0] {
+            let mu = deg.to_radians().cos();
+            for lobe in [
+                Lobe::Fon { rho: 0.8, sigma: 0.7 },
+                Lobe::Fon { rho: 1.0, sigma: 1.0 },
+                Lobe::OrenNayar {
+                    rho: 0.8,
+                    sigma_rad: 0.35,
+                },
+                Lobe::OrenNayar {
+                    rho: 0.9,
+                    sigma_rad: 1.5,
+                },
+            ] {
+                let q = lobe.albedo(mu, 1e-7, 1e-11);
+                let c = lobe.closed_albedo(mu).expect("closed form");
+                assert!(q.bound < 1e-9, "{lobe:?} {deg}: {q:?}");
+                assert!(
+                    (q.value - c.value).abs() <= q.bound + c.bound + 1e-12,
+                    "{lobe:?} {deg}: {q:?} vs {c:?}"
+                );
+            }
+        }
+        // Oren–Nayar at σ = 0 is Lambert; its grazing limit is ρ (A + B/2).
+        assert!((qon_albedo(0.5, 0.0) - 1.0).abs() < 1e-15);
+        let (a, b) = qon_coefficients(0.2);
+        assert!((qon_albedo(0.0, 0.2) - (a + 0.5 * b)).abs() < 1e-12);
+    }
+
     /// A non-reflecting top leaves the base as it is: `E_T = 0`, `t = 1`.
     #[test]
     fn black_top_over_a_base_is_the_base() {
@@ -787,8 +822,24 @@ mod plugin_tests {
             eta: 0.18104,
             k: 3.068099,
         };
-        let cases: [(&str, Lobe); 5] = [
+        let cases: [(&str, Lobe); 9] = [
             ("eon(rho=0.8, sigma=0.5)", Lobe::Eon { rho: 0.8, sigma: 0.5 }),
+            ("eon(rho=0.9, sigma=1)", Lobe::Eon { rho: 0.9, sigma: 1.0 }),
+            ("fon(rho=0.8, sigma=0.7)", Lobe::Fon { rho: 0.8, sigma: 0.7 }),
+            (
+                "oren-nayar(rho=0.8, sigma_rad=0.35)",
+                Lobe::OrenNayar {
+                    rho: 0.8,
+                    sigma_rad: 0.35,
+                },
+            ),
+            (
+                "oren-nayar(rho=0.9, sigma_rad=0.5)",
+                Lobe::OrenNayar {
+                    rho: 0.9,
+                    sigma_rad: 0.5,
+                },
+            ),
             ("eon(rho=1, sigma=1)", Lobe::Eon { rho: 1.0, sigma: 1.0 }),
             (
                 "ggx(alpha=0.1, fresnel=dielectric(eta=1.5))",

@@ -10,7 +10,7 @@ use crate::model::AnyBrdf;
 use crate::reference::{self, RefModel, Reference};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
-    Adaptive, DEFAULT_MAX_BUDGET, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet,
+    Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet,
     Strategy, ToleranceOutcome, integrate_to_tolerance,
 };
 use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
@@ -32,6 +32,8 @@ pub struct ProductCase {
     pub axis: [f64; 3],
     /// Cap half-angle (radians).
     pub sigma: f64,
+    /// Its largest budgets.
+    pub budgets: super::Budgets,
 }
 
 /// Half-angle of the sun's disc (0.27°) and of the lamp (5°).
@@ -70,6 +72,7 @@ pub fn suite(quick: bool) -> Vec<ProductCase> {
                         wo,
                         axis,
                         sigma: deg.to_radians(),
+                        budgets: super::Budgets::FULL,
                     });
                 }
             }
@@ -91,6 +94,7 @@ pub fn suite(quick: bool) -> Vec<ProductCase> {
                     wo: [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()],
                     axis: [ta.sin(), 0.0, ta.cos()],
                     sigma: deg.to_radians(),
+                    budgets: m.budgets,
                 });
             }
         }
@@ -161,8 +165,10 @@ impl Method {
 
 impl Method {
     /// Refines the method on a case to the absolute tolerance `tol` through
-    /// [`integrate_to_tolerance`] (start budget 64, at most
-    /// [`DEFAULT_MAX_BUDGET`]), as `radiometry albedo --tol` does.
+    /// [`integrate_to_tolerance`] (start budget 64, at most the case's
+    /// `budgets.tolerance`:
+    /// [`DEFAULT_MAX_BUDGET`](radiometry::integrator::DEFAULT_MAX_BUDGET) but for the composites'
+    /// cases), as `radiometry albedo --tol` does.
     pub fn to_tolerance(
         &self,
         brdf: &AnyBrdf,
@@ -176,21 +182,21 @@ impl Method {
                 &CapIntegrand::new(brdf, wo, &cap),
                 tol,
                 64,
-                DEFAULT_MAX_BUDGET,
+                case.budgets.tolerance,
             ),
             Method::CapAdaptive(a) => integrate_to_tolerance(
                 &a,
                 &CapIntegrand::new(brdf, wo, &cap),
                 tol,
                 64,
-                DEFAULT_MAX_BUDGET,
+                case.budgets.tolerance,
             ),
             Method::Sampled(s, p, seed) => integrate_to_tolerance(
                 &MonteCarlo::new(Strategy::Integrand, p, seed),
                 &CapSampled::new(brdf, wo, &cap, s),
                 tol,
                 64,
-                DEFAULT_MAX_BUDGET,
+                case.budgets.tolerance,
             ),
         }
     }
@@ -267,7 +273,8 @@ pub fn measure(
 ) -> (Vec<Measured>, Vec<String>) {
     let wo = v3(case.wo);
     let cap = cap_of(case);
-    super::ladder(budgets, quick, &method.name(), |b| {
+    let budgets: Vec<u32> = budgets.iter().copied().filter(|&b| b <= case.budgets.ladder).collect();
+    super::ladder(&budgets, quick, &method.name(), |b| {
         method.integrate(brdf, wo, &cap, b)
     })
 }
@@ -313,7 +320,15 @@ mod tests {
     #[test]
     fn suite_covers_the_issue_cases() {
         let s = suite(false);
-        assert_eq!(s.len(), 2 * 3 * 4 * 2 + 2 * 2 * 2 * 2);
+        // GGX; the two layers at 2 elevations × 2 views; six composites at
+        // one; each under the sun and the lamp.
+        assert_eq!(s.len(), 2 * 3 * 4 * 2 + 2 * 2 * 2 * 2 + 2 * 6);
+        for m in ["eon", "sheen", "sum", "mix", "openpbr", "openpbr-all-layers"] {
+            for light in ["sun", "lamp"] {
+                let name = format!("materials-{light}-{m}-el45-mirror");
+                assert!(s.iter().any(|c| c.name == name), "{name}");
+            }
+        }
         // Partly below the horizon: the cap reaches below z = 0.
         assert!(s.iter().any(|c| c.axis[2] < c.sigma.sin()));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();
