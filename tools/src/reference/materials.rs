@@ -227,7 +227,11 @@ impl Lobe {
                 let (ti, to) = (mi.clamp(-1.0, 1.0).acos(), mo.clamp(-1.0, 1.0).acos());
                 let (alpha, beta) = (ti.max(to), ti.min(to));
                 let (pi_, po) = (wi[1].atan2(wi[0]), wo[1].atan2(wo[0]));
-                let c = if ti == 0.0 || to == 0.0 { 0.0 } else { (pi_ - po).cos().max(0.0) };
+                let c = if ti == 0.0 || to == 0.0 {
+                    0.0
+                } else {
+                    (pi_ - po).cos().max(0.0)
+                };
                 rho / PI * (a + b * c * alpha.sin() * beta.tan())
             }
             Lobe::Eon { rho, sigma } => {

@@ -10,8 +10,8 @@ use crate::model::AnyBrdf;
 use crate::reference::{self, RefModel, Reference};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
-    Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet,
-    Strategy, ToleranceOutcome, integrate_to_tolerance,
+    Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet, Strategy,
+    ToleranceOutcome, integrate_to_tolerance,
 };
 use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
 
@@ -273,7 +273,11 @@ pub fn measure(
 ) -> (Vec<Measured>, Vec<String>) {
     let wo = v3(case.wo);
     let cap = cap_of(case);
-    let budgets: Vec<u32> = budgets.iter().copied().filter(|&b| b <= case.budgets.ladder).collect();
+    let budgets: Vec<u32> = budgets
+        .iter()
+        .copied()
+        .filter(|&b| b <= case.budgets.ladder)
+        .collect();
     super::ladder(&budgets, quick, &method.name(), |b| {
         method.integrate(brdf, wo, &cap, b)
     })
@@ -325,7 +329,8 @@ mod tests {
         assert_eq!(s.len(), 2 * 3 * 4 * 2 + 2 * 2 * 2 * 2 + 2 * 6);
         for m in ["eon", "sheen", "sum", "mix", "openpbr", "openpbr-all-layers"] {
             for light in ["sun", "lamp"] {
-                let name = format!("materials-{light}-{m}-el45-mirror");
+                let at = if m == "sheen" { "el10-off" } else { "el45-mirror" };
+                let name = format!("materials-{light}-{m}-{at}");
                 assert!(s.iter().any(|c| c.name == name), "{name}");
             }
         }

@@ -91,8 +91,9 @@ impl Report<'_> {
                  references: the weighted sums of the lobes' references), OpenPBR's defaults and OpenPBR with every \
                  layer (metalness 0.5, coat 1 of roughness 0.2, fuzz 1) at θo ∈ {20°, 80°}. The sheen's and the \
                  OpenPBRs' references are f64 quadratures of the plugin's own values (no closed form; independent \
-                 of its sampling maps). These composites' ladders stop at 262,144 evaluations (their sampling maps \
-                 cost up to 2.4 µs per evaluation), and their worst case is judged over that ladder.",
+                 of its sampling maps). These composites' ladders stop at 262,144 evaluations, the mix's and the \
+                 OpenPBRs' at 65,536 (their sampling maps cost 0.6–2.4 µs per evaluation), and each case is judged \
+                 over its own ladder.",
             ),
             SuiteKind::Product => (
                 "Product integrals: glossy lobes under a cap light",
@@ -101,7 +102,8 @@ impl Report<'_> {
                  partly below the horizon (sun 0.1°, lamp 2°), viewed at the mirror direction of the light's centre \
                  and 10° off it in azimuth; families `materials-sun` and `materials-lamp`: the two layered materials \
                  of the albedo suite under the same lights at elevations 45° and 10°, and EON, the sheen, the sum, \
-                 the mix and both OpenPBRs at elevation 45°, mirror view (ladder up to 262,144). Methods: `cap-*` quadrature over the visible cap; `light-sampling` \
+                 the mix and both OpenPBRs at elevation 45°, mirror view, and the sheen at 10°, 10° off (it vanishes \
+                 at the mirror direction); ladders up to 262,144 (mix, OpenPBRs: 65,536). Methods: `cap-*` quadrature over the visible cap; `light-sampling` \
                  (uniform in the cone), `brdf-sampling` (the BRDF's visible-normal sampling) and `mis-light-brdf` \
                  (one-sample balance-heuristic MIS of both), each with PRNG and Sobol points.",
             ),
@@ -415,8 +417,9 @@ impl Report<'_> {
             }
         }
         let refs_line = format!(
-            "References: nested adaptive Gauss–Kronrod (7,15) in f64, independent of the integrators and plugins; \
-             worst relative reference bound {ref_worst:.1e}; {:.1} s (one thread's time, summed) for all \
+            "References: nested adaptive Gauss–Kronrod (7,15) in f64, independent of the integrators and plugins \
+             (the sheen's and the OpenPBRs': of the plugin's own values, independent of its sampling maps; EON, FON \
+             and Oren–Nayar: closed forms); worst relative reference bound {ref_worst:.1e}; {:.1} s (one thread's time, summed) for all \
              references.",
             self.ref_seconds
         );
@@ -450,7 +453,10 @@ impl Report<'_> {
         let cases: Vec<usize> = (0..self.cases.len())
             .filter(|&ci| self.cases[ci].family == "materials")
             .collect();
-        let auto = self.integs.iter().position(|i| i.name() == "auto" && !i.external)?;
+        let auto = self
+            .integs
+            .iter()
+            .position(|i| i.name() == "auto" && !i.external)?;
         if cases.is_empty() {
             return None;
         }
@@ -459,7 +465,10 @@ impl Report<'_> {
         for &ci in &cases {
             let best = (0..self.integs.len())
                 .filter(|&ii| self.integs[ii].is_deterministic() && !self.integs[ii].external)
-                .filter_map(|ii| self.reach(ci, ii, 1e-6).map(|r| (r.evaluations, self.integs[ii].name())))
+                .filter_map(|ii| {
+                    self.reach(ci, ii, 1e-6)
+                        .map(|r| (r.evaluations, self.integs[ii].name()))
+                })
                 .min();
             let name = &self.cases[ci].name;
             match best {
