@@ -153,11 +153,13 @@ impl Budgets {
     };
     /// The costliest composites (the mix with a gold lobe and the
     /// OpenPBRs, whose sampling maps cost 0.6–2.4 µs per evaluation): the
-    /// ladder up to the goal's 65,536, and at most 65,536 evaluations in
-    /// the last to-tolerance run.
+    /// ladder up to the goal's 65,536, and at most 2¹⁸ evaluations in the
+    /// last to-tolerance run, as [`Budgets::COMPOSITE`] (with 65,536 the
+    /// adaptive rules stopped there at θo = 80°, resolved within 10⁻⁶ but
+    /// before their confirmation).
     pub const HEAVY: Budgets = Budgets {
         ladder: 65_536,
-        tolerance: 65_536,
+        tolerance: 262_144,
     };
 }
 
