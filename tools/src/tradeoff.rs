@@ -3,7 +3,8 @@
 //! For a standard suite of directional albedos (Lambertian; modified Phong
 //! n ∈ {1, 10, 100, 1000}; GGX and Beckmann α ∈ {0.001, 0.01, 0.05, 0.3, 1},
 //! all with F = 1 and the height-correlated Smith G2; θo ∈ {0°, 60°, 85°,
-//! 89.5°, 89.9°}; GGX with the Fresnel of gold; two layered [`materials`])
+//! 89.5°, 89.9°}; GGX with the Fresnel of gold; the [`materials`]: two
+//! layers and every plugin and combinator the crates ship)
 //! every integrator runs over a ladder of budgets. Each estimate is compared
 //! with an independent f64 reference ([`crate::reference`]) that carries
 //! its own error bound; wall time is the median of a few repeats for small

@@ -1,5 +1,5 @@
-//! Product integrals for the report: a glossy GGX lobe, and two layered
-//! materials, under a cap light (the sun, σ = 0.27°; a lamp, σ = 5°) —
+//! Product integrals for the report: a glossy GGX lobe, and the
+//! [`materials`](super::materials), under a cap light (the sun, σ = 0.27°; a lamp, σ = 5°) —
 //! reflected radiance
 //! `L_r(ωo) = ∫_cap f_r(ωi, ωo) L cos θi dωi` with `L = 1` — and the methods
 //! a renderer author compares on it: quadrature over the cap, light (cone)
@@ -45,8 +45,9 @@ pub const LAMP_DEG: f64 = 5.0;
 /// sun and the lamp × light elevation {10°, 45°, 80°, and one partly below
 /// the horizon: the sun's centre at 0.1°, the lamp's at 2°} × viewing at the
 /// mirror direction of the light's centre and 10° off it in azimuth; then
-/// the two layered [`super::materials`] under the same lights at
-/// elevations 45° and 10°, both views (families `materials-sun`,
+/// the [`super::materials`] under the same lights at their
+/// `products` (the two layers at elevations 45° and 10°, both views; six
+/// of the plugins and combinators at one; families `materials-sun`,
 /// `materials-lamp`). `--quick` keeps two cases.
 pub fn suite(quick: bool) -> Vec<ProductCase> {
     let mut v = Vec::new();
