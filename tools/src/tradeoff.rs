@@ -3,7 +3,8 @@
 //! For a standard suite of directional albedos (Lambertian; modified Phong
 //! n ∈ {1, 10, 100, 1000}; GGX and Beckmann α ∈ {0.001, 0.01, 0.05, 0.3, 1},
 //! all with F = 1 and the height-correlated Smith G2; θo ∈ {0°, 60°, 85°,
-//! 89.5°, 89.9°}; GGX with the Fresnel of gold; two layered [`materials`])
+//! 89.5°, 89.9°}; GGX with the Fresnel of gold; the [`materials`]: two
+//! layers and every plugin and combinator the crates ship)
 //! every integrator runs over a ladder of budgets. Each estimate is compared
 //! with an independent f64 reference ([`crate::reference`]) that carries
 //! its own error bound; wall time is the median of a few repeats for small
@@ -104,53 +105,263 @@ pub const GOLD_ETA: f64 = 0.18104;
 /// Imaginary part (extinction coefficient) of gold at 632.8 nm.
 pub const GOLD_K: f64 = 3.068099;
 
-/// The materials of the `materials` families: `(name, spec, f64 model)`.
+/// A material of the `materials` families.
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// Name (the case names' middle part; no commas).
+    pub name: &'static str,
+    /// BRDF spec given to the plugins.
+    pub spec: String,
+    /// The independent f64 model.
+    pub model: RefModel,
+    /// θo of its albedo cases, in degrees.
+    pub thetas: &'static [f64],
+    /// Its product cases: `(light elevation in degrees, view)` under both
+    /// the sun and the lamp; view `mirror` (the mirror direction of the
+    /// light's centre) or `off` (10° off it in azimuth).
+    pub products: &'static [(f64, &'static str)],
+    /// The budgets of its cases ([`Budgets::FULL`] or
+    /// [`Budgets::COMPOSITE`]).
+    pub budgets: Budgets,
+}
+
+/// The largest budgets of a case: of its fixed-budget ladder, and of the
+/// last run of its to-tolerance runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budgets {
+    /// Largest budget of the fixed-budget ladder (the ladder stops there).
+    pub ladder: u32,
+    /// Most evaluations in the last run of a to-tolerance run.
+    pub tolerance: u32,
+}
+
+impl Budgets {
+    /// The whole ladder ([`FULL_BUDGETS`]) and the driver's
+    /// [`DEFAULT_MAX_BUDGET`](radiometry::integrator::DEFAULT_MAX_BUDGET), as
+    /// `radiometry albedo --tol`.
+    pub const FULL: Budgets = Budgets {
+        ladder: u32::MAX,
+        tolerance: radiometry::integrator::DEFAULT_MAX_BUDGET,
+    };
+    /// The plugins and combinators added with EON … OpenPBR: the ladder up
+    /// to 2¹⁸ = 262,144 and at most 2¹⁸ evaluations in the last
+    /// to-tolerance run (the random-material check's
+    /// [`honesty::HONESTY_MAX_BUDGET`]); 4× the goal's 65,536. The full
+    /// ladder and 2²² would take the report past ten minutes.
+    pub const COMPOSITE: Budgets = Budgets {
+        ladder: 262_144,
+        tolerance: 262_144,
+    };
+    /// The costliest composites (the mix with a gold lobe and the
+    /// OpenPBRs, whose sampling maps cost 0.6–2.4 µs per evaluation): the
+    /// ladder up to the goal's 65,536, and at most 2¹⁸ evaluations in the
+    /// last to-tolerance run, as [`Budgets::COMPOSITE`] (with 65,536 the
+    /// adaptive rules stopped there at θo = 80°, resolved within 10⁻⁶ but
+    /// before their confirmation).
+    pub const HEAVY: Budgets = Budgets {
+        ladder: 65_536,
+        tolerance: 262_144,
+    };
+}
+
+/// The materials of the `materials` families, with the θo of their albedo
+/// cases and their product cases.
 ///
 /// * `plastic`: a clear dielectric coat (GGX α = 0.1, height-correlated G2,
 ///   the exact Fresnel of η = 1.5) over EON (ρ = 0.8, σ = 0.5);
 /// * `coated-gold`: a clear dielectric coat (GGX α = 0.05, η = 1.5) over
 ///   GGX α = 0.3 with the exact conductor Fresnel of gold at 632.8 nm
-///   ([`GOLD_ETA`], [`GOLD_K`]).
+///   ([`GOLD_ETA`], [`GOLD_K`]);
+/// * the rough diffuse plugins `eon` (ρ = 0.9, σ = 1), `fon` (ρ = 0.8,
+///   σ = 0.7) and `oren-nayar` (ρ = 0.8, σ = 0.35 rad), whose albedos have
+///   closed forms ([`crate::reference::materials::Lobe::closed_albedo`]);
+/// * `sheen` (colour 1, roughness 0.3), `openpbr` (OpenPBR Surface's
+///   defaults) and `openpbr-all-layers` (metalness 0.5, coat 1 with
+///   roughness 0.2, fuzz 1, as the bench's row of that name): f64 quadrature
+///   of the plugin's own values ([`RefModel::PluginEval`]), independent of
+///   its sampling maps;
+/// * `sum`: GGX α = 0.2 with the exact Fresnel of η = 1.5 plus EON (ρ = 0.5,
+///   σ = 1); `mix`: 0.3 × gold GGX α = 0.05 + 0.7 × Oren–Nayar (ρ = 0.9,
+///   σ = 0.5 rad) — the weighted sums of the lobes' references.
 ///
-/// The references tabulate the coat's true directional albedo at the
-/// layer's nodes ([`crate::reference::materials`]).
-pub fn materials() -> [(&'static str, String, RefModel); 2] {
+/// The layered references tabulate the coat's true directional albedo at
+/// the layer's nodes ([`crate::reference::materials`]).
+pub fn materials() -> Vec<Material> {
     use crate::reference::materials::{Fresnel, Layer, Lobe};
     let glass = Fresnel::Dielectric { eta: 1.5 };
-    [
-        (
-            "plastic",
-            "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=0.8, sigma=0.5))".into(),
-            RefModel::Coated(Layer {
+    let gold = Fresnel::Conductor {
+        eta: GOLD_ETA,
+        k: GOLD_K,
+    };
+    let one = |lobe: Lobe| RefModel::Lobes([(1.0, lobe), (0.0, Lobe::Black)]);
+    const LAYERED: &[f64] = &[0.0, 60.0, 85.0];
+    const BOTH: &[(f64, &str)] = &[(45.0, "mirror"), (45.0, "off"), (10.0, "mirror"), (10.0, "off")];
+    // The rough diffuse lobes and the sheen are cheap to evaluate and
+    // sample: three θo, the last grazing. The sum, the mix and the OpenPBRs
+    // cost 0.5–2.4 µs per sample: two θo, one grazing. Under the lights
+    // (sun and lamp, elevation 45°, mirror view): every material but FON and
+    // Oren–Nayar (whose cap integrands are EON's kind).
+    const CHEAP: &[f64] = &[0.0, 60.0, 85.0];
+    const HEAVY: &[f64] = &[20.0, 80.0];
+    const LIT: &[(f64, &str)] = &[(45.0, "mirror")];
+    // The sheen vanishes at the mirror direction (`D ∝ sin θh^(1/r)`, `h`
+    // on the normal there): it is lit at 10° elevation, seen 10° off.
+    const SHEEN_LIT: &[(f64, &str)] = &[(10.0, "off")];
+    const UNLIT: &[(f64, &str)] = &[];
+    vec![
+        Material {
+            name: "plastic",
+            spec: "coated(ggx(alpha=0.1, fresnel=dielectric(eta=1.5)), eon(rho=0.8, sigma=0.5))".into(),
+            model: RefModel::Coated(Layer {
                 top: Lobe::Ggx {
                     alpha: 0.1,
                     fresnel: glass,
                 },
                 base: Lobe::Eon { rho: 0.8, sigma: 0.5 },
             }),
-        ),
-        (
-            "coated-gold",
-            format!(
+            thetas: LAYERED,
+            products: BOTH,
+            budgets: Budgets::FULL,
+        },
+        Material {
+            name: "coated-gold",
+            spec: format!(
                 "coated(ggx(alpha=0.05, fresnel=dielectric(eta=1.5)), \
                  ggx(alpha=0.3, fresnel=conductor(eta={GOLD_ETA}, k={GOLD_K})))"
             ),
-            RefModel::Coated(Layer {
+            model: RefModel::Coated(Layer {
                 top: Lobe::Ggx {
                     alpha: 0.05,
                     fresnel: glass,
                 },
                 base: Lobe::Ggx {
                     alpha: 0.3,
-                    fresnel: Fresnel::Conductor {
-                        eta: GOLD_ETA,
-                        k: GOLD_K,
-                    },
+                    fresnel: gold,
                 },
             }),
-        ),
+            thetas: LAYERED,
+            products: BOTH,
+            budgets: Budgets::FULL,
+        },
+        Material {
+            name: "eon",
+            spec: "eon(rho=0.9, sigma=1)".into(),
+            model: one(Lobe::Eon { rho: 0.9, sigma: 1.0 }),
+            thetas: CHEAP,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
+        },
+        Material {
+            name: "fon",
+            spec: "fon(rho=0.8, sigma=0.7)".into(),
+            model: one(Lobe::Fon { rho: 0.8, sigma: 0.7 }),
+            thetas: CHEAP,
+            products: UNLIT,
+            budgets: Budgets::COMPOSITE,
+        },
+        Material {
+            name: "oren-nayar",
+            spec: "oren-nayar(rho=0.8, sigma_rad=0.35)".into(),
+            model: one(Lobe::OrenNayar {
+                rho: 0.8,
+                sigma_rad: 0.35,
+            }),
+            thetas: CHEAP,
+            products: UNLIT,
+            budgets: Budgets::COMPOSITE,
+        },
+        Material {
+            name: "sheen",
+            spec: SHEEN.into(),
+            model: RefModel::PluginEval {
+                spec: SHEEN,
+                peak: Some(0.05),
+                mu_break: Some(0.5),
+            },
+            thetas: CHEAP,
+            products: SHEEN_LIT,
+            budgets: Budgets::COMPOSITE,
+        },
+        Material {
+            name: "sum",
+            spec: "ggx(alpha=0.2, fresnel=dielectric(eta=1.5)) + eon(rho=0.5, sigma=1)".into(),
+            model: RefModel::Lobes([
+                (
+                    1.0,
+                    Lobe::Ggx {
+                        alpha: 0.2,
+                        fresnel: glass,
+                    },
+                ),
+                (1.0, Lobe::Eon { rho: 0.5, sigma: 1.0 }),
+            ]),
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::COMPOSITE,
+        },
+        Material {
+            name: "mix",
+            spec: format!(
+                "mix(0.3, ggx(alpha=0.05, fresnel=conductor(eta={GOLD_ETA}, k={GOLD_K})), \
+                 oren-nayar(rho=0.9, sigma_rad=0.5))"
+            ),
+            model: RefModel::Lobes([
+                (
+                    0.3,
+                    Lobe::Ggx {
+                        alpha: 0.05,
+                        fresnel: gold,
+                    },
+                ),
+                (
+                    0.7,
+                    Lobe::OrenNayar {
+                        rho: 0.9,
+                        sigma_rad: 0.5,
+                    },
+                ),
+            ]),
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::HEAVY,
+        },
+        Material {
+            name: "openpbr",
+            spec: OPENPBR_DEFAULTS.into(),
+            model: RefModel::PluginEval {
+                spec: OPENPBR_DEFAULTS,
+                peak: Some(2.0 * 0.09),
+                mu_break: None,
+            },
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::HEAVY,
+        },
+        Material {
+            name: "openpbr-all-layers",
+            spec: OPENPBR_ALL_LAYERS.into(),
+            model: RefModel::PluginEval {
+                spec: OPENPBR_ALL_LAYERS,
+                peak: Some(2.0 * 0.04),
+                mu_break: None,
+            },
+            thetas: HEAVY,
+            products: LIT,
+            budgets: Budgets::HEAVY,
+        },
     ]
 }
+
+/// The sheen material of [`materials`].
+pub const SHEEN: &str = "sheen(color=1, roughness=0.3)";
+/// OpenPBR Surface with its default parameters (a dielectric specular
+/// layer of roughness 0.3, α = 0.09, over a diffuse base of colour 0.8).
+pub const OPENPBR_DEFAULTS: &str = "openpbr";
+/// OpenPBR with every layer on: metalness 0.5, a coat of weight 1 and
+/// roughness 0.2 (α = 0.04), fuzz of weight 1 (the bench's
+/// `openpbr-all-layers`).
+pub const OPENPBR_ALL_LAYERS: &str =
+    "openpbr(base_metalness=0.5, coat_weight=1, coat_roughness=0.2, fuzz_weight=1)";
 
 /// One case of the suite.
 #[derive(Clone, Debug)]
@@ -165,6 +376,8 @@ pub struct Case {
     pub model: RefModel,
     /// θo in degrees.
     pub theta_o: f64,
+    /// Its largest budgets.
+    pub budgets: Budgets,
 }
 
 fn fmt_num(x: f64) -> String {
@@ -176,14 +389,19 @@ fn fmt_num(x: f64) -> String {
 pub fn suite(quick: bool) -> Vec<Case> {
     let thetas = [0.0, 60.0, 85.0, 89.5, 89.9];
     let mut v = Vec::new();
+    let mut push_with =
+        |family: &'static str, param: String, spec: String, model: RefModel, t: f64, budgets| {
+            v.push(Case {
+                name: format!("{family}{param}-to{}", fmt_num(t)),
+                family,
+                spec,
+                model,
+                theta_o: t,
+                budgets,
+            });
+        };
     let mut push = |family: &'static str, param: String, spec: String, model: RefModel, t: f64| {
-        v.push(Case {
-            name: format!("{family}{param}-to{}", fmt_num(t)),
-            family,
-            spec,
-            model,
-            theta_o: t,
-        });
+        push_with(family, param, spec, model, t, Budgets::FULL)
     };
     for &t in &thetas {
         push(
@@ -251,9 +469,16 @@ pub fn suite(quick: bool) -> Vec<Case> {
         }
     }
     // Layered materials (see [`materials`]).
-    for (name, spec, model) in materials() {
-        for t in [0.0, 60.0, 85.0] {
-            push("materials", format!("-{name}"), spec.clone(), model, t);
+    for m in materials() {
+        for &t in m.thetas {
+            push_with(
+                "materials",
+                format!("-{}", m.name),
+                m.spec.clone(),
+                m.model,
+                t,
+                m.budgets,
+            );
         }
     }
     if quick {
@@ -310,12 +535,18 @@ pub type Measured = (u32, u64, f64, f64, f64, Status);
 
 fn measure(
     brdf: &AnyBrdf,
-    theta_o: f64,
+    case: &Case,
     integ: &AnyIntegrator,
     budgets: &[u32],
     quick: bool,
 ) -> (Vec<Measured>, Vec<String>) {
-    let t = theta_o.to_radians();
+    let budgets: Vec<u32> = budgets
+        .iter()
+        .copied()
+        .filter(|&b| b <= case.budgets.ladder)
+        .collect();
+    let budgets = &budgets[..];
+    let t = case.theta_o.to_radians();
     let g = DirectionalAlbedo {
         brdf,
         wo: Vec3::new(t.sin() as f32, 0.0, t.cos() as f32),
@@ -548,7 +779,7 @@ pub fn run(opt: &Options) -> Result<(), String> {
             albedo.record(
                 ci,
                 ii,
-                measure(&brdfs[ci], cases[ci].theta_o, &integs[ii], budgets, opt.quick),
+                measure(&brdfs[ci], &cases[ci], &integs[ii], budgets, opt.quick),
             );
             progress.tick(&format!("{} {}", cases[ci].name, integs[ii].name()));
         } else {
@@ -696,6 +927,7 @@ pub fn run(opt: &Options) -> Result<(), String> {
             spec: c.spec.clone(),
             model: c.model,
             theta_o: c.wo[2].clamp(-1.0, 1.0).acos().to_degrees(),
+            budgets: c.budgets,
         })
         .collect();
     let preport = Report {
@@ -811,7 +1043,33 @@ mod tests {
         let s = suite(false);
         // θo ∈ {0, 60, 85, 89.5, 89.9}; Phong n ∈ {1, 10, 100, 1000};
         // microfacet α ∈ {0.001, 0.01, 0.05, 0.3, 1}.
-        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4 + 6);
+        // Materials: two layers at 3 θo, four cheap plugins at 3, four
+        // heavy composites at 2.
+        assert_eq!(s.len(), 5 + 20 + 25 + 23 + 4 + 6 + 4 * 3 + 4 * 2);
+        for name in [
+            "eon",
+            "fon",
+            "oren-nayar",
+            "sheen",
+            "sum",
+            "mix",
+            "openpbr",
+            "openpbr-all-layers",
+        ] {
+            let of: Vec<&Case> = s
+                .iter()
+                .filter(|c| c.name.starts_with(&format!("materials-{name}-to")))
+                .collect();
+            assert!(of.len() >= 2, "{name}");
+            // Each is seen at a grazing angle too, and its spec is the plugin.
+            assert!(of.iter().any(|c| c.theta_o >= 75.0), "{name}");
+            assert!(of.iter().all(|c| c.budgets != Budgets::FULL), "{name}");
+        }
+        let openpbr = s
+            .iter()
+            .find(|c| c.name == "materials-openpbr-to20")
+            .expect("case");
+        assert_eq!(openpbr.spec, "openpbr");
         assert!(s.iter().any(|c| c.name == "ggx-a0.001-to89.9"));
         assert!(s.iter().all(|c| !c.name.contains(',')));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();

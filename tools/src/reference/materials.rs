@@ -136,6 +136,29 @@ pub fn eon_albedo(rho: f64, sigma: f64, mu_o: f64) -> f64 {
     rho * e + eon_rho_ms(rho, sigma).0 * (1.0 - e)
 }
 
+/// `(A, B)` of the qualitative Oren–Nayar model for `σ` in radians:
+/// `A = 1 − σ²/(2(σ² + 0.33))`, `B = 0.45σ²/(σ² + 0.09)` (Oren & Nayar 1994,
+/// the qualitative model).
+pub fn qon_coefficients(sigma_rad: f64) -> (f64, f64) {
+    let s2 = sigma_rad * sigma_rad;
+    (1.0 - s2 / (2.0 * (s2 + 0.33)), 0.45 * s2 / (s2 + 0.09))
+}
+
+/// The qualitative Oren–Nayar model's directional albedo at `ρ = 1`,
+/// `A + B H(μ)`, `H(μ) = (G(μ) + (2/3) sin θ)/π`, derived here from FON's
+/// closed form: FON's single-scattering term integrates `s/t` over both
+/// signs of `s = sin θi sin θo cos Δφ` (with `t = 1` where `s ≤ 0`), the
+/// qualitative model only `max(0, s)/t`. Over `s ≤ 0` (`t = 1`),
+/// `(1/π)∫ s μi dωi = −(1/π) sin θo ∫₀¹ √(1 − μ²) μ dμ ∫_{π/2}^{3π/2} |cos φ|
+/// dφ … = −(2/3) sin θo/π`, so `(1/π)∫ max(0, s)/t μi dωi = G(μo)/π + (2/3)
+/// sin θo/π` where `G/π` is FON's (Portsmouth et al. 2025, `E_FON_exact`).
+pub fn qon_albedo(mu: f64, sigma_rad: f64) -> f64 {
+    let (a, b) = qon_coefficients(sigma_rad);
+    let mu = mu.clamp(0.0, 1.0);
+    let s = ((1.0 - mu) * (1.0 + mu)).sqrt();
+    a + b * (eon_g(mu) + 2.0 / 3.0 * s) / PI
+}
+
 /// One lobe of a layered material.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Lobe {
@@ -145,6 +168,27 @@ pub enum Lobe {
     Lambertian {
         /// Albedo ρ.
         rho: f64,
+    },
+    /// Fujii's improved Oren–Nayar, single scattering only (the first
+    /// term of EON): `f = (ρ/π) A (1 + σ s/t)`, `A = 1/(1 + c₁σ)`, `s = ωi·ωo
+    /// − μi μo`, `t = max(μi, μo)` where `s > 0`, else 1 (Portsmouth et al.
+    /// 2025, Listing 1, `f_EON`'s single-scattering term).
+    Fon {
+        /// ρ.
+        rho: f64,
+        /// Dimensionless roughness σ ∈ [0, 1].
+        sigma: f64,
+    },
+    /// The classic "qualitative" Oren–Nayar model (Oren & Nayar 1994; as
+    /// pbrt-v3 writes it): `f = (ρ/π)(A + B max(0, cos Δφ) sin α tan β)`,
+    /// `α = max(θi, θo)`, `β = min(θi, θo)`, `A = 1 − σ²/(2(σ² + 0.33))`,
+    /// `B = 0.45σ²/(σ² + 0.09)`, σ in radians — evaluated here in its
+    /// trigonometric form, as the paper writes it.
+    OrenNayar {
+        /// ρ.
+        rho: f64,
+        /// σ, the facet slope's standard deviation in radians.
+        sigma_rad: f64,
     },
     /// EON with albedo colour `ρ` and dimensionless roughness `σ ∈ [0, 1]`.
     Eon {
@@ -172,6 +216,24 @@ impl Lobe {
         match *self {
             Lobe::Black => 0.0,
             Lobe::Lambertian { rho } => rho / PI,
+            Lobe::Fon { rho, sigma } => {
+                let a = 1.0 / (1.0 + EON_C1 * sigma);
+                let s = wi[0] * wo[0] + wi[1] * wo[1];
+                let s_over_t = if s > 0.0 { s / mi.max(mo) } else { s };
+                rho / PI * a * (1.0 + sigma * s_over_t)
+            }
+            Lobe::OrenNayar { rho, sigma_rad } => {
+                let (a, b) = qon_coefficients(sigma_rad);
+                let (ti, to) = (mi.clamp(-1.0, 1.0).acos(), mo.clamp(-1.0, 1.0).acos());
+                let (alpha, beta) = (ti.max(to), ti.min(to));
+                let (pi_, po) = (wi[1].atan2(wi[0]), wo[1].atan2(wo[0]));
+                let c = if ti == 0.0 || to == 0.0 {
+                    0.0
+                } else {
+                    (pi_ - po).cos().max(0.0)
+                };
+                rho / PI * (a + b * c * alpha.sin() * beta.tan())
+            }
             Lobe::Eon { rho, sigma } => {
                 let a = 1.0 / (1.0 + EON_C1 * sigma);
                 // s = ωi·ωo − μi μo, t = max(μi, μo) where s > 0.
@@ -199,6 +261,26 @@ impl Lobe {
                 fresnel.eval(c) * d * g2 / (4.0 * mi * mo)
             }
         }
+    }
+
+    /// The lobe's directional albedo at `cos θo = mu_o` in closed form, where
+    /// it has one (Lambertian `ρ`; FON `ρ E_FON`; EON `ρ E_FON + ρ_ms (1 −
+    /// E_FON)`; the qualitative Oren–Nayar [`qon_albedo`]), with a bound of
+    /// a few ulps; `None` for a microfacet lobe.
+    pub fn closed_albedo(&self, mu_o: f64) -> Option<Reference> {
+        let v = match *self {
+            Lobe::Black => 0.0,
+            Lobe::Lambertian { rho } => rho,
+            Lobe::Fon { rho, sigma } => rho * fon_albedo(mu_o, sigma),
+            Lobe::Eon { rho, sigma } => eon_albedo(rho, sigma, mu_o),
+            Lobe::OrenNayar { rho, sigma_rad } => rho * qon_albedo(mu_o, sigma_rad),
+            Lobe::Ggx { .. } => return None,
+        };
+        Some(Reference {
+            value: v,
+            bound: 64.0 * f64::EPSILON * v.abs(),
+            evaluations: 0,
+        })
     }
 
     /// A rough width (radians) of the lobe's peak about the mirror
@@ -541,6 +623,41 @@ mod tests {
         }
     }
 
+    /// FON's and the qualitative Oren–Nayar's closed-form albedos against
+    /// the quadrature of their BRDFs (the Oren–Nayar one in its
+    /// trigonometric form, so the `max(0, s)/t` rewriting is checked too),
+    /// grazing views included.
+    #[test]
+    fn fon_and_oren_nayar_closed_forms_match_their_quadrature() {
+        for deg in [0.0f64, 30.0, 60.0, 75.0, 85.0, 89.0] {
+            let mu = deg.to_radians().cos();
+            for lobe in [
+                Lobe::Fon { rho: 0.8, sigma: 0.7 },
+                Lobe::Fon { rho: 1.0, sigma: 1.0 },
+                Lobe::OrenNayar {
+                    rho: 0.8,
+                    sigma_rad: 0.35,
+                },
+                Lobe::OrenNayar {
+                    rho: 0.9,
+                    sigma_rad: 1.5,
+                },
+            ] {
+                let q = lobe.albedo(mu, 1e-7, 1e-11);
+                let c = lobe.closed_albedo(mu).expect("closed form");
+                assert!(q.bound < 1e-8, "{lobe:?} {deg}: {q:?}");
+                assert!(
+                    (q.value - c.value).abs() <= q.bound + c.bound + 1e-12,
+                    "{lobe:?} {deg}: {q:?} vs {c:?}"
+                );
+            }
+        }
+        // Oren–Nayar at σ = 0 is Lambert; its grazing limit is ρ (A + B/2).
+        assert!((qon_albedo(0.5, 0.0) - 1.0).abs() < 1e-15);
+        let (a, b) = qon_coefficients(0.2);
+        assert!((qon_albedo(0.0, 0.2) - (a + 0.5 * b)).abs() < 1e-12);
+    }
+
     /// A non-reflecting top leaves the base as it is: `E_T = 0`, `t = 1`.
     #[test]
     fn black_top_over_a_base_is_the_base() {
@@ -709,8 +826,24 @@ mod plugin_tests {
             eta: 0.18104,
             k: 3.068099,
         };
-        let cases: [(&str, Lobe); 5] = [
+        let cases: [(&str, Lobe); 9] = [
             ("eon(rho=0.8, sigma=0.5)", Lobe::Eon { rho: 0.8, sigma: 0.5 }),
+            ("eon(rho=0.9, sigma=1)", Lobe::Eon { rho: 0.9, sigma: 1.0 }),
+            ("fon(rho=0.8, sigma=0.7)", Lobe::Fon { rho: 0.8, sigma: 0.7 }),
+            (
+                "oren-nayar(rho=0.8, sigma_rad=0.35)",
+                Lobe::OrenNayar {
+                    rho: 0.8,
+                    sigma_rad: 0.35,
+                },
+            ),
+            (
+                "oren-nayar(rho=0.9, sigma_rad=0.5)",
+                Lobe::OrenNayar {
+                    rho: 0.9,
+                    sigma_rad: 0.5,
+                },
+            ),
             ("eon(rho=1, sigma=1)", Lobe::Eon { rho: 1.0, sigma: 1.0 }),
             (
                 "ggx(alpha=0.1, fresnel=dielectric(eta=1.5))",

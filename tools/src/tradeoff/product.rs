@@ -1,5 +1,5 @@
-//! Product integrals for the report: a glossy GGX lobe, and two layered
-//! materials, under a cap light (the sun, σ = 0.27°; a lamp, σ = 5°) —
+//! Product integrals for the report: a glossy GGX lobe, and the
+//! [`materials`](super::materials), under a cap light (the sun, σ = 0.27°; a lamp, σ = 5°) —
 //! reflected radiance
 //! `L_r(ωo) = ∫_cap f_r(ωi, ωo) L cos θi dωi` with `L = 1` — and the methods
 //! a renderer author compares on it: quadrature over the cap, light (cone)
@@ -10,8 +10,8 @@ use crate::model::AnyBrdf;
 use crate::reference::{self, RefModel, Reference};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
-    Adaptive, DEFAULT_MAX_BUDGET, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet,
-    Strategy, ToleranceOutcome, integrate_to_tolerance,
+    Adaptive, Estimate, GaussLegendre, IntegrateError, Integrator, MonteCarlo, PointSet, Strategy,
+    ToleranceOutcome, integrate_to_tolerance,
 };
 use radiometry::light::{Cap, CapIntegrand, CapSampled, CapStrategy};
 
@@ -32,6 +32,8 @@ pub struct ProductCase {
     pub axis: [f64; 3],
     /// Cap half-angle (radians).
     pub sigma: f64,
+    /// Its largest budgets.
+    pub budgets: super::Budgets,
 }
 
 /// Half-angle of the sun's disc (0.27°) and of the lamp (5°).
@@ -43,8 +45,9 @@ pub const LAMP_DEG: f64 = 5.0;
 /// sun and the lamp × light elevation {10°, 45°, 80°, and one partly below
 /// the horizon: the sun's centre at 0.1°, the lamp's at 2°} × viewing at the
 /// mirror direction of the light's centre and 10° off it in azimuth; then
-/// the two layered [`super::materials`] under the same lights at
-/// elevations 45° and 10°, both views (families `materials-sun`,
+/// the [`super::materials`] under the same lights at their
+/// `products` (the two layers at elevations 45° and 10°, both views; six
+/// of the plugins and combinators at one; families `materials-sun`,
 /// `materials-lamp`). `--quick` keeps two cases.
 pub fn suite(quick: bool) -> Vec<ProductCase> {
     let mut v = Vec::new();
@@ -70,6 +73,7 @@ pub fn suite(quick: bool) -> Vec<ProductCase> {
                         wo,
                         axis,
                         sigma: deg.to_radians(),
+                        budgets: super::Budgets::FULL,
                     });
                 }
             }
@@ -78,21 +82,21 @@ pub fn suite(quick: bool) -> Vec<ProductCase> {
     // Layered materials (`super::materials`) under the same lights, at
     // elevations 45° and 10°.
     for (family, deg) in [("materials-sun", SUN_DEG), ("materials-lamp", LAMP_DEG)] {
-        for (material, spec, model) in super::materials() {
-            for elev in [45.0, 10.0] {
-                for (view, dphi) in [("mirror", 0.0f64), ("off", 10.0)] {
-                    let ta = (90.0f64 - elev).to_radians();
-                    let p = std::f64::consts::PI + dphi.to_radians();
-                    v.push(ProductCase {
-                        name: format!("{family}-{material}-el{elev}-{view}"),
-                        family,
-                        spec: spec.clone(),
-                        model,
-                        wo: [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()],
-                        axis: [ta.sin(), 0.0, ta.cos()],
-                        sigma: deg.to_radians(),
-                    });
-                }
+        for m in super::materials() {
+            for &(elev, view) in m.products {
+                let dphi: f64 = if view == "mirror" { 0.0 } else { 10.0 };
+                let ta = (90.0f64 - elev).to_radians();
+                let p = std::f64::consts::PI + dphi.to_radians();
+                v.push(ProductCase {
+                    name: format!("{family}-{}-el{elev}-{view}", m.name),
+                    family,
+                    spec: m.spec.clone(),
+                    model: m.model,
+                    wo: [ta.sin() * p.cos(), ta.sin() * p.sin(), ta.cos()],
+                    axis: [ta.sin(), 0.0, ta.cos()],
+                    sigma: deg.to_radians(),
+                    budgets: m.budgets,
+                });
             }
         }
     }
@@ -162,8 +166,10 @@ impl Method {
 
 impl Method {
     /// Refines the method on a case to the absolute tolerance `tol` through
-    /// [`integrate_to_tolerance`] (start budget 64, at most
-    /// [`DEFAULT_MAX_BUDGET`]), as `radiometry albedo --tol` does.
+    /// [`integrate_to_tolerance`] (start budget 64, at most the case's
+    /// `budgets.tolerance`:
+    /// [`DEFAULT_MAX_BUDGET`](radiometry::integrator::DEFAULT_MAX_BUDGET) but for the composites'
+    /// cases), as `radiometry albedo --tol` does.
     pub fn to_tolerance(
         &self,
         brdf: &AnyBrdf,
@@ -177,21 +183,21 @@ impl Method {
                 &CapIntegrand::new(brdf, wo, &cap),
                 tol,
                 64,
-                DEFAULT_MAX_BUDGET,
+                case.budgets.tolerance,
             ),
             Method::CapAdaptive(a) => integrate_to_tolerance(
                 &a,
                 &CapIntegrand::new(brdf, wo, &cap),
                 tol,
                 64,
-                DEFAULT_MAX_BUDGET,
+                case.budgets.tolerance,
             ),
             Method::Sampled(s, p, seed) => integrate_to_tolerance(
                 &MonteCarlo::new(Strategy::Integrand, p, seed),
                 &CapSampled::new(brdf, wo, &cap, s),
                 tol,
                 64,
-                DEFAULT_MAX_BUDGET,
+                case.budgets.tolerance,
             ),
         }
     }
@@ -268,7 +274,12 @@ pub fn measure(
 ) -> (Vec<Measured>, Vec<String>) {
     let wo = v3(case.wo);
     let cap = cap_of(case);
-    super::ladder(budgets, quick, &method.name(), |b| {
+    let budgets: Vec<u32> = budgets
+        .iter()
+        .copied()
+        .filter(|&b| b <= case.budgets.ladder)
+        .collect();
+    super::ladder(&budgets, quick, &method.name(), |b| {
         method.integrate(brdf, wo, &cap, b)
     })
 }
@@ -314,7 +325,16 @@ mod tests {
     #[test]
     fn suite_covers_the_issue_cases() {
         let s = suite(false);
-        assert_eq!(s.len(), 2 * 3 * 4 * 2 + 2 * 2 * 2 * 2);
+        // GGX; the two layers at 2 elevations × 2 views; six composites at
+        // one; each under the sun and the lamp.
+        assert_eq!(s.len(), 2 * 3 * 4 * 2 + 2 * 2 * 2 * 2 + 2 * 6);
+        for m in ["eon", "sheen", "sum", "mix", "openpbr", "openpbr-all-layers"] {
+            for light in ["sun", "lamp"] {
+                let at = if m == "sheen" { "el10-off" } else { "el45-mirror" };
+                let name = format!("materials-{light}-{m}-{at}");
+                assert!(s.iter().any(|c| c.name == name), "{name}");
+            }
+        }
         // Partly below the horizon: the cap reaches below z = 0.
         assert!(s.iter().any(|c| c.axis[2] < c.sigma.sin()));
         let mut names: Vec<_> = s.iter().map(|c| c.name.clone()).collect();
