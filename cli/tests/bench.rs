@@ -33,11 +33,11 @@ const PLUGINS: [&str; 16] = [
     "openpbr-defaults-rgb",
     "spec-openpbr-red-rgb",
 ];
-/// The materials' extra paths (construction at every hit, a whole hit).
+/// The materials' extra paths (construction at every hit, a whole hit, the same through one prepared view).
 const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
     ("plastic-ggx0.1-eon", &["construct"]),
-    ("openpbr-defaults", &["construct", "hit"]),
-    ("openpbr-all-layers", &["construct", "hit"]),
+    ("openpbr-defaults", &["construct", "hit", "hit-prepared"]),
+    ("openpbr-all-layers", &["construct", "hit", "hit-prepared"]),
 ];
 
 /// Extra paths of plugin `p`.
