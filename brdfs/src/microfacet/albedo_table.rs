@@ -255,7 +255,7 @@ impl AlbedoReader {
 
     /// `E(μ, α)` from `table` for `μ = cos θo ∈ [0, 1]` (clamped, NaN → 0),
     /// in `[0, 1]`. The four rows' coordinates go through one four-lane
-    /// pass (two lane square roots and a division; [`sqrt4`] is one vector
+    /// pass (two lane square roots and a division; the lane root is one vector
     /// instruction with the `simd` feature), lane for lane the operations of
     /// [`AlbedoTable::albedo`]'s `rescale_mu` and `lerp_row`.
     #[inline]
