@@ -107,29 +107,48 @@ pub(crate) fn eval_batch_soa_pair<S, A, B>(
     B: Brdf<Spectrum = S> + ?Sized,
 {
     let n = wi.len().min(wo.len()).min(out.len());
-    let (wi, wo) = (wi.truncate(n), wo.truncate(n));
+    crate::batch::zero_tail(out, n);
     let mut fa = [S::zero(); CHUNK];
     let mut fb = [S::zero(); CHUNK];
-    for ((ci, co), out) in soa_chunks(wi).zip(soa_chunks(wo)).zip(out.chunks_mut(CHUNK)) {
+    // Chunks by checked splits (no division by the chunk size, no slice
+    // index that could panic).
+    let (mut ri, mut ro, mut rest) = (wi, wo, out);
+    let mut done = 0;
+    while done < n {
+        let k = CHUNK.min(n - done);
+        let (Some((ci, ni)), Some((co, no))) = (split_soa(ri, k), split_soa(ro, k)) else {
+            break;
+        };
+        let Some((oc, on)) = core::mem::take(&mut rest).split_at_mut_checked(k) else {
+            break;
+        };
         a.eval_batch_soa(ci, co, &mut fa);
         b.eval_batch_soa(ci, co, &mut fb);
-        for ((o, (&x, &y)), (i, j)) in out
+        for ((o, (&x, &y)), (i, j)) in oc
             .iter_mut()
             .zip(fa.iter().zip(&fb))
             .zip(soa_dirs(ci).zip(soa_dirs(co)))
         {
             *o = combine(i, j, x, y);
         }
+        (ri, ro, rest) = (ni, no, on);
+        done += k;
     }
-    crate::batch::zero_tail(out, n);
 }
 
-/// Chunks of [`CHUNK`] directions of a structure-of-arrays view.
-fn soa_chunks(v: crate::batch::Vec3Soa<'_>) -> impl Iterator<Item = crate::batch::Vec3Soa<'_>> {
-    v.x.chunks(CHUNK)
-        .zip(v.y.chunks(CHUNK))
-        .zip(v.z.chunks(CHUNK))
-        .map(|((x, y), z)| crate::batch::Vec3Soa::new(x, y, z))
+/// The first `k` directions of a structure-of-arrays view and the rest
+/// (`None` if a component is shorter than `k`).
+fn split_soa(
+    v: crate::batch::Vec3Soa<'_>,
+    k: usize,
+) -> Option<(crate::batch::Vec3Soa<'_>, crate::batch::Vec3Soa<'_>)> {
+    let (x0, x1) = v.x.split_at_checked(k)?;
+    let (y0, y1) = v.y.split_at_checked(k)?;
+    let (z0, z1) = v.z.split_at_checked(k)?;
+    Some((
+        crate::batch::Vec3Soa::new(x0, y0, z0),
+        crate::batch::Vec3Soa::new(x1, y1, z1),
+    ))
 }
 
 /// The directions of a structure-of-arrays view.
