@@ -9,6 +9,7 @@
 //! 0) against Adobe's on the same footing.
 //!
 //! Run: `cargo run --release -p radiometry-brdfs --features examples --example openpbr_conformance_table`
+//! (append `-- variance` for the sampling table alone)
 
 use radiometry::glam::Vec3;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
@@ -80,10 +81,16 @@ fn main() {
         .map(|v| v.as_f64().unwrap())
         .collect();
     let show = [0.0, 45.0, 75.0, 85.0];
-    for (mode, key) in [
-        (Layering::EnergyConserving, "energy"),
-        (Layering::Reciprocal, "reciprocal"),
-    ] {
+    // `variance`: the sampling table alone.
+    let modes: &[(Layering, &str)] = if std::env::args().nth(1).as_deref() == Some("variance") {
+        &[]
+    } else {
+        &[
+            (Layering::EnergyConserving, "energy"),
+            (Layering::Reciprocal, "reciprocal"),
+        ]
+    };
+    for &(mode, key) in modes {
         println!("\n### {key}: albedo at θo = 0° / 45° / 75° / 85°, Adobe → radiometry\n");
         println!("| combination | Adobe | radiometry | largest difference |");
         println!("|---|---|---|---|");

@@ -257,3 +257,88 @@ fn reciprocal_mode_against_adobes_reciprocal_build() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Per-sample variance and mean of the channel-average weight `f cos θi/pdf`
+/// over `n` iid uniform samples of a fixed seed (a failed sample counts 0).
+fn weight_variance(m: &OpenPbr<Vec3>, theta_deg: f64, n: usize) -> f64 {
+    let mut s = 0x853C_49E6_748F_EA9Bu64;
+    let mut rnd = move || {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        ((s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u32 << 24) as f32
+    };
+    let wo = dir(theta_deg, 0.0);
+    let v = m.prepare(wo);
+    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+    for _ in 0..n {
+        let w = v
+            .sample([rnd(), rnd()])
+            .map_or(0.0, |x| f64::from(x.weight.average()));
+        sum += w;
+        sum2 += w * w;
+    }
+    let mean = sum / n as f64;
+    (sum2 / n as f64 - mean * mean).max(0.0)
+}
+
+/// Sampling efficiency against Adobe's sampler (energy mode): the
+/// per-sample variance of the weight within 1.2× Adobe's (measured with
+/// 2²⁰ iid samples, `energy.variance`) at θo = 0°, 45°, 75° on every
+/// combination, apart from the two `docs/materials.md` names, each asserted
+/// with its own bound:
+///
+/// * `all-layers-white` follows the specification's coat roughening of the
+///   base, `(r_s⁴ + 2 r_c⁴)^¼`, where Adobe's BSDF uses `(r_s⁴ + (1 − 1/η_c)
+///   r_c⁴)^¼`: a rougher white metal, measured 1.20–1.23×. With the base
+///   roughness that gives Adobe's roughened value, within 1.0×.
+/// * `coat-r0-over-grey-diffuse`: Adobe's coat of roughness 0 is an ideal
+///   mirror whose weight is constant; this crate's is GGX at `α = 10⁻⁴`,
+///   whose weights vary by `F(ωo·h) G2/G1` over the distribution's heavy
+///   tail: a variance below `3·10⁻⁷` (a relative standard deviation of
+///   0.1 %) where Adobe's is `10⁻¹¹`.
+#[test]
+fn sampling_variance_against_adobes_sampler() {
+    let d = data();
+    let n = 1 << 18;
+    let mut failures = Vec::new();
+    for case in d["cases"].as_array().unwrap() {
+        let name = case["name"].as_str().unwrap();
+        let p = params(&case["params"]);
+        let m = OpenPbr::new(p).unwrap();
+        let theirs: Vec<f64> = case["energy"]["variance"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let mut ratios = Vec::new();
+        for (k, t) in [0.0, 45.0, 75.0].into_iter().enumerate() {
+            let ours = weight_variance(&m, t, n);
+            let ratio = ours / theirs[k];
+            ratios.push(format!("{ratio:.2}"));
+            let ok = match name {
+                "all-layers-white" => {
+                    // The base roughness whose roughened value is Adobe's.
+                    let (rs, rc, nc) = (p.specular_roughness, p.coat_roughness, p.coat_ior);
+                    let target = rs.powi(4) + (1.0 - 1.0 / nc) * rc.powi(4);
+                    let mut q = p;
+                    q.specular_roughness = (target - 2.0 * rc.powi(4)).max(0.0).powf(0.25);
+                    let adobe_rough = weight_variance(&OpenPbr::new(q).unwrap(), t, n) / theirs[k];
+                    println!("  {name} θo = {t}°: with Adobe's roughening {adobe_rough:.2}×");
+                    ratio <= 1.3 && adobe_rough <= 1.0
+                }
+                "coat-r0-over-grey-diffuse" => ours <= 3e-7,
+                _ => ratio <= 1.2,
+            };
+            if !ok {
+                failures.push(format!(
+                    "{name} θo = {t}°: variance {ours:.3e}, Adobe {:.3e} ({ratio:.2}×)",
+                    theirs[k]
+                ));
+            }
+        }
+        println!("{name}: variance ÷ Adobe's at 0°/45°/75°: {}", ratios.join(" / "));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -27,7 +27,12 @@
 //!   like `√(μ − μc)`.
 //!   Roughness nodes `√α_k = 0.01 + 0.99 k/31`; index nodes `z_l = l/31`,
 //!   `z = F0^¼`, `F0 = ((η − 1)/(η + 1))²` (as Cycles and Adobe's OpenPBR
-//!   BSDF parameterise theirs). Trilinear interpolation.
+//!   BSDF parameterise theirs). Trilinear interpolation, except that for
+//!   `η > 1` the first roughness row (`α₀ = 10⁻⁴`, a smooth interface to
+//!   `O(α₀²)`) is read as the exact Fresnel factor `F(μ)` rather than
+//!   interpolated: below the second node the ratio is `(1 − f_α) F(μ) +
+//!   f_α R_{k=1}` (linear in `z`, `F0 ∝ z⁴`, misses `F` at a smooth coat's
+//!   normal incidence by up to 0.7 %).
 //! * **Average** [`dielectric_average`] `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ`:
 //!   `32 × 32` (`η > 1`) and `16 × 32` (`η < 1`) `f32`, bilinear.
 //! * **Moments** `R5 = M5/E₁`, `R6 = M6/E₁` of `F = (1 − c)⁵` and
@@ -45,7 +50,7 @@
 
 use super::albedo_table::{AlbedoReader, AlbedoTable, EnergyTable};
 use super::fresnel_table_data as data;
-use super::{Ggx, HeightCorrelated};
+use super::{Ggx, HeightCorrelated, MAX_ETA};
 
 /// The error this crate states for the tabulated albedo `E₁ · R` of a GGX
 /// lobe with a Fresnel term linear in the moments (Schlick, F82-tint):
@@ -145,8 +150,9 @@ fn mu_coord(mu: f32, inside: bool, eta: f32, alpha: f32) -> f32 {
 }
 
 /// `R = E_F / E₁` of a GGX dielectric interface of relative index `η` at
-/// `μ = cos θo` and roughness `α`, trilinear in the table's coordinates.
-/// In `[0, 1]`; `η = 1` gives 0.
+/// `μ = cos θo` and roughness `α`, trilinear in the table's coordinates
+/// (for `η > 1` below the second roughness node, the first node's row is the
+/// exact Fresnel factor: see the module docs). In `[0, 1]`; `η = 1` gives 0.
 pub fn dielectric_ratio(mu: f32, alpha: f32, eta: f32) -> f32 {
     DielectricRatioReader::new(alpha, eta).ratio(mu)
 }
@@ -204,6 +210,12 @@ pub struct DielectricRatioReader {
     /// `η < 1`, per roughness row: `1/asinh(μc/w_k)`, `1/asinh((1 − μc)/w_k)`
     /// (0 where the span is empty).
     norm: [[f32; 2]; 2],
+    /// `η > 1` below the second roughness node: the weight of the first
+    /// roughness row, read as the exact Fresnel factor of `η`, and that factor.
+    exact: f32,
+    /// `η² − 1` and `η²` of that factor ([`smooth_fresnel`]).
+    eta2m1: f32,
+    eta2: f32,
 }
 
 impl DielectricAlbedoReader {
@@ -247,7 +259,25 @@ impl DielectricRatioReader {
             mc: 0.0,
             inv_w: [0.0; 2],
             norm: [[0.0; 2]; 2],
+            exact: 0.0,
+            eta2m1: 0.0,
+            eta2: 1.0,
         };
+        if !inside && k == 0 {
+            // The first roughness row (α₀ = 10⁻⁴) is the smooth interface: its
+            // ratio is the Fresnel factor F(μ) itself (to O(α₀²)), read exactly
+            // instead of interpolated in z = F0^¼ and √μ.
+            let e = if eta.is_finite() {
+                eta.clamp(1.0, MAX_ETA)
+            } else {
+                MAX_ETA
+            };
+            r.exact = 1.0 - fa;
+            r.eta2m1 = (e - 1.0) * (e + 1.0);
+            r.eta2 = e * e;
+            r.w[0] = 0.0;
+            r.w[2] = 0.0;
+        }
         if inside {
             let mc = libm::sqrtf((1.0 - eta * eta).max(0.0));
             r.mc = mc;
@@ -319,8 +349,42 @@ impl DielectricRatioReader {
             let bb = table.get(i.wrapping_add(1)).copied().unwrap_or(0) as f32;
             acc += w * (a + fx * (bb - a));
         }
-        (acc * (1.0 / 65535.0)).clamp(0.0, 1.0)
+        let smooth = if self.exact > 0.0 {
+            self.exact * smooth_fresnel(mu, self.eta2m1, self.eta2)
+        } else {
+            0.0
+        };
+        (acc * (1.0 / 65535.0) + smooth).clamp(0.0, 1.0)
     }
+}
+
+/// The unpolarised Fresnel reflectance of a smooth interface of index `η ≥
+/// 1` at `cos θ = μ ∈ [0, 1]`, from `η² − 1` and `η²`, without the
+/// cancellation of the textbook form near `η = 1`: with `μt = √((η² − 1 +
+/// μ²)/η²)`,
+///
+/// ```text
+/// r_p = (η μ − μt)/(η μ + μt) = (η² − 1)((η² + 1) μ² − 1) / (η² (η μ + μt)²)
+/// r_s = (μ − η μt)/(μ + η μt) = −(η² − 1) / (μ + η μt)²
+/// F   = (r_p² + r_s²)/2
+/// ```
+#[inline]
+fn smooth_fresnel(mu: f32, eta2m1: f32, eta2: f32) -> f32 {
+    if eta2m1 <= 0.0 {
+        return 0.0;
+    }
+    let mu = mu.clamp(0.0, 1.0);
+    let eta = libm::sqrtf(eta2);
+    // μt² = (η² − 1 + μ²)/η², free of the cancellation of 1 − (1 − μ²)/η².
+    let mt = libm::sqrtf(((eta2m1 + mu * mu) / eta2).max(0.0));
+    let dp = eta * mu + mt;
+    let ds = mu + eta * mt;
+    if dp <= 0.0 || ds <= 0.0 {
+        return 1.0;
+    }
+    let rp = eta2m1 * ((eta2 + 1.0) * mu * mu - 1.0) / (eta2 * dp * dp);
+    let rs = eta2m1 / (ds * ds);
+    (0.5 * (rp * rp + rs * rs)).clamp(0.0, 1.0)
 }
 
 /// The hemispherical average `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ` of a GGX
@@ -446,6 +510,12 @@ mod tests {
             let b = table.get(base.wrapping_add(1)).copied().unwrap_or(0) as f32;
             a + fx * (b - a)
         };
+        if !inside && k == 0 {
+            // The first roughness row is the smooth interface's Fresnel factor.
+            let second = at(l, 1) + fz * (at(l.wrapping_add(1), 1) - at(l, 1));
+            let v = (1.0 - fa) * smooth_fresnel(mu, eta) + fa * second * (1.0 / 65535.0);
+            return v.clamp(0.0, 1.0);
+        }
         let row = |l: usize| {
             let a = at(l, k);
             a + fa * (at(l, k.wrapping_add(1)) - a)
@@ -453,6 +523,17 @@ mod tests {
         let a = row(l);
         let v = a + fz * (row(l.wrapping_add(1)) - a);
         (v * (1.0 / 65535.0)).clamp(0.0, 1.0)
+    }
+
+    /// The unpolarised Fresnel reflectance of a smooth interface of index
+    /// `η ≥ 1` at `cos θ = μ`, in `f64` (Born and Wolf: the mean of
+    /// `((η μ − μt)/(η μ + μt))²` and `((μ − η μt)/(μ + η μt))²`, `μt² = 1 − (1 − μ²)/η²`).
+    fn smooth_fresnel(mu: f32, eta: f32) -> f32 {
+        let (m, e) = (f64::from(mu.clamp(0.0, 1.0)), f64::from(eta));
+        let mt = (1.0 - (1.0 - m * m) / (e * e)).max(0.0).sqrt();
+        let rp = (e * m - mt) / (e * m + mt);
+        let rs = (m - e * mt) / (m + e * mt);
+        (0.5 * (rp * rp + rs * rs)) as f32
     }
 
     /// The prepared readers equal the plain reads up to rounding, on random

@@ -63,6 +63,7 @@ mod smith;
 mod special;
 #[cfg(feature = "simd")]
 mod special_lanes;
+pub(crate) mod transmission_sampler;
 
 #[cfg(test)]
 mod tests;

@@ -120,6 +120,7 @@ mod tests;
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::AlbedoReader;
 use crate::microfacet::fresnel_table::{DielectricAlbedoReader, dielectric_average};
+use crate::microfacet::transmission_sampler::TransmissionSampler;
 use crate::microfacet::{
     Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
     MIN_ALPHA, Microfacet, MicrofacetDistribution,
@@ -128,6 +129,8 @@ use crate::rough_diffuse::Eon;
 use crate::sheen::{LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
 pub use radiometry::compose::Layering;
 use radiometry::glam::Vec3;
+use radiometry::math::ONE_MINUS_EPSILON;
+use radiometry::warp::square_to_uniform_hemisphere;
 use radiometry::{Albedo, Brdf, BrdfSample, IsotropicBrdf, Spectrum};
 
 /// The parameters of [`OpenPbr`], with OpenPBR Surface 1.1's names and
@@ -329,6 +332,9 @@ pub struct OpenPbr<S: Spectrum = f32> {
     metal: Option<Metal<S>>,
     spec: DielectricLobe<S>,
     diffuse: Eon<S>,
+    /// The diffuse lobe's cosine-weighted sampler, shaped by the specular
+    /// layer's transmission `1 − E_s(μi)` (`microfacet::transmission_sampler`).
+    diffuse_sampler: TransmissionSampler,
     /// Which lobes are on (weight > 0).
     on: [bool; LOBES],
     /// `ξ_s` (the metal's weight).
@@ -457,6 +463,7 @@ impl<S: Spectrum> OpenPbr<S> {
         let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
         let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?));
         let diffuse = Eon::new(rho, sigma)?;
+        let diffuse_sampler = TransmissionSampler::new(a_s, eta_s);
         let a_c = alpha(r_c);
         let coat = Microfacet::new(Ggx::new(a_c)?, Achromatic::new(Dielectric::new(coat_ior)?));
         let reciprocal = layering == Layering::Reciprocal;
@@ -548,6 +555,7 @@ impl<S: Spectrum> OpenPbr<S> {
             metal,
             spec,
             diffuse,
+            diffuse_sampler,
             on,
             xi,
             spec_ae: (a_s, eta_s),
@@ -672,6 +680,7 @@ impl<S: Spectrum> OpenPbr<S> {
             spec_o: 0.0,
             darkening: S::splat(1.0),
             metal_loss_o: 0.0,
+            diffuse_pu: 0.0,
             cdf: [0.0; LOBES],
         };
         if !valid {
@@ -702,6 +711,7 @@ impl<S: Spectrum> OpenPbr<S> {
         if let Some(metal) = &self.metal {
             view.metal_loss_o = metal.loss(mu);
         }
+        view.diffuse_pu = self.diffuse.uniform_share(mu);
         if !picks {
             return view;
         }
@@ -829,6 +839,9 @@ pub struct OpenPbrView<'a, S: Spectrum> {
     darkening: S,
     /// `1 − E₁(μo)` of the metal's multiple-scattering lobe.
     metal_loss_o: f32,
+    /// The diffuse lobe's uniform share `p_u(μo)` (EON's sampler; the rest
+    /// is the transmission-shaped cosine lobe).
+    diffuse_pu: f32,
     /// Cumulative pick probabilities of the lobes.
     cdf: [f32; LOBES],
 }
@@ -918,6 +931,33 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         (a * self.darkening * (w_c * t)).map(|v| v + (1.0 - w_c))
     }
 
+    /// The diffuse lobe's density: EON's uniform share `p_u/(2π)` plus the
+    /// rest drawn in proportion to the specular layer's transmission,
+    /// `(1 − p_u) p_T(μi)` ([`TransmissionSampler`]) — the lobe's value
+    /// carries `1 − E_s(μi)`, which a cosine lobe would leave in the weight.
+    #[inline]
+    fn diffuse_pdf(&self, mu_i: f32) -> f32 {
+        let pu = self.diffuse_pu;
+        pu * (0.5 * core::f32::consts::FRAC_1_PI) + (1.0 - pu) * self.m.diffuse_sampler.pdf(mu_i)
+    }
+
+    /// The direction the diffuse lobe draws at `u` (`u₀ < p_u`: the uniform
+    /// hemisphere, else the transmission-shaped lobe, `u₀` rescaled), or
+    /// `None` on the horizon.
+    #[inline]
+    fn diffuse_direction(&self, u: [f32; 2]) -> Option<Vec3> {
+        let pu = self.diffuse_pu;
+        let wi = if u[0] < pu {
+            square_to_uniform_hemisphere([(u[0] / pu).min(ONE_MINUS_EPSILON), u[1]])
+        } else {
+            let v = if pu < 1.0 { (u[0] - pu) / (1.0 - pu) } else { 0.0 };
+            self.m
+                .diffuse_sampler
+                .sample(v.clamp(0.0, ONE_MINUS_EPSILON), u[1])
+        };
+        (wi.z > 0.0 && wi.is_finite()).then_some(wi)
+    }
+
     /// The lobes' values at `ωi` with their layer weights, and the mixture
     /// pdf of the lobes' densities with the pick probabilities.
     #[inline]
@@ -983,7 +1023,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
             }
             if want_pdf {
-                pdf += prob(SPEC) * m.spec.pdf(wi, wo) + prob(DIFFUSE) * m.diffuse.pdf(wi, wo);
+                pdf += prob(SPEC) * m.spec.pdf(wi, wo) + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
             }
         }
         let pdf = if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 };
@@ -1047,7 +1087,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             }),
             SPEC => m.spec.sample(wo, uu),
             // The direction alone: its value and density come from the pass below.
-            _ => m.diffuse.sample_direction(wo, uu).map(|wi| BrdfSample {
+            _ => self.diffuse_direction(uu).map(|wi| BrdfSample {
                 wi,
                 pdf: 0.0,
                 weight: S::zero(),
@@ -1070,9 +1110,10 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
 
     /// The number of components of the sampling map
     /// ([`Brdf::sampling_components`]): the fuzz, the coat, the metal's
-    /// single scattering, the metal's multiple-scattering cosine lobe, the
-    /// dielectric specular lobe, and the diffuse lobe's two (EON's uniform and
-    /// cosine-weighted hemispheres) — in the order of [`sample`](Self::sample)'s pick.
+    /// single scattering, the metal's multiple-scattering lobe, the
+    /// dielectric specular lobe, and the diffuse lobe's two (EON's uniform
+    /// hemisphere, and the cosine-weighted one shaped by the specular layer's
+    /// transmission `1 − E_s(μi)`) — in the order of [`sample`](Self::sample)'s pick.
     pub const COMPONENTS: usize = LOBES + 1;
 
     /// The pick probability of lobe `k` where the mixture density counts it
@@ -1123,7 +1164,8 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, u))?.wi,
             METAL_MS => m.metal.as_ref()?.ms_sample(u),
             SPEC => m.spec.sample(wo, u)?.wi,
-            DIFFUSE | LOBES => m.diffuse.sample_component(wo, k - DIFFUSE, u)?,
+            DIFFUSE => square_to_uniform_hemisphere(u),
+            LOBES => m.diffuse_sampler.sample(u[0], u[1]),
             _ => return None,
         };
         (wi.z > 0.0).then_some(wi)

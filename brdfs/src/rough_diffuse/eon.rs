@@ -97,11 +97,11 @@ pub struct Eon<S: Spectrum = f32> {
 }
 
 impl<S: Spectrum> Eon<S> {
-    /// The direction [`Brdf::sample`] draws at `u`, without its pdf and
-    /// value (for a material that evaluates its own mixture there).
+    /// The uniform share `p_u = ½ k max(1 − μo, 0)³` of [`Brdf::sample`]'s
+    /// mixture at `μo = cos θo` (the rest is the cosine-weighted hemisphere).
     #[inline]
-    pub(crate) fn sample_direction(&self, wo: Vec3, u: [f32; 2]) -> Option<Vec3> {
-        super::sample_direction(self, wo, u).map(|(wi, _)| wi)
+    pub(crate) fn uniform_share(&self, mu_o: f32) -> f32 {
+        super::p_uniform(self.uniform_weight(), mu_o).clamp(0.0, 1.0)
     }
 
     /// Builds the BRDF.

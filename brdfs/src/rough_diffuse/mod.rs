@@ -317,7 +317,7 @@ pub(crate) fn eval<L: RoughLobe>(l: &L, wi: Vec3, wo: Vec3) -> L::S {
 /// `0.5 k max(1 − cos θo, 0)³`: a nearly-unit `wo` accepted as unit can have
 /// `cos θo` a rounding above 1, which must not make the probability negative.
 #[inline(always)]
-fn p_uniform(k: f32, mu_o: f32) -> f32 {
+pub(crate) fn p_uniform(k: f32, mu_o: f32) -> f32 {
     let c = (1.0 - mu_o).max(0.0);
     0.5 * k * (c * c * c)
 }
