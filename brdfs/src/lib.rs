@@ -103,6 +103,8 @@ mod vec4;
 
 #[cfg(test)]
 mod batch_rule;
+#[cfg(test)]
+mod test_stream;
 
 pub use error::BrdfError;
 // -- re-exports: Lambertian / Phong family (keep this block for those modules)

@@ -416,13 +416,7 @@ mod tests {
     #[test]
     fn reader_equals_the_horner_spline() {
         let table = &albedo_data::GGX_HEIGHT_CORRELATED;
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut u = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut u = crate::test_stream::uniforms(0x2545_f491_4f6c_dd1d);
         for n in 0..20_000 {
             let alpha = match n % 40 {
                 0 => ALPHA_MIN,

@@ -462,17 +462,7 @@ pub fn e1_average(alpha: f32) -> f32 {
 mod tests {
     extern crate std;
     use super::*;
-
-    /// A small xorshift stream in `[0, 1)` (the tests' own; no dependency).
-    fn uniforms(seed: u64) -> impl FnMut() -> f32 {
-        let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
+    use crate::test_stream::uniforms;
 
     /// The trilinear read as the module docs state it, corner by corner from
     /// `μ`'s coordinate per roughness row (the readers' reference).

@@ -354,15 +354,7 @@ mod tests {
     /// factor 50 of its mean.
     #[test]
     fn follows_the_transmission() {
-        let mut rnd = {
-            let mut s = 0x9E37_79B9_7F4A_7C15u64;
-            move || {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                (s >> 40) as f32 / (1u64 << 24) as f32
-            }
-        };
+        let mut rnd = crate::test_stream::uniforms(0x9E37_79B9_7F4A_7C15);
         let rel_var = |g: &dyn Fn(f64) -> f64, p: &dyn Fn(f64) -> f64| {
             // Density in s ∝ p(μ)/μ; weight g μ/p.
             let n = 20_000;
