@@ -1021,33 +1021,17 @@ pub fn plugin_albedo(
         b
     };
     let g = |mu: f64, phi: f64| 2.0 * f(sph(mu, phi)) * mu;
+    let phi_at = |_mu: f64| phi_breaks.clone();
     let run = |rel: f64, scale: f64, evals: &mut u64| {
-        let mut count = 0u64;
-        let (v, e) = adaptive(
-            |mu| {
-                adaptive(
-                    |phi| {
-                        count += 1;
-                        g(mu, phi)
-                    },
-                    0.0,
-                    PI,
-                    &phi_breaks,
-                    inner_abs_tol(rel, scale, 1.0),
-                    rel * 0.1,
-                    tol.inner_intervals,
-                )
-                .0
-            },
-            0.0,
-            1.0,
+        nested_adaptive(
+            &g,
             &mu_breaks,
-            1e-300,
-            rel,
-            tol.outer_intervals,
-        );
-        *evals += count;
-        (v, e)
+            &phi_at,
+            (rel, rel * 0.1),
+            scale,
+            (tol.outer_intervals, tol.inner_intervals),
+            evals,
+        )
     };
     let mut evals = 0;
     let (coarse, _) = run(coarse_tol, 0.0, &mut evals);
@@ -1125,13 +1109,41 @@ fn integrate_split(
     evals: &mut u64,
 ) -> (f64, f64) {
     let phi_breaks = cluster(PI, 0.02);
+    let phi_at = |mu: f64| {
+        let mut breaks = phi_breaks.clone();
+        breaks.extend(kink(mu));
+        breaks
+    };
+    nested_adaptive(
+        g,
+        mu_breaks,
+        &phi_at,
+        (tol, tol),
+        scale,
+        (SPLIT_MAX_INTERVALS, SPLIT_MAX_INTERVALS),
+        evals,
+    )
+}
+
+/// `∫₀¹ ∫₀^π g(μ, φ) dφ dμ` by nested globally adaptive Gauss–Kronrod: the
+/// outer rule over `μ` split at `mu_breaks` (relative tolerance `rel.0`, no
+/// absolute floor), at each of its nodes the inner rule over `φ` split at
+/// `phi_breaks(μ)` (relative tolerance `rel.1`, absolute
+/// [`inner_abs_tol`]`(rel.0, scale, 1)`); `intervals`: (outer, inner) caps.
+/// Returns the value and the outer rule's error indicator, and adds the
+/// evaluations of `g` to `evals`.
+fn nested_adaptive(
+    g: &dyn Fn(f64, f64) -> f64,
+    mu_breaks: &[f64],
+    phi_breaks: &dyn Fn(f64) -> Vec<f64>,
+    rel: (f64, f64),
+    scale: f64,
+    intervals: (usize, usize),
+    evals: &mut u64,
+) -> (f64, f64) {
     let mut count = 0u64;
     let (v, e) = adaptive(
         |mu| {
-            let mut breaks = phi_breaks.clone();
-            if let Some(k) = kink(mu) {
-                breaks.push(k);
-            }
             adaptive(
                 |phi| {
                     count += 1;
@@ -1139,10 +1151,10 @@ fn integrate_split(
                 },
                 0.0,
                 PI,
-                &breaks,
-                inner_abs_tol(tol, scale, 1.0),
-                tol,
-                SPLIT_MAX_INTERVALS,
+                &phi_breaks(mu),
+                inner_abs_tol(rel.0, scale, 1.0),
+                rel.1,
+                intervals.1,
             )
             .0
         },
@@ -1150,8 +1162,8 @@ fn integrate_split(
         1.0,
         mu_breaks,
         1e-300,
-        tol,
-        SPLIT_MAX_INTERVALS,
+        rel.0,
+        intervals.0,
     );
     *evals += count;
     (v, e)
