@@ -387,3 +387,64 @@ fn invalid_parameters_rejected() {
     assert!(Fon::new(1.0f32, 0.0).is_ok() && Eon::new(0.0f32, 1.0).is_ok() && Eon::new(1.0f32, 1.0).is_ok());
     assert!(OrenNayar::new(1.0f32, 0.0).is_ok() && OrenNayar::new(1.0f32, FRAC_PI_2).is_ok());
 }
+
+/// Composites whose lobes each report a value near `f32::MAX` (subnormal
+/// cosines, where `1/(μi μo)` overflows and EON's `s/t` grows without
+/// bound) saturate at `f32::MAX` instead of summing to infinity, in `eval`
+/// and in both batch paths (found by the `brdf_eval` fuzz target).
+#[test]
+fn composites_saturate_where_their_lobes_overflow() {
+    use radiometry::Brdf;
+    use radiometry::batch::Vec3Soa;
+    use radiometry::compose::{Coated, Mix, Sum};
+    use radiometry_brdfs::{HeightCorrelated, Microfacet};
+    let wi = Vec3::new(0.25, 0.25, 3.57e-43);
+    let wo = Vec3::new(0.25, 1.5046327e-36, 8.4e-44);
+    let top =
+        Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(0.49999).unwrap(), Dielectric::new(0.25).unwrap());
+    let base = Eon::new(0.25f32, 0.25).unwrap();
+    // The lobes' own values are finite and huge: their sum is not.
+    let (ft, fb) = (top.eval(wi, wo), base.eval(wi, wo));
+    assert!(
+        ft.is_finite() && fb.is_finite() && ft > 1e36 && fb > 1e35,
+        "{ft} {fb}"
+    );
+    let check =
+        |name: &str, b: &dyn Fn(Vec3, Vec3) -> f32, batch: &dyn Fn(&mut [f32]), soa: &dyn Fn(&mut [f32])| {
+            let v = b(wi, wo);
+            assert!(v.is_finite() && v >= 0.0, "{name}: {v}");
+            let (mut a, mut s) = ([0.0f32; 3], [0.0f32; 3]);
+            batch(&mut a);
+            soa(&mut s);
+            assert!(
+                a.iter().chain(&s).all(|x| x.to_bits() == v.to_bits()),
+                "{name}: {v} vs {a:?} {s:?}"
+            );
+        };
+    let (wis, wos) = ([wi; 3], [wo; 3]);
+    let (xi, yi, zi) = (wis.map(|w| w.x), wis.map(|w| w.y), wis.map(|w| w.z));
+    let (xo, yo, zo) = (wos.map(|w| w.x), wos.map(|w| w.y), wos.map(|w| w.z));
+    let soa_i = || Vec3Soa::new(&xi, &yi, &zi);
+    let soa_o = || Vec3Soa::new(&xo, &yo, &zo);
+    let coated = Coated::new(top, base);
+    check(
+        "coated",
+        &|i, o| coated.eval(i, o),
+        &|out| coated.eval_batch(&wis, &wos, out),
+        &|out| coated.eval_batch_soa(soa_i(), soa_o(), out),
+    );
+    let sum = Sum::new(top, base);
+    check(
+        "sum",
+        &|i, o| sum.eval(i, o),
+        &|out| sum.eval_batch(&wis, &wos, out),
+        &|out| sum.eval_batch_soa(soa_i(), soa_o(), out),
+    );
+    let mix = Mix::new(0.5, top, base).unwrap();
+    check(
+        "mix",
+        &|i, o| mix.eval(i, o),
+        &|out| mix.eval_batch(&wis, &wos, out),
+        &|out| mix.eval_batch_soa(soa_i(), soa_o(), out),
+    );
+}

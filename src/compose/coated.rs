@@ -4,7 +4,7 @@
 use super::{
     ComposeError, Layering, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf,
     pair_components, pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
-    reciprocal_through,
+    reciprocal_through, saturate,
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
@@ -212,7 +212,7 @@ where
             return top;
         }
         let tau = self.absorption(cos_theta(wi), cos_theta(wo)) * self.through(wi, wo);
-        top + tau * fb
+        saturate(top + tau * fb)
     }
 
     /// The probability of drawing from the top at `wo`.

@@ -2,7 +2,7 @@
 
 use super::{
     ComposeError, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf, pair_components,
-    pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
+    pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first, saturate,
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
@@ -129,7 +129,7 @@ where
         if self.w == 1.0 {
             return self.a.eval(wi, wo);
         }
-        self.a.eval(wi, wo) * self.w + self.b.eval(wi, wo) * (1.0 - self.w)
+        saturate(self.a.eval(wi, wo) * self.w + self.b.eval(wi, wo) * (1.0 - self.w))
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
@@ -152,7 +152,9 @@ where
             return self.a.eval_batch(wi, wo, out);
         }
         let w = self.w;
-        eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x * w + y * (1.0 - w));
+        eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| {
+            saturate(x * w + y * (1.0 - w))
+        });
     }
 
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
@@ -163,7 +165,9 @@ where
             return self.a.eval_batch_soa(wi, wo, out);
         }
         let w = self.w;
-        eval_batch_soa_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x * w + y * (1.0 - w));
+        eval_batch_soa_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| {
+            saturate(x * w + y * (1.0 - w))
+        });
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed as [`pdf`](Brdf::pdf) mixes

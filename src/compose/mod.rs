@@ -258,6 +258,14 @@ pub fn albedo_by_sampling<B: Brdf + ?Sized>(b: &B, wo: Vec3) -> Albedo<B::Spectr
     }
 }
 
+/// A composite's value with every channel saturated at `f32::MAX` (NaN →
+/// 0): a lobe reports at most `f32::MAX` where `1/(μi μo)` overflows at
+/// subnormal cosines, and a sum of two such values must stay finite.
+#[inline(always)]
+pub(crate) fn saturate<S: Spectrum>(v: S) -> S {
+    v.map(|x| if x.is_nan() { 0.0 } else { x.min(f32::MAX) })
+}
+
 /// Probability of picking the first of two lobes whose (weighted) albedo
 /// averages at `ωo` are `a` and `b`: `a / (a + b)`, or `½` when neither
 /// reflects anything (or an input is not finite).

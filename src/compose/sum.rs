@@ -2,7 +2,7 @@
 
 use super::{
     add_albedo, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf, pair_components,
-    pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
+    pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first, saturate,
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
@@ -82,7 +82,7 @@ where
 
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
-        self.a.eval(wi, wo) + self.b.eval(wi, wo)
+        saturate(self.a.eval(wi, wo) + self.b.eval(wi, wo))
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
@@ -100,11 +100,11 @@ where
     /// The lobes' own batch kernels, summed (equal to [`eval`](Brdf::eval)
     /// element by element).
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-        eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x + y);
+        eval_batch_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| saturate(x + y));
     }
 
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
-        eval_batch_soa_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| x + y);
+        eval_batch_soa_pair(&self.a, &self.b, wi, wo, out, |_, _, x, y| saturate(x + y));
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed with the pick probability
