@@ -46,6 +46,8 @@ Plugins (F = 1 unless a Fresnel term is named):
                                5.8 MB), trilinear, half-vector sampling (f32)
   tabulated-merl-rgb-ggx-a0.3  Tabulated<Vec3>: the same table in three channels (17.5 MB) (Vec3)
   eon-s0.5                     Eon, ρ 0.8, σ 0.5 (f32)
+  ggx-hc-dielectric-a0.1       Microfacet<Ggx, HeightCorrelated, Dielectric>, α 0.1, η 1.5: the plastic's
+                               top alone (f32)
   plastic-ggx0.1-eon           coated(GGX α 0.1 dielectric η 1.5, Eon ρ 0.8 σ 0.5): radiometry::compose::Coated (f32)
   openpbr-defaults             OpenPbr with OpenPBR Surface's default parameters (f32)
   openpbr-all-layers           OpenPbr, every layer on: metalness 0.5, coat 1 (r 0.2), fuzz 1 (f32)
@@ -55,7 +57,10 @@ Plugins (F = 1 unless a Fresnel term is named):
   (both OpenPbr rows also time the paths construct — OpenPbr::new with a roughness from u per
   element — hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
   hit with textured parameters — and hit-prepared — the same hit through one OpenPbr::prepare view,
-  as Adobe's prepare + eval + sample + pdf; and the plastic's row construct for Coated::new)
+  as Adobe's prepare + eval + sample + pdf; the plastic's row construct for Coated::new, hit and
+  hit-prepared through Coated::prepare as above, albedo-read, the top's albedo at ωo alone, which
+  the energy-conserving layer reads at every eval, and albedo-prepared, the same read through a
+  DielectricAlbedoReader built once)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -447,12 +452,13 @@ impl Run<'_> {
         self.tabulated(ggx);
         let eon = Eon::new(EON_RHO, EON_SIGMA).expect(BAD);
         self.plugin("eon-s0.5", &eon);
+        let plastic_top = Microfacet::<_, HeightCorrelated, _>::new(
+            Ggx::new(0.1).expect(BAD),
+            Dielectric::new(1.5).expect(BAD),
+        );
+        self.plugin("ggx-hc-dielectric-a0.1", &plastic_top);
         if self.wanted("plastic-ggx0.1-eon") {
-            let coat = Microfacet::<_, HeightCorrelated, _>::new(
-                Ggx::new(0.1).expect(BAD),
-                Dielectric::new(1.5).expect(BAD),
-            );
-            self.plugin("plastic-ggx0.1-eon", &Coated::new(coat, eon));
+            self.plugin("plastic-ggx0.1-eon", &Coated::new(plastic_top, eon));
         }
         if self.wanted("plastic-ggx0.1-eon") {
             let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
@@ -473,6 +479,7 @@ impl Run<'_> {
             });
             black_box(sink);
             self.push("plastic-ggx0.1-eon", "construct", t);
+            self.plastic_hit(eon);
         }
         let all_layers = OpenPbrParams::<f32> {
             base_metalness: 0.5,
@@ -550,6 +557,69 @@ impl Run<'_> {
             }
         });
         self.push(name, "hit-prepared", t);
+        black_box(sink);
+    }
+
+    /// The plastic's hit paths (see [`AFTER_HELP`]): built at every hit with
+    /// the top's roughness from `u[k][0]`, then `eval` + `sample` + `pdf`
+    /// through the `Brdf` calls (`hit`) and through one `Coated::prepare`
+    /// view (`hit-prepared`); `albedo-read`, the top's albedo at `ωo` alone
+    /// (what the layer reads at every `eval`), and `albedo-prepared`,
+    /// the same through a reader built once.
+    fn plastic_hit(&mut self, eon: Eon<f32>) {
+        const BAD: &str = "bench plugin parameters are valid";
+        let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
+        let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
+        let build = |k: usize| {
+            let a = 0.01 + 0.5 * u.get(k).map_or(0.5, |x| x[0]);
+            let top = Microfacet::<_, HeightCorrelated, _>::new(
+                Ggx::new(a).expect(BAD),
+                Dielectric::new(1.5).expect(BAD),
+            );
+            Coated::new(top, eon)
+        };
+        let mut sink = 0.0f32;
+        let t = measure(n, mt, || {
+            for k in 0..n {
+                let m = build(black_box(k));
+                let (i, o) = (wi[k], wo[k]);
+                sink += m.eval(i, o);
+                if let Some(s) = m.sample(o, u[k]) {
+                    sink += s.weight + m.pdf(s.wi, o);
+                }
+            }
+        });
+        self.push("plastic-ggx0.1-eon", "hit", t);
+        let t = measure(n, mt, || {
+            for k in 0..n {
+                let m = build(black_box(k));
+                let view = m.prepare(wo[k]);
+                sink += view.eval(wi[k]);
+                if let Some(s) = view.sample(u[k]) {
+                    sink += s.weight + view.pdf(s.wi);
+                }
+            }
+        });
+        self.push("plastic-ggx0.1-eon", "hit-prepared", t);
+        let top = Microfacet::<_, HeightCorrelated, _>::new(
+            Ggx::new(0.1).expect(BAD),
+            Dielectric::new(1.5).expect(BAD),
+        );
+        let t = measure(n, mt, || {
+            for &o in wo {
+                sink += top.directional_albedo(black_box(o)).value;
+            }
+        });
+        self.push("plastic-ggx0.1-eon", "albedo-read", t);
+        // The same read through a reader prepared once (OpenPbr keeps one per
+        // layer): the least any layer that reads E_T(μo) per eval can pay.
+        let reader = radiometry_brdfs::microfacet::fresnel_table::DielectricAlbedoReader::new(0.1, 1.5);
+        let t = measure(n, mt, || {
+            for &o in wo {
+                sink += black_box(&reader).albedo(black_box(o).z);
+            }
+        });
+        self.push("plastic-ggx0.1-eon", "albedo-prepared", t);
         black_box(sink);
     }
 

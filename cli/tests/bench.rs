@@ -15,7 +15,7 @@ fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-const PLUGINS: [&str; 16] = [
+const PLUGINS: [&str; 17] = [
     "lambertian",
     "modified-phong-n100",
     "blinn-phong-n100",
@@ -27,6 +27,7 @@ const PLUGINS: [&str; 16] = [
     "tabulated-merl-ggx-a0.3",
     "tabulated-merl-rgb-ggx-a0.3",
     "eon-s0.5",
+    "ggx-hc-dielectric-a0.1",
     "plastic-ggx0.1-eon",
     "openpbr-defaults",
     "openpbr-all-layers",
@@ -35,7 +36,16 @@ const PLUGINS: [&str; 16] = [
 ];
 /// The materials' extra paths (construction at every hit, a whole hit, the same through one prepared view).
 const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
-    ("plastic-ggx0.1-eon", &["construct"]),
+    (
+        "plastic-ggx0.1-eon",
+        &[
+            "construct",
+            "hit",
+            "hit-prepared",
+            "albedo-read",
+            "albedo-prepared",
+        ],
+    ),
     ("openpbr-defaults", &["construct", "hit", "hit-prepared"]),
     ("openpbr-all-layers", &["construct", "hit", "hit-prepared"]),
 ];

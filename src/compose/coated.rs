@@ -183,10 +183,10 @@ where
         }
     }
 
-    /// `τ(ωi, ωo)` per channel (see the type's docs).
+    /// `τ(ωi, ωo)` per channel (see the type's docs), from `t(ωo) = 1 −
+    /// E_T(ωo)`.
     #[inline]
-    fn through(&self, wi: Vec3, wo: Vec3) -> S {
-        let to = self.top_albedo(wo).map(|e| 1.0 - e);
+    fn through(&self, wi: Vec3, to: S) -> S {
         match self.layering {
             Layering::EnergyConserving => to,
             Layering::Reciprocal => {
@@ -204,14 +204,21 @@ where
     }
 
     /// `K ⊙ f_T + A τ ⊙ f_B` from the lobes' values (both directions above
-    /// the horizon).
+    /// the horizon); `t(ωo)` read from the top's albedo only when the base
+    /// reflects.
     #[inline]
     fn layer(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S) -> S {
+        self.layer_with(wi, wo, f_top, fb, || self.top_albedo(wo).map(|e| 1.0 - e))
+    }
+
+    /// [`layer`](Self::layer) with `t(ωo)` from `to` (a prepared view's).
+    #[inline]
+    fn layer_with(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S, to: impl FnOnce() -> S) -> S {
         let top = f_top * self.tint;
         if fb.is_black() {
             return top;
         }
-        let tau = self.absorption(cos_theta(wi), cos_theta(wo)) * self.through(wi, wo);
+        let tau = self.absorption(cos_theta(wi), cos_theta(wo)) * self.through(wi, to());
         saturate(top + tau * fb)
     }
 
@@ -221,11 +228,99 @@ where
         if mu.is_nan() || mu <= 0.0 {
             return 0.5;
         }
-        let et = self.top_albedo(wo);
+        self.pick_with(wo, mu, self.top_albedo(wo))
+    }
+
+    /// [`pick_probability`](Self::pick_probability) at `wo` above the
+    /// horizon (`μ = cos θo > 0`) with the top's albedo `et` there.
+    #[inline]
+    fn pick_with(&self, wo: Vec3, mu: f32, et: S) -> f32 {
         let through = self.absorption(mu, mu)
             * et.map(|e| (1.0 - e).clamp(0.0, 1.0))
             * self.base.directional_albedo(wo).value;
         pick_first((et * self.tint).average(), through.average())
+    }
+
+    /// Prepares the view `ωo` for any number of [`CoatedView::eval`],
+    /// [`CoatedView::pdf`] and [`CoatedView::sample`] calls: the top's
+    /// albedo `E_T(ωo)` is read once (the plain calls read it in each of
+    /// them, twice in `sample`) and the pick probability computed once. The
+    /// view's results equal [`Brdf::eval`], [`Brdf::pdf`] and
+    /// [`Brdf::sample`] at `ωo` bit for bit.
+    ///
+    /// ```
+    /// use radiometry::Brdf;
+    /// use radiometry::compose::Coated;
+    /// use radiometry::glam::Vec3;
+    /// # #[derive(Clone, Copy)]
+    /// # struct Flat(f32);
+    /// # impl Brdf for Flat {
+    /// #     type Spectrum = f32;
+    /// #     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    /// #         if wi.z > 0.0 && wo.z > 0.0 { self.0 * core::f32::consts::FRAC_1_PI } else { 0.0 }
+    /// #     }
+    /// # }
+    /// let layer = Coated::new(Flat(0.25), Flat(1.0));
+    /// let wo = Vec3::new(0.6, 0.0, 0.8);
+    /// let view = layer.prepare(wo); // a renderer's hit: one view, several calls
+    /// let s = view.sample([0.3, 0.7]).unwrap();
+    /// assert_eq!(Some(s), layer.sample(wo, [0.3, 0.7]));
+    /// assert_eq!(view.pdf(s.wi), s.pdf);
+    /// assert_eq!(view.eval(s.wi), layer.eval(s.wi, wo));
+    /// ```
+    pub fn prepare(&self, wo: Vec3) -> CoatedView<'_, T, B> {
+        let mu = cos_theta(wo);
+        let above = !(mu.is_nan() || mu <= 0.0);
+        let et = if above { self.top_albedo(wo) } else { S::zero() };
+        CoatedView {
+            layer: self,
+            wo,
+            to: et.map(|e| 1.0 - e),
+            pick: if above { self.pick_with(wo, mu, et) } else { 0.5 },
+        }
+    }
+}
+
+/// A [`Coated`] prepared for one view direction `ωo` ([`Coated::prepare`]):
+/// `t(ωo) = 1 − E_T(ωo)` and the pick probability, computed once.
+#[derive(Clone, Copy, Debug)]
+pub struct CoatedView<'a, T: Brdf, B> {
+    layer: &'a Coated<T, B>,
+    wo: Vec3,
+    to: T::Spectrum,
+    pick: f32,
+}
+
+impl<T, B, S> CoatedView<'_, T, B>
+where
+    T: Brdf<Spectrum = S>,
+    B: Brdf<Spectrum = S>,
+    S: Spectrum,
+{
+    /// `f_r(ωi, ωo)` ([`Brdf::eval`] at the view's `ωo`).
+    #[inline]
+    pub fn eval(&self, wi: Vec3) -> S {
+        let (l, wo) = (self.layer, self.wo);
+        if !Coated::<T, B>::both_above(wi, wo) {
+            return S::zero();
+        }
+        l.layer_with(wi, wo, l.top.eval(wi, wo), l.base.eval(wi, wo), || self.to)
+    }
+
+    /// The mixture density of [`sample`](Self::sample) ([`Brdf::pdf`] at
+    /// the view's `ωo`).
+    #[inline]
+    pub fn pdf(&self, wi: Vec3) -> f32 {
+        let (l, wo) = (self.layer, self.wo);
+        mixture_pdf(self.pick, l.top.pdf(wi, wo), l.base.pdf(wi, wo))
+    }
+
+    /// One sample ([`Brdf::sample`] at the view's `ωo`).
+    #[inline]
+    pub fn sample(&self, u: [f32; 2]) -> Option<BrdfSample<S>> {
+        let (l, wo) = (self.layer, self.wo);
+        let wi = pick_and_sample(self.pick, u, |v| l.top.sample(wo, v), |v| l.base.sample(wo, v))?;
+        finish_sample(wi, self.eval(wi), self.pdf(wi))
     }
 }
 
@@ -324,11 +419,10 @@ where
         });
     }
 
+    /// Through one [`prepare`](Coated::prepare)d view: the top's albedo at
+    /// `ωo` read once for the pick and the value.
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
-        let p = self.pick_probability(wo);
-        let wi = pick_and_sample(p, u, |v| self.top.sample(wo, v), |v| self.base.sample(wo, v))?;
-        let pdf = mixture_pdf(p, self.top.pdf(wi, wo), self.base.pdf(wi, wo));
-        finish_sample(wi, self.eval(wi, wo), pdf)
+        self.prepare(wo).sample(u)
     }
 
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {

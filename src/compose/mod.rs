@@ -43,7 +43,7 @@ mod precomputed;
 mod scaled;
 mod sum;
 
-pub use coated::{Coated, coat_absorption};
+pub use coated::{Coated, CoatedView, coat_absorption};
 pub use error::ComposeError;
 pub use mix::Mix;
 pub use precomputed::Precomputed;

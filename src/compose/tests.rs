@@ -230,3 +230,47 @@ fn a_clear_coat_over_a_white_lambertian_keeps_what_the_formula_says() {
         assert!((e.value - 1.0).abs() < 1e-5, "{e:?}");
     }
 }
+
+/// A prepared view equals the plain calls bit for bit: `eval`, `pdf` and
+/// `sample` at every `ωo` (below the horizon included), in both layering
+/// modes, clear, absorbing and tinted, against the pre-view definitions
+/// (`sample` = pick with `pick_probability`, then the mixture pdf and the
+/// plain `eval`).
+#[test]
+fn coated_view_equals_the_plain_calls() {
+    let below = [Vec3::new(0.6, 0.0, -0.8), Vec3::new(1.0, 0.0, 0.0)];
+    for layering in [Layering::EnergyConserving, Layering::Reciprocal] {
+        let plain = Coated::new(Glossy(30.0), Flat(0.8)).with_layering(layering);
+        let absorbing = Coated::with_absorption(Glossy(30.0), Flat(0.8), 0.6f32, 1.5)
+            .unwrap()
+            .with_layering(layering);
+        let tinted = Coated::new(Glossy(8.0), Flat(0.3))
+            .with_layering(layering)
+            .with_top_tint(0.5f32)
+            .unwrap();
+        for layer in [&plain, &absorbing, &tinted] {
+            for wo in directions().chain(below) {
+                let view = layer.prepare(wo);
+                for wi in directions().chain(below) {
+                    assert_eq!(view.eval(wi).to_bits(), layer.eval(wi, wo).to_bits(), "{wi} {wo}");
+                    assert_eq!(view.pdf(wi).to_bits(), layer.pdf(wi, wo).to_bits(), "{wi} {wo}");
+                }
+                for u in us() {
+                    let p = layer.pick_probability(wo);
+                    let reference = pick_and_sample(
+                        p,
+                        u,
+                        |v| layer.top().sample(wo, v),
+                        |v| layer.base().sample(wo, v),
+                    )
+                    .and_then(|wi| {
+                        let pdf = mixture_pdf(p, layer.top().pdf(wi, wo), layer.base().pdf(wi, wo));
+                        finish_sample(wi, layer.eval(wi, wo), pdf)
+                    });
+                    assert_eq!(view.sample(u), reference, "{wo} {u:?}");
+                    assert_eq!(layer.sample(wo, u), reference, "{wo} {u:?}");
+                }
+            }
+        }
+    }
+}
