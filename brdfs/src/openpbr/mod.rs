@@ -263,11 +263,16 @@ impl<S: Spectrum> Metal<S> {
     /// falls back to where the Fresnel term has a kink).
     #[inline]
     fn single_albedo(&self, wo: Vec3) -> S {
+        self.single_albedo_with(wo, self.e1.albedo(e1_table(), wo.z))
+    }
+
+    /// [`single_albedo`](Self::single_albedo) with `E₁(μo)` already read.
+    #[inline]
+    fn single_albedo_with(&self, wo: Vec3, e1: f32) -> S {
         use crate::microfacet::fresnel_table::{fresnel_moments, linear_fresnel_ratio};
         match self.single.fresnel.form() {
             crate::microfacet::FresnelForm::Linear { f0, a } => {
                 let mu = wo.z;
-                let e1 = self.e1.albedo(e1_table(), mu);
                 let m = fresnel_moments(mu, self.single.distribution.alpha());
                 S::from_fn(|c| (linear_fresnel_ratio(f0.channel(c), a.channel(c), m) * e1).clamp(0.0, 1.0))
             }
@@ -708,8 +713,13 @@ impl<S: Spectrum> OpenPbr<S> {
         if self.on[SPEC] {
             view.spec_o = self.e_spec(mu);
         }
-        if let Some(metal) = &self.metal {
-            view.metal_loss_o = metal.loss(mu);
+        // E₁(μo) of the metal, read once for its loss and its albedo.
+        let metal_e1_o = self
+            .metal
+            .as_ref()
+            .map_or(1.0, |metal| metal.e1.albedo(e1_table(), mu));
+        if self.metal.is_some() {
+            view.metal_loss_o = (1.0 - metal_e1_o).clamp(0.0, 1.0);
         }
         view.diffuse_pu = self.diffuse.uniform_share(mu);
         if !picks {
@@ -718,7 +728,8 @@ impl<S: Spectrum> OpenPbr<S> {
         // Pick probabilities ∝ each lobe's share of the layered albedo at ωo.
         let mut share = [0.0f32; LOBES];
         if self.on[FUZZ] {
-            share[FUZZ] = p.fuzz_weight * self.fuzz_albedo(wo).average();
+            // The fuzz's albedo is its colour times the untinted read of `fuzz_o`.
+            share[FUZZ] = view.fuzz_o * p.fuzz_color.average();
         }
         let a_f = view.fuzz_factor_o(Leaf::Specular);
         if self.on[COAT] {
@@ -728,7 +739,7 @@ impl<S: Spectrum> OpenPbr<S> {
         let u_s = under(Leaf::Specular);
         if let Some(metal) = &self.metal {
             let w = u_s * p.base_metalness * self.xi;
-            share[METAL] = w * metal.single_albedo(wo).average();
+            share[METAL] = w * metal.single_albedo_with(wo, metal_e1_o).average();
             share[METAL_MS] = w * metal.f_ms.average() * view.metal_loss_o;
         }
         if self.on[SPEC] {
