@@ -531,7 +531,10 @@ impl<S: Spectrum> OpenPbr<S> {
             let e_s1 = spec_e.albedo(1.0);
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
-                x.single_albedo(n) + x.ms_scale * (core::f32::consts::PI * x.loss(1.0))
+                // E₁(1), read once for the single scattering and the loss.
+                let e1 = x.e1.albedo(e1_table(), 1.0);
+                x.single_albedo_with(n, e1)
+                    + x.ms_scale * (core::f32::consts::PI * (1.0 - e1).clamp(0.0, 1.0))
             });
             let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
             (
