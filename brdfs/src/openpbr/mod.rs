@@ -995,11 +995,21 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
         };
         if m.on[FUZZ] {
-            if want_value {
-                f += m.fuzz_eval(wi, wo) * p.fuzz_weight;
-            }
-            if want_pdf {
-                pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
+            match (&m.fuzz, want_value && want_pdf) {
+                // Energy mode, both wanted: the LTC's table read and frame once.
+                (Some(fuzz), true) => {
+                    let (v, d) = fuzz.eval_pdf(wi, wo);
+                    f += v * p.fuzz_weight;
+                    pdf += prob(FUZZ) * d;
+                }
+                _ => {
+                    if want_value {
+                        f += m.fuzz_eval(wi, wo) * p.fuzz_weight;
+                    }
+                    if want_pdf {
+                        pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
+                    }
+                }
             }
         }
         if m.on[COAT] {

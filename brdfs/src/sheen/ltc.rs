@@ -212,6 +212,15 @@ impl<S: Spectrum> LtcSheen<S> {
         (c.r, q * q * FRAC_1_PI)
     }
 
+    /// `(f_r, pdf)` at once: [`Brdf::eval`] and [`Brdf::pdf`] bit for bit,
+    /// the table read and the frame shared (a material that needs both at
+    /// one direction, as a mixture's `sample` does).
+    #[inline]
+    pub(crate) fn eval_pdf(&self, wi: Vec3, wo: Vec3) -> (S, f32) {
+        let (r, d, z) = self.terms(wi, wo);
+        (self.color * (r * d), d * z)
+    }
+
     /// [`Self::unit_terms`] of any input.
     #[inline(always)]
     fn terms(&self, wi: Vec3, wo: Vec3) -> (f32, f32, f32) {
@@ -319,6 +328,34 @@ impl<S: Spectrum> IsotropicBrdf for LtcSheen<S> {}
 mod tests {
     use super::*;
     use radiometry::math::ONE_MINUS_EPSILON;
+
+    /// `eval_pdf` is `(eval, pdf)` bit for bit, unit and non-unit directions,
+    /// below the horizon included.
+    #[test]
+    fn eval_pdf_is_eval_and_pdf() {
+        let mut u = crate::test_stream::uniforms(0x51ed_2701_a3c4_9b1d);
+        for r in [0.0f32, 0.07, 0.5, 1.0] {
+            let s = LtcSheen::new(radiometry::glam::Vec3::new(0.9, 0.5, 0.2), r).unwrap();
+            for n in 0..2000 {
+                let mut dir = || {
+                    let v = Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0);
+                    if n % 3 == 0 {
+                        v * 3.0
+                    } else {
+                        v.normalize_or(Vec3::Z)
+                    }
+                };
+                let (wi, wo) = (dir(), dir());
+                let (v, p) = s.eval_pdf(wi, wo);
+                let (e, q) = (s.eval(wi, wo), s.pdf(wi, wo));
+                assert!(
+                    v.to_array().map(f32::to_bits) == e.to_array().map(f32::to_bits),
+                    "{wi} {wo}"
+                );
+                assert_eq!(p.to_bits(), q.to_bits(), "{wi} {wo}");
+            }
+        }
+    }
 
     #[test]
     fn parameters_at_the_ends_and_errors() {
