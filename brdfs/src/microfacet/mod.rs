@@ -523,6 +523,46 @@ where
     G: ShadowingMasking,
     F: Fresnel,
 {
+    /// `(f_r, pdf)` of the pair as [`Brdf::eval`] and [`Brdf::pdf`] return
+    /// them (bit for bit), each only if asked for (0 otherwise); both at once
+    /// share the half vector, `D(h)` and `A(ωo)` — for a material whose
+    /// `sample` evaluates its value and mixture density in one pass.
+    #[inline]
+    pub(crate) fn eval_pdf(&self, wi: Vec3, wo: Vec3, value: bool, density: bool) -> (F::Spectrum, f32) {
+        if !(value && density) {
+            return (
+                if value {
+                    self.eval(wi, wo)
+                } else {
+                    F::Spectrum::zero()
+                },
+                if density { self.pdf(wi, wo) } else { 0.0 },
+            );
+        }
+        let (wi, wo) = if is_unit(wi) && is_unit(wo) {
+            (wi, wo)
+        } else {
+            match unitize_pair(wi, wo) {
+                Some(p) => p,
+                None => return (F::Spectrum::zero(), 0.0),
+            }
+        };
+        let Some(h) = Half::of(wi, wo) else {
+            return (F::Spectrum::zero(), 0.0);
+        };
+        let (dn, dd) = self.distribution.d_ratio(h.hz2, h.hxy2);
+        let ao = self.area(wo);
+        let pdf = d_quotient(dn, dd, 4.0 * ao);
+        let inv_v = G::inverse_visibility(wi.z, self.area(wi), wo.z, ao);
+        let s = d_quotient(dn, dd, inv_v);
+        let f = if s == 0.0 {
+            F::Spectrum::zero()
+        } else {
+            self.fresnel.eval(h.cos_theta_d()) * s
+        };
+        (f, pdf)
+    }
+
     /// `f_r = D(h) V F(cos θd)` for unit `wi`, `wo` (the straight-line part
     /// of `eval`), with the visibility `V = G2/(4 cos θi cos θo)`.
     #[inline(always)]

@@ -1274,3 +1274,56 @@ fn hot_path_hooks_hold_their_contracts() {
     }
     println!("d_ratio vs f64: worst relative error {worst:.2e}");
 }
+
+/// `eval_pdf` is `(eval, pdf)` bit for bit, whatever it is asked for: GGX and
+/// Beckmann, both shadowing terms, dielectric (both sides of 1), F82-style
+/// conductor and no Fresnel; unit, non-unit and below-horizon directions.
+#[test]
+fn eval_pdf_is_eval_and_pdf() {
+    use radiometry::Brdf;
+    let mut u = crate::test_stream::uniforms(0x7f4a_7c15_9e37_79b9);
+    let mut dir = |n: usize| {
+        let v = Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0);
+        if n % 4 == 0 {
+            v * 2.5
+        } else {
+            v.normalize_or(Vec3::Z)
+        }
+    };
+    fn check<B: Brdf<Spectrum = S>, S: radiometry::Spectrum>(
+        b: &B,
+        f: impl Fn(Vec3, Vec3, bool, bool) -> (S, f32),
+        wi: Vec3,
+        wo: Vec3,
+    ) {
+        for (v, d) in [(true, true), (true, false), (false, true)] {
+            let (e, p) = f(wi, wo, v, d);
+            if v {
+                let r = b.eval(wi, wo);
+                assert!(
+                    (0..S::CHANNELS).all(|c| e.channel(c).to_bits() == r.channel(c).to_bits()),
+                    "{wi} {wo}"
+                );
+            }
+            if d {
+                assert_eq!(p.to_bits(), b.pdf(wi, wo).to_bits(), "{wi} {wo}");
+            }
+        }
+    }
+    for n in 0..3000 {
+        let (wi, wo) = (dir(n), dir(n + 1));
+        let a = 1e-4 + (n % 17) as f32 / 17.0;
+        let g =
+            Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(a).unwrap(), Dielectric::new(1.5).unwrap());
+        check(&g, |i, o, v, d| g.eval_pdf(i, o, v, d), wi, wo);
+        let g = Microfacet::<_, Separable, _>::new(Ggx::new(a).unwrap(), Dielectric::new(0.7).unwrap());
+        check(&g, |i, o, v, d| g.eval_pdf(i, o, v, d), wi, wo);
+        let c = Microfacet::<_, HeightCorrelated, _>::new(
+            Ggx::new(a).unwrap(),
+            Conductor::new(Vec3::new(0.2, 0.9, 1.1), Vec3::new(3.9, 2.4, 1.6)).unwrap(),
+        );
+        check(&c, |i, o, v, d| c.eval_pdf(i, o, v, d), wi, wo);
+        let b = Microfacet::<_, HeightCorrelated, _>::new(Beckmann::new(a).unwrap(), NoFresnel);
+        check(&b, |i, o, v, d| b.eval_pdf(i, o, v, d), wi, wo);
+    }
+}

@@ -1013,11 +1013,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             }
         }
         if m.on[COAT] {
+            let (v, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
             if want_value {
-                f += m.coat.eval(wi, wo) * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
+                f += v * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
             }
             if want_pdf {
-                pdf += prob(COAT) * m.coat.pdf(wi, wo);
+                pdf += prob(COAT) * d;
             }
         }
         let under_s = if want_value && (m.on[METAL] || m.on[SPEC]) {
@@ -1026,18 +1027,20 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             S::zero()
         };
         if let Some(metal) = &m.metal {
+            let (v, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
             if want_value {
                 let ms = metal.ms_scale * (metal.loss(mu_i) * self.metal_loss_o);
-                f += (metal.single.eval(wi, wo) + ms) * under_s * (p.base_metalness * m.xi);
+                f += (v + ms) * under_s * (p.base_metalness * m.xi);
             }
             if want_pdf {
-                pdf += prob(METAL) * metal.single.pdf(wi, wo) + prob(METAL_MS) * metal.ms_pdf(mu_i);
+                pdf += prob(METAL) * d + prob(METAL_MS) * metal.ms_pdf(mu_i);
             }
         }
         if m.on[SPEC] {
             let dielectric = 1.0 - p.base_metalness;
+            let (v, d) = m.spec.eval_pdf(wi, wo, want_value, want_pdf);
             if want_value {
-                f += m.spec.eval(wi, wo) * p.specular_color * under_s * dielectric;
+                f += v * p.specular_color * under_s * dielectric;
                 // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
                 let es_i = if mu_i == self.mu_o {
                     self.spec_o
@@ -1047,7 +1050,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
             }
             if want_pdf {
-                pdf += prob(SPEC) * m.spec.pdf(wi, wo) + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
+                pdf += prob(SPEC) * d + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
             }
         }
         let pdf = if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 };
