@@ -668,3 +668,35 @@ fn the_mean_checks_draws_find_the_sliver_of_a_grazing_lobe_the_plain_rule_misses
     // The rule still misses the sliver: the status is what changed.
     assert!(unresolved > 0);
 }
+
+#[test]
+fn auto_takes_the_plain_rule_first_on_kinked_mixtures() {
+    // EON ρ = 0.9, σ = 1 at θo = 60°: kinks at μi = μo and cos Δφ = 0 and a
+    // cosine/uniform mixture map. The plain rule split at the kinks reaches
+    // 10⁻⁶ with about a thousand evaluations; the nested grid and the warped
+    // rules (auto's earlier path) needed 65,000. Reference: the closed-form
+    // albedo (Portsmouth et al. 2025), cross-checked here by the f64
+    // quadrature of the plugin's values.
+    let p = Params {
+        rho: 0.9,
+        sigma: 1.0,
+        ..Params::typical()
+    };
+    let brdf = build(Kind::Eon, &p).unwrap();
+    let t = 60f32.to_radians();
+    let wo = Vec3::new(t.sin(), 0.0, t.cos());
+    let exact = albedo_f64(&brdf, wo, 1.0);
+    let g = DirectionalAlbedo { brdf: &*brdf, wo };
+    for budget in [4096u32, 16384] {
+        let e = Auto::new().integrate(&g, budget).unwrap();
+        let err = (e.value - exact).abs();
+        eprintln!(
+            "auto {budget}: {:.10} ± {:.1e} (true {err:.1e}, {} evaluations), {}",
+            e.value, e.error, e.evaluations, e.status
+        );
+        assert!(e.is_resolved(), "{e:?}");
+        assert!(e.evaluations <= budget as u64, "{e:?}");
+        assert!(err <= 1e-6 * exact, "{budget}: {e:?}, exact {exact}");
+        assert!(err <= 10.0 * e.error, "{budget}: {e:?}, exact {exact}");
+    }
+}
