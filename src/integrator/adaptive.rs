@@ -378,6 +378,15 @@ impl KinkLines {
     }
 }
 
+/// Smallest budget from which the plain rule runs the edge-gap checks on
+/// its kink lines ([`KinkLines`]): a run with them still ends with at least 8
+/// leaf regions (4 splits of `2 × 17` evaluations and up to `2 ×`
+/// [`EDGE_POINTS`] each, after the 4 initial regions and their checks: 396),
+/// so that the few-nodes check of `status_of` applies. (From 132 on, a run
+/// of 256 ended with 7 regions and GGX `α = 0.01` at `θo = 85°` answered
+/// 447 ± 42 for an albedo of 0.99, resolved: its lobe on one node.)
+const KINK_CHECK_MIN_BUDGET: u32 = 512;
+
 /// Edge-gap check of the region `r` (warped square; on the plain square,
 /// the sides on its kink lines, see [`KinkLines`]). The rule's nodes
 /// stay `(1 − λ₃) h/n` (`λ₃ = √0.9`, `n × n` cells) away from the region's
@@ -647,8 +656,8 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 ///    [`Unresolved::UnseenPeak`] (the plain rule draws one point per 16
 ///    evaluations of its budget for this, [`PEAK_DRAW_SHARE`], at most
 ///    1,024);
-/// 6. on the plain hemisphere, from a budget of 132 (the warped rule's
-///    minimum), the edge-gap check of 4. on every region side that lies on
+/// 6. on the plain hemisphere, from a budget of 512
+///    ([`KINK_CHECK_MIN_BUDGET`]), the edge-gap check of 4. on every region side that lies on
 ///    one of the integrand's [kink lines](Integrand::kinks) (`μ = μk`,
 ///    `cos(φ − φk) = 0`), and the cut-gap check on the plain square too: a
 ///    lobe that ends beside such a line is a support step in the margin no
@@ -847,13 +856,12 @@ impl Adaptive {
         // Edge-gap checks on the warped square (see `edge_gaps`), on every
         // new region on the boundary, from the initial regions on: the
         // warped rule's minimum budget pays for them.
-        // On the plain square, on the sides on its kink lines, once the
-        // budget pays for the initial regions' checks as the warped rule's
-        // minimum does.
+        // On the plain square, on the sides on its kink lines, from
+        // `KINK_CHECK_MIN_BUDGET` on.
         let lines = if self.warped {
             None
         } else {
-            lines.filter(|_| budget >= Self::MIN_BUDGET_WARPED)
+            lines.filter(|_| budget >= KINK_CHECK_MIN_BUDGET)
         };
         let edge = self.warped || lines.is_some();
         let edge_cost = if edge { EDGE_POINTS } else { 0 };
@@ -1619,22 +1627,29 @@ mod tests {
             Adaptive::new(1e-12, 0.0).unwrap().warped(),
         ] {
             for budget in [a.min_budget(), 500, 1000, 1024, TINY_REGIONS_BUDGET] {
-                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], 1, None, f, None).unwrap();
+                let max = a
+                    .run_with::<f64, MAX_REGIONS>(budget, &[], 1, None, f, None)
+                    .unwrap();
                 assert_eq!(
-                    a.run_with::<f64, TINY_REGIONS>(budget, &[], 1, None, f, None).unwrap(),
+                    a.run_with::<f64, TINY_REGIONS>(budget, &[], 1, None, f, None)
+                        .unwrap(),
                     max,
                     "{budget}"
                 );
                 assert_eq!(
-                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], 1, None, f, None).unwrap(),
+                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], 1, None, f, None)
+                        .unwrap(),
                     max,
                     "{budget}"
                 );
             }
             for budget in [TINY_REGIONS_BUDGET + 1, 1300, SMALL_REGIONS_BUDGET] {
-                let max = a.run_with::<f64, MAX_REGIONS>(budget, &[], 1, None, f, None).unwrap();
+                let max = a
+                    .run_with::<f64, MAX_REGIONS>(budget, &[], 1, None, f, None)
+                    .unwrap();
                 assert_eq!(
-                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], 1, None, f, None).unwrap(),
+                    a.run_with::<f64, SMALL_REGIONS>(budget, &[], 1, None, f, None)
+                        .unwrap(),
                     max,
                     "{budget}"
                 );
