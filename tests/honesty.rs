@@ -700,3 +700,44 @@ fn auto_takes_the_plain_rule_first_on_kinked_mixtures() {
         assert!(err <= 10.0 * e.error, "{budget}: {e:?}, exact {exact}");
     }
 }
+
+#[test]
+fn a_lobe_that_ends_beside_a_kink_line_is_seen_by_the_plain_rule() {
+    // Phong n = 1 (ks = 1, kd = 0) at grazing view: `max(0, ωi·r)` vanishes
+    // beyond the great circle ⟂ r, which runs within `cot θo cot θ` rad of
+    // the lines `cos Δφ = 0` on which the plain square is cut (the kink
+    // lines of a directional albedo). The positive sliver lay in the margin
+    // of the regions beyond the cut, whose nodes all saw zero: at 89.9° the
+    // rule claimed 8.4·10⁻⁸ at 4,096 evaluations for a true error of
+    // 9.7·10⁻⁷ (11.5×), at 89.5° 2.8·10⁻⁷ for 8.6·10⁻⁶ (31×). The edge-gap
+    // check on the kink lines finds the support step beside the cut.
+    // Reference: the f64 quadrature of the plugin's values.
+    let p = Params {
+        n: 1.0,
+        ks: 1.0,
+        kd: 0.0,
+        ..Params::typical()
+    };
+    let brdf = build(Kind::ModifiedPhong, &p).unwrap();
+    let adaptive = Adaptive::new(0.0, 0.0).unwrap();
+    for (deg, budgets) in [(89.9f32, &[1024u32, 4096, 16384, 65536][..]), (89.5, &[4096][..])] {
+        let t = deg.to_radians();
+        let wo = Vec3::new(t.sin(), 0.0, t.cos());
+        let exact = albedo_f64(&brdf, wo, 1.0);
+        let g = DirectionalAlbedo { brdf: &*brdf, wo };
+        for &budget in budgets {
+            let e = adaptive.integrate(&g, budget).unwrap();
+            let err = (e.value - exact).abs();
+            eprintln!(
+                "{deg}° {budget}: {:.10} ± {:.1e} (true {err:.1e}), {}",
+                e.value, e.error, e.status
+            );
+            assert!(
+                err <= 10.0 * e.error || !e.is_resolved(),
+                "{deg}° {budget}: {e:?}, exact {exact}"
+            );
+            // The sliver is integrated, not only flagged: 8.6·10⁻⁶ before.
+            assert!(err < 4e-6, "{deg}° {budget}: {e:?}, exact {exact}");
+        }
+    }
+}
