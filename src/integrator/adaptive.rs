@@ -378,14 +378,14 @@ impl KinkLines {
     }
 }
 
-/// Smallest budget from which the plain rule runs the edge-gap checks on
-/// its kink lines ([`KinkLines`]): a run with them still ends with at least 8
-/// leaf regions (4 splits of `2 × 17` evaluations and up to `2 ×`
-/// [`EDGE_POINTS`] each, after the 4 initial regions and their checks: 396),
+/// Smallest budget from which the plain [`Adaptive`] rule runs the edge-gap
+/// checks on its kink lines ([`Integrand::kinks`]): a run with them still ends
+/// with at least 8 leaf regions (4 splits of `2 × 17` evaluations and up to
+/// `2 × 16` for the checks each, after the 4 initial regions and theirs: 396),
 /// so that the few-nodes check of `status_of` applies. (From 132 on, a run
 /// of 256 ended with 7 regions and GGX `α = 0.01` at `θo = 85°` answered
 /// 447 ± 42 for an albedo of 0.99, resolved: its lobe on one node.)
-const KINK_CHECK_MIN_BUDGET: u32 = 512;
+pub const KINK_CHECK_MIN_BUDGET: u32 = 512;
 
 /// Edge-gap check of the region `r` (warped square; on the plain square,
 /// the sides on its kink lines, see [`KinkLines`]). The rule's nodes
