@@ -1284,7 +1284,7 @@ fn eval_pdf_is_eval_and_pdf() {
     let mut u = crate::test_stream::uniforms(0x7f4a_7c15_9e37_79b9);
     let mut dir = |n: usize| {
         let v = Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0);
-        if n % 4 == 0 {
+        if n.is_multiple_of(4) {
             v * 2.5
         } else {
             v.normalize_or(Vec3::Z)
