@@ -11,15 +11,15 @@
 //! Run: `cargo run --release -p radiometry-brdfs --features examples --example openpbr_conformance_table`
 //! (append `-- variance` for the sampling table alone)
 
+use radiometry::Brdf;
 use radiometry::glam::Vec3;
 use radiometry::integrator::{Adaptive, DirectionalAlbedo, Integrator};
-use radiometry::{Brdf, Spectrum};
 use radiometry_brdfs::openpbr::{Layering, OpenPbr};
 use serde_json::Value;
 
 #[path = "../tests/openpbr_adobe_params.rs"]
 mod adobe_params;
-use adobe_params::{Average, avg3, params};
+use adobe_params::{Average, avg3, params, weight_variance};
 
 fn wo(theta: f64) -> Vec3 {
     let t = theta.to_radians();
@@ -48,28 +48,6 @@ fn albedo(m: &OpenPbr<Vec3>, theta: f64, near_delta: bool) -> f64 {
         .integrate(&g, 1 << 18)
         .unwrap()
         .value
-}
-
-/// Per-sample variance and mean of the channel-average weight.
-fn variance(m: &OpenPbr<Vec3>, theta: f64) -> (f64, f64) {
-    let mut s = 0x853C_49E6_748F_EA9Bu64;
-    let mut rnd = move || {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        ((s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u32 << 24) as f32
-    };
-    let n = 1 << 20;
-    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
-    for _ in 0..n {
-        let w = m
-            .sample(wo(theta), [rnd(), rnd()])
-            .map_or(0.0, |x| f64::from(x.weight.average()));
-        sum += w;
-        sum2 += w * w;
-    }
-    let mean = sum / n as f64;
-    (sum2 / n as f64 - mean * mean, mean)
 }
 
 fn main() {
@@ -137,7 +115,7 @@ fn main() {
             .collect();
         let mut r = Vec::new();
         for (k, &t) in [0.0, 45.0, 75.0].iter().enumerate() {
-            let (v, _) = variance(&m, t);
+            let v = weight_variance(&m, wo(t), 1 << 20);
             let ratio = v / theirs[k].max(1e-12);
             if ratio > worst.0 {
                 worst = (ratio, format!("{name} θo {t}"));

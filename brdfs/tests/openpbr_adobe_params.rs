@@ -72,3 +72,28 @@ pub fn avg3(v: &Value) -> f64 {
     let a = v.as_array().unwrap();
     a.iter().map(|x| x.as_f64().unwrap()).sum::<f64>() / 3.0
 }
+
+/// The per-sample variance (not clamped) of the channel-average sample
+/// weight `f cos θi / pdf` at `wo` over `n` iid uniform samples of a fixed
+/// seed, a failed sample counting 0 — how `energy.variance` of the data file
+/// was measured on Adobe's side.
+pub fn weight_variance(m: &OpenPbr<Vec3>, wo: Vec3, n: usize) -> f64 {
+    let mut s = 0x853C_49E6_748F_EA9Bu64;
+    let mut rnd = move || {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        ((s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u32 << 24) as f32
+    };
+    let v = m.prepare(wo);
+    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+    for _ in 0..n {
+        let w = v
+            .sample([rnd(), rnd()])
+            .map_or(0.0, |x| f64::from(x.weight.average()));
+        sum += w;
+        sum2 += w * w;
+    }
+    let mean = sum / n as f64;
+    sum2 / n as f64 - mean * mean
+}
