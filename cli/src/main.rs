@@ -98,7 +98,8 @@ enum Command {
         theta_o: f64,
         /// Integrator name (list: `radiometry integrators`). The default, `auto`, picks the parameterisation from
         /// the integrand (a nested Clenshaw–Curtis × trapezoid grid for broad lobes, the warped adaptive rule for
-        /// narrow ones) and needs the fewest evaluations of the report's integrators to a tolerance (`radiometry
+        /// narrow ones; with a fixed `--budget`, the plain adaptive rule first for a kinked lobe with a mixture
+        /// sampling map: the composites and the Oren–Nayar family) and needs the fewest evaluations of the report's integrators to a tolerance (`radiometry
         /// tradeoff`, summary.md, section "To a tolerance").
         #[arg(long, default_value = "auto")]
         integrator: String,

@@ -164,6 +164,15 @@ fn median(v: &[f64]) -> Option<f64> {
 /// parameterisation and rule that need the fewest evaluations, with the
 /// work of each refinement kept for the next.
 ///
+/// 0. **Kinked mixtures, fixed budget** (an integrand that is not
+///    [smooth](Integrand::is_smooth) and samples through a mixture map, see
+///    [`Integrand::sampling_components`]: the composites, the Oren–Nayar
+///    family): with a fixed budget ([`Integrator::integrate`]) no pilot and
+///    no grid — the plain [`Adaptive`] rule split at the integrand's
+///    [kinks](Integrand::kinks) with half the budget, and only if it is
+///    unresolved the warped rule (per component) with the rest (see
+///    `plain_first`). To a tolerance the steps below apply to every
+///    integrand.
 /// 1. **Pilot** (with a sampling map): 16 draws of the map (the points of
 ///    the peak [`probe`]) give the lobe's *peakiness* `P = 2π max g / Î`,
 ///    `Î` the importance-sampled mean — the largest value of the plain-square
@@ -844,6 +853,45 @@ fn grid_with<I: Integrand, const R: usize>(
     }
 }
 
+/// The fixed-budget path of an integrand that is not smooth and samples
+/// through a mixture map (composites, the Oren–Nayar family): the plain
+/// [`Adaptive`] rule, whose square is split at the integrand's
+/// [kinks](Integrand::kinks) and never sees the map's seams, with half the
+/// budget; if it cannot stand behind its estimate (unresolved), the warped
+/// rule (each component of the map on its own square) with the rest, whose
+/// estimate is returned when it is resolved.
+///
+/// Why not the grid or the warped rule first: a kink (`μi = μo`,
+/// `cos Δφ = 0`, a clamp) and the seam of a mixture map slow every nested
+/// grid and every warped rule to algebraic convergence, while the plain
+/// rule's regions stop at the kink lines. On the report's composites the
+/// plain rule reaches `10⁻⁶` with 254–16,354 evaluations where the grid and
+/// the warped rule (the earlier path) needed 65,000–1,000,000.
+fn plain_first<I: Integrand>(g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
+    let a = Adaptive::new(0.0, 0.0)?;
+    let first = if g.has_sampling_map() {
+        (budget / 2).max(Adaptive::MIN_BUDGET)
+    } else {
+        budget
+    };
+    let e = a.integrate(g, first)?;
+    let left = (budget as u64).saturating_sub(e.evaluations);
+    let w = a.warped();
+    if e.is_resolved() || !g.has_sampling_map() || left < w.min_budget() as u64 {
+        return Ok(e);
+    }
+    let mut f = w.integrate(g, left.min(u32::MAX as u64) as u32)?;
+    f.evaluations += e.evaluations;
+    if f.is_resolved() {
+        Ok(f)
+    } else {
+        Ok(Estimate {
+            evaluations: f.evaluations,
+            ..e
+        })
+    }
+}
+
 impl Integrator for Auto {
     /// With a fixed budget: the pilot, then the grid refined until the
     /// budget cannot pay for its next level (broad lobes), or the warped
@@ -853,6 +901,9 @@ impl Integrator for Auto {
         let min = Adaptive::MIN_BUDGET_WARPED + probe::PROBE_POINTS as u32;
         if budget < min {
             return Err(IntegrateError::BudgetTooSmall { minimum: min });
+        }
+        if !g.is_smooth() && g.sampling_components() > 1 {
+            return plain_first(g, budget);
         }
         let p = pilot(g)?;
         let rest = budget as u64 - p.evals;

@@ -182,6 +182,17 @@ impl<W: WideSpectrum> MeanCheck<W> {
         g: &I,
         n: u32,
     ) -> Result<Self, IntegrateError> {
+        Self::take_each(g, n, |_, _| {})
+    }
+
+    /// [`MeanCheck::take`], passing every draw that gives a direction to
+    /// `each` with `max_channel |g|` there (the draws double as a larger
+    /// peak probe: see [`Adaptive`](super::Adaptive)).
+    pub(crate) fn take_each<I: Integrand<Spectrum = S>, S: Spectrum<Wide = W>>(
+        g: &I,
+        n: u32,
+        mut each: impl FnMut(Vec3, f64),
+    ) -> Result<Self, IntegrateError> {
         let mut sum = WideSum::<W>::new();
         let mut sq = WideSum::<W>::new();
         let mut abs = WideSum::<W>::new();
@@ -196,7 +207,8 @@ impl<W: WideSpectrum> MeanCheck<W> {
             }
             g.sample_batch(&us[..m], &mut ss[..m]);
             for s in &ss[..m] {
-                if let Some((_, _, w)) = sample_weight(*s)? {
+                if let Some((d, p, w)) = sample_weight(*s)? {
+                    each(d, acc::max_abs(w) * p);
                     sum.add(w);
                     sq.add(w.map(|x| x * x));
                     abs.add(w.map(f64::abs));
