@@ -1224,24 +1224,7 @@ impl Adaptive {
         // The probes' points in the square's coordinates `(μ, b)` with
         // `φ = 2π turn(b)`, values on the scale of `2π g`.
         let mut pts = [([0.0f64; 2], 0.0f64); P];
-        let mut n = 0;
-        let mut push = |w: glam::Vec3, v: f64| {
-            let (x, b, j) = map.inverse(w);
-            if let Some(p) = pts.get_mut(n) {
-                *p = ([x, b], v * j);
-                n += 1;
-            }
-        };
-        if probing {
-            for &(w, v) in probe::Probe::take(g)?.points() {
-                push(w, v);
-            }
-        }
-        let mean = if check > 0 {
-            Some(probe::MeanCheck::take_each(g, check, &mut push)?)
-        } else {
-            None
-        };
+        let (n, mean) = probe_points(g, map, probing, check, &mut pts)?;
         let (mut e, confirmed) = self.run(
             rule_budget,
             pts.get(..n).unwrap_or_default(),
@@ -1261,6 +1244,41 @@ impl Adaptive {
         }
         Ok((e, confirmed))
     }
+}
+
+/// Fills `pts` with the peak probe's points (`probing`) and the mean
+/// check's `check` draws (only where `P > PROBE_POINTS`, known at compile
+/// time) in the plain square's coordinates; returns how many it wrote and
+/// the mean check. Never inlined: the probe's own table and the draws'
+/// buffers stay out of the frame that runs the rule (the firmware's stack
+/// target: 8,000 B at a budget of 1,024 on the Cortex-M4F).
+#[inline(never)]
+fn probe_points<I: Integrand, const P: usize>(
+    g: &I,
+    map: &PlainMap,
+    probing: bool,
+    check: u32,
+    pts: &mut [([f64; 2], f64); P],
+) -> Result<(usize, Option<probe::MeanCheck<WideOf<I>>>), IntegrateError> {
+    let mut n = 0;
+    let mut push = |w: glam::Vec3, v: f64| {
+        let (x, b, j) = map.inverse(w);
+        if let Some(p) = pts.get_mut(n) {
+            *p = ([x, b], v * j);
+            n += 1;
+        }
+    };
+    if probing {
+        for &(w, v) in probe::Probe::take(g)?.points() {
+            push(w, v);
+        }
+    }
+    let mean = if P > probe::PROBE_POINTS && check > 0 {
+        Some(probe::MeanCheck::take_each(g, check, &mut push)?)
+    } else {
+        None
+    };
+    Ok((n, mean))
 }
 
 /// One draw of the plain rule's mean check, whose draws are also peak
