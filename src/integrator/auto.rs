@@ -243,7 +243,11 @@ fn median(v: &[f64]) -> Option<f64> {
 /// method refining four times tighter on its next run (the narrow-lobe path
 /// starts there with the warped rule). With a fixed budget
 /// ([`Integrator::integrate`]) it refines until the budget cannot pay for
-/// the next level.
+/// the next level; below the pilot's cost (a budget under
+/// [`Auto::MIN_PILOT_BUDGET`]) it runs the plain [`GaussLegendre`](super::GaussLegendre)
+/// product rule, bit for bit, which needs [`GaussLegendre::MIN_BUDGET`](super::GaussLegendre::MIN_BUDGET)
+/// and converges at once on the integrands that few nodes resolve (a
+/// Lambertian-like lobe: Oren–Nayar at normal view).
 ///
 /// Stack: about `4 × 129` wide values (4 KiB for `f32`), plus the
 /// [`Adaptive`] table when it falls back.
@@ -272,6 +276,11 @@ impl Auto {
     pub const fn new() -> Self {
         Auto { _private: () }
     }
+
+    /// Smallest fixed budget that pays for the pilot and the warped
+    /// [`Adaptive`] rule after it (148); a smaller budget runs the plain
+    /// Gauss–Legendre rule (see the type's docs).
+    pub const MIN_PILOT_BUDGET: u32 = Adaptive::MIN_BUDGET_WARPED + probe::PROBE_POINTS as u32;
 }
 
 /// What the pilot found.
@@ -898,9 +907,11 @@ impl Integrator for Auto {
     /// [`Adaptive`] rule with the rest of the budget (narrow lobes, or a
     /// grid that is not resolved).
     fn integrate<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
-        let min = Adaptive::MIN_BUDGET_WARPED + probe::PROBE_POINTS as u32;
+        let min = Self::MIN_PILOT_BUDGET;
         if budget < min {
-            return Err(IntegrateError::BudgetTooSmall { minimum: min });
+            // No pilot: the cheapest rule with a nested estimate and its
+            // own checks (errors below its own minimum, 11).
+            return super::GaussLegendre::new().integrate(g, budget);
         }
         if !g.is_smooth() && g.sampling_components() > 1 {
             return plain_first(g, budget);
@@ -1164,11 +1175,26 @@ mod tests {
 
     #[test]
     fn fixed_budgets_are_respected() {
+        // Below the pilot's cost: the plain Gauss–Legendre rule, bit for
+        // bit, down to its own minimum.
         assert_eq!(
-            Auto::new().integrate(&CosPow(1), 100),
+            Auto::new().integrate(&CosPow(1), super::super::GaussLegendre::MIN_BUDGET - 1),
             Err(IntegrateError::BudgetTooSmall {
-                minimum: Adaptive::MIN_BUDGET_WARPED + probe::PROBE_POINTS as u32
+                minimum: super::super::GaussLegendre::MIN_BUDGET
             })
+        );
+        for b in [11u32, 50, 100, Auto::MIN_PILOT_BUDGET - 1] {
+            let e = Auto::new().integrate(&CosPow(3), b).unwrap();
+            assert_eq!(
+                Ok(e),
+                super::super::GaussLegendre::new().integrate(&CosPow(3), b),
+                "{b}"
+            );
+            assert!(e.evaluations <= b as u64, "{b}: {e:?}");
+        }
+        assert_eq!(
+            Auto::MIN_PILOT_BUDGET,
+            Adaptive::MIN_BUDGET_WARPED + probe::PROBE_POINTS as u32
         );
         for b in [148u32, 300, 1000, 5000, 100_000] {
             let e = Auto::new().integrate(&CosPow(3), b).unwrap();
