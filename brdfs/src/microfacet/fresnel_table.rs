@@ -472,42 +472,19 @@ pub fn dielectric_average(alpha: f32, eta: f32) -> f32 {
 /// The moments `(R5, R6) = (M5/E₁, M6/E₁)` at `μ`, `α` (bilinear in `(√μ,
 /// √α)`): the lobe's means of `(1 − c)⁵` and `c (1 − c)⁶`.
 pub fn fresnel_moments(mu: f32, alpha: f32) -> (f32, f32) {
-    MomentsReader::new(alpha).moments(mu)
-}
-
-/// [`fresnel_moments`] at one `α`, with the roughness cell computed once
-/// (a prepared lobe's read is the `√μ` cell and the four values left).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct MomentsReader {
-    k: u8,
-    fa: f32,
-}
-
-impl MomentsReader {
-    /// The reader of the moments at `α` (clamped as [`fresnel_moments`]
-    /// clamps it).
-    pub(crate) fn new(alpha: f32) -> Self {
-        let (k, fa) = alpha_coord(alpha);
-        Self { k: k as u8, fa }
-    }
-
-    /// [`fresnel_moments`] at `μ` (clamped to `[0, 1]`).
-    #[inline]
-    pub(crate) fn moments(&self, mu: f32) -> (f32, f32) {
-        let (k, fa) = (usize::from(self.k), self.fa);
-        let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
-        let read = |t: &[f32]| {
-            let at = |k: usize| {
-                let i = k.wrapping_mul(FT_NX).wrapping_add(j);
-                let a = t.get(i).copied().unwrap_or(0.0);
-                let b = t.get(i.wrapping_add(1)).copied().unwrap_or(0.0);
-                a + fx * (b - a)
-            };
-            let a = at(k);
-            a + fa * (at(k.wrapping_add(1)) - a)
+    let (k, fa) = alpha_coord(alpha);
+    let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
+    let read = |t: &[f32]| {
+        let at = |k: usize| {
+            let i = k.wrapping_mul(FT_NX).wrapping_add(j);
+            let a = t.get(i).copied().unwrap_or(0.0);
+            let b = t.get(i.wrapping_add(1)).copied().unwrap_or(0.0);
+            a + fx * (b - a)
         };
-        (read(&data::MOMENT5), read(&data::MOMENT6))
-    }
+        let a = at(k);
+        a + fa * (at(k.wrapping_add(1)) - a)
+    };
+    (read(&data::MOMENT5), read(&data::MOMENT6))
 }
 
 /// The lobe's mean Fresnel factor `R_F = f0 + (1 − f0) R5 − a R6` of `F(c)

@@ -59,7 +59,8 @@ mod fresnel_table_data;
 mod ggx;
 mod kulla_conty;
 pub(crate) mod ms_sampler;
-mod prepared;
+#[doc(hidden)]
+pub mod prepared;
 mod smith;
 mod special;
 #[cfg(feature = "simd")]
@@ -85,8 +86,7 @@ pub use kulla_conty::{KullaConty, LOSS_MARGIN};
 pub use smith::{HeightCorrelated, Separable, ShadowingMasking};
 
 use core::marker::PhantomData;
-use fresnel_table::{DielectricAlbedoReader, FRESNEL_TABLE_ERROR, MomentsReader};
-use prepared::PreparedAlbedo;
+use fresnel_table::FRESNEL_TABLE_ERROR;
 #[cfg(feature = "simd")]
 use radiometry::batch::Vec3Soa;
 use radiometry::frame::half_vector_sum;
@@ -393,7 +393,7 @@ pub(crate) fn finite_nonneg(x: f32) -> f32 {
 /// # Ok(())
 /// # }
 /// ```
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Microfacet<D, G = HeightCorrelated, F = NoFresnel> {
     /// The normal distribution (already validated by its constructor).
     pub distribution: D,
@@ -401,18 +401,6 @@ pub struct Microfacet<D, G = HeightCorrelated, F = NoFresnel> {
     pub fresnel: F,
     /// The shadowing–masking choice (zero-sized marker).
     pub shadowing: PhantomData<G>,
-    /// The table cells of the directional albedo at this lobe's parameters,
-    /// once [prepared](Brdf::with_prepared_albedo).
-    albedo: PreparedAlbedo,
-}
-
-/// Two lobes are equal when their distributions and Fresnel terms are: a
-/// [prepared](Brdf::with_prepared_albedo) lobe equals the lobe it was
-/// prepared from (it is the same BRDF).
-impl<D: PartialEq, G, F: PartialEq> PartialEq for Microfacet<D, G, F> {
-    fn eq(&self, other: &Self) -> bool {
-        self.distribution == other.distribution && self.fresnel == other.fresnel
-    }
 }
 
 impl<D, G, F> Microfacet<D, G, F> {
@@ -432,7 +420,6 @@ impl<D, G, F> Microfacet<D, G, F> {
             distribution,
             fresnel,
             shadowing: PhantomData,
-            albedo: PreparedAlbedo::None,
         }
     }
 }
@@ -984,45 +971,40 @@ where
     }
 
     ///
-    /// A [prepared](Brdf::with_prepared_albedo) lobe (GGX with a dielectric
-    /// or moment-linear Fresnel term, or any tabulated lobe with `F = 1`)
-    /// reads the same tables through the cells and weights it keeps: the
-    /// same operations on the same entries, so the same value (tested).
+    /// A [prepared](Brdf::with_prepared_albedo) GGX (height-correlated `G2`)
+    /// dielectric lobe reads the same tables through the cells and weights
+    /// its [`Dielectric`] term keeps: the same operations on the same
+    /// entries, so the same value (tested).
     #[inline(always)]
     fn directional_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
-        // The prepared dielectric read inline (a layer's `eval` makes it at
-        // every call), the unprepared one's branch with the reader in place
-        // of the roughness and index work; everything else out of line.
-        if let &PreparedAlbedo::Dielectric {
-            alpha,
-            eta,
-            ref reader,
-        } = &self.albedo
-            && alpha == self.distribution.alpha()
-            && self.fresnel.form() == FresnelForm::Dielectric(eta)
+        // The prepared read inline (a layer's `eval` makes it at every call),
+        // the unprepared one's branch with the reader in place of the
+        // roughness and index work; everything else out of line.
+        if let Some(cells) = self.fresnel.albedo_cells(self.distribution.alpha())
+            && self.reads_ggx_height_correlated()
         {
             let mu = unit_cos_theta(wo);
             return if mu > 0.0 {
                 Albedo {
-                    value: F::Spectrum::splat(clamp01(reader.albedo(mu))),
-                    error: fresnel_table::dielectric_error(alpha, eta),
+                    value: F::Spectrum::splat(clamp01(cells.reader.albedo(mu))),
+                    error: cells.error,
                     is_bound: false,
                 }
             } else {
                 Albedo::zero()
             };
         }
-        self.table_albedo(wo.x, wo.y, wo.z)
+        self.tabulated_albedo(wo.x, wo.y, wo.z)
     }
 
     /// The lobe with its albedo's roughness and index cells located once:
     /// for GGX (height-correlated `G2`) with a [`Dielectric`] term (also
-    /// through [`Achromatic`]) a [`DielectricAlbedoReader`], for a term
-    /// linear in the moments ([`Schlick`], [`F82Tint`]) the `F = 1` table's
-    /// and the moments' roughness cells, for `F = 1` with any tabulated
-    /// distribution and `G2` the table's; other lobes are returned as they
-    /// are. O(1) (a cube root, a few square roots and divisions); `eval`,
-    /// `sample` and `pdf` are untouched.
+    /// through [`Achromatic`]), the term keeps a
+    /// [`DielectricAlbedoReader`](fresnel_table::DielectricAlbedoReader)
+    /// for the lobe's roughness (104 bytes); other lobes are returned as
+    /// they are. O(1) (a cube root, a few square roots and divisions);
+    /// `eval`, `sample` and `pdf` are untouched. A lobe whose roughness is
+    /// changed afterwards (the public field) reads the full tables again.
     ///
     /// ```
     /// use radiometry::{Brdf, glam::Vec3};
@@ -1037,8 +1019,11 @@ where
     /// # }
     /// ```
     fn with_prepared_albedo(self) -> Self {
+        if !self.reads_ggx_height_correlated() || !matches!(self.fresnel.form(), FresnelForm::Dielectric(_)) {
+            return self;
+        }
         Self {
-            albedo: self.prepare_albedo(),
+            fresnel: self.fresnel.with_albedo_cells(self.distribution.alpha()),
             ..self
         }
     }
@@ -1050,10 +1035,23 @@ where
     G: ShadowingMasking,
     F: Fresnel,
 {
+    /// Whether this lobe's `F = 1` albedo is GGX's height-correlated table,
+    /// the one the ratio tables go with (a constant for each `D`, `G`).
+    #[inline(always)]
+    fn reads_ggx_height_correlated(&self) -> bool {
+        self.distribution
+            .energy_tables()
+            .and_then(|t| G::select_table(&t))
+            .is_some_and(|t| core::ptr::eq(t, &albedo_data::GGX_HEIGHT_CORRELATED))
+    }
+
     /// [`Brdf::directional_albedo`] without prepared cells: the roughness
     /// and index work of every table read, then the read.
+    /// (`ωo` by its components: passed in registers, so that an inlined
+    /// caller keeps its `ωo` out of memory.)
     #[inline(never)]
-    fn tabulated_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
+    fn tabulated_albedo(&self, x: f32, y: f32, z: f32) -> Albedo<F::Spectrum> {
+        let wo = Vec3::new(x, y, z);
         let Some(table) = self
             .distribution
             .energy_tables()
@@ -1082,102 +1080,6 @@ where
                 }
             }
             _ => Albedo::zero(),
-        }
-    }
-
-    /// The cells [`Brdf::with_prepared_albedo`] keeps (see there).
-    fn prepare_albedo(&self) -> PreparedAlbedo {
-        let Some(table) = self
-            .distribution
-            .energy_tables()
-            .and_then(|t| G::select_table(&t))
-        else {
-            return PreparedAlbedo::None;
-        };
-        let alpha = self.distribution.alpha();
-        let ggx_hc = core::ptr::eq(table, &albedo_data::GGX_HEIGHT_CORRELATED);
-        match self.fresnel.form() {
-            FresnelForm::Dielectric(eta) if ggx_hc => PreparedAlbedo::Dielectric {
-                alpha,
-                eta,
-                reader: DielectricAlbedoReader::new(alpha, eta),
-            },
-            FresnelForm::Linear { .. } if ggx_hc => PreparedAlbedo::Table {
-                alpha,
-                e1: AlbedoReader::new(alpha),
-                moments: Some(MomentsReader::new(alpha)),
-            },
-            FresnelForm::One => PreparedAlbedo::Table {
-                alpha,
-                e1: AlbedoReader::new(alpha),
-                moments: None,
-            },
-            _ => PreparedAlbedo::None,
-        }
-    }
-
-    /// [`Brdf::directional_albedo`] but the prepared dielectric read: the
-    /// prepared table read, or the full one. (`ωo` by its components: passed
-    /// in registers, so an inlined caller keeps its `ωo` out of memory.)
-    #[inline(never)]
-    fn table_albedo(&self, x: f32, y: f32, z: f32) -> Albedo<F::Spectrum> {
-        let wo = Vec3::new(x, y, z);
-        match self.albedo {
-            PreparedAlbedo::Table {
-                alpha,
-                ref e1,
-                moments,
-            } => self.prepared_table_albedo(wo, alpha, e1, moments),
-            _ => None,
-        }
-        .unwrap_or_else(|| self.tabulated_albedo(wo))
-    }
-
-    /// [`Brdf::directional_albedo`] through a prepared `F = 1` table's cells
-    /// (and the moments' of a moment-linear term): `None` when the lobe's
-    /// parameters are no longer those the cells were prepared for (the
-    /// caller then reads the tables in full). The unprepared read's
-    /// branches, with the readers in place of the roughness work.
-    #[inline(always)]
-    fn prepared_table_albedo(
-        &self,
-        wo: Vec3,
-        a: f32,
-        e1: &AlbedoReader,
-        moments: Option<MomentsReader>,
-    ) -> Option<Albedo<F::Spectrum>> {
-        let alpha = self.distribution.alpha();
-        let mu = || unit_cos_theta(wo);
-        let table = self
-            .distribution
-            .energy_tables()
-            .and_then(|t| G::select_table(&t))?;
-        if a != alpha {
-            return None;
-        }
-        let mu = mu();
-        if mu.is_nan() || mu <= 0.0 {
-            return Some(Albedo::zero());
-        }
-        let e = e1.albedo(table, mu);
-        match (self.fresnel.form(), moments) {
-            (FresnelForm::One, _) => Some(Albedo {
-                value: F::Spectrum::splat(clamp01(e)),
-                error: ALBEDO_TABLE_ERROR,
-                is_bound: true,
-            }),
-            (FresnelForm::Linear { f0, a }, Some(m)) => {
-                let m = m.moments(mu);
-                let ratio = F::Spectrum::from_fn(|c| {
-                    fresnel_table::linear_fresnel_ratio(f0.channel(c), a.channel(c), m)
-                });
-                Some(Albedo {
-                    value: (ratio * e).map(clamp01),
-                    error: FRESNEL_TABLE_ERROR,
-                    is_bound: false,
-                })
-            }
-            _ => None,
         }
     }
 }

@@ -2,34 +2,37 @@
 //! albedo's table reads once [prepared](radiometry::Brdf::with_prepared_albedo):
 //! the roughness and index cells and their interpolation weights, so that a
 //! read at `ωo` is the one-dimensional interpolation in `μo` that is left.
+//! They live in the lobe's [`Dielectric`](super::Dielectric) term (the one
+//! Fresnel term the ratio tables read), so that no other lobe grows.
 
-use super::albedo_table::AlbedoReader;
-use super::fresnel_table::{DielectricAlbedoReader, MomentsReader};
+use super::fresnel_table::{DielectricAlbedoReader, dielectric_error};
 
-/// The prepared half of [`Microfacet`](super::Microfacet)'s
-/// `directional_albedo`, with the parameters it was built for (a read
-/// whose lobe no longer has them — its public fields were changed — falls
-/// back to the unprepared read).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum PreparedAlbedo {
-    /// Not prepared (what [`Microfacet::new`](super::Microfacet::new)
-    /// builds): every read locates its table cells.
-    None,
-    /// GGX (height-correlated `G2`) with a real dielectric index `η`:
-    /// `E_F(μ) = E₁(μ) R(μ)` through one reader of both tables.
-    Dielectric {
-        alpha: f32,
-        eta: f32,
-        reader: DielectricAlbedoReader,
-    },
-    /// `F = 1` (any tabulated distribution and `G2`: `E₁` alone), or with
-    /// `moments` a Fresnel term linear in the moments (GGX,
-    /// height-correlated `G2`).
-    Table {
-        alpha: f32,
-        e1: AlbedoReader,
-        moments: Option<MomentsReader>,
-    },
+/// The cells of a GGX (height-correlated `G2`) dielectric lobe's albedo
+/// `E_F(μ) = E₁(μ) R(μ)` at roughness `alpha`, with the error the full read
+/// states there ([`dielectric_error`]); a lobe whose roughness is no longer
+/// `alpha` does not use them.
+#[derive(Clone, Copy, Debug)]
+pub struct DielectricCells {
+    pub(crate) alpha: f32,
+    pub(crate) error: f32,
+    pub(crate) reader: DielectricAlbedoReader,
+}
+
+impl DielectricCells {
+    /// The cells of `E_F(·, α, η)`.
+    pub(crate) fn new(alpha: f32, eta: f32) -> Self {
+        Self {
+            alpha,
+            error: dielectric_error(alpha, eta),
+            reader: DielectricAlbedoReader::new(alpha, eta),
+        }
+    }
+
+    /// These cells if they were built for roughness `alpha`.
+    #[inline(always)]
+    pub(crate) fn for_alpha(&self, alpha: f32) -> Option<&Self> {
+        (self.alpha == alpha).then_some(self)
+    }
 }
 
 #[cfg(test)]
@@ -81,7 +84,9 @@ mod tests {
         assert_eq!((a.error, a.is_bound), (b.error, b.is_bound), "{what} ωo {wo}");
     }
 
-    /// Every prepared kind against the full read on random `(α, η, μ)`:
+    /// Prepared lobes against the full read on random `(α, η, μ)` (the
+    /// dielectric ones read through their cells, the others are returned as
+    /// they are):
     /// roughness from near-delta to 1 (and the table's own nodes and both
     /// ends), indices on both sides of 1, `μ` spread in `√μ` so grazing is
     /// covered, with non-unit and below-horizon directions.
@@ -139,7 +144,9 @@ mod tests {
 
     /// A prepared lobe whose public fields are changed afterwards reads the
     /// tables of its new parameters (bit for bit the full read), never the
-    /// stale cells; and it is the same BRDF as the lobe it was prepared from.
+    /// stale cells; a prepared term moved into a lobe of another
+    /// distribution is not read; and a prepared lobe is the same BRDF as the
+    /// lobe it was prepared from.
     #[test]
     fn prepared_cells_follow_the_parameters() {
         let wo = dir(0.35, 0.4);
@@ -155,6 +162,15 @@ mod tests {
         let fresh =
             Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(0.5).unwrap(), Dielectric::new(1.2).unwrap());
         assert_eq!(changed.directional_albedo(wo), fresh.directional_albedo(wo));
+        // The cells of a GGX lobe in a Beckmann lobe of the same roughness.
+        let mut beckmann = Microfacet::<_, HeightCorrelated, _>::new(
+            Beckmann::new(0.1).unwrap(),
+            Dielectric::new(1.5).unwrap(),
+        );
+        let full = beckmann.directional_albedo(wo);
+        beckmann.fresnel = lobe.with_prepared_albedo().fresnel;
+        assert!(beckmann.fresnel.albedo_cells(0.1).is_some());
+        assert_eq!(beckmann.directional_albedo(wo), full);
 
         let prepared = lobe.with_prepared_albedo();
         assert_eq!(prepared, lobe);
@@ -169,21 +185,22 @@ mod tests {
     }
 
     /// The prepared cells keep a lobe a small plain value: the plastic's top
-    /// (GGX, dielectric) fits in two cache lines (8 bytes unprepared before
-    /// the cells existed; the cells are stored in every `Microfacet`).
+    /// (GGX, dielectric) fits in two cache lines (8 bytes before the cells
+    /// existed); lobes without a dielectric term carry none.
     #[test]
     fn prepared_lobe_stays_small() {
         use core::mem::size_of;
         let top = size_of::<Microfacet<Ggx, HeightCorrelated, Dielectric>>();
-        let reader = size_of::<super::DielectricAlbedoReader>();
+        let reader = size_of::<super::DielectricCells>();
         std::eprintln!(
-            "size_of: Microfacet<Ggx, HeightCorrelated, Dielectric> {top}, DielectricAlbedoReader {reader}, \
+            "size_of: Microfacet<Ggx, HeightCorrelated, Dielectric> {top}, DielectricCells {reader}, \
              Coated<that, Eon<f32>> {}, OpenPbr<f32> {}, OpenPbr<Vec3> {}",
             size_of::<Coated<Microfacet<Ggx, HeightCorrelated, Dielectric>, Eon<f32>>>(),
             size_of::<crate::OpenPbr<f32>>(),
             size_of::<crate::OpenPbr<Vec3>>()
         );
         assert!(top <= 128, "{top} bytes");
+        assert_eq!(size_of::<Microfacet<Ggx, HeightCorrelated, NoFresnel>>(), 4);
     }
 
     /// The plastic (`Coated::new` keeps its top prepared) against the
