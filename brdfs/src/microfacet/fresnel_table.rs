@@ -383,8 +383,11 @@ impl DielectricRatioReader {
         match data::DIELECTRIC_OUT.get(i..i.wrapping_add(SPAN)) {
             Some(t) => {
                 let lerp = |o: usize| {
-                    let a = f32::from(t[o]);
-                    a + fx * (f32::from(t[o + 1]) - a)
+                    // (`get`: `t` has SPAN entries and `o + 1 < SPAN`, which the
+                    // optimiser sees; no panic path either way.)
+                    let at = |i: usize| f32::from(t.get(i).copied().unwrap_or(0));
+                    let a = at(o);
+                    a + fx * (at(o + 1) - a)
                 };
                 let [w0, w1, w2, w3] = self.w;
                 (((0.0 + w0 * lerp(0)) + w1 * lerp(FT_NX)) + w2 * lerp(FT_NA * FT_NX))
