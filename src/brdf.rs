@@ -290,6 +290,41 @@ pub trait Brdf {
     fn average_albedo(&self) -> Self::Spectrum {
         default_average_albedo(self)
     }
+
+    /// This lobe with the part of [`directional_albedo`](Brdf::directional_albedo)
+    /// that depends on its parameters alone done once: for a caller that reads
+    /// `E(ωo)` at every call, as a layer reads its top's `E_T(μo)` at every
+    /// `eval` ([`compose::Coated::new`](crate::compose::Coated::new) calls it on
+    /// its top). A plugin that reads its albedo from a table stores the table
+    /// cells and interpolation weights of its roughness and index here, so
+    /// that a read at `ωo` is the one-dimensional interpolation in `μo` that
+    /// is left.
+    ///
+    /// The lobe returned is the same BRDF: [`eval`](Brdf::eval),
+    /// [`sample`](Brdf::sample), [`pdf`](Brdf::pdf) and the batch paths
+    /// return the same bits, and `directional_albedo` the same value up to
+    /// the rounding the plugin states (O(1): no integration). The default
+    /// returns `self` unchanged.
+    ///
+    /// ```
+    /// use radiometry::{Brdf, glam::Vec3};
+    /// struct Flat; // f = 0.2/π: nothing to prepare
+    /// impl Brdf for Flat {
+    ///     type Spectrum = f32;
+    ///     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    ///         if wi.z > 0.0 && wo.z > 0.0 { 0.2 * core::f32::consts::FRAC_1_PI } else { 0.0 }
+    ///     }
+    /// }
+    /// let wo = Vec3::new(0.0, 0.6, 0.8);
+    /// let e = Flat.directional_albedo(wo);
+    /// assert_eq!(Flat.with_prepared_albedo().directional_albedo(wo), e);
+    /// ```
+    fn with_prepared_albedo(self) -> Self
+    where
+        Self: Sized,
+    {
+        self
+    }
 }
 
 /// The default [`Brdf::average_albedo`]: 8-point Gauss–Legendre in `μ` over

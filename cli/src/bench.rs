@@ -58,9 +58,10 @@ Plugins (F = 1 unless a Fresnel term is named):
   element — hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
   hit with textured parameters — and hit-prepared — the same hit through one OpenPbr::prepare view,
   as Adobe's prepare + eval + sample + pdf; the plastic's row construct for Coated::new, hit and
-  hit-prepared through Coated::prepare as above, albedo-read, the top's albedo at ωo alone, which
-  the energy-conserving layer reads at every eval, and albedo-prepared, the same read through a
-  DielectricAlbedoReader built once)
+  hit-prepared through Coated::prepare as above, albedo-read, the top's albedo at ωo alone as the
+  energy-conserving layer reads it at every eval (the top Coated::new keeps, prepared by
+  Brdf::with_prepared_albedo), albedo-full, the same read from a top not prepared (its table cells
+  located at every call), and albedo-prepared, the bare DielectricAlbedoReader built once)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -564,8 +565,9 @@ impl Run<'_> {
     /// the top's roughness from `u[k][0]`, then `eval` + `sample` + `pdf`
     /// through the `Brdf` calls (`hit`) and through one `Coated::prepare`
     /// view (`hit-prepared`); `albedo-read`, the top's albedo at `ωo` alone
-    /// (what the layer reads at every `eval`), and `albedo-prepared`,
-    /// the same through a reader built once.
+    /// as the layer reads it at every `eval` (its prepared top),
+    /// `albedo-full`, the same from a top not prepared, and
+    /// `albedo-prepared`, the bare reader built once.
     fn plastic_hit(&mut self, eon: Eon<f32>) {
         const BAD: &str = "bench plugin parameters are valid";
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
@@ -605,12 +607,19 @@ impl Run<'_> {
             Ggx::new(0.1).expect(BAD),
             Dielectric::new(1.5).expect(BAD),
         );
+        let layer = Coated::new(top, eon);
         let t = measure(n, mt, || {
             for &o in wo {
-                sink += top.directional_albedo(black_box(o)).value;
+                sink += black_box(&layer).top().directional_albedo(black_box(o)).value;
             }
         });
         self.push("plastic-ggx0.1-eon", "albedo-read", t);
+        let t = measure(n, mt, || {
+            for &o in wo {
+                sink += black_box(&top).directional_albedo(black_box(o)).value;
+            }
+        });
+        self.push("plastic-ggx0.1-eon", "albedo-full", t);
         // The same read through a reader prepared once (OpenPbr keeps one per
         // layer): the least any layer that reads E_T(μo) per eval can pay.
         let reader = radiometry_brdfs::microfacet::fresnel_table::DielectricAlbedoReader::new(0.1, 1.5);

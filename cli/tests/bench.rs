@@ -43,6 +43,7 @@ const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
             "hit",
             "hit-prepared",
             "albedo-read",
+            "albedo-full",
             "albedo-prepared",
         ],
     ),

@@ -227,8 +227,12 @@ impl RunTimeSpectrum for Vec3 {
     }
 }
 
+/// The type-erased BRDF of `b`, [prepared](Brdf::with_prepared_albedo) first:
+/// behind the box a layer or mixture can no longer prepare it, and a
+/// dielectric leaf's albedo is what `coated(…)` reads at every `eval` (O(1),
+/// the same values).
 fn boxed<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync + 'static>(b: B) -> AnyBrdf<S> {
-    AnyBrdf(Box::new(b))
+    AnyBrdf(Box::new(b.with_prepared_albedo()))
 }
 
 fn with_g<S, D, G>(d: D, f: FresnelSpec, ms: MultipleScattering) -> Result<AnyBrdf<S>, BrdfError>

@@ -26,10 +26,12 @@ use glam::Vec3;
 ///
 /// per channel, with `E_T` the top's [directional
 /// albedo](Brdf::directional_albedo) read at every call (the crate's lobes
-/// report it in O(1) from global tables or closed forms; wrap a third-party
-/// top whose albedo is costly in [`Precomputed`](super::Precomputed), which
-/// tabulates it once) and `Ē_T = 2∫E_T μ dμ` its hemispherical average
-/// ([`Brdf::average_albedo`], read once at construction).
+/// report it in O(1) from global tables or closed forms, and
+/// [`Coated::new`] keeps the top [prepared](Brdf::with_prepared_albedo) for
+/// those reads; wrap a third-party top whose albedo is costly in
+/// [`Precomputed`](super::Precomputed), which tabulates it once) and `Ē_T =
+/// 2∫E_T μ dμ` its hemispherical average ([`Brdf::average_albedo`], read
+/// once at construction).
 ///
 /// * **Energy-conserving** ([`Layering::EnergyConserving`], OpenPBR's eq.
 ///   "non-reciprocal albedo scaling"): `E(ωo) = K E_T(ωo) + (1 − E_T(ωo))
@@ -97,8 +99,11 @@ where
     S: Spectrum,
 {
     /// `top` over `base`, clear (no absorption), energy-conserving. O(1):
-    /// reads the top's [average albedo](Brdf::average_albedo) once.
+    /// reads the top's [average albedo](Brdf::average_albedo) once and keeps
+    /// the top [prepared](Brdf::with_prepared_albedo) for the reads of its
+    /// directional albedo at every call.
     pub fn new(top: T, base: B) -> Self {
+        let top = top.with_prepared_albedo();
         let avg = top.average_albedo();
         Self {
             top,
@@ -380,11 +385,14 @@ where
 {
     type Spectrum = S;
 
+    #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
         if !Self::both_above(wi, wo) {
             return S::zero();
         }
-        self.layer(wi, wo, self.top.eval(wi, wo), self.base.eval(wi, wo))
+        let to = self.top_albedo(wo).map(|e| 1.0 - e);
+        let (ft, fb) = (self.top.eval(wi, wo), self.base.eval(wi, wo));
+        self.layer_with(wi, wo, ft, fb, || to)
     }
 
     /// The lobes' own batch kernels, layered as [`eval`](Brdf::eval) layers
@@ -487,6 +495,15 @@ where
         }
         let t = self.top.average_albedo();
         t * self.tint + t.map(|v| 1.0 - v) * self.base.average_albedo()
+    }
+
+    /// The base's (the top is prepared at construction already): the
+    /// layer's own albedo and pick read both.
+    fn with_prepared_albedo(self) -> Self {
+        Self {
+            base: self.base.with_prepared_albedo(),
+            ..self
+        }
     }
 }
 

@@ -221,6 +221,15 @@ where
             is_bound: ea.is_bound && eb.is_bound,
         }
     }
+
+    /// Both lobes' (the picks of `sample` and `pdf` read their albedos).
+    fn with_prepared_albedo(self) -> Self {
+        Self {
+            a: self.a.with_prepared_albedo(),
+            b: self.b.with_prepared_albedo(),
+            ..self
+        }
+    }
 }
 
 impl<A, B, S> IsotropicBrdf for Mix<A, B>

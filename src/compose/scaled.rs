@@ -128,6 +128,14 @@ impl<B: Brdf<Spectrum = S>, S: Spectrum> Brdf for Scaled<B, S> {
             is_bound: e.is_bound,
         }
     }
+
+    /// The lobe's own (the scale needs nothing).
+    fn with_prepared_albedo(self) -> Self {
+        Self {
+            lobe: self.lobe.with_prepared_albedo(),
+            ..self
+        }
+    }
 }
 
 impl<B: IsotropicBrdf<Spectrum = S>, S: Spectrum> IsotropicBrdf for Scaled<B, S> {}

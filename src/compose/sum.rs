@@ -136,6 +136,11 @@ where
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         add_albedo(self.a.directional_albedo(wo), self.b.directional_albedo(wo))
     }
+
+    /// Both lobes' (the picks of `sample` and `pdf` read their albedos).
+    fn with_prepared_albedo(self) -> Self {
+        Self::new(self.a.with_prepared_albedo(), self.b.with_prepared_albedo())
+    }
 }
 
 impl<A, B, S> IsotropicBrdf for Sum<A, B>

@@ -62,6 +62,18 @@ impl<F: Fresnel<Spectrum = f32>, S: Spectrum> Fresnel for Achromatic<F, S> {
         (S::splat(lo), S::splat(hi))
     }
 
+    fn with_albedo_cells(self, alpha: f32) -> Self {
+        Self {
+            fresnel: self.fresnel.with_albedo_cells(alpha),
+            ..self
+        }
+    }
+
+    #[inline(always)]
+    fn albedo_cells(&self, alpha: f32) -> Option<&super::prepared::DielectricCells> {
+        self.fresnel.albedo_cells(alpha)
+    }
+
     fn form(&self) -> super::FresnelForm<S> {
         match self.fresnel.form() {
             super::FresnelForm::One => super::FresnelForm::One,

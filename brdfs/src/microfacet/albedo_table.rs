@@ -146,9 +146,11 @@ pub(crate) fn cell(x: f32, n: usize) -> (usize, f32) {
     } else {
         0.0
     };
-    let i = s.min(last) as usize;
+    // `s ∈ [0, n − 1]` here, so the conversion never saturates; through
+    // `u32` it is one instruction (to `usize` it handles `2⁶³` and above).
+    let i = (s.min(last) as u32).min(n as u32 - 2);
     // `i ≤ n − 2`, so `i + 1` is a valid index.
-    (i.min(n - 2), s - i as f32)
+    (i as usize, s - i as f32)
 }
 
 impl AlbedoTable {
@@ -194,7 +196,13 @@ impl AlbedoTable {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AlbedoReader {
-    rows: [u8; 4],
+    /// The first of the four consecutive rows `row..row + 4` the spline
+    /// reads (at the table's edges the outermost row's weight is 0).
+    row: u8,
+    /// Whether the four rows share one tangent scaling (`k2` all the same
+    /// bits: every row below [`ALPHA_REF`]), so that one coordinate serves
+    /// them all.
+    shared: bool,
     k2: [f32; 4],
     w: [f32; 4],
 }
@@ -231,26 +239,38 @@ impl AlbedoReader {
             0.5 * (t + 4.0 * t2 - 3.0 * t3),
             0.5 * (t3 - t2),
         ];
-        let mut rows = [k.saturating_sub(1), k, k + 1, k + 2];
-        if k == 0 {
-            // p₀ = 2p₁ − p₂.
-            w = [0.0, w[1] + 2.0 * w[0], w[2] - w[0], w[3]];
-            rows[0] = k;
-        }
-        if k + 2 >= N_ALPHA {
-            // p₃ = 2p₂ − p₁.
-            w = [w[0], w[1] - w[3], w[2] + 2.0 * w[3], 0.0];
-            rows[3] = k + 1;
-        }
+        // Four consecutive rows `first..first + 4`: at the table's edges the
+        // spline's outer row is continued linearly from the two inner ones
+        // (p₀ = 2p₁ − p₂ at the first cell, p₃ = 2p₂ − p₁ at the last) and
+        // the row left over gets weight 0.
+        let first = if k == 0 {
+            // p₀ = 2p₁ − p₂: rows 0, 1, 2 (and 3, weight 0).
+            w = [w[1] + 2.0 * w[0], w[2] - w[0], w[3], 0.0];
+            0
+        } else if k + 2 >= N_ALPHA {
+            // p₃ = 2p₂ − p₁: rows k − 1, k, k + 1 (and k − 2, weight 0).
+            w = [0.0, w[0], w[1] - w[3], w[2] + 2.0 * w[3]];
+            k - 2
+        } else {
+            k - 1
+        };
         let mut k2 = [0.0f32; 4];
-        let mut idx = [0u8; 4];
-        for ((k2, idx), &r) in k2.iter_mut().zip(&mut idx).zip(&rows) {
-            let r = r.min(N_ALPHA - 1);
+        for (i, k2) in k2.iter_mut().enumerate() {
+            let r = (first + i).min(N_ALPHA - 1);
             let q = alpha * ROW_SCALE.get(r).copied().unwrap_or(1.0);
             *k2 = q * q;
-            *idx = r as u8;
         }
-        Self { rows: idx, k2, w }
+        // Rows below ALPHA_REF share the scaling (α/ALPHA_REF)² (their
+        // `ρ(α_r)/α_r` is 1/ALPHA_REF, in `f32` for all but two rows): where
+        // the four are the same bits, one coordinate serves them all, and the
+        // read is bit for bit the four-lane one.
+        let shared = k2.iter().all(|&k| k.to_bits() == k2[0].to_bits());
+        Self {
+            row: first as u8,
+            shared,
+            k2,
+            w,
+        }
     }
 
     /// `E(μ, α)` from `table` for `μ = cos θo ∈ [0, 1]` (clamped, NaN → 0),
@@ -262,26 +282,66 @@ impl AlbedoReader {
     pub fn albedo(&self, table: &AlbedoTable, mu: f32) -> f32 {
         let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
         let s2 = (1.0 - mu) * (1.0 + mu);
-        // μ'_r = min(μ/√(μ² + k_r s²), 1), 0 where the root's argument is 0.
-        let d = Vec4::splat(mu * mu) + Vec4::from_array(self.k2) * s2;
-        let q = (Vec4::splat(mu) / sqrt4(d)).min(Vec4::ONE);
-        let q = Vec4::select(d.cmpgt(Vec4::ZERO), q, Vec4::ZERO);
-        // x_r = √μ'_r, the row coordinate.
-        let x = sqrt4(q).to_array();
-        let mut acc = 0.0f32;
-        for ((&r, &x), &w) in self.rows.iter().zip(&x).zip(&self.w) {
-            let (j, t) = cell(x, N_MU);
-            let t = if j == 0 { t * t } else { t };
-            let v = table.values.get(r as usize).map_or(0.0, |row| {
-                let (a, b) = (
-                    row.get(j).copied().unwrap_or(0.0),
-                    row.get(j + 1).copied().unwrap_or(0.0),
-                );
-                a + t * (b - a)
-            });
-            acc += w * v;
-        }
+        let first = usize::from(self.row);
+        let Some(rows) = table.values.get(first..first + 4) else {
+            return 0.0;
+        };
+        let acc = if self.shared {
+            self.shared_sum(rows, mu, s2)
+        } else {
+            // μ'_r = min(μ/√(μ² + k_r s²), 1), 0 where the root's argument is 0.
+            let d = Vec4::splat(mu * mu) + Vec4::from_array(self.k2) * s2;
+            let q = (Vec4::splat(mu) / sqrt4(d)).min(Vec4::ONE);
+            let q = Vec4::select(d.cmpgt(Vec4::ZERO), q, Vec4::ZERO);
+            // x_r = √μ'_r, the row coordinate.
+            let x = sqrt4(q).to_array();
+            let mut acc = 0.0f32;
+            for ((row, &x), &w) in rows.iter().zip(&x).zip(&self.w) {
+                let (j, t) = cell(x, N_MU);
+                let t = if j == 0 { t * t } else { t };
+                let (a, b) = (row[j], row[j + 1]);
+                acc += w * (a + t * (b - a));
+            }
+            acc
+        };
         acc.clamp(0.0, 1.0)
+    }
+
+    /// Whether the four rows share one coordinate (see the field `shared`).
+    #[inline]
+    pub(crate) fn is_shared(&self) -> bool {
+        self.shared
+    }
+
+    /// [`albedo`](Self::albedo) of a reader whose rows share one coordinate
+    /// ([`is_shared`](Self::is_shared)), `μ ∈ [0, 1]`.
+    #[inline(always)]
+    pub(crate) fn albedo_shared(&self, table: &AlbedoTable, mu: f32) -> f32 {
+        let first = usize::from(self.row);
+        match table.values.get(first..first + 4) {
+            Some(rows) => self.shared_sum(rows, mu, (1.0 - mu) * (1.0 + mu)).clamp(0.0, 1.0),
+            None => 0.0,
+        }
+    }
+
+    /// The weighted sum of the four rows at the one coordinate `√μ'`,
+    /// `μ' = min(μ/√(μ² + k s²), 1)` (0 where the root's argument is 0).
+    #[inline(always)]
+    fn shared_sum(&self, rows: &[[f32; N_MU]], mu: f32, s2: f32) -> f32 {
+        let d = mu * mu + self.k2[0] * s2;
+        let q = if d > 0.0 {
+            (mu / libm::sqrtf(d)).min(1.0)
+        } else {
+            0.0
+        };
+        let (j, t) = cell(libm::sqrtf(q), N_MU);
+        let t = if j == 0 { t * t } else { t };
+        let mut acc = 0.0f32;
+        for (row, &w) in rows.iter().zip(&self.w) {
+            let (a, b) = (row[j], row[j + 1]);
+            acc += w * (a + t * (b - a));
+        }
+        acc
     }
 }
 

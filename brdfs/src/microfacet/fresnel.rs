@@ -1,5 +1,6 @@
 //! Fresnel reflectance terms, chosen by type.
 
+use super::prepared::DielectricCells;
 use crate::error::{BrdfError, check_range};
 #[cfg(feature = "simd")]
 use crate::simd::Vf;
@@ -67,6 +68,32 @@ pub trait Fresnel {
     /// lobe's own samples).
     fn form(&self) -> FresnelForm<Self::Spectrum> {
         FresnelForm::Other
+    }
+
+    /// Hidden hook (not a stable API): this term carrying the albedo cells
+    /// of a GGX (height-correlated) lobe of roughness `alpha`, for
+    /// [`Microfacet`](super::Microfacet)'s
+    /// [`with_prepared_albedo`](radiometry::Brdf::with_prepared_albedo),
+    /// which calls it only for a [`FresnelForm::Dielectric`] term. The
+    /// default returns the term unchanged; [`Dielectric`] keeps the cells
+    /// ([`Achromatic`](super::Achromatic) forwards).
+    #[doc(hidden)]
+    fn with_albedo_cells(self, alpha: f32) -> Self
+    where
+        Self: Sized,
+    {
+        let _ = alpha;
+        self
+    }
+
+    /// Hidden hook (not a stable API): the cells
+    /// [`with_albedo_cells`](Self::with_albedo_cells) built, if they were
+    /// built for roughness `alpha`. Default `None`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn albedo_cells(&self, alpha: f32) -> Option<&DielectricCells> {
+        let _ = alpha;
+        None
     }
 
     /// Hidden hook of the `simd` feature (not a stable API): the last factor
@@ -302,9 +329,21 @@ impl<S: Spectrum> Fresnel for Schlick<S> {
 /// assert!((glass.eval(1.0) - 0.04).abs() < 1e-6);
 /// assert_eq!(Dielectric::new(1.0 / 1.5).unwrap().eval(0.3), 1.0); // TIR
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Dielectric {
     eta: f32,
+    /// The albedo cells of the GGX lobe this term was prepared in
+    /// ([`Brdf::with_prepared_albedo`](radiometry::Brdf::with_prepared_albedo)
+    /// of a [`Microfacet`](super::Microfacet)).
+    cells: Option<DielectricCells>,
+}
+
+/// Two terms are equal when their indices are (a term prepared in a lobe is
+/// the same Fresnel factor).
+impl PartialEq for Dielectric {
+    fn eq(&self, other: &Self) -> bool {
+        self.eta == other.eta
+    }
 }
 
 impl Dielectric {
@@ -312,6 +351,7 @@ impl Dielectric {
     pub fn new(eta: f32) -> Result<Self, BrdfError> {
         Ok(Dielectric {
             eta: check_range("eta", eta, MIN_ETA, MAX_ETA)?,
+            cells: None,
         })
     }
 
@@ -324,6 +364,18 @@ impl Dielectric {
 impl Fresnel for Dielectric {
     fn form(&self) -> FresnelForm<f32> {
         FresnelForm::Dielectric(self.eta)
+    }
+
+    fn with_albedo_cells(self, alpha: f32) -> Self {
+        Self {
+            cells: Some(DielectricCells::new(alpha, self.eta)),
+            ..self
+        }
+    }
+
+    #[inline(always)]
+    fn albedo_cells(&self, alpha: f32) -> Option<&DielectricCells> {
+        self.cells.as_ref().and_then(|c| c.for_alpha(alpha))
     }
 
     type Spectrum = f32;

@@ -95,7 +95,8 @@ fn cell_of(s: f32, n: usize) -> (usize, f32) {
     } else {
         0.0
     };
-    let i = (s as usize).min(n.saturating_sub(2));
+    // `s ∈ [0, n − 1]`: through `u32` the conversion is one instruction.
+    let i = ((s as u32) as usize).min(n.saturating_sub(2));
     (i, (s - i as f32).clamp(0.0, 1.0))
 }
 
@@ -189,6 +190,10 @@ pub fn dielectric_albedo(e1: &AlbedoTable, mu: f32, alpha: f32, eta: f32) -> f32
 pub struct DielectricAlbedoReader {
     e1: AlbedoReader,
     ratio: DielectricRatioReader,
+    /// Whether one `μ` coordinate serves the four rows of `E₁` and the ratio
+    /// is read from the `η > 1` table alone (no exact smooth row): the
+    /// straight-line read.
+    fast: bool,
 }
 
 /// [`dielectric_ratio`] at one `(α, η)`: the ratio table's four `(z, α)`
@@ -197,9 +202,9 @@ pub struct DielectricAlbedoReader {
 /// reader built and read once).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DielectricRatioReader {
-    /// Offsets of column 0 of the corners `(l, k)`, `(l, k+1)`, `(l+1, k)`,
-    /// `(l+1, k+1)`.
-    base: [u32; 4],
+    /// Offset of column 0 of the corner `(l, k)`; the corners `(l, k+1)`,
+    /// `(l+1, k)`, `(l+1, k+1)` follow at [`corner_offsets`] from it.
+    base: u32,
     /// Their bilinear weights.
     w: [f32; 4],
     inside: bool,
@@ -222,9 +227,11 @@ impl DielectricAlbedoReader {
     /// The reader of `E_F(·, α, η)` (the arguments clamped as
     /// [`dielectric_albedo`] clamps them).
     pub fn new(alpha: f32, eta: f32) -> Self {
+        let (e1, ratio) = (AlbedoReader::new(alpha), DielectricRatioReader::new(alpha, eta));
         Self {
-            e1: AlbedoReader::new(alpha),
-            ratio: DielectricRatioReader::new(alpha, eta),
+            e1,
+            ratio,
+            fast: e1.is_shared() && !ratio.inside && ratio.exact == 0.0,
         }
     }
 
@@ -235,11 +242,29 @@ impl DielectricAlbedoReader {
     }
 
     /// `E_F(μ, α, η) = E₁(μ, α) · R(μ)` (see [`dielectric_albedo`]), in `[0, 1]`.
-    #[inline]
+    #[inline(always)]
     pub fn albedo(&self, mu: f32) -> f32 {
+        let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        if !self.fast {
+            return self.albedo_general(mu);
+        }
+        let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
+        (self.e1.albedo_shared(e1, mu) * self.ratio.ratio_outside(mu)).clamp(0.0, 1.0)
+    }
+
+    /// [`albedo`](Self::albedo) through the general readers.
+    #[inline(never)]
+    fn albedo_general(&self, mu: f32) -> f32 {
         let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
         (self.e1.albedo(e1, mu) * self.ratio.ratio(mu)).clamp(0.0, 1.0)
     }
+}
+
+/// The offsets of the ratio table's four `(z, α)` corners `(l, k)`, `(l,
+/// k+1)`, `(l+1, k)`, `(l+1, k+1)` from the first, in a table of `nx`
+/// columns per row.
+const fn corner_offsets(nx: usize) -> [usize; 4] {
+    [0, nx, FT_NA * nx, FT_NA * nx + nx]
 }
 
 impl DielectricRatioReader {
@@ -250,7 +275,7 @@ impl DielectricRatioReader {
         let (k, fa) = alpha_coord(alpha);
         let nx = if inside { FT_NX_IN } else { FT_NX };
         let off = |l: usize, k: usize| l.wrapping_mul(FT_NA).wrapping_add(k).wrapping_mul(nx);
-        let base = [off(l, k), off(l, k + 1), off(l + 1, k), off(l + 1, k + 1)].map(|o| o as u32);
+        let base = off(l, k) as u32;
         let w = [(1.0 - fz) * (1.0 - fa), (1.0 - fz) * fa, fz * (1.0 - fa), fz * fa];
         let mut r = Self {
             base,
@@ -327,34 +352,70 @@ impl DielectricRatioReader {
     #[inline]
     pub fn ratio(&self, mu: f32) -> f32 {
         let mu = mu.clamp(0.0, 1.0);
-        let (table, nx): (&[u16], usize) = if self.inside {
-            (&data::DIELECTRIC_IN, FT_NX_IN)
-        } else {
-            (&data::DIELECTRIC_OUT, FT_NX)
-        };
-        let cell_at = |x: f32| cell_of(x * (nx - 1) as f32, nx);
-        let cells = if self.inside {
-            let [x0, x1] = self.x_inside(mu);
-            [cell_at(x0), cell_at(x1)]
-        } else {
-            let c = cell_at(libm::sqrtf(mu));
-            [c, c]
-        };
-        let mut acc = 0.0f32;
-        for (c, (&b, &w)) in self.base.iter().zip(&self.w).enumerate() {
-            // Corners 0 and 2 sit on roughness row k, 1 and 3 on k + 1.
-            let (j, fx) = cells[c & 1];
-            let i = (b as usize).wrapping_add(j);
-            let a = table.get(i).copied().unwrap_or(0) as f32;
-            let bb = table.get(i.wrapping_add(1)).copied().unwrap_or(0) as f32;
-            acc += w * (a + fx * (bb - a));
+        if self.inside {
+            return self.ratio_inside(mu);
         }
+        let acc = self.outside_sum(mu);
         let smooth = if self.exact > 0.0 {
             self.exact * smooth_fresnel(mu, self.eta2m1, self.eta2)
         } else {
             0.0
         };
         (acc * (1.0 / 65535.0) + smooth).clamp(0.0, 1.0)
+    }
+
+    /// [`ratio`](Self::ratio) for `η > 1` without the exact smooth row
+    /// (`exact = 0`), `μ ∈ [0, 1]`.
+    #[inline(always)]
+    fn ratio_outside(&self, mu: f32) -> f32 {
+        (self.outside_sum(mu) * (1.0 / 65535.0)).clamp(0.0, 1.0)
+    }
+
+    /// `η > 1`: the corners' bilinear sum (table units) at `μ ∈ [0, 1]`,
+    /// every corner at the same `x = √μ`.
+    #[inline(always)]
+    fn outside_sum(&self, mu: f32) -> f32 {
+        let (j, fx) = cell_of(libm::sqrtf(mu) * (FT_NX - 1) as f32, FT_NX);
+        let i = (self.base as usize).wrapping_add(j);
+        // The corners (l, k), (l, k + 1), (l + 1, k), (l + 1, k + 1) sit
+        // at offsets 0, NX, NA·NX and NA·NX + NX from the first.
+        const SPAN: usize = FT_NA * FT_NX + FT_NX + 2;
+        match data::DIELECTRIC_OUT.get(i..i.wrapping_add(SPAN)) {
+            Some(t) => {
+                let lerp = |o: usize| {
+                    // (`get`: `t` has SPAN entries and `o + 1 < SPAN`, which the
+                    // optimiser sees; no panic path either way.)
+                    let at = |i: usize| f32::from(t.get(i).copied().unwrap_or(0));
+                    let a = at(o);
+                    a + fx * (at(o + 1) - a)
+                };
+                let [w0, w1, w2, w3] = self.w;
+                (((0.0 + w0 * lerp(0)) + w1 * lerp(FT_NX)) + w2 * lerp(FT_NA * FT_NX))
+                    + w3 * lerp(FT_NA * FT_NX + FT_NX)
+            }
+            None => 0.0,
+        }
+    }
+
+    /// [`ratio`](Self::ratio) for `η < 1` (`μ ∈ [0, 1]`): each roughness row
+    /// at its own `x`.
+    #[inline]
+    fn ratio_inside(&self, mu: f32) -> f32 {
+        let table: &[u16] = &data::DIELECTRIC_IN;
+        let nx = FT_NX_IN;
+        let cell_at = |x: f32| cell_of(x * (nx - 1) as f32, nx);
+        let [x0, x1] = self.x_inside(mu);
+        let cells = [cell_at(x0), cell_at(x1)];
+        let mut acc = 0.0f32;
+        for (c, (&o, &w)) in corner_offsets(nx).iter().zip(&self.w).enumerate() {
+            // Corners 0 and 2 sit on roughness row k, 1 and 3 on k + 1.
+            let (j, fx) = cells[c & 1];
+            let i = (self.base as usize).wrapping_add(o).wrapping_add(j);
+            let a = table.get(i).copied().unwrap_or(0) as f32;
+            let bb = table.get(i.wrapping_add(1)).copied().unwrap_or(0) as f32;
+            acc += w * (a + fx * (bb - a));
+        }
+        (acc * (1.0 / 65535.0)).clamp(0.0, 1.0)
     }
 }
 

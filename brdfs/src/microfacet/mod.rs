@@ -59,6 +59,8 @@ mod fresnel_table_data;
 mod ggx;
 mod kulla_conty;
 pub(crate) mod ms_sampler;
+#[doc(hidden)]
+pub mod prepared;
 mod smith;
 mod special;
 #[cfg(feature = "simd")]
@@ -302,6 +304,17 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
         Some(v * (1.0 / libm::sqrtf(l2)))
     } else {
         None
+    }
+}
+
+/// `cos θ` of the direction of `w` (`unitize` leaves a unit vector as it
+/// is); 0 for a degenerate one (a zero albedo, as the full read gives).
+#[inline(always)]
+fn unit_cos_theta(w: Vec3) -> f32 {
+    if is_unit(w) {
+        w.z
+    } else {
+        unitize(w).map_or(0.0, |w| w.z)
     }
 }
 
@@ -957,7 +970,88 @@ where
         }
     }
 
+    ///
+    /// A [prepared](Brdf::with_prepared_albedo) GGX (height-correlated `G2`)
+    /// dielectric lobe reads the same tables through the cells and weights
+    /// its [`Dielectric`] term keeps: the same operations on the same
+    /// entries, so the same value (tested).
+    #[inline(always)]
     fn directional_albedo(&self, wo: Vec3) -> Albedo<F::Spectrum> {
+        // The prepared read inline (a layer's `eval` makes it at every call),
+        // the unprepared one's branch with the reader in place of the
+        // roughness and index work; everything else out of line.
+        if let Some(cells) = self.fresnel.albedo_cells(self.distribution.alpha())
+            && self.reads_ggx_height_correlated()
+        {
+            let mu = unit_cos_theta(wo);
+            return if mu > 0.0 {
+                Albedo {
+                    value: F::Spectrum::splat(clamp01(cells.reader.albedo(mu))),
+                    error: cells.error,
+                    is_bound: false,
+                }
+            } else {
+                Albedo::zero()
+            };
+        }
+        self.tabulated_albedo(wo.x, wo.y, wo.z)
+    }
+
+    /// The lobe with its albedo's roughness and index cells located once:
+    /// for GGX (height-correlated `G2`) with a [`Dielectric`] term (also
+    /// through [`Achromatic`]), the term keeps a
+    /// [`DielectricAlbedoReader`](fresnel_table::DielectricAlbedoReader)
+    /// for the lobe's roughness (104 bytes); other lobes are returned as
+    /// they are. O(1) (a cube root, a few square roots and divisions);
+    /// `eval`, `sample` and `pdf` are untouched. A lobe whose roughness is
+    /// changed afterwards (the public field) reads the full tables again.
+    ///
+    /// ```
+    /// use radiometry::{Brdf, glam::Vec3};
+    /// use radiometry_brdfs::microfacet::{Dielectric, Ggx, HeightCorrelated, Microfacet};
+    /// # fn main() -> Result<(), radiometry_brdfs::BrdfError> {
+    /// let coat = Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(0.1)?, Dielectric::new(1.5)?);
+    /// let prepared = coat.with_prepared_albedo();
+    /// let wo = Vec3::new(0.6, 0.0, 0.8);
+    /// assert_eq!(prepared.directional_albedo(wo), coat.directional_albedo(wo));
+    /// assert_eq!(prepared, coat); // the same BRDF
+    /// # Ok(())
+    /// # }
+    /// ```
+    fn with_prepared_albedo(self) -> Self {
+        if !self.reads_ggx_height_correlated() || !matches!(self.fresnel.form(), FresnelForm::Dielectric(_)) {
+            return self;
+        }
+        Self {
+            fresnel: self.fresnel.with_albedo_cells(self.distribution.alpha()),
+            ..self
+        }
+    }
+}
+
+impl<D, G, F> Microfacet<D, G, F>
+where
+    D: MicrofacetDistribution,
+    G: ShadowingMasking,
+    F: Fresnel,
+{
+    /// Whether this lobe's `F = 1` albedo is GGX's height-correlated table,
+    /// the one the ratio tables go with (a constant for each `D`, `G`).
+    #[inline(always)]
+    fn reads_ggx_height_correlated(&self) -> bool {
+        self.distribution
+            .energy_tables()
+            .and_then(|t| G::select_table(&t))
+            .is_some_and(|t| core::ptr::eq(t, &albedo_data::GGX_HEIGHT_CORRELATED))
+    }
+
+    /// [`Brdf::directional_albedo`] without prepared cells: the roughness
+    /// and index work of every table read, then the read.
+    /// (`ωo` by its components: passed in registers, so that an inlined
+    /// caller keeps its `ωo` out of memory.)
+    #[inline(never)]
+    fn tabulated_albedo(&self, x: f32, y: f32, z: f32) -> Albedo<F::Spectrum> {
+        let wo = Vec3::new(x, y, z);
         let Some(table) = self
             .distribution
             .energy_tables()

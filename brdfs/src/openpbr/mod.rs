@@ -347,10 +347,6 @@ pub struct OpenPbr<S: Spectrum = f32> {
     /// `(α_s, η_s)` and `(α_c, η_c)` for the tables.
     spec_ae: (f32, f32),
     coat_ae: (f32, f32),
-    /// `E_s(·)` and `E_C(·)` of the global tables (the coat's only read
-    /// when the coat is on).
-    spec_e: DielectricAlbedoReader,
-    coat_e: DielectricAlbedoReader,
     /// `1/(1 − Ē_s)`.
     inv_spec_avg: f32,
     /// Reciprocal mode: `1/(1 − Ē_C)`; the same for the fuzz (`w_F E_F`).
@@ -367,6 +363,20 @@ pub struct OpenPbr<S: Spectrum = f32> {
     r_b: f32,
     /// `F0` of the coat (for the reciprocal mode's `K_s`).
     coat_f0: f32,
+}
+
+/// `E(μ)` of a dielectric lobe of roughness and index `(α, η)`
+/// (`ae`) from the global tables, through the cells the lobe keeps once
+/// [prepared](radiometry::Brdf::with_prepared_albedo) (the material
+/// prepares its dielectric lobes at construction, and its lobes cannot be
+/// changed afterwards), else through a reader built for the call.
+#[inline(always)]
+fn lobe_albedo<S: Spectrum>(lobe: &DielectricLobe<S>, ae: (f32, f32)) -> impl Fn(f32) -> f32 + '_ {
+    let cells = lobe.fresnel.albedo_cells(lobe.distribution.alpha());
+    move |mu| match cells {
+        Some(c) => c.reader.albedo(mu),
+        None => DielectricAlbedoReader::new(ae.0, ae.1).albedo(mu),
+    }
 }
 
 /// `α = max(r², 10⁻⁴)`.
@@ -466,11 +476,18 @@ impl<S: Spectrum> OpenPbr<S> {
         let ggx_s = Ggx::new(a_s)?;
         let metal = (m > 0.0 && xi > 0.0).then(|| Metal::new(ggx_s, rho, spec_color));
         let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
-        let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?));
+        // The dielectric lobes keep their albedo's table cells (the reader of
+        // `E_s`, `E_C`: `Brdf::with_prepared_albedo`); the coat's only when on.
+        let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?)).with_prepared_albedo();
         let diffuse = Eon::new(rho, sigma)?;
         let diffuse_sampler = TransmissionSampler::new(a_s, eta_s);
         let a_c = alpha(r_c);
         let coat = Microfacet::new(Ggx::new(a_c)?, Achromatic::new(Dielectric::new(coat_ior)?));
+        let coat = if w_c > 0.0 {
+            coat.with_prepared_albedo()
+        } else {
+            coat
+        };
         let reciprocal = layering == Layering::Reciprocal;
         // Only the fuzz lobe of this mode, and only when the fuzz is on.
         let fuzz = if w_f > 0.0 && !reciprocal {
@@ -485,12 +502,10 @@ impl<S: Spectrum> OpenPbr<S> {
             None
         };
 
-        let spec_e = DielectricAlbedoReader::new(a_s, eta_s);
-        let coat_e = if w_c > 0.0 {
-            DielectricAlbedoReader::new(a_c, coat_ior)
-        } else {
-            spec_e
-        };
+        let (spec_e, coat_e) = (
+            lobe_albedo(&spec, (a_s, eta_s)),
+            lobe_albedo(&coat, (a_c, coat_ior)),
+        );
         let spec_avg = dielectric_average(a_s, eta_s);
         let coat_norm = if reciprocal && w_c > 0.0 {
             inv(1.0 - dielectric_average(a_c, coat_ior))
@@ -513,9 +528,9 @@ impl<S: Spectrum> OpenPbr<S> {
                     1.0
                 }
             };
-            let t_s = |mu: f32| 1.0 - spec_e.albedo(mu);
+            let t_s = |mu: f32| 1.0 - spec_e(mu);
             let t_c = |mu: f32| {
-                if w_c > 0.0 { 1.0 - coat_e.albedo(mu) } else { 1.0 }
+                if w_c > 0.0 { 1.0 - coat_e(mu) } else { 1.0 }
             };
             [
                 inv(gauss_legendre_average(|mu| t_f(mu) * t_s(mu))),
@@ -528,7 +543,7 @@ impl<S: Spectrum> OpenPbr<S> {
         // (only read under a coat).
         let (base_albedo_normal, k_r) = if w_c > 0.0 {
             let n = Vec3::Z;
-            let e_s1 = spec_e.albedo(1.0);
+            let e_s1 = spec_e(1.0);
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
                 // E₁(1), read once for the single scattering and the loss.
@@ -568,8 +583,6 @@ impl<S: Spectrum> OpenPbr<S> {
             xi,
             spec_ae: (a_s, eta_s),
             coat_ae: (a_c, coat_ior),
-            spec_e,
-            coat_e,
             inv_spec_avg: inv(1.0 - spec_avg),
             coat_norm,
             fuzz_norm,
@@ -594,13 +607,13 @@ impl<S: Spectrum> OpenPbr<S> {
     /// `E_s(μ)`: the dielectric specular lobe's albedo.
     #[inline]
     fn e_spec(&self, mu: f32) -> f32 {
-        self.spec_e.albedo(mu)
+        lobe_albedo(&self.spec, self.spec_ae)(mu)
     }
 
     /// `E_C(μ)`: the coat lobe's albedo.
     #[inline]
     fn e_coat(&self, mu: f32) -> f32 {
-        self.coat_e.albedo(mu)
+        lobe_albedo(&self.coat, self.coat_ae)(mu)
     }
 
     /// `w_F E_F(μ)`: the fuzz's untinted albedo, weighted.
