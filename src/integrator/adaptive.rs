@@ -1264,6 +1264,9 @@ impl Adaptive {
     }
 }
 
+/// How many probe points [`probe_points`] wrote, and the mean check.
+type ProbePoints<W> = (usize, Option<probe::MeanCheck<W>>);
+
 /// Fills `pts` with the peak probe's points (`probing`) and the mean
 /// check's `check` draws (only where `P > PROBE_POINTS`, known at compile
 /// time) in the plain square's coordinates; returns how many it wrote and
@@ -1277,7 +1280,7 @@ fn probe_points<I: Integrand, const P: usize>(
     probing: bool,
     check: u32,
     pts: &mut [([f64; 2], f64); P],
-) -> Result<(usize, Option<probe::MeanCheck<WideOf<I>>>), IntegrateError> {
+) -> Result<ProbePoints<WideOf<I>>, IntegrateError> {
     let mut n = 0;
     let mut push = |w: glam::Vec3, v: f64| {
         let (x, b, j) = map.inverse(w);
