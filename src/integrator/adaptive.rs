@@ -669,7 +669,8 @@ fn two_level<W: WideSpectrum>(p: &Region<W>, a: &mut Region<W>, b: &mut Region<W
 ///    beyond a great circle that runs within `0.0087 cot θ` rad of the lines
 ///    `cos Δφ = 0`; the rule was 4·10⁻⁶ low with estimates 10–36× smaller
 ///    at 1,024–65,536 evaluations);
-/// 7. on the plain hemisphere split at a kink `μk`, the piece from `μk` to
+/// 7. on the plain hemisphere split at a kink `μk`, with a fixed budget (not
+///    in the staged runs, which other rules confirm), the piece from `μk` to
 ///    the pole is `μ = 1 − (1 − μk)(1 − u)²` (`sin θ` linear in `u`), so a
 ///    lobe that is not symmetric about the normal has no square-root
 ///    singularity at the zenith (the same Phong lobe passes `0.5°` from the
