@@ -1582,8 +1582,8 @@ impl Adaptive {
     /// plain rule's.
     fn cross_checked<I: Integrand>(&self, g: &I, budget: u32) -> Result<Estimate<WideOf<I>>, IntegrateError> {
         let side = budget / CROSS_CHECK_SHARE;
-        let (mut e, _) = self.integrate_impl(g, budget - side, None)?;
-        let (w, _) = self.warped().integrate_impl(g, side, None)?;
+        let mut e = self.integrate_unchecked(g, budget - side)?;
+        let w = self.warped().integrate_unchecked(g, side)?;
         if w.value.is_finite() && w.error.is_finite() && e.value.is_finite() && e.error.is_finite() {
             e.error = WideOf::<I>::from_fn(|i| {
                 let d = (e.value.channel(i) - w.value.channel(i)).abs();
@@ -1598,9 +1598,7 @@ impl Adaptive {
         e.evaluations += w.evaluations;
         Ok(e)
     }
-}
 
-impl Adaptive {
     /// [`Integrator::integrate`] without the cross-check on the map's
     /// square (for [`Auto`](super::Auto), which falls back to the warped
     /// rule itself when the plain one is unresolved).
@@ -1618,7 +1616,7 @@ impl Integrator for Adaptive {
         if !self.warped && g.has_sampling_map() && budget >= CROSS_CHECK_MIN_BUDGET {
             return self.cross_checked(g, budget);
         }
-        self.integrate_impl(g, budget, None).map(|(e, _)| e)
+        self.integrate_unchecked(g, budget)
     }
 
     /// One staged run with the budget
