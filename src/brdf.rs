@@ -279,6 +279,41 @@ pub trait Brdf {
         crate::compose::albedo_by_sampling(self, wo)
     }
 
+    /// The value of [`directional_albedo`](Brdf::directional_albedo) at
+    /// each of `wo`: `out[k] = directional_albedo(wo[k]).value` for `k < n =
+    /// min(len)`; elements of `out` past `n` are set to zero ([batch length
+    /// rule](crate::batch::zero_tail)). A layer that reads its top's albedo
+    /// at every direction of a batch
+    /// ([`compose::Coated`](crate::compose::Coated)'s batch paths) reads it
+    /// here.
+    ///
+    /// The default loops over `directional_albedo`; a plugin whose albedo
+    /// comes from a table may read the table in vector lanes (the GGX
+    /// dielectric lobes of `radiometry-brdfs`, once
+    /// [prepared](Brdf::with_prepared_albedo), with its `simd` feature:
+    /// bit for bit the scalar values).
+    ///
+    /// ```
+    /// use radiometry::{Brdf, glam::Vec3};
+    /// struct Flat; // f = 0.2/π, E = 0.2 above the horizon
+    /// impl Brdf for Flat {
+    ///     type Spectrum = f32;
+    ///     fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+    ///         if wi.z > 0.0 && wo.z > 0.0 { 0.2 * core::f32::consts::FRAC_1_PI } else { 0.0 }
+    ///     }
+    /// }
+    /// let wo = [Vec3::new(0.0, 0.6, 0.8), -Vec3::Z];
+    /// let mut out = [9.0f32; 3];
+    /// Flat.directional_albedo_batch(&wo, &mut out);
+    /// assert_eq!(out, [Flat.directional_albedo(wo[0]).value, 0.0, 0.0]);
+    /// ```
+    fn directional_albedo_batch(&self, wo: &[Vec3], out: &mut [Self::Spectrum]) {
+        for (o, &w) in out.iter_mut().zip(wo) {
+            *o = self.directional_albedo(w).value;
+        }
+        crate::batch::zero_tail(out, wo.len());
+    }
+
     /// The hemispherical average of the directional albedo, `Ē = 2∫₀¹ E(μ) μ
     /// dμ` (the albedo under uniform light from every direction, the
     /// normalisation of a reciprocal layer, [`compose::Coated`](crate::compose::Coated)).
@@ -420,6 +455,10 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     #[inline]
     fn directional_albedo(&self, wo: Vec3) -> Albedo<Self::Spectrum> {
         (**self).directional_albedo(wo)
+    }
+    #[inline]
+    fn directional_albedo_batch(&self, wo: &[Vec3], out: &mut [Self::Spectrum]) {
+        (**self).directional_albedo_batch(wo, out)
     }
     fn average_albedo(&self) -> Self::Spectrum {
         (**self).average_albedo()

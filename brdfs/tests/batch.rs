@@ -171,7 +171,24 @@ fn compare<B: Brdf>(
         b.pdf_batch(&wi[..n - 1], &wo, &mut out);
         prop_assert!(out[n - 1] == 0.0, "{name}: pdf_batch past a short wi");
     }
+    // The directional albedo's values: bit for bit the scalar reads, zeros
+    // past the inputs.
+    let mut albedo = vec![sentinel; n + 3];
+    b.directional_albedo_batch(&wo, &mut albedo);
+    let mut w_albedo = 0.0f64;
+    for (k, &c) in wo.iter().enumerate() {
+        let e = b.directional_albedo(c).value;
+        for ch in 0..B::Spectrum::CHANNELS {
+            let what = || format!("directional_albedo_batch {name} k={k} ch={ch} wo={c:?}");
+            w_albedo = w_albedo.max(check(e.channel(ch), albedo[k].channel(ch), what)?);
+        }
+    }
+    prop_assert!(
+        albedo[n..].iter().all(|&e| e == B::Spectrum::zero()),
+        "{name}: directional_albedo_batch left a stale value past the inputs"
+    );
     let values = n * B::Spectrum::CHANNELS;
+    rep.add(format!("{name}/directional_albedo_batch"), w_albedo, values);
     rep.add(format!("{name}/eval_batch"), w_aos, values);
     rep.add(format!("{name}/eval_batch_soa"), w_soa, values);
     rep.add(format!("{name}/pdf_batch"), w_pdf, n);
@@ -315,6 +332,13 @@ fn compare_composites(
         Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(alpha).unwrap(), Dielectric::new(1.5).unwrap());
     let eon = Eon::new(0.8f32, sigma).unwrap();
     compare(&Coated::new(coat, eon), "coated-plastic", pairs, rep)?;
+    // The top as `Coated::new` keeps it: its albedo read in vector lanes.
+    compare(&coat.with_prepared_albedo(), "coat-prepared", pairs, rep)?;
+    let coat_low = Microfacet::<_, HeightCorrelated, _>::new(
+        Ggx::new(alpha).unwrap(),
+        Dielectric::new(1.0 + alpha).unwrap(),
+    );
+    compare(&coat_low.with_prepared_albedo(), "coat-prepared-eta", pairs, rep)?;
     let reciprocal = Coated::new(coat, eon).with_layering(radiometry::compose::Layering::Reciprocal);
     compare(&reciprocal, "coated-plastic-reciprocal", pairs, rep)?;
     let metal = Microfacet::<_, HeightCorrelated, _>::new(Ggx::new(alpha).unwrap(), NoFresnel);

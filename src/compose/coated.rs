@@ -2,9 +2,8 @@
 //! OpenPBR's energy-conserving form or a reciprocal one ([`Layering`]).
 
 use super::{
-    ComposeError, Layering, eval_batch_pair, eval_batch_soa_pair, finish_sample, mixture_pdf,
-    pair_components, pair_sample, pair_weight, pdf_batch_pair, pick_and_sample, pick_first,
-    reciprocal_through, saturate,
+    CHUNK, ComposeError, Layering, finish_sample, mixture_pdf, pair_components, pair_sample, pair_weight,
+    pdf_batch_pair, pick_and_sample, pick_first, reciprocal_through, saturate, soa_dirs, split_soa,
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
@@ -148,10 +147,31 @@ where
     /// The top's albedo at `ω`, each channel clamped to `[0, 1]` (NaN → 0).
     #[inline]
     fn top_albedo(&self, w: Vec3) -> S {
-        self.top
-            .directional_albedo(w)
-            .value
-            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
+        clamp_albedo(self.top.directional_albedo(w).value)
+    }
+
+    /// `to[k] = t(ωo,k) = 1 − E_T(ωo,k)` for a chunk of view directions,
+    /// from the top's [`Brdf::directional_albedo_batch`] (clamped as
+    /// [`top_albedo`](Self::top_albedo) clamps): the values the scalar path
+    /// reads one by one.
+    #[inline]
+    fn through_chunk(&self, wo: &[Vec3], to: &mut [S]) {
+        self.top.directional_albedo_batch(wo, to);
+        for t in to.iter_mut() {
+            *t = clamp_albedo(*t).map(|e| 1.0 - e);
+        }
+    }
+
+    /// `K ⊙ f_T + A τ ⊙ f_B` of one batch element, or 0 unless both
+    /// directions are above the horizon (as [`eval`](Brdf::eval)), with
+    /// `t(ωo)` from [`through_chunk`](Self::through_chunk).
+    #[inline]
+    fn layer_element(&self, wi: Vec3, wo: Vec3, ft: S, fb: S, to: S) -> S {
+        if Self::both_above(wi, wo) {
+            self.layer_with(wi, wo, ft, fb, || to)
+        } else {
+            S::zero()
+        }
     }
 
     /// `top` over `base` through an absorbing coat: `coat_color` (`C ∈ [0,
@@ -209,14 +229,8 @@ where
     }
 
     /// `K ⊙ f_T + A τ ⊙ f_B` from the lobes' values (both directions above
-    /// the horizon); `t(ωo)` read from the top's albedo only when the base
-    /// reflects.
-    #[inline]
-    fn layer(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S) -> S {
-        self.layer_with(wi, wo, f_top, fb, || self.top_albedo(wo).map(|e| 1.0 - e))
-    }
-
-    /// [`layer`](Self::layer) with `t(ωo)` from `to` (a prepared view's).
+    /// the horizon), with `t(ωo) = 1 − E_T(ωo)` from `to` (called only when
+    /// the base reflects).
     #[inline]
     fn layer_with(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S, to: impl FnOnce() -> S) -> S {
         let top = f_top * self.tint;
@@ -329,6 +343,12 @@ where
     }
 }
 
+/// An albedo with each channel clamped to `[0, 1]` (NaN → 0).
+#[inline]
+fn clamp_albedo<S: Spectrum>(e: S) -> S {
+    e.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
+}
+
 /// A coat's absorption on the way in and out, OpenPBR Surface 1.1
 /// §"Coat — view-dependent absorption":
 ///
@@ -395,28 +415,68 @@ where
         self.layer_with(wi, wo, ft, fb, || to)
     }
 
-    /// The lobes' own batch kernels, layered as [`eval`](Brdf::eval) layers
-    /// them (element by element equal).
+    /// The lobes' own batch kernels and the top's
+    /// [`directional_albedo_batch`](Brdf::directional_albedo_batch) (a
+    /// prepared GGX dielectric top reads its table in vector lanes), in
+    /// chunks, layered as [`eval`](Brdf::eval) layers them (element by element
+    /// equal).
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-        eval_batch_pair(&self.top, &self.base, wi, wo, out, |i, o, ft, fb| {
-            if Self::both_above(i, o) {
-                self.layer(i, o, ft, fb)
-            } else {
-                S::zero()
+        let mut ft = [S::zero(); CHUNK];
+        let mut fb = [S::zero(); CHUNK];
+        let mut to = [S::zero(); CHUNK];
+        for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+            self.top.eval_batch(wi, wo, &mut ft);
+            self.base.eval_batch(wi, wo, &mut fb);
+            self.through_chunk(wo, &mut to);
+            for ((o, (&i, &j)), ((&x, &y), &t)) in out
+                .iter_mut()
+                .zip(wi.iter().zip(wo))
+                .zip(ft.iter().zip(&fb).zip(&to))
+            {
+                *o = self.layer_element(i, j, x, y, t);
             }
-        });
+        }
+        crate::batch::zero_tail(out, wi.len().min(wo.len()));
     }
 
-    /// The lobes' own SoA kernels, layered element by element (equal to
-    /// [`eval`](Brdf::eval) element by element).
+    /// [`eval_batch`](Brdf::eval_batch) for structure-of-arrays input: the
+    /// lobes' own SoA kernels (equal to [`eval`](Brdf::eval) element by
+    /// element).
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
-        eval_batch_soa_pair(&self.top, &self.base, wi, wo, out, |i, o, ft, fb| {
-            if Self::both_above(i, o) {
-                self.layer(i, o, ft, fb)
-            } else {
-                S::zero()
+        let n = wi.len().min(wo.len()).min(out.len());
+        crate::batch::zero_tail(out, n);
+        let mut ft = [S::zero(); CHUNK];
+        let mut fb = [S::zero(); CHUNK];
+        let mut to = [S::zero(); CHUNK];
+        let mut wo_aos = [Vec3::ZERO; CHUNK];
+        // Chunks by checked splits (no division by the chunk size, no slice
+        // index that could panic).
+        let (mut ri, mut ro, mut rest) = (wi, wo, out);
+        let mut done = 0;
+        while done < n {
+            let k = CHUNK.min(n - done);
+            let (Some((ci, ni)), Some((co, no))) = (split_soa(ri, k), split_soa(ro, k)) else {
+                break;
+            };
+            let Some((oc, on)) = core::mem::take(&mut rest).split_at_mut_checked(k) else {
+                break;
+            };
+            self.top.eval_batch_soa(ci, co, &mut ft);
+            self.base.eval_batch_soa(ci, co, &mut fb);
+            for (a, w) in wo_aos.iter_mut().zip(soa_dirs(co)) {
+                *a = w;
             }
-        });
+            self.through_chunk(wo_aos.get(..k).unwrap_or(&wo_aos), &mut to);
+            for ((o, (i, j)), ((&x, &y), &t)) in oc
+                .iter_mut()
+                .zip(soa_dirs(ci).zip(wo_aos.iter().copied()))
+                .zip(ft.iter().zip(&fb).zip(&to))
+            {
+                *o = self.layer_element(i, j, x, y, t);
+            }
+            (ri, ro, rest) = (ni, no, on);
+            done += k;
+        }
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed with the pick probability

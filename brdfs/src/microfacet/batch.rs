@@ -482,6 +482,43 @@ pub(crate) fn sample<D, G, F>(
     }
 }
 
+/// [`Brdf::directional_albedo_batch`] of a prepared GGX dielectric lobe:
+/// `out[k] = E_F(μo,k)` (0 at or below the horizon), `μo` as the scalar read
+/// takes it ([`unit_cos_theta`](super::unit_cos_theta), per element), the
+/// table read in [`LANES`] lanes; a tail of `len % LANES` through the scalar
+/// read. Lane for lane the scalar value.
+pub(crate) fn dielectric_albedo<S: Spectrum>(
+    reader: &super::fresnel_table::DielectricAlbedoReader,
+    wo: &[Vec3],
+    out: &mut [S],
+) {
+    let n = wo.len().min(out.len());
+    radiometry::batch::zero_tail(out, n);
+    let (wo, out) = (&wo[..n], &mut out[..n]);
+    let mut wo_chunks = wo.chunks_exact(LANES);
+    let mut out_chunks = out.chunks_exact_mut(LANES);
+    for (w, o) in (&mut wo_chunks).zip(&mut out_chunks) {
+        let mut mu = [0.0f32; LANES];
+        for (m, &w) in mu.iter_mut().zip(w) {
+            *m = super::unit_cos_theta(w);
+        }
+        let mu = Vf::from(mu);
+        let e = clamp01(reader.albedo_lanes(mu));
+        let e = mu.simd_gt(Vf::ZERO).select(e, Vf::ZERO).to_array();
+        for (o, &e) in o.iter_mut().zip(&e) {
+            *o = S::splat(e);
+        }
+    }
+    for (o, &w) in out_chunks.into_remainder().iter_mut().zip(wo_chunks.remainder()) {
+        let mu = super::unit_cos_theta(w);
+        *o = S::splat(if mu > 0.0 {
+            radiometry::math::clamp01(reader.albedo(mu))
+        } else {
+            0.0
+        });
+    }
+}
+
 #[cfg(test)]
 mod wiring_tests {
     use super::DistributionKind;

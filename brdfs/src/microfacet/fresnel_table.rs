@@ -260,6 +260,82 @@ impl DielectricAlbedoReader {
     }
 }
 
+/// [`DielectricAlbedoReader::albedo`] in vector lanes (feature `simd`).
+#[cfg(feature = "simd")]
+impl DielectricAlbedoReader {
+    /// Whether [`albedo_lanes`](Self::albedo_lanes) serves this reader: the
+    /// four rows of `E₁` share one coordinate and `η > 1` with no exact
+    /// smooth-interface row (every reader below `α = 0.2` outside the first
+    /// roughness cell).
+    #[inline(always)]
+    pub(crate) fn has_lanes(&self) -> bool {
+        self.fast
+    }
+
+    /// `E_F(μ, α, η)` at each lane's `μ` (as [`albedo`](Self::albedo):
+    /// clamped to `[0, 1]`, NaN → 0) of a reader with
+    /// [`has_lanes`](Self::has_lanes): lane for lane the scalar
+    /// operations, so the same bits. A reader without lanes reads each lane
+    /// through the scalar path.
+    #[inline(always)]
+    pub(crate) fn albedo_lanes(&self, mu: crate::simd::Vf) -> crate::simd::Vf {
+        use crate::simd::Vf;
+        if !self.fast {
+            return Vf::from(mu.to_array().map(|m| self.albedo(m)));
+        }
+        let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        let mu = mu.simd_gt(Vf::ZERO).select(mu.min(Vf::ONE), Vf::ZERO);
+        let (e, r) = (
+            self.e1.albedo_shared_lanes(e1, mu),
+            self.ratio.ratio_outside_lanes(mu),
+        );
+        (e * r).max(Vf::ZERO).min(Vf::ONE)
+    }
+}
+
+/// [`DielectricRatioReader::ratio_outside`] in vector lanes.
+#[cfg(feature = "simd")]
+impl DielectricRatioReader {
+    /// `R(μ)` for `η > 1` at each lane's `μ ∈ [0, 1]`: the cell of `x = √μ`
+    /// in vector form, the four corners' entries per lane, their bilinear sum
+    /// in vector form (the scalar sum's order).
+    #[inline(always)]
+    fn ratio_outside_lanes(&self, mu: crate::simd::Vf) -> crate::simd::Vf {
+        use crate::simd::{LANES, Vf};
+        const SPAN: usize = FT_NA * FT_NX + FT_NX + 2;
+        // `cell_of(√μ (n − 1), n)`.
+        let s = mu.sqrt() * Vf::splat((FT_NX - 1) as f32);
+        let s = s
+            .simd_gt(Vf::ZERO)
+            .select(s.min(Vf::splat(FT_NX.saturating_sub(1) as f32)), Vf::ZERO);
+        let s_arr = s.to_array();
+        let mut i_f = [0.0f32; LANES];
+        // Per corner, the entries at the cell and the next one, per lane.
+        let mut lo = [[0.0f32; LANES]; 4];
+        let mut hi = [[0.0f32; LANES]; 4];
+        for (l, &v) in s_arr.iter().enumerate() {
+            let j = ((v as u32) as usize).min(FT_NX.saturating_sub(2));
+            i_f[l] = j as f32;
+            let i = (self.base as usize).wrapping_add(j);
+            if let Some(t) = data::DIELECTRIC_OUT.get(i..i.wrapping_add(SPAN)) {
+                let at = |i: usize| f32::from(t.get(i).copied().unwrap_or(0));
+                for (c, &o) in corner_offsets(FT_NX).iter().enumerate() {
+                    lo[c][l] = at(o);
+                    hi[c][l] = at(o + 1);
+                }
+            }
+        }
+        let fx = (s - Vf::from(i_f)).max(Vf::ZERO).min(Vf::ONE);
+        let lerp = |c: usize| {
+            let a = Vf::from(lo[c]);
+            a + fx * (Vf::from(hi[c]) - a)
+        };
+        let [w0, w1, w2, w3] = self.w.map(Vf::splat);
+        let sum = (((Vf::ZERO + w0 * lerp(0)) + w1 * lerp(1)) + w2 * lerp(2)) + w3 * lerp(3);
+        (sum * Vf::splat(1.0 / 65535.0)).max(Vf::ZERO).min(Vf::ONE)
+    }
+}
+
 /// The offsets of the ratio table's four `(z, α)` corners `(l, k)`, `(l,
 /// k+1)`, `(l+1, k)`, `(l+1, k+1)` from the first, in a table of `nx`
 /// columns per row.

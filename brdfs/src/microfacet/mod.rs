@@ -997,6 +997,25 @@ where
         self.tabulated_albedo(wo.x, wo.y, wo.z)
     }
 
+    /// A [prepared](Brdf::with_prepared_albedo) GGX (height-correlated
+    /// `G2`) dielectric lobe with the `simd` feature reads its cells in
+    /// vector lanes (bit for bit [`directional_albedo`](Brdf::directional_albedo)'s
+    /// value, tested); every other lobe loops over `directional_albedo`.
+    fn directional_albedo_batch(&self, wo: &[Vec3], out: &mut [F::Spectrum]) {
+        #[cfg(feature = "simd")]
+        if let Some(cells) = self.fresnel.albedo_cells(self.distribution.alpha())
+            && self.reads_ggx_height_correlated()
+            && cells.reader.has_lanes()
+        {
+            batch::dielectric_albedo(&cells.reader, wo, out);
+            return;
+        }
+        for (o, &w) in out.iter_mut().zip(wo) {
+            *o = self.directional_albedo(w).value;
+        }
+        radiometry::batch::zero_tail(out, wo.len());
+    }
+
     /// The lobe with its albedo's roughness and index cells located once:
     /// for GGX (height-correlated `G2`) with a [`Dielectric`] term (also
     /// through [`Achromatic`]), the term keeps a
