@@ -263,6 +263,19 @@ fn compare_rough(sigma: f32, wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestC
         wo,
         u,
     )?;
+    // The plastic (`Coated`'s own `sample_batch`: the lobes' kernels per
+    // pick), in both layerings and through an absorbing coat.
+    use radiometry::compose::{Coated, Layering};
+    let coat = Microfacet::<_, HeightCorrelated, _>::new(
+        Ggx::new((0.4 * sigma).max(1e-3)).unwrap(),
+        Dielectric::new(1.5).unwrap(),
+    );
+    let eon = Eon::new(0.8f32, sigma).unwrap();
+    compare(&Coated::new(coat, eon), &name("coated-plastic"), wo, u)?;
+    let reciprocal = Coated::new(coat, eon).with_layering(Layering::Reciprocal);
+    compare(&reciprocal, &name("coated-plastic-reciprocal"), wo, u)?;
+    let absorbing = Coated::with_absorption(coat, eon, 0.4f32, 1.5).unwrap();
+    compare(&absorbing, &name("coated-absorbing"), wo, u)?;
     Ok(some)
 }
 

@@ -3,7 +3,7 @@
 
 use super::{
     CHUNK, ComposeError, Layering, finish_sample, mixture_pdf, pair_components, pair_sample, pair_weight,
-    pdf_batch_pair, pick_and_sample, pick_first, reciprocal_through, saturate, soa_dirs, split_soa,
+    pick_and_sample, pick_first, pick_u, reciprocal_through, saturate, soa_dirs, split_soa,
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
@@ -231,7 +231,7 @@ where
     /// `K ⊙ f_T + A τ ⊙ f_B` from the lobes' values (both directions above
     /// the horizon), with `t(ωo) = 1 − E_T(ωo)` from `to` (called only when
     /// the base reflects).
-    #[inline]
+    #[inline(always)]
     fn layer_with(&self, wi: Vec3, wo: Vec3, f_top: S, fb: S, to: impl FnOnce() -> S) -> S {
         let top = f_top * self.tint;
         if fb.is_black() {
@@ -252,12 +252,40 @@ where
 
     /// [`pick_probability`](Self::pick_probability) at `wo` above the
     /// horizon (`μ = cos θo > 0`) with the top's albedo `et` there.
-    #[inline]
+    #[inline(always)]
     fn pick_with(&self, wo: Vec3, mu: f32, et: S) -> f32 {
-        let through = self.absorption(mu, mu)
-            * et.map(|e| (1.0 - e).clamp(0.0, 1.0))
-            * self.base.directional_albedo(wo).value;
+        self.pick_from(mu, et, self.base.directional_albedo(wo).value)
+    }
+
+    /// [`pick_with`](Self::pick_with) with the base's albedo `eb` at `ωo`.
+    #[inline(always)]
+    fn pick_from(&self, mu: f32, et: S, eb: S) -> f32 {
+        let through = self.absorption(mu, mu) * et.map(|e| (1.0 - e).clamp(0.0, 1.0)) * eb;
         pick_first((et * self.tint).average(), through.average())
+    }
+
+    /// The view terms of [`prepare`](Self::prepare) for a chunk of `wo`:
+    /// `t(ωo)` and the pick probability, from the lobes'
+    /// [`directional_albedo_batch`](Brdf::directional_albedo_batch) (equal
+    /// to `prepare`'s, element by element). `to`, `pick`, `et` and `eb` are
+    /// at least as long as `wo`.
+    #[inline]
+    fn views_chunk(&self, wo: &[Vec3], to: &mut [S], pick: &mut [f32], et: &mut [S], eb: &mut [S]) {
+        self.top.directional_albedo_batch(wo, et);
+        self.base.directional_albedo_batch(wo, eb);
+        for ((((t, p), &e), &b), &w) in to
+            .iter_mut()
+            .zip(pick.iter_mut())
+            .zip(et.iter())
+            .zip(eb.iter())
+            .zip(wo)
+        {
+            let mu = cos_theta(w);
+            let above = !(mu.is_nan() || mu <= 0.0);
+            let e = if above { clamp_albedo(e) } else { S::zero() };
+            *t = e.map(|e| 1.0 - e);
+            *p = if above { self.pick_from(mu, e, b) } else { 0.5 };
+        }
     }
 
     /// Prepares the view `ωo` for any number of [`CoatedView::eval`],
@@ -287,6 +315,7 @@ where
     /// assert_eq!(view.pdf(s.wi), s.pdf);
     /// assert_eq!(view.eval(s.wi), layer.eval(s.wi, wo));
     /// ```
+    #[inline]
     pub fn prepare(&self, wo: Vec3) -> CoatedView<'_, T, B> {
         let mu = cos_theta(wo);
         let above = !(mu.is_nan() || mu <= 0.0);
@@ -480,11 +509,98 @@ where
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed with the pick probability
-    /// at each `ωo` (element by element equal to [`pdf`](Brdf::pdf)).
+    /// at each `ωo` from the lobes' albedo batches (element by element equal
+    /// to [`pdf`](Brdf::pdf)).
     fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
-        pdf_batch_pair(Some(&self.top), Some(&self.base), wi, wo, out, |w, x, y| {
-            mixture_pdf(self.pick_probability(w), x, y)
-        });
+        let mut pt = [0.0f32; CHUNK];
+        let mut pb = [0.0f32; CHUNK];
+        let mut pick = [0.0f32; CHUNK];
+        let (mut to, mut et, mut eb) = ([S::zero(); CHUNK], [S::zero(); CHUNK], [S::zero(); CHUNK]);
+        for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+            self.top.pdf_batch(wi, wo, &mut pt);
+            self.base.pdf_batch(wi, wo, &mut pb);
+            self.views_chunk(wo, &mut to, &mut pick, &mut et, &mut eb);
+            for (o, ((&x, &y), &p)) in out.iter_mut().zip(pt.iter().zip(&pb).zip(&pick)) {
+                *o = mixture_pdf(p, x, y);
+            }
+        }
+        crate::batch::zero_tail(out, wi.len().min(wo.len()));
+    }
+
+    /// [`sample`](Brdf::sample) in chunks: the view terms from the lobes'
+    /// albedo batches, each lobe's `sample_batch` over the elements that
+    /// pick it, then the lobes' `eval_batch` and `pdf_batch` at the drawn
+    /// directions, layered and mixed as `sample` does (element by element
+    /// equal to it: the same `None`s, bit-identical `wi`, pdf and weight).
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+        let (mut to, mut et, mut eb) = ([S::zero(); CHUNK], [S::zero(); CHUNK], [S::zero(); CHUNK]);
+        let (mut ft, mut fb) = ([S::zero(); CHUNK], [S::zero(); CHUNK]);
+        let (mut pick, mut pt, mut pb) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
+        // Per lobe: the elements that pick it, their `ωo` and sample points.
+        let mut idx = [[0usize; CHUNK]; 2];
+        let mut wo_sub = [[Vec3::ZERO; CHUNK]; 2];
+        let mut u_sub = [[[0.0f32; 2]; CHUNK]; 2];
+        let mut drawn: [Option<BrdfSample<S>>; CHUNK] = [None; CHUNK];
+        let mut wi = [Vec3::ZERO; CHUNK];
+        let mut ok = [false; CHUNK];
+        for ((wo, u), out) in wo.chunks(CHUNK).zip(u.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+            let m = wo.len().min(u.len());
+            self.views_chunk(wo, &mut to, &mut pick, &mut et, &mut eb);
+            let mut count = [0usize; 2];
+            for (k, (&p, (&w, &v))) in pick.iter().zip(wo.iter().zip(u)).enumerate() {
+                let (first, v) = pick_u(p, v);
+                let lobe = usize::from(!first);
+                let c = count[lobe];
+                if let (Some(i), Some(o), Some(s)) = (
+                    idx[lobe].get_mut(c),
+                    wo_sub[lobe].get_mut(c),
+                    u_sub[lobe].get_mut(c),
+                ) {
+                    (*i, *o, *s) = (k, w, v);
+                    count[lobe] = c + 1;
+                }
+            }
+            ok.fill(false);
+            for (lobe, ((idx, w), v)) in idx.iter().zip(&wo_sub).zip(&u_sub).enumerate() {
+                let c = count[lobe];
+                let (Some(idx), Some(w), Some(v), Some(d)) =
+                    (idx.get(..c), w.get(..c), v.get(..c), drawn.get_mut(..c))
+                else {
+                    continue;
+                };
+                if lobe == 0 {
+                    self.top.sample_batch(w, v, d);
+                } else {
+                    self.base.sample_batch(w, v, d);
+                }
+                for (&k, s) in idx.iter().zip(d.iter()) {
+                    if let (Some(s), Some(d), Some(f)) = (s, wi.get_mut(k), ok.get_mut(k)) {
+                        (*d, *f) = (s.wi, true);
+                    }
+                }
+            }
+            let wi = wi.get(..m).unwrap_or(&[]);
+            self.top.eval_batch(wi, wo, &mut ft);
+            self.base.eval_batch(wi, wo, &mut fb);
+            self.top.pdf_batch(wi, wo, &mut pt);
+            self.base.pdf_batch(wi, wo, &mut pb);
+            let values = ft.iter().zip(&fb).zip(&to);
+            let densities = pick.iter().zip(&pt).zip(&pb);
+            for ((((o, &good), (&i, &w)), ((&x, &y), &t)), ((&p, &a), &b)) in out
+                .iter_mut()
+                .zip(&ok)
+                .zip(wi.iter().zip(wo))
+                .zip(values)
+                .zip(densities)
+            {
+                *o = if good {
+                    finish_sample(i, self.layer_element(i, w, x, y, t), mixture_pdf(p, a, b))
+                } else {
+                    None
+                };
+            }
+        }
+        crate::batch::zero_tail(out, wo.len().min(u.len()));
     }
 
     /// Through one [`prepare`](Coated::prepare)d view: the top's albedo at

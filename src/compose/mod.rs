@@ -299,17 +299,26 @@ pub(crate) fn pick_and_sample<S: Spectrum>(
     a: impl FnOnce([f32; 2]) -> Option<BrdfSample<S>>,
     b: impl FnOnce([f32; 2]) -> Option<BrdfSample<S>>,
 ) -> Option<Vec3> {
+    let (first, v) = pick_u(p, u);
+    let s = if first { a(v) } else { b(v) }?;
+    Some(s.wi)
+}
+
+/// The pick of [`pick_and_sample`]: whether `u[0]` draws lobe `a` (with
+/// probability `p`) and the sample point `[u₀', u[1]]` for the chosen lobe,
+/// `u₀` rescaled into `[0, 1)`.
+#[inline(always)]
+pub(crate) fn pick_u(p: f32, u: [f32; 2]) -> (bool, [f32; 2]) {
     let u0 = if u[0].is_finite() {
         u[0].clamp(0.0, ONE_MINUS_EPS)
     } else {
         0.0
     };
-    let s = if u0 < p {
-        a([(u0 / p).min(ONE_MINUS_EPS), u[1]])
+    if u0 < p {
+        (true, [(u0 / p).min(ONE_MINUS_EPS), u[1]])
     } else {
-        b([((u0 - p) / (1.0 - p)).clamp(0.0, ONE_MINUS_EPS), u[1]])
-    }?;
-    Some(s.wi)
+        (false, [((u0 - p) / (1.0 - p)).clamp(0.0, ONE_MINUS_EPS), u[1]])
+    }
 }
 
 /// The sample of a composite with value `f` and mixture density `pdf` at the

@@ -494,7 +494,9 @@ pub(crate) fn dielectric_albedo<S: Spectrum>(
 ) {
     let n = wo.len().min(out.len());
     radiometry::batch::zero_tail(out, n);
-    let (wo, out) = (&wo[..n], &mut out[..n]);
+    let (Some(wo), Some(out)) = (wo.get(..n), out.get_mut(..n)) else {
+        return;
+    };
     let mut wo_chunks = wo.chunks_exact(LANES);
     let mut out_chunks = out.chunks_exact_mut(LANES);
     for (w, o) in (&mut wo_chunks).zip(&mut out_chunks) {

@@ -97,6 +97,15 @@ pub struct Eon<S: Spectrum = f32> {
 }
 
 impl<S: Spectrum> Eon<S> {
+    /// `ρ E_FON + ρ_ms (1 − E_FON)` from `G(μo)/π` = `g`: `E_FON = A (1 + σ
+    /// g)`, `1 − E_FON = A σ (c₁ − g)⁺`.
+    #[inline(always)]
+    fn albedo_from_g(&self, g: f32) -> S {
+        let e_fon = self.a * (1.0 + self.sigma * g);
+        let one_minus = self.a * self.sigma * (C1 - g).max(0.0);
+        self.rho * e_fon + self.rho_ms * one_minus
+    }
+
     /// The uniform share `p_u = ½ k max(1 − μo, 0)³` of [`Brdf::sample`]'s
     /// mixture at `μo = cos θo` (the rest is the cosine-weighted hemisphere).
     #[inline]
@@ -167,10 +176,7 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
 
     #[inline]
     fn albedo_at(&self, mu_o: f32) -> S {
-        let g = g_over_pi(mu_o);
-        let e_fon = self.a * (1.0 + self.sigma * g);
-        let one_minus = self.a * self.sigma * (C1 - g).max(0.0);
-        self.rho * e_fon + self.rho_ms * one_minus
+        self.albedo_from_g(g_over_pi(mu_o))
     }
 
     #[inline]
@@ -217,6 +223,38 @@ impl<S: Spectrum> Brdf for Eon<S> {
     /// paper's BRDF).
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         super::directional_albedo(self, wo)
+    }
+
+    /// With the `simd` feature, `G(μo)/π` in vector lanes (its `acos` the
+    /// crate's bit-exact vector port), the rest per element: bit for bit
+    /// [`directional_albedo`](Brdf::directional_albedo)'s value.
+    #[cfg(feature = "simd")]
+    fn directional_albedo_batch(&self, wo: &[Vec3], out: &mut [S]) {
+        use crate::simd::{LANES, Vf};
+        let n = wo.len().min(out.len());
+        radiometry::batch::zero_tail(out, n);
+        let (Some(wo), Some(out)) = (wo.get(..n), out.get_mut(..n)) else {
+            return;
+        };
+        let mut wc = wo.chunks_exact(LANES);
+        let mut oc = out.chunks_exact_mut(LANES);
+        for (w, o) in (&mut wc).zip(&mut oc) {
+            let (mut mu, mut above) = ([0.0f32; LANES], [false; LANES]);
+            for ((m, a), &w) in mu.iter_mut().zip(&mut above).zip(w) {
+                if let Some(u) = super::unit(w)
+                    && u.z > 0.0
+                {
+                    (*m, *a) = (u.z, true);
+                }
+            }
+            let g = super::batch::g_over_pi(Vf::from(mu)).to_array();
+            for ((o, &g), &a) in o.iter_mut().zip(&g).zip(&above) {
+                *o = if a { self.albedo_from_g(g) } else { S::zero() };
+            }
+        }
+        for (o, &w) in oc.into_remainder().iter_mut().zip(wc.remainder()) {
+            *o = self.directional_albedo(w).value;
+        }
     }
 
     /// `f_FON + f_ms` when both directions are above the horizon, else 0.
