@@ -353,8 +353,40 @@ fn compare_composites(
     Ok(())
 }
 
+/// OpenPBR Surface (`radiometry_brdfs::OpenPbr`): its batches run the
+/// lobes' own kernels and read the layers' albedos in lanes, so they too must
+/// equal the scalar path bit for bit — every layer on or off, both layering
+/// modes, `f32` and RGB, roughnesses from `α` (the specular lobe at `r =
+/// √α`, so the readers' shared and per-row paths both occur).
+fn compare_openpbr(alpha: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
+    use radiometry_brdfs::{Layering, OpenPbr, OpenPbrParams};
+    let r = alpha.sqrt();
+    let on = |x: f32| if alpha < 0.05 { 0.0 } else { x };
+    let p = OpenPbrParams::<f32> {
+        specular_roughness: r,
+        base_metalness: on(0.4),
+        coat_weight: on(0.7),
+        coat_roughness: 1.0 - r,
+        fuzz_weight: on(0.5),
+        ..OpenPbrParams::default()
+    };
+    compare(&OpenPbr::new(p).unwrap(), "openpbr", pairs, rep)?;
+    let recip = OpenPbr::with_layering(p, Layering::Reciprocal).unwrap();
+    compare(&recip, "openpbr-reciprocal", pairs, rep)?;
+    let rgb = OpenPbrParams::<Vec3> {
+        specular_roughness: r,
+        base_color: Vec3::new(0.9, 0.3, 0.1),
+        coat_weight: on(1.0),
+        coat_color: Vec3::new(0.8, 0.9, 1.0),
+        coat_ior: 1.3 + alpha,
+        ..OpenPbrParams::default()
+    };
+    compare(&OpenPbr::new(rgb).unwrap(), "openpbr-rgb", pairs, rep)
+}
+
 fn compare_all(alpha: f32, n: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
     compare_microfacet(alpha, pairs, rep)?;
+    compare_openpbr(alpha, pairs, rep)?;
     compare_phong_family(n, pairs, rep)?;
     compare_composites(alpha, ((alpha.log10() + 4.0) / 4.0).clamp(0.0, 1.0), pairs, rep)?;
     // The roughness range [10⁻⁴, 1] of α mapped onto σ ∈ [0, 1] (both ends).

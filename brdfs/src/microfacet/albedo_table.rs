@@ -349,6 +349,56 @@ impl AlbedoReader {
 /// same operations lane for lane, so the same bits.
 #[cfg(feature = "simd")]
 impl AlbedoReader {
+    /// `E(μ, α)` at each lane's `μ ∈ [0, 1]`: [`albedo`](Self::albedo) lane
+    /// for lane (the rows' shared coordinate, or each row's own).
+    #[inline(always)]
+    pub(crate) fn albedo_lanes(&self, table: &AlbedoTable, mu: crate::simd::Vf) -> crate::simd::Vf {
+        if self.shared {
+            self.albedo_shared_lanes(table, mu)
+        } else {
+            self.albedo_rows_lanes(table, mu)
+        }
+    }
+
+    /// [`albedo`](Self::albedo)'s general path in lanes: row `r` at its own
+    /// coordinate `√μ'_r`, `μ'_r = min(μ/√(μ² + k_r s²), 1)`.
+    #[inline(always)]
+    fn albedo_rows_lanes(&self, table: &AlbedoTable, mu: crate::simd::Vf) -> crate::simd::Vf {
+        use crate::simd::{LANES, Vf};
+        let first = usize::from(self.row);
+        let Some(rows) = table.values.get(first..first + 4) else {
+            return Vf::ZERO;
+        };
+        let one = Vf::ONE;
+        let s2 = (one - mu) * (one + mu);
+        let mut acc = Vf::ZERO;
+        for ((row, &w), &k2) in rows.iter().zip(&self.w).zip(&self.k2) {
+            let d = mu * mu + Vf::splat(k2) * s2;
+            let q = d.simd_gt(Vf::ZERO).select((mu / d.sqrt()).min(one), Vf::ZERO);
+            let x = q.sqrt();
+            let s = x.simd_gt(Vf::ZERO).select(
+                (x * Vf::splat((N_MU - 1) as f32)).min(Vf::splat(N_MU as f32 - 1.0)),
+                Vf::ZERO,
+            );
+            let s_arr = s.min(Vf::splat((N_MU - 2) as f32)).to_array();
+            let (mut a, mut b, mut i_f) = ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
+            for (((a, b), f), &v) in a.iter_mut().zip(&mut b).zip(&mut i_f).zip(&s_arr) {
+                let j = (v as u32).min(N_MU as u32 - 2) as usize;
+                *f = j as f32;
+                (*a, *b) = (
+                    row.get(j).copied().unwrap_or(0.0),
+                    row.get(j + 1).copied().unwrap_or(0.0),
+                );
+            }
+            let i_f = Vf::from(i_f);
+            let t = s - i_f;
+            let t = i_f.simd_eq(Vf::ZERO).select(t * t, t);
+            let (a, b) = (Vf::from(a), Vf::from(b));
+            acc += Vf::splat(w) * (a + t * (b - a));
+        }
+        acc.max(Vf::ZERO).min(one)
+    }
+
     /// `E(μ, α)` at each lane's `μ ∈ [0, 1]` for a reader whose rows share
     /// one coordinate ([`is_shared`](Self::is_shared)): the coordinate
     /// `√μ'`, `μ' = min(μ/√(μ² + k s²), 1)`, in vector form, the cells and

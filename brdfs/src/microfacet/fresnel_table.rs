@@ -263,13 +263,12 @@ impl DielectricAlbedoReader {
 /// [`DielectricAlbedoReader::albedo`] in vector lanes (feature `simd`).
 #[cfg(feature = "simd")]
 impl DielectricAlbedoReader {
-    /// Whether [`albedo_lanes`](Self::albedo_lanes) serves this reader: the
-    /// four rows of `E₁` share one coordinate and `η > 1` with no exact
-    /// smooth-interface row (every reader below `α = 0.2` outside the first
+    /// Whether [`albedo_lanes`](Self::albedo_lanes) serves this reader: `η >
+    /// 1` with no exact smooth-interface row (every reader outside the first
     /// roughness cell).
     #[inline(always)]
     pub(crate) fn has_lanes(&self) -> bool {
-        self.fast
+        !self.ratio.inside && self.ratio.exact == 0.0
     }
 
     /// `E_F(μ, α, η)` at each lane's `μ` (as [`albedo`](Self::albedo):
@@ -280,15 +279,12 @@ impl DielectricAlbedoReader {
     #[inline(always)]
     pub(crate) fn albedo_lanes(&self, mu: crate::simd::Vf) -> crate::simd::Vf {
         use crate::simd::Vf;
-        if !self.fast {
+        if !self.has_lanes() {
             return Vf::from(mu.to_array().map(|m| self.albedo(m)));
         }
         let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
         let mu = mu.simd_gt(Vf::ZERO).select(mu.min(Vf::ONE), Vf::ZERO);
-        let (e, r) = (
-            self.e1.albedo_shared_lanes(e1, mu),
-            self.ratio.ratio_outside_lanes(mu),
-        );
+        let (e, r) = (self.e1.albedo_lanes(e1, mu), self.ratio.ratio_outside_lanes(mu));
         (e * r).max(Vf::ZERO).min(Vf::ONE)
     }
 }

@@ -127,6 +127,7 @@ use crate::microfacet::{
 };
 use crate::rough_diffuse::Eon;
 use crate::sheen::{LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
+use radiometry::batch::Vec3Soa;
 pub use radiometry::compose::Layering;
 use radiometry::glam::Vec3;
 use radiometry::math::ONE_MINUS_EPSILON;
@@ -376,6 +377,44 @@ fn lobe_albedo<S: Spectrum>(lobe: &DielectricLobe<S>, ae: (f32, f32)) -> impl Fn
     move |mu| match cells {
         Some(c) => c.reader.albedo(mu),
         None => DielectricAlbedoReader::new(ae.0, ae.1).albedo(mu),
+    }
+}
+
+/// The directions of one batch chunk (a multiple of the vector width).
+const CHUNK: usize = 32;
+
+/// `out[k] = E(mu[k])` of a dielectric lobe, the values of
+/// [`lobe_albedo`]: with the `simd` feature its prepared cells read in
+/// vector lanes (bit for bit the scalar read), else one by one.
+#[inline]
+fn lobe_albedo_chunk<S: Spectrum>(
+    lobe: &DielectricLobe<S>,
+    ae: (f32, f32),
+    mu: &[f32; CHUNK],
+    out: &mut [f32; CHUNK],
+) {
+    #[cfg(feature = "simd")]
+    if let Some(c) = lobe.fresnel.albedo_cells(lobe.distribution.alpha())
+        && c.reader.has_lanes()
+    {
+        use crate::simd::{LANES, Vf};
+        for (m, o) in mu.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES)) {
+            let mut lanes = [0.0f32; LANES];
+            for (l, &m) in lanes.iter_mut().zip(m) {
+                *l = m;
+            }
+            for (o, &e) in o
+                .iter_mut()
+                .zip(&c.reader.albedo_lanes(Vf::from(lanes)).to_array())
+            {
+                *o = e;
+            }
+        }
+        return;
+    }
+    let read = lobe_albedo(lobe, ae);
+    for (o, &m) in out.iter_mut().zip(mu) {
+        *o = read(m);
     }
 }
 
@@ -676,18 +715,92 @@ impl<S: Spectrum> OpenPbr<S> {
         radiometry::compose::coat_absorption(self.params.coat_color, self.coat_ae.1, mu_i, mu_o)
     }
 
+    /// [`Brdf::eval`] of one chunk of at most [`CHUNK`] pairs (`out` as long
+    /// as the shorter of `wi`, `wo`): the lobes' own batch kernels at the
+    /// unit directions, the layers' albedos at `μo` and `μi` through
+    /// [`lobe_albedo_chunk`], then the views and [`OpenPbrView::value_of`]
+    /// element by element — bit for bit `eval`.
+    fn eval_chunk(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        let mut wi_u = [Vec3::ZERO; CHUNK];
+        let mut wo_u = [Vec3::ZERO; CHUNK];
+        let (mut mu_i, mut mu_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
+        for ((((a, b), (mi, mo)), &i), &o) in wi_u
+            .iter_mut()
+            .zip(wo_u.iter_mut())
+            .zip(mu_i.iter_mut().zip(mu_o.iter_mut()))
+            .zip(wi)
+            .zip(wo)
+        {
+            (*a, *b) = (unit(i), unit(o));
+            // `μ` as `prepare_with` and `eval_inner` take it (lanes outside
+            // the hemisphere read a value nobody uses).
+            *mi = a.z.min(1.0);
+            let valid = b.z.is_finite() && b.z > 0.0 && b.is_finite();
+            *mo = if valid { b.z.min(1.0) } else { 0.0 };
+        }
+        let n = wi.len().min(wo.len()).min(out.len()).min(CHUNK);
+        let (wi_u, wo_u) = (wi_u.get(..n).unwrap_or(&[]), wo_u.get(..n).unwrap_or(&[]));
+        let (mut coat_o, mut spec_o, mut es_i) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
+        if self.on[COAT] {
+            lobe_albedo_chunk(&self.coat, self.coat_ae, &mu_o, &mut coat_o);
+        }
+        if self.on[SPEC] {
+            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_o, &mut spec_o);
+            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_i, &mut es_i);
+        }
+        let mut fc = [S::zero(); CHUNK];
+        let mut fm = [S::zero(); CHUNK];
+        let mut fs = [S::zero(); CHUNK];
+        let mut fd = [S::zero(); CHUNK];
+        if self.on[COAT] {
+            self.coat.eval_batch(wi_u, wo_u, &mut fc);
+        }
+        if let Some(metal) = &self.metal {
+            metal.single.eval_batch(wi_u, wo_u, &mut fm);
+        }
+        if self.on[SPEC] {
+            self.spec.eval_batch(wi_u, wo_u, &mut fs);
+            self.diffuse.eval_batch(wi_u, wo_u, &mut fd);
+        }
+        let lobes = fc.iter().zip(&fm).zip(fs.iter().zip(&fd));
+        let reads = coat_o.iter().zip(&spec_o).zip(&es_i);
+        for ((((o, &w), &i), (((&c, &m), (&s, &d)), ((&co, &so), &e))), &raw_o) in
+            out.iter_mut().zip(wi_u).zip(&mu_i).zip(lobes.zip(reads)).zip(wo)
+        {
+            let view = self.prepare_with(raw_o, false, Some((co, so)));
+            *o = if !view.valid || w.z.is_nan() || w.z <= 0.0 || !w.is_finite() {
+                S::zero()
+            } else {
+                let v = LobeValues {
+                    fuzz: if self.on[FUZZ] {
+                        self.fuzz_eval(w, view.wo)
+                    } else {
+                        S::zero()
+                    },
+                    coat: c,
+                    metal: m,
+                    spec: s,
+                    diffuse: d,
+                    es_i: e,
+                };
+                view.value_of(i, &v)
+            };
+        }
+    }
+
     /// Prepares the view `ωo`: the layers' factors at `μo` and the lobes'
     /// pick probabilities, for any number of [`OpenPbrView::eval`],
     /// [`OpenPbrView::pdf`] and [`OpenPbrView::sample`] calls.
     pub fn prepare(&self, wo: Vec3) -> OpenPbrView<'_, S> {
-        self.prepare_with(wo, true)
+        self.prepare_with(wo, true, None)
     }
 
     /// [`prepare`](Self::prepare), with the pick probabilities only when
     /// `picks` (the value alone does not need them: `eval` skips the lobes'
-    /// albedos).
+    /// albedos), and `E_C(μo)`, `E_s(μo)` from `reads` where a batch read
+    /// them already (the same values: [`lobe_albedo_chunk`]).
     #[inline]
-    fn prepare_with(&self, wo: Vec3, picks: bool) -> OpenPbrView<'_, S> {
+    fn prepare_with(&self, wo: Vec3, picks: bool, reads: Option<(f32, f32)>) -> OpenPbrView<'_, S> {
         let wo = unit(wo);
         let mu_o = wo.z;
         let valid = mu_o.is_finite() && mu_o > 0.0 && wo.is_finite();
@@ -713,7 +826,7 @@ impl<S: Spectrum> OpenPbr<S> {
             view.fuzz_o = self.e_fuzz(mu);
         }
         if self.on[COAT] {
-            view.coat_o = self.e_coat(mu);
+            view.coat_o = reads.map_or_else(|| self.e_coat(mu), |r| r.0);
             // D = lerp(1, Δ, δ), Δ = (1 − K)/(1 − E_b K), K = lerp(K_s, K_r, r_b).
             let k_s = match self.layering {
                 Layering::EnergyConserving => Dielectric::new(self.coat_ae.1).map_or(0.0, |d| d.eval(mu)),
@@ -727,7 +840,7 @@ impl<S: Spectrum> OpenPbr<S> {
             });
         }
         if self.on[SPEC] {
-            view.spec_o = self.e_spec(mu);
+            view.spec_o = reads.map_or_else(|| self.e_spec(mu), |r| r.1);
         }
         // E₁(μo) of the metal, read once for its loss and its albedo.
         let metal_e1_o = self
@@ -849,6 +962,18 @@ fn through(leaf: Leaf, ti: f32, to: f32, inv_avg: f32) -> f32 {
 enum Leaf {
     Specular,
     Diffuse,
+}
+
+/// The lobes' values at one `(ωi, ωo)` (0 for a lobe that is off) and the
+/// specular layer's albedo `E_s(μi)`: what [`OpenPbrView::value_of`] layers.
+#[derive(Clone, Copy, Default)]
+struct LobeValues<S> {
+    fuzz: S,
+    coat: S,
+    metal: S,
+    spec: S,
+    diffuse: S,
+    es_i: f32,
 }
 
 /// An [`OpenPbr`] prepared for one view direction `ωo` ([`OpenPbr::prepare`]).
@@ -996,8 +1121,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         let wo = self.wo;
         let mu_i = wi.z.min(1.0);
-        let p = &m.params;
-        let mut f = S::zero();
+        let mut v = LobeValues::<S>::default();
         let mut pdf = 0.0f32;
         let prob = |k: usize| {
             let lo = k
@@ -1011,13 +1135,13 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             match (&m.fuzz, want_value && want_pdf) {
                 // Energy mode, both wanted: the LTC's table read and frame once.
                 (Some(fuzz), true) => {
-                    let (v, d) = fuzz.eval_pdf(wi, wo);
-                    f += v * p.fuzz_weight;
+                    let (f, d) = fuzz.eval_pdf(wi, wo);
+                    v.fuzz = f;
                     pdf += prob(FUZZ) * d;
                 }
                 _ => {
                     if want_value {
-                        f += m.fuzz_eval(wi, wo) * p.fuzz_weight;
+                        v.fuzz = m.fuzz_eval(wi, wo);
                     }
                     if want_pdf {
                         pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
@@ -1026,48 +1150,75 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             }
         }
         if m.on[COAT] {
-            let (v, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
-            if want_value {
-                f += v * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
-            }
+            let (f, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
+            v.coat = f;
             if want_pdf {
                 pdf += prob(COAT) * d;
             }
         }
-        let under_s = if want_value && (m.on[METAL] || m.on[SPEC]) {
-            self.coat_factor(mu_i, Leaf::Specular) * self.fuzz_factor(mu_i, Leaf::Specular)
-        } else {
-            S::zero()
-        };
         if let Some(metal) = &m.metal {
-            let (v, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
-            if want_value {
-                let ms = metal.ms_scale * (metal.loss(mu_i) * self.metal_loss_o);
-                f += (v + ms) * under_s * (p.base_metalness * m.xi);
-            }
+            let (f, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
+            v.metal = f;
             if want_pdf {
                 pdf += prob(METAL) * d + prob(METAL_MS) * metal.ms_pdf(mu_i);
             }
         }
         if m.on[SPEC] {
-            let dielectric = 1.0 - p.base_metalness;
-            let (v, d) = m.spec.eval_pdf(wi, wo, want_value, want_pdf);
+            let (f, d) = m.spec.eval_pdf(wi, wo, want_value, want_pdf);
+            v.spec = f;
             if want_value {
-                f += v * p.specular_color * under_s * dielectric;
-                // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
-                let es_i = if mu_i == self.mu_o {
+                v.diffuse = m.diffuse.eval(wi, wo);
+                v.es_i = if mu_i == self.mu_o {
                     self.spec_o
                 } else {
                     m.e_spec(mu_i)
                 };
-                f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
             }
             if want_pdf {
                 pdf += prob(SPEC) * d + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
             }
         }
         let pdf = if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 };
-        (f.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 }), pdf)
+        let f = if want_value {
+            self.value_of(mu_i, &v)
+        } else {
+            S::zero()
+        };
+        (f, pdf)
+    }
+
+    /// `f_r` from the lobes' values at `(ωi, ωo)` (`ωi` above the horizon,
+    /// `μi = cos θi`), each with its layer weights: the fuzz, the coat over
+    /// the fuzz, the metal and the dielectric specular lobe under both, and
+    /// the diffuse lobe under every layer (Kelemen's `1 − E_s(μi)` from
+    /// `v.es_i`); negative and non-finite channels to 0.
+    #[inline(always)]
+    fn value_of(&self, mu_i: f32, v: &LobeValues<S>) -> S {
+        let m = self.m;
+        let p = &m.params;
+        let mut f = S::zero();
+        if m.on[FUZZ] {
+            f += v.fuzz * p.fuzz_weight;
+        }
+        if m.on[COAT] {
+            f += v.coat * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
+        }
+        let under_s = if m.on[METAL] || m.on[SPEC] {
+            self.coat_factor(mu_i, Leaf::Specular) * self.fuzz_factor(mu_i, Leaf::Specular)
+        } else {
+            S::zero()
+        };
+        if let Some(metal) = &m.metal {
+            let ms = metal.ms_scale * (metal.loss(mu_i) * self.metal_loss_o);
+            f += (v.metal + ms) * under_s * (p.base_metalness * m.xi);
+        }
+        if m.on[SPEC] {
+            let dielectric = 1.0 - p.base_metalness;
+            f += v.spec * p.specular_color * under_s * dielectric;
+            // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
+            f += v.diffuse * self.diffuse_factor(mu_i, v.es_i) * dielectric;
+        }
+        f.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 })
     }
 
     /// `f_r(ωi, ωo)` per channel.
@@ -1254,7 +1405,39 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
 
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
-        self.prepare_with(wo, false).eval(wi)
+        self.prepare_with(wo, false, None).eval(wi)
+    }
+
+    /// In chunks: the lobes' own batch kernels (vector kernels with the
+    /// `simd` feature), the layers' albedos in vector lanes, the layering
+    /// per element — element by element equal to [`eval`](Brdf::eval).
+    fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+            self.eval_chunk(wi, wo, out);
+        }
+        radiometry::batch::zero_tail(out, wi.len().min(wo.len()));
+    }
+
+    /// [`eval_batch`](Brdf::eval_batch) for structure-of-arrays input.
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        let n = wi.len().min(wo.len()).min(out.len());
+        radiometry::batch::zero_tail(out, n);
+        let (mut ci, mut co) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
+        let mut start = 0;
+        for out in out.chunks_mut(CHUNK) {
+            let k = out.len().min(n.saturating_sub(start));
+            if k == 0 {
+                break;
+            }
+            for (j, (a, b)) in ci.iter_mut().zip(co.iter_mut()).enumerate().take(k) {
+                (*a, *b) = (
+                    wi.get(start + j).unwrap_or(Vec3::ZERO),
+                    wo.get(start + j).unwrap_or(Vec3::ZERO),
+                );
+            }
+            self.eval_chunk(ci.get(..k).unwrap_or(&[]), co.get(..k).unwrap_or(&[]), out);
+            start += k;
+        }
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
