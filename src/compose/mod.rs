@@ -307,7 +307,7 @@ pub(crate) fn pick_and_sample<S: Spectrum>(
 /// The pick of [`pick_and_sample`]: whether `u[0]` draws lobe `a` (with
 /// probability `p`) and the sample point `[u₀', u[1]]` for the chosen lobe,
 /// `u₀` rescaled into `[0, 1)`.
-#[inline(always)]
+#[inline]
 pub(crate) fn pick_u(p: f32, u: [f32; 2]) -> (bool, [f32; 2]) {
     let u0 = if u[0].is_finite() {
         u[0].clamp(0.0, ONE_MINUS_EPS)
