@@ -1121,7 +1121,8 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         let wo = self.wo;
         let mu_i = wi.z.min(1.0);
-        let mut v = LobeValues::<S>::default();
+        let p = &m.params;
+        let mut f = S::zero();
         let mut pdf = 0.0f32;
         let prob = |k: usize| {
             let lo = k
@@ -1135,13 +1136,13 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             match (&m.fuzz, want_value && want_pdf) {
                 // Energy mode, both wanted: the LTC's table read and frame once.
                 (Some(fuzz), true) => {
-                    let (f, d) = fuzz.eval_pdf(wi, wo);
-                    v.fuzz = f;
+                    let (v, d) = fuzz.eval_pdf(wi, wo);
+                    f += v * p.fuzz_weight;
                     pdf += prob(FUZZ) * d;
                 }
                 _ => {
                     if want_value {
-                        v.fuzz = m.fuzz_eval(wi, wo);
+                        f += m.fuzz_eval(wi, wo) * p.fuzz_weight;
                     }
                     if want_pdf {
                         pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
@@ -1150,49 +1151,60 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             }
         }
         if m.on[COAT] {
-            let (f, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
-            v.coat = f;
+            let (v, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
+            if want_value {
+                f += v * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
+            }
             if want_pdf {
                 pdf += prob(COAT) * d;
             }
         }
+        let under_s = if want_value && (m.on[METAL] || m.on[SPEC]) {
+            self.coat_factor(mu_i, Leaf::Specular) * self.fuzz_factor(mu_i, Leaf::Specular)
+        } else {
+            S::zero()
+        };
         if let Some(metal) = &m.metal {
-            let (f, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
-            v.metal = f;
+            let (v, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
+            if want_value {
+                let ms = metal.ms_scale * (metal.loss(mu_i) * self.metal_loss_o);
+                f += (v + ms) * under_s * (p.base_metalness * m.xi);
+            }
             if want_pdf {
                 pdf += prob(METAL) * d + prob(METAL_MS) * metal.ms_pdf(mu_i);
             }
         }
         if m.on[SPEC] {
-            let (f, d) = m.spec.eval_pdf(wi, wo, want_value, want_pdf);
-            v.spec = f;
+            let dielectric = 1.0 - p.base_metalness;
+            let (v, d) = m.spec.eval_pdf(wi, wo, want_value, want_pdf);
             if want_value {
-                v.diffuse = m.diffuse.eval(wi, wo);
-                v.es_i = if mu_i == self.mu_o {
+                f += v * p.specular_color * under_s * dielectric;
+                // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
+                let es_i = if mu_i == self.mu_o {
                     self.spec_o
                 } else {
                     m.e_spec(mu_i)
                 };
+                f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
             }
             if want_pdf {
                 pdf += prob(SPEC) * d + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
             }
         }
         let pdf = if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 };
-        let f = if want_value {
-            self.value_of(mu_i, &v)
-        } else {
-            S::zero()
-        };
-        (f, pdf)
+        (f.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 }), pdf)
     }
 
     /// `f_r` from the lobes' values at `(ωi, ωo)` (`ωi` above the horizon,
     /// `μi = cos θi`), each with its layer weights: the fuzz, the coat over
     /// the fuzz, the metal and the dielectric specular lobe under both, and
     /// the diffuse lobe under every layer (Kelemen's `1 − E_s(μi)` from
-    /// `v.es_i`); negative and non-finite channels to 0.
-    #[inline(always)]
+    /// `v.es_i`); negative and non-finite channels to 0. The batches' form
+    /// of [`eval_inner`](Self::eval_inner)'s value, operation for operation
+    /// (the scalar path keeps its own, interleaved with the densities: it
+    /// runs faster that way for RGB); the batch tests hold the two equal bit
+    /// for bit.
+    #[inline]
     fn value_of(&self, mu_i: f32, v: &LobeValues<S>) -> S {
         let m = self.m;
         let p = &m.params;
