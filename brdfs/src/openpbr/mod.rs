@@ -767,7 +767,12 @@ impl<S: Spectrum> OpenPbr<S> {
         for ((((o, &w), &i), (((&c, &m), (&s, &d)), ((&co, &so), &e))), &raw_o) in
             out.iter_mut().zip(wi_u).zip(&mu_i).zip(lobes.zip(reads)).zip(wo)
         {
-            let view = self.prepare_with(raw_o, false, Some((co, so)));
+            let reads = PreRead {
+                coat_o: co,
+                spec_o: so,
+                diffuse: None,
+            };
+            let view = self.prepare_with(raw_o, false, Some(reads));
             *o = if !view.valid || w.z.is_nan() || w.z <= 0.0 || !w.is_finite() {
                 S::zero()
             } else {
@@ -788,6 +793,60 @@ impl<S: Spectrum> OpenPbr<S> {
         }
     }
 
+    /// [`Brdf::pdf`] of one chunk of at most [`CHUNK`] pairs: the lobes' own
+    /// `pdf_batch` kernels at the unit directions, the albedos the picks need
+    /// at `μo` from the lobes' batches and lanes, then the views and
+    /// [`OpenPbrView::pdf_of`] element by element — bit for bit `pdf`.
+    fn pdf_chunk(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        let mut wi_u = [Vec3::ZERO; CHUNK];
+        let mut wo_u = [Vec3::ZERO; CHUNK];
+        let mut mu_o = [0.0f32; CHUNK];
+        for (((a, b), mo), (&i, &o)) in wi_u
+            .iter_mut()
+            .zip(wo_u.iter_mut())
+            .zip(mu_o.iter_mut())
+            .zip(wi.iter().zip(wo))
+        {
+            (*a, *b) = (unit(i), unit(o));
+            let valid = b.z.is_finite() && b.z > 0.0 && b.is_finite();
+            *mo = if valid { b.z.min(1.0) } else { 0.0 };
+        }
+        let n = wi.len().min(wo.len()).min(out.len()).min(CHUNK);
+        let (wi_u, wo_u) = (wi_u.get(..n).unwrap_or(&[]), wo_u.get(..n).unwrap_or(&[]));
+        let (mut coat_o, mut spec_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
+        let mut diffuse = [S::zero(); CHUNK];
+        if self.on[COAT] {
+            lobe_albedo_chunk(&self.coat, self.coat_ae, &mu_o, &mut coat_o);
+        }
+        if self.on[SPEC] {
+            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_o, &mut spec_o);
+            self.diffuse.directional_albedo_batch(wo_u, &mut diffuse);
+        }
+        let (mut dc, mut dm, mut ds) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
+        if self.on[COAT] {
+            self.coat.pdf_batch(wi_u, wo_u, &mut dc);
+        }
+        if let Some(metal) = &self.metal {
+            metal.single.pdf_batch(wi_u, wo_u, &mut dm);
+        }
+        if self.on[SPEC] {
+            self.spec.pdf_batch(wi_u, wo_u, &mut ds);
+        }
+        let dens = dc.iter().zip(&dm).zip(&ds);
+        let reads = coat_o.iter().zip(&spec_o).zip(&diffuse);
+        for (((o, &w), (((&c, &m), &s), ((&co, &so), &d))), &raw_o) in
+            out.iter_mut().zip(wi_u).zip(dens.zip(reads)).zip(wo)
+        {
+            let reads = PreRead {
+                coat_o: co,
+                spec_o: so,
+                diffuse: Some(d),
+            };
+            let view = self.prepare_with(raw_o, true, Some(reads));
+            *o = view.pdf_of(w, [c, m, s]);
+        }
+    }
+
     /// Prepares the view `ωo`: the layers' factors at `μo` and the lobes'
     /// pick probabilities, for any number of [`OpenPbrView::eval`],
     /// [`OpenPbrView::pdf`] and [`OpenPbrView::sample`] calls.
@@ -800,7 +859,7 @@ impl<S: Spectrum> OpenPbr<S> {
     /// albedos), and `E_C(μo)`, `E_s(μo)` from `reads` where a batch read
     /// them already (the same values: [`lobe_albedo_chunk`]).
     #[inline]
-    fn prepare_with(&self, wo: Vec3, picks: bool, reads: Option<(f32, f32)>) -> OpenPbrView<'_, S> {
+    fn prepare_with(&self, wo: Vec3, picks: bool, reads: Option<PreRead<S>>) -> OpenPbrView<'_, S> {
         let wo = unit(wo);
         let mu_o = wo.z;
         let valid = mu_o.is_finite() && mu_o > 0.0 && wo.is_finite();
@@ -826,7 +885,7 @@ impl<S: Spectrum> OpenPbr<S> {
             view.fuzz_o = self.e_fuzz(mu);
         }
         if self.on[COAT] {
-            view.coat_o = reads.map_or_else(|| self.e_coat(mu), |r| r.0);
+            view.coat_o = reads.map_or_else(|| self.e_coat(mu), |r| r.coat_o);
             // D = lerp(1, Δ, δ), Δ = (1 − K)/(1 − E_b K), K = lerp(K_s, K_r, r_b).
             let k_s = match self.layering {
                 Layering::EnergyConserving => Dielectric::new(self.coat_ae.1).map_or(0.0, |d| d.eval(mu)),
@@ -840,7 +899,7 @@ impl<S: Spectrum> OpenPbr<S> {
             });
         }
         if self.on[SPEC] {
-            view.spec_o = reads.map_or_else(|| self.e_spec(mu), |r| r.1);
+            view.spec_o = reads.map_or_else(|| self.e_spec(mu), |r| r.spec_o);
         }
         // E₁(μo) of the metal, read once for its loss and its albedo.
         let metal_e1_o = self
@@ -876,7 +935,10 @@ impl<S: Spectrum> OpenPbr<S> {
             share[DIFFUSE] = under(Leaf::Diffuse)
                 * (1.0 - p.base_metalness)
                 * (1.0 - view.spec_o)
-                * self.diffuse.directional_albedo(wo).value.average();
+                * reads
+                    .and_then(|r| r.diffuse)
+                    .unwrap_or_else(|| self.diffuse.directional_albedo(wo).value)
+                    .average();
         }
         let total: f32 = share
             .iter()
@@ -962,6 +1024,16 @@ fn through(leaf: Leaf, ti: f32, to: f32, inv_avg: f32) -> f32 {
 enum Leaf {
     Specular,
     Diffuse,
+}
+
+/// What a batch read for [`OpenPbr::prepare_with`] in lanes: `E_C(μo)`,
+/// `E_s(μo)` and, for the picks, the diffuse lobe's albedo at `ωo` — the
+/// values `prepare_with` would read.
+#[derive(Clone, Copy)]
+struct PreRead<S> {
+    coat_o: f32,
+    spec_o: f32,
+    diffuse: Option<S>,
 }
 
 /// The lobes' values at one `(ωi, ωo)` (0 for a lobe that is off) and the
@@ -1193,6 +1265,42 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         let pdf = if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 };
         (f.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 }), pdf)
+    }
+
+    /// The mixture density at the unit direction `wi` from the GGX lobes'
+    /// densities `[coat, metal, specular]` (0 for a lobe that is off): the
+    /// batches' form of [`eval_inner`](Self::eval_inner)'s density,
+    /// operation for operation (held equal bit for bit by the batch tests).
+    #[inline]
+    fn pdf_of(&self, wi: Vec3, d: [f32; 3]) -> f32 {
+        let m = self.m;
+        if !self.valid || wi.z.is_nan() || wi.z <= 0.0 || !wi.is_finite() {
+            return 0.0;
+        }
+        let wo = self.wo;
+        let mu_i = wi.z.min(1.0);
+        let mut pdf = 0.0f32;
+        let prob = |k: usize| {
+            let lo = k
+                .checked_sub(1)
+                .and_then(|i| self.cdf.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
+        };
+        if m.on[FUZZ] {
+            pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
+        }
+        if m.on[COAT] {
+            pdf += prob(COAT) * d[0];
+        }
+        if let Some(metal) = &m.metal {
+            pdf += prob(METAL) * d[1] + prob(METAL_MS) * metal.ms_pdf(mu_i);
+        }
+        if m.on[SPEC] {
+            pdf += prob(SPEC) * d[2] + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
+        }
+        if pdf.is_finite() && pdf > 0.0 { pdf } else { 0.0 }
     }
 
     /// `f_r` from the lobes' values at `(ωi, ωo)` (`ωi` above the horizon,
@@ -1450,6 +1558,16 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
             self.eval_chunk(ci.get(..k).unwrap_or(&[]), co.get(..k).unwrap_or(&[]), out);
             start += k;
         }
+    }
+
+    /// In chunks, as [`eval_batch`](Brdf::eval_batch): the lobes' own
+    /// `pdf_batch` kernels and the albedos of the picks in lanes (element by
+    /// element equal to [`pdf`](Brdf::pdf)).
+    fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+            self.pdf_chunk(wi, wo, out);
+        }
+        radiometry::batch::zero_tail(out, wi.len().min(wo.len()));
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
