@@ -20,6 +20,7 @@ mod colour_tests;
 
 use crate::{BrdfSpec, Distribution, FresnelSpec, G2Kind, LightSpec, MultipleScattering, SpecError};
 use radiometry::BrdfSample;
+use radiometry::batch::Vec3Soa;
 use radiometry::compose::{Coated, Layering, Mix, Sum};
 use radiometry::glam::Vec3;
 use radiometry::integrator::{
@@ -48,6 +49,8 @@ pub trait DynBrdf<S: Spectrum = f32>: Send + Sync {
     /// See [`Brdf::eval_batch`] (one virtual call per batch, so the
     /// plugin's vector kernel runs).
     fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]);
+    /// See [`Brdf::eval_batch_soa`].
+    fn eval_batch_soa_dyn(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]);
     /// See [`Brdf::pdf_batch`].
     fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]);
     /// See [`Brdf::sample_batch`].
@@ -62,6 +65,8 @@ pub trait DynBrdf<S: Spectrum = f32>: Send + Sync {
     fn sample_component_dyn(&self, wo: Vec3, k: usize, u: [f32; 2]) -> Option<Vec3>;
     /// See [`Brdf::directional_albedo`].
     fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<S>;
+    /// See [`Brdf::directional_albedo_batch`].
+    fn directional_albedo_batch_dyn(&self, wo: &[Vec3], out: &mut [S]);
 }
 
 impl<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync> DynBrdf<S> for B {
@@ -76,6 +81,9 @@ impl<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync> DynBrdf<S> for B {
     }
     fn eval_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         self.eval_batch(wi, wo, out)
+    }
+    fn eval_batch_soa_dyn(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        self.eval_batch_soa(wi, wo, out)
     }
     fn pdf_batch_dyn(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
         self.pdf_batch(wi, wo, out)
@@ -97,6 +105,9 @@ impl<S: Spectrum, B: Brdf<Spectrum = S> + Send + Sync> DynBrdf<S> for B {
     }
     fn directional_albedo_dyn(&self, wo: Vec3) -> Albedo<S> {
         self.directional_albedo(wo)
+    }
+    fn directional_albedo_batch_dyn(&self, wo: &[Vec3], out: &mut [S]) {
+        self.directional_albedo_batch(wo, out)
     }
 }
 
@@ -128,6 +139,10 @@ impl<S: Spectrum> Brdf for AnyBrdf<S> {
         self.0.eval_batch_dyn(wi, wo, out)
     }
     #[inline]
+    fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
+        self.0.eval_batch_soa_dyn(wi, wo, out)
+    }
+    #[inline]
     fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
         self.0.pdf_batch_dyn(wi, wo, out)
     }
@@ -149,6 +164,9 @@ impl<S: Spectrum> Brdf for AnyBrdf<S> {
     }
     fn directional_albedo(&self, wo: Vec3) -> Albedo<S> {
         self.0.directional_albedo_dyn(wo)
+    }
+    fn directional_albedo_batch(&self, wo: &[Vec3], out: &mut [S]) {
+        self.0.directional_albedo_batch_dyn(wo, out)
     }
 }
 
