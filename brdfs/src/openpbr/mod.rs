@@ -847,6 +847,170 @@ impl<S: Spectrum> OpenPbr<S> {
         }
     }
 
+    /// [`Brdf::sample`] of one chunk of at most [`CHUNK`] elements: the
+    /// views (their albedos from the lobes' batches and lanes), each GGX
+    /// lobe's `sample_batch` over the elements that pick it (the fuzz, the
+    /// metal's multiple scattering and the diffuse lobe draw one by one),
+    /// then the lobes' `eval_batch` and `pdf_batch` at the drawn directions,
+    /// layered and mixed as `sample` does — bit for bit `sample`.
+    fn sample_chunk(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+        let n = wo.len().min(u.len()).min(out.len()).min(CHUNK);
+        let (Some(wo), Some(u), Some(out)) = (wo.get(..n), u.get(..n), out.get_mut(..n)) else {
+            return;
+        };
+        let mut wo_u = [Vec3::ZERO; CHUNK];
+        let mut mu_o = [0.0f32; CHUNK];
+        for ((b, mo), &o) in wo_u.iter_mut().zip(mu_o.iter_mut()).zip(wo) {
+            *b = unit(o);
+            let valid = b.z.is_finite() && b.z > 0.0 && b.is_finite();
+            *mo = if valid { b.z.min(1.0) } else { 0.0 };
+        }
+        let wo_u = wo_u.get(..n).unwrap_or(&[]);
+        let (mut coat_o, mut spec_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
+        let mut diffuse = [S::zero(); CHUNK];
+        if self.on[COAT] {
+            lobe_albedo_chunk(&self.coat, self.coat_ae, &mu_o, &mut coat_o);
+        }
+        if self.on[SPEC] {
+            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_o, &mut spec_o);
+            self.diffuse.directional_albedo_batch(wo_u, &mut diffuse);
+        }
+        // The views and the picks; the GGX lobes' draws grouped per lobe.
+        let mut views: [Option<OpenPbrView<'_, S>>; CHUNK] = [None; CHUNK];
+        let mut wi: [Option<Vec3>; CHUNK] = [None; CHUNK];
+        let mut idx = [[0usize; CHUNK]; 3];
+        let mut wo_sub = [[Vec3::ZERO; CHUNK]; 3];
+        let mut u_sub = [[[0.0f32; 2]; CHUNK]; 3];
+        let mut count = [0usize; 3];
+        for (k, (((view, w), &o), &v)) in views.iter_mut().zip(wi.iter_mut()).zip(wo).zip(u).enumerate() {
+            let reads = PreRead {
+                coat_o: coat_o.get(k).copied().unwrap_or(0.0),
+                spec_o: spec_o.get(k).copied().unwrap_or(0.0),
+                diffuse: diffuse.get(k).copied(),
+            };
+            let vw = self.prepare_with(o, true, Some(reads));
+            *view = Some(vw);
+            if !vw.valid {
+                continue;
+            }
+            let (lobe, uu) = vw.pick(v);
+            let group = match lobe {
+                COAT => Some(0),
+                METAL if self.metal.is_some() => Some(1),
+                METAL => None,
+                SPEC => Some(2),
+                FUZZ => {
+                    *w = self.fuzz_sample(vw.wo, uu).map(|s| s.wi);
+                    None
+                }
+                _ => {
+                    *w = vw.direction_of(lobe, uu);
+                    None
+                }
+            };
+            if let Some(g) = group {
+                let c = count[g];
+                if let (Some(i), Some(ws), Some(us)) =
+                    (idx[g].get_mut(c), wo_sub[g].get_mut(c), u_sub[g].get_mut(c))
+                {
+                    (*i, *ws, *us) = (k, vw.wo, uu);
+                    count[g] = c + 1;
+                }
+            }
+        }
+        let mut drawn: [Option<BrdfSample<S>>; CHUNK] = [None; CHUNK];
+        for (g, ((idx, ws), us)) in idx.iter().zip(&wo_sub).zip(&u_sub).enumerate() {
+            let c = count[g];
+            let (Some(idx), Some(ws), Some(us), Some(d)) =
+                (idx.get(..c), ws.get(..c), us.get(..c), drawn.get_mut(..c))
+            else {
+                continue;
+            };
+            match g {
+                0 => self.coat.sample_batch(ws, us, d),
+                1 => {
+                    if let Some(metal) = &self.metal {
+                        metal.single.sample_batch(ws, us, d);
+                    }
+                }
+                _ => self.spec.sample_batch(ws, us, d),
+            }
+            for (&k, s) in idx.iter().zip(d.iter()) {
+                if let Some(w) = wi.get_mut(k) {
+                    *w = s.map(|s| s.wi);
+                }
+            }
+        }
+        // The value and the mixture density at the drawn directions.
+        let mut wi_u = [Vec3::Z; CHUNK];
+        let mut mu_i = [0.0f32; CHUNK];
+        for ((a, mi), w) in wi_u.iter_mut().zip(mu_i.iter_mut()).zip(&wi) {
+            if let Some(w) = w {
+                *a = unit(*w);
+                *mi = a.z.min(1.0);
+            }
+        }
+        let wi_u = wi_u.get(..n).unwrap_or(&[]);
+        let mut es_i = [0.0f32; CHUNK];
+        let (mut fc, mut fm, mut fs, mut fd) = (
+            [S::zero(); CHUNK],
+            [S::zero(); CHUNK],
+            [S::zero(); CHUNK],
+            [S::zero(); CHUNK],
+        );
+        let (mut dc, mut dm, mut ds) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
+        if self.on[COAT] {
+            self.coat.eval_batch(wi_u, wo_u, &mut fc);
+            self.coat.pdf_batch(wi_u, wo_u, &mut dc);
+        }
+        if let Some(metal) = &self.metal {
+            metal.single.eval_batch(wi_u, wo_u, &mut fm);
+            metal.single.pdf_batch(wi_u, wo_u, &mut dm);
+        }
+        if self.on[SPEC] {
+            self.spec.eval_batch(wi_u, wo_u, &mut fs);
+            self.spec.pdf_batch(wi_u, wo_u, &mut ds);
+            self.diffuse.eval_batch(wi_u, wo_u, &mut fd);
+            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_i, &mut es_i);
+        }
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = match (
+                views.get(k).copied().flatten(),
+                wi.get(k).copied().flatten(),
+                wi_u.get(k),
+            ) {
+                (Some(view), Some(raw), Some(&w)) => {
+                    if !view.valid || w.z.is_nan() || w.z <= 0.0 || !w.is_finite() {
+                        None
+                    } else {
+                        let (fuzz, fuzz_d) = match (self.on[FUZZ], &self.fuzz) {
+                            (false, _) => (S::zero(), None),
+                            (true, Some(f)) => {
+                                let (v, d) = f.eval_pdf(w, view.wo);
+                                (v, Some(d))
+                            }
+                            (true, None) => (self.fuzz_eval(w, view.wo), None),
+                        };
+                        let at = |a: &[S; CHUNK]| a.get(k).copied().unwrap_or(S::zero());
+                        let at1 = |a: &[f32; CHUNK]| a.get(k).copied().unwrap_or(0.0);
+                        let v = LobeValues {
+                            fuzz,
+                            coat: at(&fc),
+                            metal: at(&fm),
+                            spec: at(&fs),
+                            diffuse: at(&fd),
+                            es_i: at1(&es_i),
+                        };
+                        let f = view.value_of(at1(&mu_i), &v);
+                        let pdf = view.pdf_of_with(w, [at1(&dc), at1(&dm), at1(&ds)], fuzz_d);
+                        finish(raw, f, pdf)
+                    }
+                }
+                _ => None,
+            };
+        }
+    }
+
     /// Prepares the view `ωo`: the layers' factors at `μo` and the lobes'
     /// pick probabilities, for any number of [`OpenPbrView::eval`],
     /// [`OpenPbrView::pdf`] and [`OpenPbrView::sample`] calls.
@@ -958,6 +1122,21 @@ impl<S: Spectrum> OpenPbr<S> {
         view.cdf[LOBES - 1] = 1.0;
         view
     }
+}
+
+/// The sample at `wi` with the material's value `f` and mixture density
+/// `pdf` there: `None` unless `pdf > 0` and the weight `f cos θi / pdf` is
+/// finite.
+#[inline]
+fn finish<S: Spectrum>(wi: Vec3, f: S, pdf: f32) -> Option<BrdfSample<S>> {
+    if pdf.is_nan() || pdf <= 0.0 {
+        return None;
+    }
+    let weight = f * (wi.z.max(0.0) / pdf);
+    if !weight.is_finite() {
+        return None;
+    }
+    Some(BrdfSample { wi, pdf, weight })
 }
 
 /// `w` itself when unit (to `10⁻⁵` in the squared length), else normalised
@@ -1273,6 +1452,13 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     /// operation for operation (held equal bit for bit by the batch tests).
     #[inline]
     fn pdf_of(&self, wi: Vec3, d: [f32; 3]) -> f32 {
+        self.pdf_of_with(wi, d, None)
+    }
+
+    /// [`pdf_of`](Self::pdf_of) with the fuzz's density `fuzz_d` where the
+    /// caller took it together with its value (as `sample`'s pass does).
+    #[inline]
+    fn pdf_of_with(&self, wi: Vec3, d: [f32; 3], fuzz_d: Option<f32>) -> f32 {
         let m = self.m;
         if !self.valid || wi.z.is_nan() || wi.z <= 0.0 || !wi.is_finite() {
             return 0.0;
@@ -1289,7 +1475,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
         };
         if m.on[FUZZ] {
-            pdf += prob(FUZZ) * m.fuzz_pdf(wi, wo);
+            pdf += prob(FUZZ) * fuzz_d.unwrap_or_else(|| m.fuzz_pdf(wi, wo));
         }
         if m.on[COAT] {
             pdf += prob(COAT) * d[0];
@@ -1359,6 +1545,28 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             return None;
         }
         let m = self.m;
+        let (k, uu) = self.pick(u);
+        let wo = self.wo;
+        let s = match k {
+            FUZZ => m.fuzz_sample(wo, uu),
+            COAT => m.coat.sample(wo, uu),
+            METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
+            SPEC => m.spec.sample(wo, uu),
+            _ => self.direction_of(k, uu).map(|wi| BrdfSample {
+                wi,
+                pdf: 0.0,
+                weight: S::zero(),
+            }),
+        }?;
+        let (f, pdf) = self.eval_inner(s.wi, true, true);
+        finish(s.wi, f, pdf)
+    }
+
+    /// The lobe `k` that `u[0]` picks from the cumulative probabilities, and
+    /// the sample point `[u₀', u[1]]` for it (`u₀` rescaled to the lobe's
+    /// interval).
+    #[inline]
+    fn pick(&self, u: [f32; 2]) -> (usize, [f32; 2]) {
         let u0 = if u[0].is_finite() {
             u[0].clamp(0.0, 1.0 - f32::EPSILON / 2.0)
         } else {
@@ -1382,41 +1590,23 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         } else {
             0.0
         };
-        let uu = [v, u[1]];
-        let wo = self.wo;
-        let s = match k {
-            FUZZ => m.fuzz_sample(wo, uu),
-            COAT => m.coat.sample(wo, uu),
-            METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
-            METAL_MS => m.metal.as_ref().and_then(|x| {
+        (k, [v, u[1]])
+    }
+
+    /// The direction the metal's multiple-scattering lobe (`k =
+    /// METAL_MS`) or the diffuse lobe (any other `k` outside the GGX lobes and
+    /// the fuzz) draws at `uu`: the direction alone, its value and density
+    /// come from the pass over every lobe.
+    #[inline]
+    fn direction_of(&self, k: usize, uu: [f32; 2]) -> Option<Vec3> {
+        if k == METAL_MS {
+            self.m.metal.as_ref().and_then(|x| {
                 let wi = x.ms_sample(uu);
-                (wi.z > 0.0).then(|| BrdfSample {
-                    wi,
-                    pdf: x.ms_pdf(wi.z),
-                    weight: S::zero(),
-                })
-            }),
-            SPEC => m.spec.sample(wo, uu),
-            // The direction alone: its value and density come from the pass below.
-            _ => self.diffuse_direction(uu).map(|wi| BrdfSample {
-                wi,
-                pdf: 0.0,
-                weight: S::zero(),
-            }),
-        }?;
-        let (f, pdf) = self.eval_inner(s.wi, true, true);
-        if pdf.is_nan() || pdf <= 0.0 {
-            return None;
+                (wi.z > 0.0).then_some(wi)
+            })
+        } else {
+            self.diffuse_direction(uu)
         }
-        let weight = f * (s.wi.z.max(0.0) / pdf);
-        if !weight.is_finite() {
-            return None;
-        }
-        Some(BrdfSample {
-            wi: s.wi,
-            pdf,
-            weight,
-        })
     }
 
     /// The number of components of the sampling map
@@ -1558,6 +1748,17 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
             self.eval_chunk(ci.get(..k).unwrap_or(&[]), co.get(..k).unwrap_or(&[]), out);
             start += k;
         }
+    }
+
+    /// In chunks: each GGX lobe's `sample_batch` over the elements that pick
+    /// it, then the lobes' `eval_batch` and `pdf_batch` at the drawn
+    /// directions (element by element equal to [`sample`](Brdf::sample):
+    /// the same `None`s, bit-identical `wi`, pdf and weight).
+    fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+        for ((wo, u), out) in wo.chunks(CHUNK).zip(u.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+            self.sample_chunk(wo, u, out);
+        }
+        radiometry::batch::zero_tail(out, wo.len().min(u.len()));
     }
 
     /// In chunks, as [`eval_batch`](Brdf::eval_batch): the lobes' own
