@@ -28,8 +28,14 @@
 //! | `sample_batch` of [`BlinnPhong<S>`](crate::BlinnPhong) | the same mixture with the half vector `cos θh = ξ^{1/(n+1)}` reflected, `ωi = 2(ωo·h)h − ωo`, pdf `pd cos θi/π + ps (n+1)/(2π) cos^n θh/(4 ωo·h)` (the reflection Jacobian of Torrance & Sparrow 1967; Walter et al. 2007) | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
 //! | [`Eon<S>`](crate::Eon), [`Fon<S>`](crate::Fon), [`OrenNayar<S>`](crate::OrenNayar) | `(ρ/π) A (1 + σ s/t)` (Fujii 2012 in the form of Portsmouth, Kutz & Hill 2025; pbrt-v3's `A + B s/t` for the classic model); EON's lobe `k_ms (c₁ − G(μi)/π)⁺ (c₁ − G(μo)/π)⁺` with `G` from `acos` (Portsmouth, Kutz & Hill 2025, Listing 1, `E_FON_exact`); `ωo`'s factor computed once when every lane has the same `cos θo` | `(1 − p_u) cos θi/π + p_u/(2π)` | 0 ulp |
 //! | `sample_batch` of [`Eon<S>`](crate::Eon), [`Fon<S>`](crate::Fon), [`OrenNayar<S>`](crate::OrenNayar) | the cosine/uniform mixture: uniform hemisphere (`cos θ = u₀/p_u`) or Malley's cosine-weighted concentric map (Shirley & Chiu 1997; the Phong family's warp), pdf and `f_r cos θi/pdf` of the normalised `ωi` | — | 0 ulp (`wi`, pdf, weight; same `None`s) |
+//! | `directional_albedo_batch` of a [prepared](radiometry::Brdf::with_prepared_albedo) [`Microfacet<Ggx, HeightCorrelated, Dielectric>`](crate::Microfacet) (also through [`Achromatic`](crate::microfacet::Achromatic)), `η > 1` outside the first roughness cell | the global tables' read of `E_F = E₁ R` (`crate::microfacet::fresnel_table`): each row's coordinate `√μ'` (two roots and a division) and the ratio's `√μ` in vector form, the cells' entries per lane, the Catmull–Rom and bilinear sums in vector form | — | 0 ulp |
+//! | `directional_albedo_batch` of [`Eon<S>`](crate::Eon) | `ρ E_FON + ρ_ms (1 − E_FON)` with `G(μo)/π` from the vector `acosf` | — | 0 ulp |
+//! | [`OpenPbr<S>`](crate::OpenPbr) `eval_batch`, `eval_batch_soa`, `pdf_batch`, `sample_batch` | in chunks of 32: the lobes' own kernels at the unit directions (`sample_batch`: each GGX lobe's sampling kernel over the elements that pick it), the layers' albedos at `μo` (and `E_s(μi)`) in lanes, the layering and the mixture density per element | | 0 ulp (`sample_batch`: `wi`, pdf, weight; same `None`s) |
 //!
-//! Every other plugin keeps the scalar-loop defaults of [`Brdf`].
+//! `radiometry::compose::Coated`'s batch paths likewise run its lobes'
+//! kernels and the top's `directional_albedo_batch` in chunks (with this
+//! feature, vector kernels for the crate's lobes). Every other plugin keeps
+//! the scalar-loop defaults of [`Brdf`].
 //!
 //! # Accuracy
 //!
