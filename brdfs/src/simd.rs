@@ -227,6 +227,32 @@ pub type Vf = wide::f32x8;
 /// Number of lanes of the kernels: 16 with AVX-512, else 8.
 pub const LANES: usize = core::mem::size_of::<Vf>() / core::mem::size_of::<f32>();
 
+/// The chunk driver of the `directional_albedo_batch` kernels: `lanes(w,
+/// o)` on each full chunk of [`LANES`] directions, `one(w)` on the tail, for
+/// the first `n = min(len)` elements, after the [batch length
+/// rule](radiometry::batch::zero_tail) for the rest of `out`.
+#[inline(always)]
+pub(crate) fn albedo_chunks<S: radiometry::Spectrum>(
+    wo: &[Vec3],
+    out: &mut [S],
+    mut lanes: impl FnMut(&[Vec3], &mut [S]),
+    mut one: impl FnMut(Vec3) -> S,
+) {
+    let n = wo.len().min(out.len());
+    radiometry::batch::zero_tail(out, n);
+    let (Some(wo), Some(out)) = (wo.get(..n), out.get_mut(..n)) else {
+        return;
+    };
+    let mut wc = wo.chunks_exact(LANES);
+    let mut oc = out.chunks_exact_mut(LANES);
+    for (w, o) in (&mut wc).zip(&mut oc) {
+        lanes(w, o);
+    }
+    for (o, &w) in oc.into_remainder().iter_mut().zip(wc.remainder()) {
+        *o = one(w);
+    }
+}
+
 /// [`LANES`] directions in structure-of-arrays form.
 #[derive(Clone, Copy)]
 pub(crate) struct Dirs {

@@ -353,12 +353,17 @@ fn compare_composites(
     Ok(())
 }
 
-/// OpenPBR Surface (`radiometry_brdfs::OpenPbr`): its batches run the
-/// lobes' own kernels and read the layers' albedos in lanes, so they too must
-/// equal the scalar path bit for bit — every layer on or off, both layering
-/// modes, `f32` and RGB, roughnesses from `α` (the specular lobe at `r =
-/// √α`, so the readers' shared and per-row paths both occur).
-fn compare_openpbr(alpha: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
+/// The OpenPBR materials the batch suites compare (`batch`, `sample_batch`):
+/// roughnesses from `α` (the specular lobe at `r = √α`, so the readers'
+/// shared and per-row paths both occur), every layer on above `α = 0.05` and
+/// off below — in `f32` (energy-conserving and reciprocal) and RGB.
+pub(crate) fn openpbr_materials(
+    alpha: f32,
+) -> (
+    radiometry_brdfs::OpenPbr<f32>,
+    radiometry_brdfs::OpenPbr<f32>,
+    radiometry_brdfs::OpenPbr<Vec3>,
+) {
     use radiometry_brdfs::{Layering, OpenPbr, OpenPbrParams};
     let r = alpha.sqrt();
     let on = |x: f32| if alpha < 0.05 { 0.0 } else { x };
@@ -370,18 +375,30 @@ fn compare_openpbr(alpha: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Resu
         fuzz_weight: on(0.5),
         ..OpenPbrParams::default()
     };
-    compare(&OpenPbr::new(p).unwrap(), "openpbr", pairs, rep)?;
-    let recip = OpenPbr::with_layering(p, Layering::Reciprocal).unwrap();
-    compare(&recip, "openpbr-reciprocal", pairs, rep)?;
     let rgb = OpenPbrParams::<Vec3> {
         specular_roughness: r,
         base_color: Vec3::new(0.9, 0.3, 0.1),
+        base_metalness: on(1.0),
         coat_weight: on(1.0),
         coat_color: Vec3::new(0.8, 0.9, 1.0),
         coat_ior: 1.3 + alpha,
         ..OpenPbrParams::default()
     };
-    compare(&OpenPbr::new(rgb).unwrap(), "openpbr-rgb", pairs, rep)
+    (
+        OpenPbr::new(p).unwrap(),
+        OpenPbr::with_layering(p, Layering::Reciprocal).unwrap(),
+        OpenPbr::new(rgb).unwrap(),
+    )
+}
+
+/// OpenPBR Surface (`radiometry_brdfs::OpenPbr`): its batches run the
+/// lobes' own kernels and read the layers' albedos in lanes, so they too must
+/// equal the scalar path bit for bit.
+fn compare_openpbr(alpha: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {
+    let (energy, recip, rgb) = openpbr_materials(alpha);
+    compare(&energy, "openpbr", pairs, rep)?;
+    compare(&recip, "openpbr-reciprocal", pairs, rep)?;
+    compare(&rgb, "openpbr-rgb", pairs, rep)
 }
 
 fn compare_all(alpha: f32, n: f32, pairs: &[(Vec3, Vec3)], rep: &mut Report) -> Result<(), TestCaseError> {

@@ -114,30 +114,10 @@ fn compare<B: Brdf>(b: &B, name: &str, wo: &[Vec3], u: &[[f32; 2]]) -> Result<us
 /// the lobe's kernel and evaluates the drawn directions through the lobes'
 /// batches — every layer on or off, both layering modes, `f32` and RGB.
 fn compare_openpbr(alpha: f32, wo: &[Vec3], u: &[[f32; 2]]) -> Result<usize, TestCaseError> {
-    use radiometry_brdfs::{Layering, OpenPbr, OpenPbrParams};
-    let r = alpha.sqrt();
-    let on = |x: f32| if alpha < 0.05 { 0.0 } else { x };
-    let p = OpenPbrParams::<f32> {
-        specular_roughness: r,
-        base_metalness: on(0.4),
-        coat_weight: on(0.7),
-        coat_roughness: 1.0 - r,
-        fuzz_weight: on(0.5),
-        ..OpenPbrParams::default()
-    };
-    let some = compare(&OpenPbr::new(p).unwrap(), "openpbr", wo, u)?;
-    let recip = OpenPbr::with_layering(p, Layering::Reciprocal).unwrap();
+    let (energy, recip, rgb) = crate::batch::openpbr_materials(alpha);
+    let some = compare(&energy, "openpbr", wo, u)?;
     compare(&recip, "openpbr-reciprocal", wo, u)?;
-    let rgb = OpenPbrParams::<Vec3> {
-        specular_roughness: r,
-        base_color: Vec3::new(0.9, 0.3, 0.1),
-        base_metalness: on(1.0),
-        coat_weight: on(1.0),
-        coat_color: Vec3::new(0.8, 0.9, 1.0),
-        coat_ior: 1.3 + alpha,
-        ..OpenPbrParams::default()
-    };
-    compare(&OpenPbr::new(rgb).unwrap(), "openpbr-rgb", wo, u)?;
+    compare(&rgb, "openpbr-rgb", wo, u)?;
     Ok(some)
 }
 

@@ -3,7 +3,7 @@
 
 use super::{
     CHUNK, ComposeError, Layering, finish_sample, mixture_pdf, pair_components, pair_sample, pair_weight,
-    pick_and_sample, pick_first, pick_u, reciprocal_through, saturate, soa_dirs, split_soa,
+    pick_and_sample, pick_first, pick_u, reciprocal_through, saturate, soa_chunks, soa_dirs,
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
@@ -472,30 +472,17 @@ where
     /// lobes' own SoA kernels (equal to [`eval`](Brdf::eval) element by
     /// element).
     fn eval_batch_soa(&self, wi: Vec3Soa<'_>, wo: Vec3Soa<'_>, out: &mut [S]) {
-        let n = wi.len().min(wo.len()).min(out.len());
-        crate::batch::zero_tail(out, n);
         let mut ft = [S::zero(); CHUNK];
         let mut fb = [S::zero(); CHUNK];
         let mut to = [S::zero(); CHUNK];
         let mut wo_aos = [Vec3::ZERO; CHUNK];
-        // Chunks by checked splits (no division by the chunk size, no slice
-        // index that could panic).
-        let (mut ri, mut ro, mut rest) = (wi, wo, out);
-        let mut done = 0;
-        while done < n {
-            let k = CHUNK.min(n - done);
-            let (Some((ci, ni)), Some((co, no))) = (split_soa(ri, k), split_soa(ro, k)) else {
-                break;
-            };
-            let Some((oc, on)) = core::mem::take(&mut rest).split_at_mut_checked(k) else {
-                break;
-            };
+        soa_chunks(wi, wo, out, |ci, co, oc| {
             self.top.eval_batch_soa(ci, co, &mut ft);
             self.base.eval_batch_soa(ci, co, &mut fb);
             for (a, w) in wo_aos.iter_mut().zip(soa_dirs(co)) {
                 *a = w;
             }
-            self.through_chunk(wo_aos.get(..k).unwrap_or(&wo_aos), &mut to);
+            self.through_chunk(wo_aos.get(..oc.len()).unwrap_or(&wo_aos), &mut to);
             for ((o, (i, j)), ((&x, &y), &t)) in oc
                 .iter_mut()
                 .zip(soa_dirs(ci).zip(wo_aos.iter().copied()))
@@ -503,9 +490,7 @@ where
             {
                 *o = self.layer_element(i, j, x, y, t);
             }
-            (ri, ro, rest) = (ni, no, on);
-            done += k;
-        }
+        });
     }
 
     /// The lobes' own `pdf_batch` kernels, mixed with the pick probability

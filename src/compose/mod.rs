@@ -106,10 +106,32 @@ pub(crate) fn eval_batch_soa_pair<S, A, B>(
     A: Brdf<Spectrum = S> + ?Sized,
     B: Brdf<Spectrum = S> + ?Sized,
 {
-    let n = wi.len().min(wo.len()).min(out.len());
-    crate::batch::zero_tail(out, n);
     let mut fa = [S::zero(); CHUNK];
     let mut fb = [S::zero(); CHUNK];
+    soa_chunks(wi, wo, out, |ci, co, oc| {
+        a.eval_batch_soa(ci, co, &mut fa);
+        b.eval_batch_soa(ci, co, &mut fb);
+        for ((o, (&x, &y)), (i, j)) in oc
+            .iter_mut()
+            .zip(fa.iter().zip(&fb))
+            .zip(soa_dirs(ci).zip(soa_dirs(co)))
+        {
+            *o = combine(i, j, x, y);
+        }
+    });
+}
+
+/// Calls `f(wi_chunk, wo_chunk, out_chunk)` on consecutive chunks of at most
+/// [`CHUNK`] elements of the first `n = min(len)` directions, after the
+/// [batch length rule](crate::batch::zero_tail) for the rest of `out`.
+pub(crate) fn soa_chunks<S: Spectrum>(
+    wi: crate::batch::Vec3Soa<'_>,
+    wo: crate::batch::Vec3Soa<'_>,
+    out: &mut [S],
+    mut f: impl FnMut(crate::batch::Vec3Soa<'_>, crate::batch::Vec3Soa<'_>, &mut [S]),
+) {
+    let n = wi.len().min(wo.len()).min(out.len());
+    crate::batch::zero_tail(out, n);
     // Chunks by checked splits (no division by the chunk size, no slice
     // index that could panic).
     let (mut ri, mut ro, mut rest) = (wi, wo, out);
@@ -122,15 +144,7 @@ pub(crate) fn eval_batch_soa_pair<S, A, B>(
         let Some((oc, on)) = core::mem::take(&mut rest).split_at_mut_checked(k) else {
             break;
         };
-        a.eval_batch_soa(ci, co, &mut fa);
-        b.eval_batch_soa(ci, co, &mut fb);
-        for ((o, (&x, &y)), (i, j)) in oc
-            .iter_mut()
-            .zip(fa.iter().zip(&fb))
-            .zip(soa_dirs(ci).zip(soa_dirs(co)))
-        {
-            *o = combine(i, j, x, y);
-        }
+        f(ci, co, oc);
         (ri, ro, rest) = (ni, no, on);
         done += k;
     }

@@ -345,7 +345,7 @@ impl AlbedoReader {
     }
 }
 
-/// [`AlbedoReader::albedo_shared`] in vector lanes (feature `simd`): the
+/// [`AlbedoReader::albedo`] in vector lanes (feature `simd`): the
 /// same operations lane for lane, so the same bits.
 #[cfg(feature = "simd")]
 impl AlbedoReader {
@@ -353,98 +353,80 @@ impl AlbedoReader {
     /// for lane (the rows' shared coordinate, or each row's own).
     #[inline(always)]
     pub(crate) fn albedo_lanes(&self, table: &AlbedoTable, mu: crate::simd::Vf) -> crate::simd::Vf {
+        use crate::simd::Vf;
+        let first = usize::from(self.row);
+        let Some(rows) = table.values.get(first..first + 4) else {
+            return Vf::ZERO;
+        };
+        let s2 = (Vf::ONE - mu) * (Vf::ONE + mu);
+        let mut acc = Vf::ZERO;
         if self.shared {
-            self.albedo_shared_lanes(table, mu)
+            // One coordinate for the four rows.
+            let (cells, t) = cell_lanes(mu, s2, self.k2[0]);
+            for (row, &w) in rows.iter().zip(&self.w) {
+                acc += Vf::splat(w) * row_lerp_lanes(row, &cells, t);
+            }
         } else {
-            self.albedo_rows_lanes(table, mu)
-        }
-    }
-
-    /// [`albedo`](Self::albedo)'s general path in lanes: row `r` at its own
-    /// coordinate `√μ'_r`, `μ'_r = min(μ/√(μ² + k_r s²), 1)`.
-    #[inline(always)]
-    fn albedo_rows_lanes(&self, table: &AlbedoTable, mu: crate::simd::Vf) -> crate::simd::Vf {
-        use crate::simd::{LANES, Vf};
-        let first = usize::from(self.row);
-        let Some(rows) = table.values.get(first..first + 4) else {
-            return Vf::ZERO;
-        };
-        let one = Vf::ONE;
-        let s2 = (one - mu) * (one + mu);
-        let mut acc = Vf::ZERO;
-        for ((row, &w), &k2) in rows.iter().zip(&self.w).zip(&self.k2) {
-            let d = mu * mu + Vf::splat(k2) * s2;
-            let q = d.simd_gt(Vf::ZERO).select((mu / d.sqrt()).min(one), Vf::ZERO);
-            let x = q.sqrt();
-            let s = x.simd_gt(Vf::ZERO).select(
-                (x * Vf::splat((N_MU - 1) as f32)).min(Vf::splat(N_MU as f32 - 1.0)),
-                Vf::ZERO,
-            );
-            let s_arr = s.min(Vf::splat((N_MU - 2) as f32)).to_array();
-            let (mut a, mut b, mut i_f) = ([0.0f32; LANES], [0.0f32; LANES], [0.0f32; LANES]);
-            for (((a, b), f), &v) in a.iter_mut().zip(&mut b).zip(&mut i_f).zip(&s_arr) {
-                let j = (v as u32).min(N_MU as u32 - 2) as usize;
-                *f = j as f32;
-                (*a, *b) = (
-                    row.get(j).copied().unwrap_or(0.0),
-                    row.get(j + 1).copied().unwrap_or(0.0),
-                );
+            for ((row, &w), &k2) in rows.iter().zip(&self.w).zip(&self.k2) {
+                let (cells, t) = cell_lanes(mu, s2, k2);
+                acc += Vf::splat(w) * row_lerp_lanes(row, &cells, t);
             }
-            let i_f = Vf::from(i_f);
-            let t = s - i_f;
-            let t = i_f.simd_eq(Vf::ZERO).select(t * t, t);
-            let (a, b) = (Vf::from(a), Vf::from(b));
-            acc += Vf::splat(w) * (a + t * (b - a));
         }
-        acc.max(Vf::ZERO).min(one)
+        acc.max(Vf::ZERO).min(Vf::ONE)
     }
+}
 
-    /// `E(μ, α)` at each lane's `μ ∈ [0, 1]` for a reader whose rows share
-    /// one coordinate ([`is_shared`](Self::is_shared)): the coordinate
-    /// `√μ'`, `μ' = min(μ/√(μ² + k s²), 1)`, in vector form, the cells and
-    /// the rows' entries per lane, the four-row sum in vector form.
-    #[inline(always)]
-    pub(crate) fn albedo_shared_lanes(&self, table: &AlbedoTable, mu: crate::simd::Vf) -> crate::simd::Vf {
-        use crate::simd::{LANES, Vf};
-        let first = usize::from(self.row);
-        let Some(rows) = table.values.get(first..first + 4) else {
-            return Vf::ZERO;
-        };
-        let one = Vf::ONE;
-        let s2 = (one - mu) * (one + mu);
-        let d = mu * mu + Vf::splat(self.k2[0]) * s2;
-        let q = d.simd_gt(Vf::ZERO).select((mu / d.sqrt()).min(one), Vf::ZERO);
-        // `cell(x, N_MU)`: `s = min(x (n − 1), n − 1)` (0 for `x ≤ 0`), the
-        // cell `i = min(s, n − 2)` truncated, `t = s − i`.
-        let x = q.sqrt();
-        let s = x.simd_gt(Vf::ZERO).select(
-            (x * Vf::splat((N_MU - 1) as f32)).min(Vf::splat(N_MU as f32 - 1.0)),
-            Vf::ZERO,
+/// A row's cell at each lane's `μ` (`s2 = 1 − μ²`) for the tangent scaling
+/// `k2`, as [`AlbedoReader::albedo`] finds it: the coordinate `x = √μ'`,
+/// `μ' = min(μ/√(μ² + k2 s2), 1)` (0 where the root's argument is 0), then
+/// `cell(x, N_MU)` — `s = min(x (n − 1), n − 1)` (0 for `x ≤ 0`), the cell
+/// `i = min(s, n − 2)` truncated, `t = s − i` (squared in the first cell).
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn cell_lanes(
+    mu: crate::simd::Vf,
+    s2: crate::simd::Vf,
+    k2: f32,
+) -> ([usize; crate::simd::LANES], crate::simd::Vf) {
+    use crate::simd::{LANES, Vf};
+    let d = mu * mu + Vf::splat(k2) * s2;
+    let q = d.simd_gt(Vf::ZERO).select((mu / d.sqrt()).min(Vf::ONE), Vf::ZERO);
+    let x = q.sqrt();
+    let s = x.simd_gt(Vf::ZERO).select(
+        (x * Vf::splat((N_MU - 1) as f32)).min(Vf::splat(N_MU as f32 - 1.0)),
+        Vf::ZERO,
+    );
+    let s_arr = s.min(Vf::splat((N_MU - 2) as f32)).to_array();
+    let mut cells = [0usize; LANES];
+    let mut i_f = [0.0f32; LANES];
+    for ((c, f), &v) in cells.iter_mut().zip(&mut i_f).zip(&s_arr) {
+        let i = (v as u32).min(N_MU as u32 - 2);
+        (*c, *f) = (i as usize, i as f32);
+    }
+    let i_f = Vf::from(i_f);
+    let t = s - i_f;
+    (cells, i_f.simd_eq(Vf::ZERO).select(t * t, t))
+}
+
+/// `a + t (b − a)` of one row at each lane's cell (`a`, `b` the entries at
+/// the cell and the next one, read per lane).
+#[cfg(feature = "simd")]
+#[inline(always)]
+fn row_lerp_lanes(
+    row: &[f32; N_MU],
+    cells: &[usize; crate::simd::LANES],
+    t: crate::simd::Vf,
+) -> crate::simd::Vf {
+    use crate::simd::{LANES, Vf};
+    let (mut a, mut b) = ([0.0f32; LANES], [0.0f32; LANES]);
+    for ((a, b), &j) in a.iter_mut().zip(&mut b).zip(cells) {
+        (*a, *b) = (
+            row.get(j).copied().unwrap_or(0.0),
+            row.get(j + 1).copied().unwrap_or(0.0),
         );
-        let s_arr = s.min(Vf::splat((N_MU - 2) as f32)).to_array();
-        let mut cells = [0usize; LANES];
-        let mut i_f = [0.0f32; LANES];
-        for ((c, f), &v) in cells.iter_mut().zip(&mut i_f).zip(&s_arr) {
-            let i = (v as u32).min(N_MU as u32 - 2);
-            (*c, *f) = (i as usize, i as f32);
-        }
-        let i_f = Vf::from(i_f);
-        let t = s - i_f;
-        let t = i_f.simd_eq(Vf::ZERO).select(t * t, t);
-        let mut acc = Vf::ZERO;
-        for (row, &w) in rows.iter().zip(&self.w) {
-            let (mut a, mut b) = ([0.0f32; LANES], [0.0f32; LANES]);
-            for ((a, b), &j) in a.iter_mut().zip(&mut b).zip(&cells) {
-                (*a, *b) = (
-                    row.get(j).copied().unwrap_or(0.0),
-                    row.get(j + 1).copied().unwrap_or(0.0),
-                );
-            }
-            let (a, b) = (Vf::from(a), Vf::from(b));
-            acc += Vf::splat(w) * (a + t * (b - a));
-        }
-        acc.max(Vf::ZERO).min(one)
     }
+    let (a, b) = (Vf::from(a), Vf::from(b));
+    a + t * (b - a)
 }
 
 /// Roughness from which a row's nodes are the plain `μ_j = (j/63)²`; below

@@ -492,14 +492,7 @@ pub(crate) fn dielectric_albedo<S: Spectrum>(
     wo: &[Vec3],
     out: &mut [S],
 ) {
-    let n = wo.len().min(out.len());
-    radiometry::batch::zero_tail(out, n);
-    let (Some(wo), Some(out)) = (wo.get(..n), out.get_mut(..n)) else {
-        return;
-    };
-    let mut wo_chunks = wo.chunks_exact(LANES);
-    let mut out_chunks = out.chunks_exact_mut(LANES);
-    for (w, o) in (&mut wo_chunks).zip(&mut out_chunks) {
+    let lanes = |w: &[Vec3], o: &mut [S]| {
         let mut mu = [0.0f32; LANES];
         for (m, &w) in mu.iter_mut().zip(w) {
             *m = super::unit_cos_theta(w);
@@ -510,15 +503,16 @@ pub(crate) fn dielectric_albedo<S: Spectrum>(
         for (o, &e) in o.iter_mut().zip(&e) {
             *o = S::splat(e);
         }
-    }
-    for (o, &w) in out_chunks.into_remainder().iter_mut().zip(wo_chunks.remainder()) {
+    };
+    let one = |w: Vec3| {
         let mu = super::unit_cos_theta(w);
-        *o = S::splat(if mu > 0.0 {
+        S::splat(if mu > 0.0 {
             radiometry::math::clamp01(reader.albedo(mu))
         } else {
             0.0
-        });
-    }
+        })
+    };
+    crate::simd::albedo_chunks(wo, out, lanes, one);
 }
 
 #[cfg(test)]

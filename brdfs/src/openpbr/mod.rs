@@ -418,6 +418,25 @@ fn lobe_albedo_chunk<S: Spectrum>(
     }
 }
 
+/// The unit directions of a chunk ([`unit`]) and `cos(k)` of each.
+#[inline]
+fn unit_chunk(w: &[Vec3], cos: impl Fn(Vec3) -> f32) -> ([Vec3; CHUNK], [f32; CHUNK]) {
+    let (mut u, mut c) = ([Vec3::ZERO; CHUNK], [0.0f32; CHUNK]);
+    for ((u, c), &w) in u.iter_mut().zip(c.iter_mut()).zip(w) {
+        *u = unit(w);
+        *c = cos(*u);
+    }
+    (u, c)
+}
+
+/// `μo` of a unit view direction as [`OpenPbr::prepare_with`] takes it (0
+/// for a view it rejects, whose reads nobody uses).
+#[inline]
+fn view_cosine(w: Vec3) -> f32 {
+    let valid = w.z.is_finite() && w.z > 0.0 && w.is_finite();
+    if valid { w.z.min(1.0) } else { 0.0 }
+}
+
 /// `α = max(r², 10⁻⁴)`.
 fn alpha(r: f32) -> f32 {
     (r * r).max(MIN_ALPHA)
@@ -715,29 +734,32 @@ impl<S: Spectrum> OpenPbr<S> {
         radiometry::compose::coat_absorption(self.params.coat_color, self.coat_ae.1, mu_i, mu_o)
     }
 
+    /// What the views of a chunk read at `μo` (`mu_o`, of the unit `wo_u`)
+    /// for their picks: `E_C(μo)` and `E_s(μo)` through
+    /// [`lobe_albedo_chunk`] and the diffuse lobe's albedo from its batch
+    /// (each 0 where its layer is off).
+    #[inline]
+    fn view_reads(&self, wo_u: &[Vec3], mu_o: &[f32; CHUNK]) -> ([f32; CHUNK], [f32; CHUNK], [S; CHUNK]) {
+        let (mut coat_o, mut spec_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
+        let mut diffuse = [S::zero(); CHUNK];
+        if self.on[COAT] {
+            lobe_albedo_chunk(&self.coat, self.coat_ae, mu_o, &mut coat_o);
+        }
+        if self.on[SPEC] {
+            lobe_albedo_chunk(&self.spec, self.spec_ae, mu_o, &mut spec_o);
+            self.diffuse.directional_albedo_batch(wo_u, &mut diffuse);
+        }
+        (coat_o, spec_o, diffuse)
+    }
+
     /// [`Brdf::eval`] of one chunk of at most [`CHUNK`] pairs (`out` as long
     /// as the shorter of `wi`, `wo`): the lobes' own batch kernels at the
     /// unit directions, the layers' albedos at `μo` and `μi` through
     /// [`lobe_albedo_chunk`], then the views and [`OpenPbrView::value_of`]
     /// element by element — bit for bit `eval`.
     fn eval_chunk(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
-        let mut wi_u = [Vec3::ZERO; CHUNK];
-        let mut wo_u = [Vec3::ZERO; CHUNK];
-        let (mut mu_i, mut mu_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
-        for ((((a, b), (mi, mo)), &i), &o) in wi_u
-            .iter_mut()
-            .zip(wo_u.iter_mut())
-            .zip(mu_i.iter_mut().zip(mu_o.iter_mut()))
-            .zip(wi)
-            .zip(wo)
-        {
-            (*a, *b) = (unit(i), unit(o));
-            // `μ` as `prepare_with` and `eval_inner` take it (lanes outside
-            // the hemisphere read a value nobody uses).
-            *mi = a.z.min(1.0);
-            let valid = b.z.is_finite() && b.z > 0.0 && b.is_finite();
-            *mo = if valid { b.z.min(1.0) } else { 0.0 };
-        }
+        let (wi_u, mu_i) = unit_chunk(wi, |a| a.z.min(1.0));
+        let (wo_u, mu_o) = unit_chunk(wo, view_cosine);
         let n = wi.len().min(wo.len()).min(out.len()).min(CHUNK);
         let (wi_u, wo_u) = (wi_u.get(..n).unwrap_or(&[]), wo_u.get(..n).unwrap_or(&[]));
         let (mut coat_o, mut spec_o, mut es_i) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
@@ -798,30 +820,11 @@ impl<S: Spectrum> OpenPbr<S> {
     /// at `μo` from the lobes' batches and lanes, then the views and
     /// [`OpenPbrView::pdf_of`] element by element — bit for bit `pdf`.
     fn pdf_chunk(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
-        let mut wi_u = [Vec3::ZERO; CHUNK];
-        let mut wo_u = [Vec3::ZERO; CHUNK];
-        let mut mu_o = [0.0f32; CHUNK];
-        for (((a, b), mo), (&i, &o)) in wi_u
-            .iter_mut()
-            .zip(wo_u.iter_mut())
-            .zip(mu_o.iter_mut())
-            .zip(wi.iter().zip(wo))
-        {
-            (*a, *b) = (unit(i), unit(o));
-            let valid = b.z.is_finite() && b.z > 0.0 && b.is_finite();
-            *mo = if valid { b.z.min(1.0) } else { 0.0 };
-        }
+        let (wi_u, _) = unit_chunk(wi, |_| 0.0);
+        let (wo_u, mu_o) = unit_chunk(wo, view_cosine);
         let n = wi.len().min(wo.len()).min(out.len()).min(CHUNK);
         let (wi_u, wo_u) = (wi_u.get(..n).unwrap_or(&[]), wo_u.get(..n).unwrap_or(&[]));
-        let (mut coat_o, mut spec_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
-        let mut diffuse = [S::zero(); CHUNK];
-        if self.on[COAT] {
-            lobe_albedo_chunk(&self.coat, self.coat_ae, &mu_o, &mut coat_o);
-        }
-        if self.on[SPEC] {
-            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_o, &mut spec_o);
-            self.diffuse.directional_albedo_batch(wo_u, &mut diffuse);
-        }
+        let (coat_o, spec_o, diffuse) = self.view_reads(wo_u, &mu_o);
         let (mut dc, mut dm, mut ds) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
         if self.on[COAT] {
             self.coat.pdf_batch(wi_u, wo_u, &mut dc);
@@ -843,7 +846,7 @@ impl<S: Spectrum> OpenPbr<S> {
                 diffuse: Some(d),
             };
             let view = self.prepare_with(raw_o, true, Some(reads));
-            *o = view.pdf_of(w, [c, m, s]);
+            *o = view.pdf_of(w, [c, m, s], None);
         }
     }
 
@@ -858,23 +861,9 @@ impl<S: Spectrum> OpenPbr<S> {
         let (Some(wo), Some(u), Some(out)) = (wo.get(..n), u.get(..n), out.get_mut(..n)) else {
             return;
         };
-        let mut wo_u = [Vec3::ZERO; CHUNK];
-        let mut mu_o = [0.0f32; CHUNK];
-        for ((b, mo), &o) in wo_u.iter_mut().zip(mu_o.iter_mut()).zip(wo) {
-            *b = unit(o);
-            let valid = b.z.is_finite() && b.z > 0.0 && b.is_finite();
-            *mo = if valid { b.z.min(1.0) } else { 0.0 };
-        }
+        let (wo_u, mu_o) = unit_chunk(wo, view_cosine);
         let wo_u = wo_u.get(..n).unwrap_or(&[]);
-        let (mut coat_o, mut spec_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
-        let mut diffuse = [S::zero(); CHUNK];
-        if self.on[COAT] {
-            lobe_albedo_chunk(&self.coat, self.coat_ae, &mu_o, &mut coat_o);
-        }
-        if self.on[SPEC] {
-            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_o, &mut spec_o);
-            self.diffuse.directional_albedo_batch(wo_u, &mut diffuse);
-        }
+        let (coat_o, spec_o, diffuse) = self.view_reads(wo_u, &mu_o);
         // The views and the picks; the GGX lobes' draws grouped per lobe.
         let mut views: [Option<OpenPbrView<'_, S>>; CHUNK] = [None; CHUNK];
         let mut wi: [Option<Vec3>; CHUNK] = [None; CHUNK];
@@ -1002,7 +991,7 @@ impl<S: Spectrum> OpenPbr<S> {
                             es_i: at1(&es_i),
                         };
                         let f = view.value_of(at1(&mu_i), &v);
-                        let pdf = view.pdf_of_with(w, [at1(&dc), at1(&dm), at1(&ds)], fuzz_d);
+                        let pdf = view.pdf_of(w, [at1(&dc), at1(&dm), at1(&ds)], fuzz_d);
                         finish(raw, f, pdf)
                     }
                 }
@@ -1375,14 +1364,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let p = &m.params;
         let mut f = S::zero();
         let mut pdf = 0.0f32;
-        let prob = |k: usize| {
-            let lo = k
-                .checked_sub(1)
-                .and_then(|i| self.cdf.get(i))
-                .copied()
-                .unwrap_or(0.0);
-            (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
-        };
+        let prob = |k: usize| self.prob(k);
         if m.on[FUZZ] {
             match (&m.fuzz, want_value && want_pdf) {
                 // Energy mode, both wanted: the LTC's table read and frame once.
@@ -1450,15 +1432,10 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     /// densities `[coat, metal, specular]` (0 for a lobe that is off): the
     /// batches' form of [`eval_inner`](Self::eval_inner)'s density,
     /// operation for operation (held equal bit for bit by the batch tests).
+    /// `fuzz_d` is the fuzz's density where the caller took it together with
+    /// its value (as `sample`'s pass does), else `None`.
     #[inline]
-    fn pdf_of(&self, wi: Vec3, d: [f32; 3]) -> f32 {
-        self.pdf_of_with(wi, d, None)
-    }
-
-    /// [`pdf_of`](Self::pdf_of) with the fuzz's density `fuzz_d` where the
-    /// caller took it together with its value (as `sample`'s pass does).
-    #[inline]
-    fn pdf_of_with(&self, wi: Vec3, d: [f32; 3], fuzz_d: Option<f32>) -> f32 {
+    fn pdf_of(&self, wi: Vec3, d: [f32; 3], fuzz_d: Option<f32>) -> f32 {
         let m = self.m;
         if !self.valid || wi.z.is_nan() || wi.z <= 0.0 || !wi.is_finite() {
             return 0.0;
@@ -1466,14 +1443,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let wo = self.wo;
         let mu_i = wi.z.min(1.0);
         let mut pdf = 0.0f32;
-        let prob = |k: usize| {
-            let lo = k
-                .checked_sub(1)
-                .and_then(|i| self.cdf.get(i))
-                .copied()
-                .unwrap_or(0.0);
-            (self.cdf.get(k).copied().unwrap_or(0.0) - lo).max(0.0)
-        };
+        let prob = |k: usize| self.prob(k);
         if m.on[FUZZ] {
             pdf += prob(FUZZ) * fuzz_d.unwrap_or_else(|| m.fuzz_pdf(wi, wo));
         }
@@ -1629,6 +1599,13 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         if !self.valid || !counted {
             return 0.0;
         }
+        self.prob(k)
+    }
+
+    /// The width of lobe `k`'s interval of the cumulative pick
+    /// probabilities (0 for `k` out of range).
+    #[inline]
+    fn prob(&self, k: usize) -> f32 {
         let lo = k
             .checked_sub(1)
             .and_then(|i| self.cdf.get(i))

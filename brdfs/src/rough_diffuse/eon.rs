@@ -231,14 +231,7 @@ impl<S: Spectrum> Brdf for Eon<S> {
     #[cfg(feature = "simd")]
     fn directional_albedo_batch(&self, wo: &[Vec3], out: &mut [S]) {
         use crate::simd::{LANES, Vf};
-        let n = wo.len().min(out.len());
-        radiometry::batch::zero_tail(out, n);
-        let (Some(wo), Some(out)) = (wo.get(..n), out.get_mut(..n)) else {
-            return;
-        };
-        let mut wc = wo.chunks_exact(LANES);
-        let mut oc = out.chunks_exact_mut(LANES);
-        for (w, o) in (&mut wc).zip(&mut oc) {
+        let lanes = |w: &[Vec3], o: &mut [S]| {
             let (mut mu, mut above) = ([0.0f32; LANES], [false; LANES]);
             for ((m, a), &w) in mu.iter_mut().zip(&mut above).zip(w) {
                 if let Some(u) = super::unit(w)
@@ -251,10 +244,8 @@ impl<S: Spectrum> Brdf for Eon<S> {
             for ((o, &g), &a) in o.iter_mut().zip(&g).zip(&above) {
                 *o = if a { self.albedo_from_g(g) } else { S::zero() };
             }
-        }
-        for (o, &w) in oc.into_remainder().iter_mut().zip(wc.remainder()) {
-            *o = self.directional_albedo(w).value;
-        }
+        };
+        crate::simd::albedo_chunks(wo, out, lanes, |w| self.directional_albedo(w).value);
     }
 
     /// `f_FON + f_ms` when both directions are above the horizon, else 0.
