@@ -61,7 +61,9 @@ Plugins (F = 1 unless a Fresnel term is named):
   hit-prepared through Coated::prepare as above, albedo-read, the top's albedo at ωo alone as the
   energy-conserving layer reads it at every eval (the top Coated::new keeps, prepared by
   Brdf::with_prepared_albedo), albedo-full, the same read from a top not prepared (its table cells
-  located at every call), and albedo-prepared, the bare DielectricAlbedoReader built once)
+  located at every call), albedo-prepared, the bare DielectricAlbedoReader built once, and
+  eval-parts, a plain loop of the top's eval + the base's eval + that bare read, summed: the least
+  an exact energy-conserving layer computes per eval)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -629,6 +631,18 @@ impl Run<'_> {
             }
         });
         self.push("plastic-ggx0.1-eon", "albedo-prepared", t);
+        // The least an exact energy-conserving layer computes per `eval`: both
+        // lobes' values and the top's albedo at ωo from the bare reader, summed
+        // in one plain loop (no layering, no clamping): the bound of the
+        // plastic's `eval` against its lobes' combined rate.
+        let (top, base) = (layer.top(), layer.base());
+        let t = measure(n, mt, || {
+            for (&i, &o) in wi.iter().zip(wo) {
+                sink +=
+                    black_box(top).eval(i, o) + black_box(base).eval(i, o) + black_box(&reader).albedo(o.z);
+            }
+        });
+        self.push("plastic-ggx0.1-eon", "eval-parts", t);
         black_box(sink);
     }
 

@@ -45,6 +45,7 @@ const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
             "albedo-read",
             "albedo-full",
             "albedo-prepared",
+            "eval-parts",
         ],
     ),
     ("openpbr-defaults", &["construct", "hit", "hit-prepared"]),

@@ -325,9 +325,34 @@ impl AlbedoReader {
     }
 
     /// The weighted sum of the four rows at the one coordinate `√μ'`,
-    /// `μ' = min(μ/√(μ² + k s²), 1)` (0 where the root's argument is 0).
+    /// `μ' = min(μ/√(μ² + k s²), 1)` (0 where the root's argument is 0):
+    /// the rows' spline at the cell's two nodes, then the chord between them,
+    ///
+    /// ```text
+    /// E = a + t (b − a),   a = Σ_r w_r row_r[j],   b = Σ_r w_r row_r[j+1]
+    /// ```
+    ///
+    /// (the same sums a combined row holds, so a read of that row is this
+    /// read bit for bit).
     #[inline(always)]
     fn shared_sum(&self, rows: &[[f32; N_MU]], mu: f32, s2: f32) -> f32 {
+        let (j, t) = self.shared_cell(mu, s2);
+        let node = |j: usize| {
+            let mut acc = 0.0f32;
+            for (row, &w) in rows.iter().zip(&self.w) {
+                acc += w * row.get(j).copied().unwrap_or(0.0);
+            }
+            acc
+        };
+        let (a, b) = (node(j), node(j + 1));
+        a + t * (b - a)
+    }
+
+    /// The cell `(j, t)` of the rows' shared coordinate `x = √μ'`, `μ' =
+    /// min(μ/√(μ² + k s²), 1)` (0 where the root's argument is 0), `t`
+    /// squared in the first cell.
+    #[inline(always)]
+    fn shared_cell(&self, mu: f32, s2: f32) -> (usize, f32) {
         let d = mu * mu + self.k2[0] * s2;
         let q = if d > 0.0 {
             (mu / libm::sqrtf(d)).min(1.0)
@@ -335,13 +360,26 @@ impl AlbedoReader {
             0.0
         };
         let (j, t) = cell(libm::sqrtf(q), N_MU);
-        let t = if j == 0 { t * t } else { t };
-        let mut acc = 0.0f32;
-        for (row, &w) in rows.iter().zip(&self.w) {
-            let (a, b) = (row[j], row[j + 1]);
-            acc += w * (a + t * (b - a));
+        (j, if j == 0 { t * t } else { t })
+    }
+
+    /// The four rows of a reader whose rows share one coordinate
+    /// ([`is_shared`](Self::is_shared)) summed once per node, `c_j = Σ_r
+    /// w_r row_r[j]`: what [`albedo_combined_lanes`](Self::albedo_combined_lanes)
+    /// reads (feature `simd`).
+    #[cfg(feature = "simd")]
+    #[inline]
+    pub(crate) fn combined_row(&self, table: &AlbedoTable) -> [f32; N_MU] {
+        let first = usize::from(self.row);
+        let mut out = [0.0f32; N_MU];
+        if let Some([r0, r1, r2, r3]) = table.values.get(first..first + 4) {
+            let [w0, w1, w2, w3] = self.w;
+            // `shared_sum`'s node sum, node by node (in vector form).
+            for (j, o) in out.iter_mut().enumerate() {
+                *o = (((0.0 + w0 * r0[j]) + w1 * r1[j]) + w2 * r2[j]) + w3 * r3[j];
+            }
         }
-        acc
+        out
     }
 }
 
@@ -361,11 +399,16 @@ impl AlbedoReader {
         let s2 = (Vf::ONE - mu) * (Vf::ONE + mu);
         let mut acc = Vf::ZERO;
         if self.shared {
-            // One coordinate for the four rows.
+            // One coordinate for the four rows: the spline at the cell's two
+            // nodes, then the chord (the scalar `shared_sum`'s order).
             let (cells, t) = cell_lanes(mu, s2, self.k2[0]);
+            let (mut a, mut b) = (Vf::ZERO, Vf::ZERO);
             for (row, &w) in rows.iter().zip(&self.w) {
-                acc += Vf::splat(w) * row_lerp_lanes(row, &cells, t);
+                let (ra, rb) = row_nodes_lanes(row, &cells);
+                a += Vf::splat(w) * ra;
+                b += Vf::splat(w) * rb;
             }
+            acc = a + t * (b - a);
         } else {
             for ((row, &w), &k2) in rows.iter().zip(&self.w).zip(&self.k2) {
                 let (cells, t) = cell_lanes(mu, s2, k2);
@@ -417,6 +460,18 @@ fn row_lerp_lanes(
     cells: &[usize; crate::simd::LANES],
     t: crate::simd::Vf,
 ) -> crate::simd::Vf {
+    let (a, b) = row_nodes_lanes(row, cells);
+    a + t * (b - a)
+}
+
+/// The entries of one row at each lane's cell and the next node, read per
+/// lane (0 past the row's end).
+#[cfg(feature = "simd")]
+#[inline(always)]
+pub(crate) fn row_nodes_lanes(
+    row: &[f32],
+    cells: &[usize; crate::simd::LANES],
+) -> (crate::simd::Vf, crate::simd::Vf) {
     use crate::simd::{LANES, Vf};
     let (mut a, mut b) = ([0.0f32; LANES], [0.0f32; LANES]);
     for ((a, b), &j) in a.iter_mut().zip(&mut b).zip(cells) {
@@ -425,8 +480,23 @@ fn row_lerp_lanes(
             row.get(j + 1).copied().unwrap_or(0.0),
         );
     }
-    let (a, b) = (Vf::from(a), Vf::from(b));
-    a + t * (b - a)
+    (Vf::from(a), Vf::from(b))
+}
+
+#[cfg(feature = "simd")]
+impl AlbedoReader {
+    /// [`albedo`](Self::albedo) of a reader with a shared coordinate from its
+    /// [`combined_row`](Self::combined_row), at each lane's `μ ∈ [0, 1]`:
+    /// the coordinate's cell per lane, two entries of the row per lane, the
+    /// chord in vector form — bit for bit the scalar read of the four rows.
+    #[inline(always)]
+    pub(crate) fn albedo_combined_lanes(&self, row: &[f32; N_MU], mu: crate::simd::Vf) -> crate::simd::Vf {
+        use crate::simd::Vf;
+        let s2 = (Vf::ONE - mu) * (Vf::ONE + mu);
+        let (cells, t) = cell_lanes(mu, s2, self.k2[0]);
+        let (a, b) = row_nodes_lanes(row, &cells);
+        (a + t * (b - a)).max(Vf::ZERO).min(Vf::ONE)
+    }
 }
 
 /// Roughness from which a row's nodes are the plain `μ_j = (j/63)²`; below

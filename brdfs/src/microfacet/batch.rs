@@ -485,10 +485,11 @@ pub(crate) fn sample<D, G, F>(
 /// [`Brdf::directional_albedo_batch`] of a prepared GGX dielectric lobe:
 /// `out[k] = E_F(μo,k)` (0 at or below the horizon), `μo` as the scalar read
 /// takes it ([`unit_cos_theta`](super::unit_cos_theta), per element), the
-/// table read in [`LANES`] lanes; a tail of `len % LANES` through the scalar
+/// table read in [`LANES`] lanes from the reader's combined `rows`; a tail of `len % LANES` through the scalar
 /// read. Lane for lane the scalar value.
 pub(crate) fn dielectric_albedo<S: Spectrum>(
     reader: &super::fresnel_table::DielectricAlbedoReader,
+    rows: &super::fresnel_table::DielectricAlbedoRows,
     wo: &[Vec3],
     out: &mut [S],
 ) {
@@ -498,7 +499,7 @@ pub(crate) fn dielectric_albedo<S: Spectrum>(
             *m = super::unit_cos_theta(w);
         }
         let mu = Vf::from(mu);
-        let e = clamp01(reader.albedo_lanes(mu));
+        let e = clamp01(rows.albedo_lanes(mu));
         let e = mu.simd_gt(Vf::ZERO).select(e, Vf::ZERO).to_array();
         for (o, &e) in o.iter_mut().zip(&e) {
             *o = S::splat(e);

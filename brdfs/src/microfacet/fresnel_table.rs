@@ -263,42 +263,85 @@ impl DielectricAlbedoReader {
 /// [`DielectricAlbedoReader::albedo`] in vector lanes (feature `simd`).
 #[cfg(feature = "simd")]
 impl DielectricAlbedoReader {
-    /// Whether [`albedo_lanes`](Self::albedo_lanes) serves this reader: `η >
-    /// 1` with no exact smooth-interface row (every reader outside the first
-    /// roughness cell).
+    /// Whether [`rows`](Self::rows) serves this reader: `η > 1` with no exact
+    /// smooth-interface row (every reader outside the first roughness cell).
     #[inline(always)]
     pub(crate) fn has_lanes(&self) -> bool {
         !self.ratio.inside && self.ratio.exact == 0.0
     }
 
-    /// `E_F(μ, α, η)` at each lane's `μ` (as [`albedo`](Self::albedo):
-    /// clamped to `[0, 1]`, NaN → 0) of a reader with
-    /// [`has_lanes`](Self::has_lanes): lane for lane the scalar
-    /// operations, so the same bits. A reader without lanes reads each lane
-    /// through the scalar path.
+    /// The combined rows of a reader with [`has_lanes`](Self::has_lanes),
+    /// for a batch of reads in vector lanes ([`DielectricAlbedoRows`]);
+    /// `None` otherwise.
+    #[inline]
+    pub(crate) fn rows(&self) -> Option<DielectricAlbedoRows> {
+        if !self.has_lanes() {
+            return None;
+        }
+        let shared = self.e1.is_shared();
+        Some(DielectricAlbedoRows {
+            e1: self.e1,
+            e1_row: if shared {
+                Some(
+                    self.e1
+                        .combined_row(<Ggx as EnergyTable<HeightCorrelated>>::TABLE),
+                )
+            } else {
+                None
+            },
+            ratio_row: self.ratio.outside_row(),
+        })
+    }
+}
+
+/// A [`DielectricAlbedoReader`] (`η > 1`, no exact smooth row) with its
+/// table entries summed once per column for a batch of reads (feature
+/// `simd`): the ratio table's four `(z, α)` corners into one row of 33, and
+/// `E₁`'s four roughness rows into one row of 64 where they share one
+/// coordinate. A read then takes two entries per table rather than eight —
+/// the same sums the scalar read forms at the cell's two nodes, so the same
+/// bits. Built per batch call (about 400 bytes, one multiply–add per entry
+/// and row), never kept in a material.
+#[cfg(feature = "simd")]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DielectricAlbedoRows {
+    e1: AlbedoReader,
+    /// `E₁`'s rows summed per node ([`AlbedoReader::combined_row`]) when
+    /// they share one coordinate.
+    e1_row: Option<[f32; super::albedo_table::N_MU]>,
+    /// The ratio table's corners summed per column
+    /// ([`DielectricRatioReader::outside_row`]).
+    ratio_row: [f32; FT_NX],
+}
+
+#[cfg(feature = "simd")]
+impl DielectricAlbedoRows {
+    /// `E_F(μ, α, η)` at each lane's `μ` (clamped to `[0, 1]`, NaN → 0):
+    /// lane for lane [`DielectricAlbedoReader::albedo`].
     #[inline(always)]
     pub(crate) fn albedo_lanes(&self, mu: crate::simd::Vf) -> crate::simd::Vf {
         use crate::simd::Vf;
-        if !self.has_lanes() {
-            return Vf::from(mu.to_array().map(|m| self.albedo(m)));
-        }
-        let e1 = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
         let mu = mu.simd_gt(Vf::ZERO).select(mu.min(Vf::ONE), Vf::ZERO);
-        let (e, r) = (self.e1.albedo_lanes(e1, mu), self.ratio.ratio_outside_lanes(mu));
+        let e = match &self.e1_row {
+            Some(row) => self.e1.albedo_combined_lanes(row, mu),
+            None => self
+                .e1
+                .albedo_lanes(<Ggx as EnergyTable<HeightCorrelated>>::TABLE, mu),
+        };
+        let r = DielectricRatioReader::ratio_row_lanes(&self.ratio_row, mu);
         (e * r).max(Vf::ZERO).min(Vf::ONE)
     }
 }
 
-/// [`DielectricRatioReader::ratio_outside`] in vector lanes.
+/// The ratio's combined row read in vector lanes.
 #[cfg(feature = "simd")]
 impl DielectricRatioReader {
-    /// `R(μ)` for `η > 1` at each lane's `μ ∈ [0, 1]`: the cell of `x = √μ`
-    /// in vector form, the four corners' entries per lane, their bilinear sum
-    /// in vector form (the scalar sum's order).
+    /// `R(μ)` for `η > 1` at each lane's `μ ∈ [0, 1]` from a combined row:
+    /// the cell of `x = √μ` in vector form, the row's two entries per lane,
+    /// the chord in vector form (the scalar read's operations).
     #[inline(always)]
-    fn ratio_outside_lanes(&self, mu: crate::simd::Vf) -> crate::simd::Vf {
+    fn ratio_row_lanes(row: &[f32; FT_NX], mu: crate::simd::Vf) -> crate::simd::Vf {
         use crate::simd::{LANES, Vf};
-        const SPAN: usize = FT_NA * FT_NX + FT_NX + 2;
         // `cell_of(√μ (n − 1), n)`.
         let s = mu.sqrt() * Vf::splat((FT_NX - 1) as f32);
         let s = s
@@ -306,29 +349,16 @@ impl DielectricRatioReader {
             .select(s.min(Vf::splat(FT_NX.saturating_sub(1) as f32)), Vf::ZERO);
         let s_arr = s.to_array();
         let mut i_f = [0.0f32; LANES];
-        // Per corner, the entries at the cell and the next one, per lane.
-        let mut lo = [[0.0f32; LANES]; 4];
-        let mut hi = [[0.0f32; LANES]; 4];
-        for (l, &v) in s_arr.iter().enumerate() {
+        let mut cells = [0usize; LANES];
+        for ((c, f), &v) in cells.iter_mut().zip(&mut i_f).zip(&s_arr) {
             let j = ((v as u32) as usize).min(FT_NX.saturating_sub(2));
-            i_f[l] = j as f32;
-            let i = (self.base as usize).wrapping_add(j);
-            if let Some(t) = data::DIELECTRIC_OUT.get(i..i.wrapping_add(SPAN)) {
-                let at = |i: usize| f32::from(t.get(i).copied().unwrap_or(0));
-                for (c, &o) in corner_offsets(FT_NX).iter().enumerate() {
-                    lo[c][l] = at(o);
-                    hi[c][l] = at(o + 1);
-                }
-            }
+            (*c, *f) = (j, j as f32);
         }
         let fx = (s - Vf::from(i_f)).max(Vf::ZERO).min(Vf::ONE);
-        let lerp = |c: usize| {
-            let a = Vf::from(lo[c]);
-            a + fx * (Vf::from(hi[c]) - a)
-        };
-        let [w0, w1, w2, w3] = self.w.map(Vf::splat);
-        let sum = (((Vf::ZERO + w0 * lerp(0)) + w1 * lerp(1)) + w2 * lerp(2)) + w3 * lerp(3);
-        (sum * Vf::splat(1.0 / 65535.0)).max(Vf::ZERO).min(Vf::ONE)
+        let (a, b) = super::albedo_table::row_nodes_lanes(row, &cells);
+        ((a + fx * (b - a)) * Vf::splat(1.0 / 65535.0))
+            .max(Vf::ZERO)
+            .min(Vf::ONE)
     }
 }
 
@@ -436,37 +466,70 @@ impl DielectricRatioReader {
         (acc * (1.0 / 65535.0) + smooth).clamp(0.0, 1.0)
     }
 
-    /// [`ratio`](Self::ratio) for `η > 1` without the exact smooth row
-    /// (`exact = 0`), `μ ∈ [0, 1]`.
-    #[inline(always)]
-    fn ratio_outside(&self, mu: f32) -> f32 {
-        (self.outside_sum(mu) * (1.0 / 65535.0)).clamp(0.0, 1.0)
-    }
-
     /// `η > 1`: the corners' bilinear sum (table units) at `μ ∈ [0, 1]`,
-    /// every corner at the same `x = √μ`.
+    /// every corner at the same `x = √μ`: the corners summed at the cell's
+    /// two nodes, then the chord between them,
+    ///
+    /// ```text
+    /// a + f_x (b − a),   a = Σ_c w_c R_c[j],   b = Σ_c w_c R_c[j+1]
+    /// ```
+    ///
+    /// (the sums a [`DielectricAlbedoRows`] holds, so a read of that row is
+    /// this read bit for bit).
     #[inline(always)]
     fn outside_sum(&self, mu: f32) -> f32 {
         let (j, fx) = cell_of(libm::sqrtf(mu) * (FT_NX - 1) as f32, FT_NX);
         let i = (self.base as usize).wrapping_add(j);
         // The corners (l, k), (l, k + 1), (l + 1, k), (l + 1, k + 1) sit
-        // at offsets 0, NX, NA·NX and NA·NX + NX from the first.
+        // at offsets 0, NX, NA·NX and NA·NX + NX from the first; each is
+        // read at the cell's two nodes.
         const SPAN: usize = FT_NA * FT_NX + FT_NX + 2;
         match data::DIELECTRIC_OUT.get(i..i.wrapping_add(SPAN)) {
             Some(t) => {
-                let lerp = |o: usize| {
-                    // (`get`: `t` has SPAN entries and `o + 1 < SPAN`, which the
-                    // optimiser sees; no panic path either way.)
-                    let at = |i: usize| f32::from(t.get(i).copied().unwrap_or(0));
-                    let a = at(o);
-                    a + fx * (at(o + 1) - a)
-                };
+                // (`get`: `t` has SPAN entries and every offset is below it,
+                // which the optimiser sees; no panic path either way.)
+                let at = |i: usize| f32::from(t.get(i).copied().unwrap_or(0));
                 let [w0, w1, w2, w3] = self.w;
-                (((0.0 + w0 * lerp(0)) + w1 * lerp(FT_NX)) + w2 * lerp(FT_NA * FT_NX))
-                    + w3 * lerp(FT_NA * FT_NX + FT_NX)
+                let node = |j: usize| {
+                    (((0.0 + w0 * at(j)) + w1 * at(j + FT_NX)) + w2 * at(j + FT_NA * FT_NX))
+                        + w3 * at(j + FT_NA * FT_NX + FT_NX)
+                };
+                let (a, b) = (node(0), node(1));
+                a + fx * (b - a)
             }
             None => 0.0,
         }
+    }
+
+    /// `η > 1`: the four corners summed once per column, `c_j = Σ_c w_c
+    /// R_c[j]` (table units), what [`DielectricAlbedoRows`] reads.
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn outside_row(&self) -> [f32; FT_NX] {
+        let mut out = [0.0f32; FT_NX];
+        let corner = |o: usize| {
+            let i = (self.base as usize).wrapping_add(o);
+            data::DIELECTRIC_OUT
+                .get(i..i.wrapping_add(FT_NX))
+                .and_then(|c| <&[u16; FT_NX]>::try_from(c).ok())
+        };
+        let [o0, o1, o2, o3] = corner_offsets(FT_NX);
+        if let (Some(c0), Some(c1), Some(c2), Some(c3)) = (corner(o0), corner(o1), corner(o2), corner(o3)) {
+            let [w0, w1, w2, w3] = self.w;
+            // `outside_sum`'s node sum, column by column (in vector form).
+            for (j, o) in out.iter_mut().enumerate() {
+                let at = |c: &[u16; FT_NX]| f32::from(c[j]);
+                *o = (((0.0 + w0 * at(c0)) + w1 * at(c1)) + w2 * at(c2)) + w3 * at(c3);
+            }
+        }
+        out
+    }
+
+    /// [`ratio`](Self::ratio) for `η > 1` without the exact smooth row
+    /// (`exact = 0`), `μ ∈ [0, 1]`.
+    #[inline(always)]
+    fn ratio_outside(&self, mu: f32) -> f32 {
+        (self.outside_sum(mu) * (1.0 / 65535.0)).clamp(0.0, 1.0)
     }
 
     /// [`ratio`](Self::ratio) for `η < 1` (`μ ∈ [0, 1]`): each roughness row

@@ -1005,9 +1005,9 @@ where
         #[cfg(feature = "simd")]
         if let Some(cells) = self.fresnel.albedo_cells(self.distribution.alpha())
             && self.reads_ggx_height_correlated()
-            && cells.reader.has_lanes()
+            && let Some(rows) = cells.reader.rows()
         {
-            batch::dielectric_albedo(&cells.reader, wo, out);
+            batch::dielectric_albedo(&cells.reader, &rows, wo, out);
             return;
         }
         for (o, &w) in out.iter_mut().zip(wo) {

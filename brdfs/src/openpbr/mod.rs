@@ -383,39 +383,66 @@ fn lobe_albedo<S: Spectrum>(lobe: &DielectricLobe<S>, ae: (f32, f32)) -> impl Fn
 /// The directions of one batch chunk (a multiple of the vector width).
 const CHUNK: usize = 32;
 
-/// `out[k] = E(mu[k])` of a dielectric lobe, the values of
-/// [`lobe_albedo`]: with the `simd` feature its prepared cells read in
-/// vector lanes (bit for bit the scalar read), else one by one.
-#[inline]
-fn lobe_albedo_chunk<S: Spectrum>(
-    lobe: &DielectricLobe<S>,
+/// A dielectric lobe's albedo read for one batch call: the lobe, its `(α,
+/// η)`, and with the `simd` feature its prepared reader's combined rows
+/// (`DielectricAlbedoRows`), built once for the call.
+struct BatchRead<'a, S: Spectrum> {
+    lobe: &'a DielectricLobe<S>,
     ae: (f32, f32),
-    mu: &[f32; CHUNK],
-    out: &mut [f32; CHUNK],
-) {
     #[cfg(feature = "simd")]
-    if let Some(c) = lobe.fresnel.albedo_cells(lobe.distribution.alpha())
-        && c.reader.has_lanes()
-    {
-        use crate::simd::{LANES, Vf};
-        for (m, o) in mu.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES)) {
-            let mut lanes = [0.0f32; LANES];
-            for (l, &m) in lanes.iter_mut().zip(m) {
-                *l = m;
-            }
-            for (o, &e) in o
-                .iter_mut()
-                .zip(&c.reader.albedo_lanes(Vf::from(lanes)).to_array())
-            {
-                *o = e;
-            }
+    rows: Option<crate::microfacet::fresnel_table::DielectricAlbedoRows>,
+}
+
+impl<'a, S: Spectrum> BatchRead<'a, S> {
+    /// The read of `lobe` (its rows built only if the layer is `on`).
+    #[inline]
+    fn new(lobe: &'a DielectricLobe<S>, ae: (f32, f32), on: bool) -> Self {
+        #[cfg(not(feature = "simd"))]
+        let _ = on;
+        Self {
+            lobe,
+            ae,
+            #[cfg(feature = "simd")]
+            rows: if on {
+                lobe.fresnel
+                    .albedo_cells(lobe.distribution.alpha())
+                    .and_then(|c| c.reader.rows())
+            } else {
+                None
+            },
         }
-        return;
     }
-    let read = lobe_albedo(lobe, ae);
-    for (o, &m) in out.iter_mut().zip(mu) {
-        *o = read(m);
+
+    /// `out[k] = E(mu[k])`, the values of [`lobe_albedo`]: with the `simd`
+    /// feature from the combined rows in vector lanes (bit for bit the scalar
+    /// read), else one by one.
+    #[inline]
+    fn chunk(&self, mu: &[f32; CHUNK], out: &mut [f32; CHUNK]) {
+        #[cfg(feature = "simd")]
+        if let Some(rows) = &self.rows {
+            use crate::simd::{LANES, Vf};
+            for (m, o) in mu.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES)) {
+                let mut lanes = [0.0f32; LANES];
+                for (l, &m) in lanes.iter_mut().zip(m) {
+                    *l = m;
+                }
+                for (o, &e) in o.iter_mut().zip(&rows.albedo_lanes(Vf::from(lanes)).to_array()) {
+                    *o = e;
+                }
+            }
+            return;
+        }
+        let read = lobe_albedo(self.lobe, self.ae);
+        for (o, &m) in out.iter_mut().zip(mu) {
+            *o = read(m);
+        }
     }
+}
+
+/// The coat's and the specular lobe's [`BatchRead`]s of one batch call.
+struct BatchReads<'a, S: Spectrum> {
+    coat: BatchRead<'a, S>,
+    spec: BatchRead<'a, S>,
 }
 
 /// The unit directions of a chunk ([`unit`]) and `cos(k)` of each.
@@ -734,19 +761,34 @@ impl<S: Spectrum> OpenPbr<S> {
         radiometry::compose::coat_absorption(self.params.coat_color, self.coat_ae.1, mu_i, mu_o)
     }
 
+    /// The coat's and the specular lobe's albedo reads for one batch call
+    /// (rows built only for the layers that are on).
+    #[inline]
+    fn batch_reads(&self) -> BatchReads<'_, S> {
+        BatchReads {
+            coat: BatchRead::new(&self.coat, self.coat_ae, self.on[COAT]),
+            spec: BatchRead::new(&self.spec, self.spec_ae, self.on[SPEC]),
+        }
+    }
+
     /// What the views of a chunk read at `μo` (`mu_o`, of the unit `wo_u`)
     /// for their picks: `E_C(μo)` and `E_s(μo)` through
-    /// [`lobe_albedo_chunk`] and the diffuse lobe's albedo from its batch
+    /// [`BatchRead::chunk`] and the diffuse lobe's albedo from its batch
     /// (each 0 where its layer is off).
     #[inline]
-    fn view_reads(&self, wo_u: &[Vec3], mu_o: &[f32; CHUNK]) -> ([f32; CHUNK], [f32; CHUNK], [S; CHUNK]) {
+    fn view_reads(
+        &self,
+        r: &BatchReads<'_, S>,
+        wo_u: &[Vec3],
+        mu_o: &[f32; CHUNK],
+    ) -> ([f32; CHUNK], [f32; CHUNK], [S; CHUNK]) {
         let (mut coat_o, mut spec_o) = ([0.0f32; CHUNK], [0.0f32; CHUNK]);
         let mut diffuse = [S::zero(); CHUNK];
         if self.on[COAT] {
-            lobe_albedo_chunk(&self.coat, self.coat_ae, mu_o, &mut coat_o);
+            r.coat.chunk(mu_o, &mut coat_o);
         }
         if self.on[SPEC] {
-            lobe_albedo_chunk(&self.spec, self.spec_ae, mu_o, &mut spec_o);
+            r.spec.chunk(mu_o, &mut spec_o);
             self.diffuse.directional_albedo_batch(wo_u, &mut diffuse);
         }
         (coat_o, spec_o, diffuse)
@@ -755,20 +797,20 @@ impl<S: Spectrum> OpenPbr<S> {
     /// [`Brdf::eval`] of one chunk of at most [`CHUNK`] pairs (`out` as long
     /// as the shorter of `wi`, `wo`): the lobes' own batch kernels at the
     /// unit directions, the layers' albedos at `μo` and `μi` through
-    /// [`lobe_albedo_chunk`], then the views and [`OpenPbrView::value_of`]
+    /// [`BatchRead::chunk`], then the views and [`OpenPbrView::value_of`]
     /// element by element — bit for bit `eval`.
-    fn eval_chunk(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+    fn eval_chunk(&self, r: &BatchReads<'_, S>, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         let (wi_u, mu_i) = unit_chunk(wi, |a| a.z.min(1.0));
         let (wo_u, mu_o) = unit_chunk(wo, view_cosine);
         let n = wi.len().min(wo.len()).min(out.len()).min(CHUNK);
         let (wi_u, wo_u) = (wi_u.get(..n).unwrap_or(&[]), wo_u.get(..n).unwrap_or(&[]));
         let (mut coat_o, mut spec_o, mut es_i) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
         if self.on[COAT] {
-            lobe_albedo_chunk(&self.coat, self.coat_ae, &mu_o, &mut coat_o);
+            r.coat.chunk(&mu_o, &mut coat_o);
         }
         if self.on[SPEC] {
-            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_o, &mut spec_o);
-            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_i, &mut es_i);
+            r.spec.chunk(&mu_o, &mut spec_o);
+            r.spec.chunk(&mu_i, &mut es_i);
         }
         let mut fc = [S::zero(); CHUNK];
         let mut fm = [S::zero(); CHUNK];
@@ -819,12 +861,12 @@ impl<S: Spectrum> OpenPbr<S> {
     /// `pdf_batch` kernels at the unit directions, the albedos the picks need
     /// at `μo` from the lobes' batches and lanes, then the views and
     /// [`OpenPbrView::pdf_of`] element by element — bit for bit `pdf`.
-    fn pdf_chunk(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+    fn pdf_chunk(&self, r: &BatchReads<'_, S>, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
         let (wi_u, _) = unit_chunk(wi, |_| 0.0);
         let (wo_u, mu_o) = unit_chunk(wo, view_cosine);
         let n = wi.len().min(wo.len()).min(out.len()).min(CHUNK);
         let (wi_u, wo_u) = (wi_u.get(..n).unwrap_or(&[]), wo_u.get(..n).unwrap_or(&[]));
-        let (coat_o, spec_o, diffuse) = self.view_reads(wo_u, &mu_o);
+        let (coat_o, spec_o, diffuse) = self.view_reads(r, wo_u, &mu_o);
         let (mut dc, mut dm, mut ds) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
         if self.on[COAT] {
             self.coat.pdf_batch(wi_u, wo_u, &mut dc);
@@ -856,14 +898,20 @@ impl<S: Spectrum> OpenPbr<S> {
     /// metal's multiple scattering and the diffuse lobe draw one by one),
     /// then the lobes' `eval_batch` and `pdf_batch` at the drawn directions,
     /// layered and mixed as `sample` does — bit for bit `sample`.
-    fn sample_chunk(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+    fn sample_chunk(
+        &self,
+        r: &BatchReads<'_, S>,
+        wo: &[Vec3],
+        u: &[[f32; 2]],
+        out: &mut [Option<BrdfSample<S>>],
+    ) {
         let n = wo.len().min(u.len()).min(out.len()).min(CHUNK);
         let (Some(wo), Some(u), Some(out)) = (wo.get(..n), u.get(..n), out.get_mut(..n)) else {
             return;
         };
         let (wo_u, mu_o) = unit_chunk(wo, view_cosine);
         let wo_u = wo_u.get(..n).unwrap_or(&[]);
-        let (coat_o, spec_o, diffuse) = self.view_reads(wo_u, &mu_o);
+        let (coat_o, spec_o, diffuse) = self.view_reads(r, wo_u, &mu_o);
         // The views and the picks; the GGX lobes' draws grouped per lobe.
         let mut views: [Option<OpenPbrView<'_, S>>; CHUNK] = [None; CHUNK];
         let mut wi: [Option<Vec3>; CHUNK] = [None; CHUNK];
@@ -960,7 +1008,7 @@ impl<S: Spectrum> OpenPbr<S> {
             self.spec.eval_batch(wi_u, wo_u, &mut fs);
             self.spec.pdf_batch(wi_u, wo_u, &mut ds);
             self.diffuse.eval_batch(wi_u, wo_u, &mut fd);
-            lobe_albedo_chunk(&self.spec, self.spec_ae, &mu_i, &mut es_i);
+            r.spec.chunk(&mu_i, &mut es_i);
         }
         for (k, o) in out.iter_mut().enumerate() {
             *o = match (
@@ -1010,7 +1058,7 @@ impl<S: Spectrum> OpenPbr<S> {
     /// [`prepare`](Self::prepare), with the pick probabilities only when
     /// `picks` (the value alone does not need them: `eval` skips the lobes'
     /// albedos), and `E_C(μo)`, `E_s(μo)` from `reads` where a batch read
-    /// them already (the same values: [`lobe_albedo_chunk`]).
+    /// them already (the same values: [`BatchRead::chunk`]).
     #[inline]
     fn prepare_with(&self, wo: Vec3, picks: bool, reads: Option<PreRead<S>>) -> OpenPbrView<'_, S> {
         let wo = unit(wo);
@@ -1699,8 +1747,9 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
     /// `simd` feature), the layers' albedos in vector lanes, the layering
     /// per element — element by element equal to [`eval`](Brdf::eval).
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
+        let r = self.batch_reads();
         for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
-            self.eval_chunk(wi, wo, out);
+            self.eval_chunk(&r, wi, wo, out);
         }
         radiometry::batch::zero_tail(out, wi.len().min(wo.len()));
     }
@@ -1710,6 +1759,7 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
         let n = wi.len().min(wo.len()).min(out.len());
         radiometry::batch::zero_tail(out, n);
         let (mut ci, mut co) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
+        let r = self.batch_reads();
         let mut start = 0;
         for out in out.chunks_mut(CHUNK) {
             let k = out.len().min(n.saturating_sub(start));
@@ -1722,7 +1772,7 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
                     wo.get(start + j).unwrap_or(Vec3::ZERO),
                 );
             }
-            self.eval_chunk(ci.get(..k).unwrap_or(&[]), co.get(..k).unwrap_or(&[]), out);
+            self.eval_chunk(&r, ci.get(..k).unwrap_or(&[]), co.get(..k).unwrap_or(&[]), out);
             start += k;
         }
     }
@@ -1732,8 +1782,9 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
     /// directions (element by element equal to [`sample`](Brdf::sample):
     /// the same `None`s, bit-identical `wi`, pdf and weight).
     fn sample_batch(&self, wo: &[Vec3], u: &[[f32; 2]], out: &mut [Option<BrdfSample<S>>]) {
+        let r = self.batch_reads();
         for ((wo, u), out) in wo.chunks(CHUNK).zip(u.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
-            self.sample_chunk(wo, u, out);
+            self.sample_chunk(&r, wo, u, out);
         }
         radiometry::batch::zero_tail(out, wo.len().min(u.len()));
     }
@@ -1742,8 +1793,9 @@ impl<S: Spectrum> Brdf for OpenPbr<S> {
     /// `pdf_batch` kernels and the albedos of the picks in lanes (element by
     /// element equal to [`pdf`](Brdf::pdf)).
     fn pdf_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [f32]) {
+        let r = self.batch_reads();
         for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
-            self.pdf_chunk(wi, wo, out);
+            self.pdf_chunk(&r, wi, wo, out);
         }
         radiometry::batch::zero_tail(out, wi.len().min(wo.len()));
     }
