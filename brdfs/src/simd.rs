@@ -253,6 +253,17 @@ pub(crate) fn albedo_chunks<S: radiometry::Spectrum>(
     }
 }
 
+/// The table cells of lane coordinates `s ∈ [0, n − 2]` (already clamped;
+/// NaN-free): `i = trunc(s)` per lane as an index, and `i` as `f32` — what
+/// the scalar reads compute as `(s as u32) as usize` and `i as f32` (exact
+/// for these `s`), in vector form.
+#[inline(always)]
+pub(crate) fn cells_of(s: Vf) -> ([usize; LANES], Vf) {
+    let i = s.fast_trunc_int();
+    let idx = i.to_array();
+    (core::array::from_fn(|k| idx[k].max(0) as usize), i.round_float())
+}
+
 /// [`LANES`] directions in structure-of-arrays form.
 #[derive(Clone, Copy)]
 pub(crate) struct Dirs {

@@ -61,7 +61,8 @@ Plugins (F = 1 unless a Fresnel term is named):
   hit-prepared through Coated::prepare as above, albedo-read, the top's albedo at ωo alone as the
   energy-conserving layer reads it at every eval (the top Coated::new keeps, prepared by
   Brdf::with_prepared_albedo), albedo-full, the same read from a top not prepared (its table cells
-  located at every call), albedo-prepared, the bare DielectricAlbedoReader built once, and
+  located at every call), albedo-prepared, the bare DielectricAlbedoReader built once,
+  albedo-batch, the prepared top's directional_albedo_batch over the n view directions, and
   eval-parts, a plain loop of the top's eval + the base's eval + that bare read, summed: the least
   an exact energy-conserving layer computes per eval)
 
@@ -631,6 +632,17 @@ impl Run<'_> {
             }
         });
         self.push("plastic-ggx0.1-eon", "albedo-prepared", t);
+        // The same reads as one batch (`Brdf::directional_albedo_batch` of the
+        // prepared top: with `simd`, in vector lanes from the reader's
+        // combined rows, built once per call).
+        let mut albedos = vec![0.0f32; wo.len()];
+        let t = measure(n, mt, || {
+            black_box(&layer)
+                .top()
+                .directional_albedo_batch(black_box(wo), &mut albedos);
+            sink += albedos.first().copied().unwrap_or(0.0);
+        });
+        self.push("plastic-ggx0.1-eon", "albedo-batch", t);
         // The least an exact energy-conserving layer computes per `eval`: both
         // lobes' values and the top's albedo at ωo from the bare reader, summed
         // in one plain loop (no layering, no clamping): the bound of the

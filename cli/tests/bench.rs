@@ -45,6 +45,7 @@ const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
             "albedo-read",
             "albedo-full",
             "albedo-prepared",
+            "albedo-batch",
             "eval-parts",
         ],
     ),

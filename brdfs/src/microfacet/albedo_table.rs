@@ -431,7 +431,7 @@ fn cell_lanes(
     s2: crate::simd::Vf,
     k2: f32,
 ) -> ([usize; crate::simd::LANES], crate::simd::Vf) {
-    use crate::simd::{LANES, Vf};
+    use crate::simd::Vf;
     let d = mu * mu + Vf::splat(k2) * s2;
     let q = d.simd_gt(Vf::ZERO).select((mu / d.sqrt()).min(Vf::ONE), Vf::ZERO);
     let x = q.sqrt();
@@ -439,14 +439,7 @@ fn cell_lanes(
         (x * Vf::splat((N_MU - 1) as f32)).min(Vf::splat(N_MU as f32 - 1.0)),
         Vf::ZERO,
     );
-    let s_arr = s.min(Vf::splat((N_MU - 2) as f32)).to_array();
-    let mut cells = [0usize; LANES];
-    let mut i_f = [0.0f32; LANES];
-    for ((c, f), &v) in cells.iter_mut().zip(&mut i_f).zip(&s_arr) {
-        let i = (v as u32).min(N_MU as u32 - 2);
-        (*c, *f) = (i as usize, i as f32);
-    }
-    let i_f = Vf::from(i_f);
+    let (cells, i_f) = crate::simd::cells_of(s.min(Vf::splat((N_MU - 2) as f32)));
     let t = s - i_f;
     (cells, i_f.simd_eq(Vf::ZERO).select(t * t, t))
 }

@@ -494,11 +494,22 @@ pub(crate) fn dielectric_albedo<S: Spectrum>(
     out: &mut [S],
 ) {
     let lanes = |w: &[Vec3], o: &mut [S]| {
-        let mut mu = [0.0f32; LANES];
-        for (m, &w) in mu.iter_mut().zip(w) {
-            *m = super::unit_cos_theta(w);
-        }
-        let mu = Vf::from(mu);
+        // `unit_cos_theta` per lane: `z` where every lane passes `is_unit`
+        // (`|‖w‖² − 1| ≤ 4ε`, the squared length summed as glam sums it),
+        // else lane by lane.
+        let mu = match <&[Vec3; LANES]>::try_from(w) {
+            Ok(w8) => {
+                let d = crate::simd::Dirs::from_aos(w8);
+                let l2 = d.x * d.x + d.y * d.y + d.z * d.z;
+                let unit = (l2 - Vf::ONE).abs().simd_le(Vf::splat(4.0 * f32::EPSILON));
+                if unit.all() {
+                    d.z
+                } else {
+                    Vf::from(w8.map(super::unit_cos_theta))
+                }
+            }
+            Err(_) => Vf::ZERO,
+        };
         let e = clamp01(rows.albedo_lanes(mu));
         let e = mu.simd_gt(Vf::ZERO).select(e, Vf::ZERO).to_array();
         for (o, &e) in o.iter_mut().zip(&e) {

@@ -341,20 +341,15 @@ impl DielectricRatioReader {
     /// the chord in vector form (the scalar read's operations).
     #[inline(always)]
     fn ratio_row_lanes(row: &[f32; FT_NX], mu: crate::simd::Vf) -> crate::simd::Vf {
-        use crate::simd::{LANES, Vf};
+        use crate::simd::Vf;
         // `cell_of(√μ (n − 1), n)`.
         let s = mu.sqrt() * Vf::splat((FT_NX - 1) as f32);
         let s = s
             .simd_gt(Vf::ZERO)
             .select(s.min(Vf::splat(FT_NX.saturating_sub(1) as f32)), Vf::ZERO);
-        let s_arr = s.to_array();
-        let mut i_f = [0.0f32; LANES];
-        let mut cells = [0usize; LANES];
-        for ((c, f), &v) in cells.iter_mut().zip(&mut i_f).zip(&s_arr) {
-            let j = ((v as u32) as usize).min(FT_NX.saturating_sub(2));
-            (*c, *f) = (j, j as f32);
-        }
-        let fx = (s - Vf::from(i_f)).max(Vf::ZERO).min(Vf::ONE);
+        // `min(trunc(s), n − 2)` = `trunc(min(s, n − 2))` for `s ≥ 0`.
+        let (cells, i_f) = crate::simd::cells_of(s.min(Vf::splat(FT_NX.saturating_sub(2) as f32)));
+        let fx = (s - i_f).max(Vf::ZERO).min(Vf::ONE);
         let (a, b) = super::albedo_table::row_nodes_lanes(row, &cells);
         ((a + fx * (b - a)) * Vf::splat(1.0 / 65535.0))
             .max(Vf::ZERO)
