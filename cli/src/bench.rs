@@ -569,8 +569,10 @@ impl Run<'_> {
     /// through the `Brdf` calls (`hit`) and through one `Coated::prepare`
     /// view (`hit-prepared`); `albedo-read`, the top's albedo at `ωo` alone
     /// as the layer reads it at every `eval` (its prepared top),
-    /// `albedo-full`, the same from a top not prepared, and
-    /// `albedo-prepared`, the bare reader built once.
+    /// `albedo-full`, the same from a top not prepared,
+    /// `albedo-prepared`, the bare reader built once, `albedo-batch`, the
+    /// prepared top's `directional_albedo_batch`, and `eval-parts`, the
+    /// plain loop of both lobes' `eval` and the bare read.
     fn plastic_hit(&mut self, eon: Eon<f32>) {
         const BAD: &str = "bench plugin parameters are valid";
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
