@@ -765,4 +765,59 @@ mod tests {
         }
         std::eprintln!("worst |Δ|: E₁ {:.2e}, E_F {:.2e}", worst.0, worst.1);
     }
+
+    /// A batch's combined rows read in lanes return the scalar reader's bits
+    /// at every lane: random `(α, η > 1)` on both sides of `α = 0.2` (rows
+    /// sharing one coordinate or not), `μ` at the table's ends, outside
+    /// `[0, 1]`, NaN, and random; readers without rows (`η < 1`, the exact
+    /// smooth row) have none.
+    #[cfg(feature = "simd")]
+    #[test]
+    fn combined_rows_read_the_scalar_bits() {
+        use crate::simd::{LANES, Vf};
+        let mut u = uniforms(0x51_7cc1_b727_220a);
+        let (mut with_rows, mut shared) = (0, 0);
+        for n in 0..4_000 {
+            let alpha = match n % 40 {
+                0 => 1e-4,
+                1 => 1.0,
+                2 => 0.2,
+                _ => (u() * u()).max(1e-4),
+            };
+            let eta = match n % 9 {
+                0 => 1.0 + 1e-3,
+                1 => 0.3 + 0.69 * u(),
+                _ => 1.0 + 2.5 * u(),
+            };
+            let r = DielectricAlbedoReader::new(alpha, eta);
+            let Some(rows) = r.rows() else {
+                assert!(eta < 1.0 || r.ratio.exact > 0.0, "α {alpha} η {eta}: no rows");
+                continue;
+            };
+            with_rows += 1;
+            shared += usize::from(rows.e1_row.is_some());
+            let mu: [f32; LANES] = core::array::from_fn(|k| match (n + k) % 11 {
+                0 => 0.0,
+                1 => 1.0,
+                2 => -0.25,
+                3 => 1.5,
+                4 => f32::NAN,
+                5 => 1e-6,
+                _ => u(),
+            });
+            let lanes = rows.albedo_lanes(Vf::from(mu)).to_array();
+            for (&m, &l) in mu.iter().zip(&lanes) {
+                let s = r.albedo(m);
+                assert_eq!(
+                    l.to_bits(),
+                    s.to_bits(),
+                    "α {alpha} η {eta} μ {m}: lanes {l}, scalar {s}"
+                );
+            }
+        }
+        assert!(
+            with_rows > 2_000 && shared > 500,
+            "{with_rows} readers with rows, {shared} shared"
+        );
+    }
 }
