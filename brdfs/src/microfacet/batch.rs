@@ -495,14 +495,11 @@ pub(crate) fn dielectric_albedo<S: Spectrum>(
 ) {
     let lanes = |w: &[Vec3], o: &mut [S]| {
         // `unit_cos_theta` per lane: `z` where every lane passes `is_unit`
-        // (`|‖w‖² − 1| ≤ 4ε`, the squared length summed as glam sums it),
-        // else lane by lane.
+        // (`Dirs::is_unit`, the scalar test lane-wise), else lane by lane.
         let mu = match <&[Vec3; LANES]>::try_from(w) {
             Ok(w8) => {
                 let d = crate::simd::Dirs::from_aos(w8);
-                let l2 = d.x * d.x + d.y * d.y + d.z * d.z;
-                let unit = (l2 - Vf::ONE).abs().simd_le(Vf::splat(4.0 * f32::EPSILON));
-                if unit.all() {
+                if d.is_unit().all() {
                     d.z
                 } else {
                     Vf::from(w8.map(super::unit_cos_theta))
