@@ -74,6 +74,25 @@ impl<F: Fresnel<Spectrum = f32>, S: Spectrum> Fresnel for Achromatic<F, S> {
         self.fresnel.albedo_cells(alpha)
     }
 
+    /// The inner term's vector lanes, each value put on every channel:
+    /// `S::splat(F(c)) · s = S::splat(F(c) · s)` channel by channel, so bit
+    /// for bit what the scalar path computes per lane (and exactly 0 where
+    /// `s = 0`, as the inner term's lanes are).
+    #[cfg(feature = "simd")]
+    #[inline]
+    fn eval_scaled_lanes(
+        &self,
+        cos_theta_d: crate::simd::Vf,
+        scale: crate::simd::Vf,
+        out: &mut [S; crate::simd::LANES],
+    ) {
+        let mut mono = [0.0f32; crate::simd::LANES];
+        self.fresnel.eval_scaled_lanes(cos_theta_d, scale, &mut mono);
+        for (o, &m) in out.iter_mut().zip(&mono) {
+            *o = S::splat(m);
+        }
+    }
+
     fn form(&self) -> super::FresnelForm<S> {
         match self.fresnel.form() {
             super::FresnelForm::One => super::FresnelForm::One,

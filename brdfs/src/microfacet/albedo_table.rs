@@ -209,14 +209,17 @@ pub struct AlbedoReader {
 
 /// `ρ(α_r)/α_r` per row `r` (see [`node_scale`]): row `r` is read at the
 /// tangent scaling `q = α ρ(α_r)/α_r`, so a reader's construction needs no
-/// division.
+/// division. Below [`ALPHA_REF`] the quotient is `1/ALPHA_REF` exactly
+/// (`ρ(α_r) = α_r/ALPHA_REF`), stored as that one constant: computed as
+/// `(α_r/ALPHA_REF)/α_r` it rounds one ulp low on rows 6 and 12, and every
+/// reader whose four rows include one of them (`α ∈ [0.0043, 0.0117)` and
+/// `[0.034, 0.092)`) would miss the shared coordinate.
 const ROW_SCALE: [f32; N_ALPHA] = {
     let mut t = [0.0f32; N_ALPHA];
     let mut r = 0;
     while r < N_ALPHA {
         let ar = alpha_node(r);
-        let rho = if ar < ALPHA_REF { ar / ALPHA_REF } else { 1.0 };
-        t[r] = rho / ar;
+        t[r] = if ar < ALPHA_REF { 1.0 / ALPHA_REF } else { 1.0 / ar };
         r += 1;
     }
     t
@@ -261,9 +264,9 @@ impl AlbedoReader {
             *k2 = q * q;
         }
         // Rows below ALPHA_REF share the scaling (α/ALPHA_REF)² (their
-        // `ρ(α_r)/α_r` is 1/ALPHA_REF, in `f32` for all but two rows): where
-        // the four are the same bits, one coordinate serves them all, and the
-        // read is bit for bit the four-lane one.
+        // `ρ(α_r)/α_r` is the one constant 1/ALPHA_REF): where the four are
+        // the same bits, one coordinate serves them all, and the read is bit
+        // for bit the four-lane one.
         let shared = k2.iter().all(|&k| k.to_bits() == k2[0].to_bits());
         Self {
             row: first as u8,
@@ -617,6 +620,25 @@ mod tests {
         let p3 = if k + 2 < N_ALPHA { at(k + 2) } else { 2.0 * p2 - p1 };
         catmull_rom([p0, p1, p2, p3], t).clamp(0.0, 1.0)
     }
+    /// Every reader whose four spline rows (weighted or not) all lie below
+    /// `ALPHA_REF` reads them at one shared coordinate, and no other does:
+    /// checked at every `α` between nodes and at the nodes themselves.
+    #[test]
+    fn rows_below_alpha_ref_share_one_coordinate() {
+        extern crate std;
+        let mut alphas: std::vec::Vec<f32> = (0..N_ALPHA).map(alpha_node).collect();
+        for k in 0..N_ALPHA - 1 {
+            let (a, b) = (alpha_node(k), alpha_node(k + 1));
+            alphas.extend((1..16).map(|i| a + (b - a) * i as f32 / 16.0));
+        }
+        for alpha in alphas {
+            let r = AlbedoReader::new(alpha);
+            let first = usize::from(r.row);
+            let below = (first..first + 4).all(|k| alpha_node(k.min(N_ALPHA - 1)) < ALPHA_REF);
+            assert_eq!(r.is_shared(), below, "alpha {alpha}: rows {first}..{}", first + 4);
+        }
+    }
+
     /// The reader (the basis weights, the four-lane pass) equals the spline
     /// summed by Horner's rule to rounding, on random `(μ, α)` and the
     /// domain's edges (the outermost rows' continuation included).
