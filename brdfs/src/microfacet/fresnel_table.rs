@@ -252,6 +252,30 @@ impl DielectricAlbedoReader {
         (self.e1.albedo_shared(e1, mu) * self.ratio.ratio_outside(mu)).clamp(0.0, 1.0)
     }
 
+    /// [`albedo`](Self::albedo) and `E₁(μ)` from the one read of `E₁` it
+    /// makes: `(E_F(μ), E₁(μ))`, the second bit for bit
+    /// [`AlbedoReader::albedo`] of the GGX table at this roughness (the
+    /// reader inside, [`e1_reader`](Self::e1_reader)). For a material with a
+    /// second lobe of the same roughness that needs `E₁` (OpenPBR's metal
+    /// under its specular layer).
+    #[inline(always)]
+    pub(crate) fn albedo_and_e1(&self, mu: f32) -> (f32, f32) {
+        let table = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        if !self.fast {
+            let e1 = self.e1.albedo(table, mu);
+            return ((e1 * self.ratio.ratio(mu)).clamp(0.0, 1.0), e1);
+        }
+        let mu = if mu > 0.0 { mu.min(1.0) } else { 0.0 };
+        let e1 = self.e1.albedo_shared(table, mu);
+        ((e1 * self.ratio.ratio_outside(mu)).clamp(0.0, 1.0), e1)
+    }
+
+    /// The reader of `E₁(·, α)` inside this one.
+    #[inline]
+    pub(crate) fn e1_reader(&self) -> &AlbedoReader {
+        &self.e1
+    }
+
     /// [`albedo`](Self::albedo) through the general readers.
     #[inline(never)]
     fn albedo_general(&self, mu: f32) -> f32 {
@@ -764,6 +788,56 @@ mod tests {
             );
         }
         std::eprintln!("worst |Δ|: E₁ {:.2e}, E_F {:.2e}", worst.0, worst.1);
+    }
+
+    /// `albedo_and_e1` returns the reader's `albedo` and the plain `E₁`
+    /// read at its roughness bit for bit, on random `(α, η)` on both sides of
+    /// the shared coordinate and of `η = 1`, and `μ` at the ends, outside
+    /// `[0, 1]` and NaN.
+    #[test]
+    fn albedo_and_e1_are_the_two_reads() {
+        let table = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        let mut u = uniforms(0x6a09_e667_f3bc_c909);
+        let (mut fast, mut general) = (0, 0);
+        for n in 0..4_000 {
+            let alpha = match n % 40 {
+                0 => 1e-4,
+                1 => 1.0,
+                _ => (u() * u()).max(1e-4),
+            };
+            let eta = match n % 9 {
+                0 => 1.0,
+                1 => 0.3 + 0.69 * u(),
+                _ => 1.0 + 2.5 * u(),
+            };
+            let r = DielectricAlbedoReader::new(alpha, eta);
+            if r.fast {
+                fast += 1;
+            } else {
+                general += 1;
+            }
+            let mu = match n % 7 {
+                0 => 0.0,
+                1 => 1.0,
+                2 => -0.25,
+                3 => 1.5,
+                4 => f32::NAN,
+                _ => u(),
+            };
+            let (e_f, e1) = r.albedo_and_e1(mu);
+            assert_eq!(
+                e_f.to_bits(),
+                r.albedo(mu).to_bits(),
+                "α {alpha} η {eta} μ {mu}: E_F"
+            );
+            let plain = AlbedoReader::new(alpha).albedo(table, mu);
+            assert_eq!(e1.to_bits(), plain.to_bits(), "α {alpha} η {eta} μ {mu}: E₁");
+            assert_eq!(r.e1_reader(), &AlbedoReader::new(alpha));
+        }
+        assert!(
+            fast > 1_000 && general > 1_000,
+            "{fast} fast, {general} general readers"
+        );
     }
 
     /// A batch's combined rows read in lanes return the scalar reader's bits

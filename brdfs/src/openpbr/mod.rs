@@ -224,7 +224,9 @@ struct Metal<S: Spectrum> {
 }
 
 impl<S: Spectrum> Metal<S> {
-    fn new(ggx: Ggx, f0: S, tint: S) -> Self {
+    /// The metal at `ggx`'s roughness; `e1` is the reader of `E₁(·, α)` at
+    /// that roughness (the specular lobe's, which the material shares).
+    fn new(ggx: Ggx, f0: S, tint: S, e1: AlbedoReader) -> Self {
         let fresnel = F82Tint::from_valid(f0, tint);
         let alpha = ggx.alpha();
         let e_avg = crate::microfacet::fresnel_table::e1_average(alpha);
@@ -251,7 +253,7 @@ impl<S: Spectrum> Metal<S> {
             single: Microfacet::new(ggx, fresnel),
             ms_scale,
             f_ms,
-            e1: AlbedoReader::new(alpha),
+            e1,
             ms_row: crate::microfacet::ms_sampler::row_index(alpha),
         }
     }
@@ -559,11 +561,20 @@ impl<S: Spectrum> OpenPbr<S> {
         };
         let a_s = alpha(r_s);
         let ggx_s = Ggx::new(a_s)?;
-        let metal = (m > 0.0 && xi > 0.0).then(|| Metal::new(ggx_s, rho, spec_color));
         let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
         // The dielectric lobes keep their albedo's table cells (the reader of
         // `E_s`, `E_C`: `Brdf::with_prepared_albedo`); the coat's only when on.
         let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?)).with_prepared_albedo();
+        // The metal shares the specular lobe's roughness, so its `E₁` reader
+        // is the one inside the specular lobe's cells.
+        let metal = (m > 0.0 && xi > 0.0).then(|| {
+            let a = ggx_s.alpha();
+            let e1 = spec
+                .fresnel
+                .albedo_cells(a)
+                .map_or_else(|| AlbedoReader::new(a), |c| *c.reader.e1_reader());
+            Metal::new(ggx_s, rho, spec_color, e1)
+        });
         let diffuse = Eon::new(rho, sigma)?;
         let diffuse_sampler = TransmissionSampler::new(a_s, eta_s);
         let a_c = alpha(r_c);
@@ -693,6 +704,20 @@ impl<S: Spectrum> OpenPbr<S> {
     #[inline]
     fn e_spec(&self, mu: f32) -> f32 {
         lobe_albedo(&self.spec, self.spec_ae)(mu)
+    }
+
+    /// `(E_s(μ), E₁(μ))`: the specular lobe's albedo and the `F = 1`
+    /// albedo at its roughness (the metal's), from one read of `E₁` where
+    /// the lobe keeps its cells — each bit for bit its own read.
+    #[inline]
+    fn spec_and_e1(&self, mu: f32) -> (f32, f32) {
+        match self.spec.fresnel.albedo_cells(self.spec.distribution.alpha()) {
+            Some(c) => c.reader.albedo_and_e1(mu),
+            None => (
+                self.e_spec(mu),
+                self.metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), mu)),
+            ),
+        }
     }
 
     /// `E_C(μ)`: the coat lobe's albedo.
@@ -1099,14 +1124,29 @@ impl<S: Spectrum> OpenPbr<S> {
                 1.0 + delta * (d.clamp(0.0, 1.0) - 1.0)
             });
         }
-        if self.on[SPEC] {
-            view.spec_o = reads.map_or_else(|| self.e_spec(mu), |r| r.spec_o);
-        }
-        // E₁(μo) of the metal, read once for its loss and its albedo.
-        let metal_e1_o = self
-            .metal
-            .as_ref()
-            .map_or(1.0, |metal| metal.e1.albedo(e1_table(), mu));
+        // E_s(μo), and E₁(μo) of the metal, read once for its loss and its
+        // albedo (with the specular layer on, in the same read as E_s).
+        let metal_e1 = |mu: f32| {
+            self.metal
+                .as_ref()
+                .map_or(1.0, |metal| metal.e1.albedo(e1_table(), mu))
+        };
+        let metal_e1_o = match (self.on[SPEC], reads) {
+            (true, Some(r)) => {
+                view.spec_o = r.spec_o;
+                metal_e1(mu)
+            }
+            (true, None) if self.metal.is_some() => {
+                let (e_s, e1) = self.spec_and_e1(mu);
+                view.spec_o = e_s;
+                e1
+            }
+            (true, None) => {
+                view.spec_o = self.e_spec(mu);
+                1.0
+            }
+            (false, _) => metal_e1(mu),
+        };
         if self.metal.is_some() {
             view.metal_loss_o = (1.0 - metal_e1_o).clamp(0.0, 1.0);
         }
@@ -1398,6 +1438,26 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         (wi.z > 0.0 && wi.is_finite()).then_some(wi)
     }
 
+    /// `(E_s(μi), 1 − E₁(μi))`, what the value reads at `μi`: the view's
+    /// reads where `μi = μo`, else one read of `E₁` for both where the
+    /// specular layer and the metal are on (0 for a layer that is off).
+    #[inline]
+    fn reads_at(&self, mu_i: f32) -> (f32, f32) {
+        let m = self.m;
+        if mu_i == self.mu_o {
+            return (self.spec_o, self.metal_loss_o);
+        }
+        match (m.on[SPEC], &m.metal) {
+            (true, Some(_)) => {
+                let (e_s, e1) = m.spec_and_e1(mu_i);
+                (e_s, (1.0 - e1).clamp(0.0, 1.0))
+            }
+            (true, None) => (m.e_spec(mu_i), 0.0),
+            (false, Some(metal)) => (0.0, metal.loss(mu_i)),
+            (false, None) => (0.0, 0.0),
+        }
+    }
+
     /// The lobes' values at `ωi` with their layer weights, and the mixture
     /// pdf of the lobes' densities with the pick probabilities.
     #[inline]
@@ -1445,10 +1505,15 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         } else {
             S::zero()
         };
+        let (es_i, metal_loss_i) = if want_value {
+            self.reads_at(mu_i)
+        } else {
+            (0.0, 0.0)
+        };
         if let Some(metal) = &m.metal {
             let (v, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
             if want_value {
-                let ms = metal.ms_scale * (metal.loss(mu_i) * self.metal_loss_o);
+                let ms = metal.ms_scale * (metal_loss_i * self.metal_loss_o);
                 f += (v + ms) * under_s * (p.base_metalness * m.xi);
             }
             if want_pdf {
@@ -1461,11 +1526,6 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             if want_value {
                 f += v * p.specular_color * under_s * dielectric;
                 // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
-                let es_i = if mu_i == self.mu_o {
-                    self.spec_o
-                } else {
-                    m.e_spec(mu_i)
-                };
                 f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
             }
             if want_pdf {
