@@ -64,7 +64,11 @@ Plugins (F = 1 unless a Fresnel term is named):
   located at every call), albedo-prepared, the bare DielectricAlbedoReader built once,
   albedo-batch, the prepared top's directional_albedo_batch over the n view directions, and
   eval-parts, a plain loop of the top's eval + the base's eval + that bare read, summed: the least
-  an exact energy-conserving layer computes per eval)
+  an exact energy-conserving layer computes per eval; eval-batch-parts, the lobes' own batch kernels
+  one after the other (both eval_batch + the top's directional_albedo_batch), and
+  sample-batch-parts, the same for a sample batch (both lobes' albedo batches, the cheaper lobe's
+  sample_batch, both eval_batch and pdf_batch at the drawn directions): the least the batches
+  compute with these kernels)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -571,8 +575,9 @@ impl Run<'_> {
     /// as the layer reads it at every `eval` (its prepared top),
     /// `albedo-full`, the same from a top not prepared,
     /// `albedo-prepared`, the bare reader built once, `albedo-batch`, the
-    /// prepared top's `directional_albedo_batch`, and `eval-parts`, the
-    /// plain loop of both lobes' `eval` and the bare read.
+    /// prepared top's `directional_albedo_batch`, `eval-parts`, the
+    /// plain loop of both lobes' `eval` and the bare read, and the batch
+    /// bounds of [`plastic_batch_parts`](Self::plastic_batch_parts).
     fn plastic_hit(&mut self, eon: Eon<f32>) {
         const BAD: &str = "bench plugin parameters are valid";
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
@@ -657,6 +662,60 @@ impl Run<'_> {
             }
         });
         self.push("plastic-ggx0.1-eon", "eval-parts", t);
+        self.plastic_batch_parts(&layer);
+        black_box(sink);
+    }
+
+    /// The least the plastic's batches compute, from its lobes' own batch
+    /// kernels run one after the other over the n elements (no layering, no
+    /// chunking). `eval-batch-parts`: the top's and the base's `eval_batch`
+    /// and the top's `directional_albedo_batch` at `ωo`.
+    /// `sample-batch-parts`: both lobes' `directional_albedo_batch` at `ωo`
+    /// (the picks), the cheaper lobe's `sample_batch` for every element
+    /// (timed for each lobe, the faster kept), both lobes' `eval_batch` and
+    /// `pdf_batch` at the drawn directions. The bound of `eval_batch` and
+    /// `sample_batch` against the lobes' kernels.
+    fn plastic_batch_parts<T, B>(&mut self, layer: &Coated<T, B>)
+    where
+        T: Brdf<Spectrum = f32>,
+        B: Brdf<Spectrum = f32>,
+    {
+        let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
+        let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
+        let (top, base) = (layer.top(), layer.base());
+        let (mut a, mut b, mut c) = (vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]);
+        let mut sink = 0.0f32;
+        let t = measure(n, mt, || {
+            black_box(top).eval_batch(wi, wo, &mut a);
+            black_box(base).eval_batch(wi, wo, &mut b);
+            black_box(top).directional_albedo_batch(wo, &mut c);
+            sink += a.first().copied().unwrap_or(0.0) + b.first().copied().unwrap_or(0.0) + c[0];
+        });
+        self.push("plastic-ggx0.1-eon", "eval-batch-parts", t);
+        let mut drawn: Vec<Option<radiometry::BrdfSample<f32>>> = vec![None; n];
+        let draw_top = measure(n, mt, || {
+            black_box(top).sample_batch(wo, u, &mut drawn);
+            sink += drawn.first().copied().flatten().map_or(0.0, |s| s.pdf);
+        });
+        let draw_base = measure(n, mt, || {
+            black_box(base).sample_batch(wo, u, &mut drawn);
+            sink += drawn.first().copied().flatten().map_or(0.0, |s| s.pdf);
+        });
+        let draw = draw_top.min(draw_base);
+        // The rest at the base's drawn directions (all above the horizon).
+        base.sample_batch(wo, u, &mut drawn);
+        let wi_s: Vec<Vec3> = drawn.iter().map(|s| s.map_or(Vec3::Z, |s| s.wi)).collect();
+        let (mut d, mut e) = (vec![0.0f32; n], vec![0.0f32; n]);
+        let rest = measure(n, mt, || {
+            black_box(top).directional_albedo_batch(wo, &mut a);
+            black_box(base).directional_albedo_batch(wo, &mut b);
+            black_box(top).eval_batch(&wi_s, wo, &mut c);
+            black_box(base).eval_batch(&wi_s, wo, &mut d);
+            black_box(top).pdf_batch(&wi_s, wo, &mut e);
+            black_box(base).pdf_batch(&wi_s, wo, &mut c);
+            sink += a[0] + b[0] + d[0] + e[0] + c[0];
+        });
+        self.push("plastic-ggx0.1-eon", "sample-batch-parts", draw + rest);
         black_box(sink);
     }
 

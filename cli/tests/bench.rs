@@ -47,6 +47,8 @@ const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
             "albedo-prepared",
             "albedo-batch",
             "eval-parts",
+            "eval-batch-parts",
+            "sample-batch-parts",
         ],
     ),
     ("openpbr-defaults", &["construct", "hit", "hit-prepared"]),
