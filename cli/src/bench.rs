@@ -68,7 +68,8 @@ Plugins (F = 1 unless a Fresnel term is named):
   one after the other (both eval_batch + the top's directional_albedo_batch), and
   sample-batch-parts, the same for a sample batch (both lobes' albedo batches, the cheaper lobe's
   sample_batch, both eval_batch and pdf_batch at the drawn directions): the least the batches
-  compute with these kernels)
+  compute with these kernels; openpbr-defaults has the same two rows from its specular and EON
+  lobes, with the specular albedo batch at ωi too)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -505,6 +506,18 @@ impl Run<'_> {
                 self.material_hit(name, params);
             }
         }
+        if self.wanted("openpbr-defaults") {
+            // The defaults' two lobes as `OpenPbr::new` builds them (specular
+            // GGX α = 0.3² dielectric η = 1.5, its albedo prepared; EON ρ =
+            // 0.8, σ = 0), for the bound of its batches.
+            let spec = Microfacet::<_, HeightCorrelated, _>::new(
+                Ggx::new(0.09).expect(BAD),
+                radiometry_brdfs::microfacet::Achromatic::<_, f32>::new(Dielectric::new(1.5).expect(BAD)),
+            )
+            .with_prepared_albedo();
+            let diffuse = Eon::new(0.8f32, 0.0).expect(BAD);
+            self.batch_parts("openpbr-defaults", &spec, &diffuse, true);
+        }
         // Colour: the typed OpenPbr<Vec3> and the spec grammar's RGB
         // run-time BRDF (a boxed trait object) of a red OpenPBR.
         if self.wanted("openpbr-defaults-rgb") {
@@ -577,7 +590,7 @@ impl Run<'_> {
     /// `albedo-prepared`, the bare reader built once, `albedo-batch`, the
     /// prepared top's `directional_albedo_batch`, `eval-parts`, the
     /// plain loop of both lobes' `eval` and the bare read, and the batch
-    /// bounds of [`plastic_batch_parts`](Self::plastic_batch_parts).
+    /// bounds of [`batch_parts`](Self::batch_parts).
     fn plastic_hit(&mut self, eon: Eon<f32>) {
         const BAD: &str = "bench plugin parameters are valid";
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
@@ -662,27 +675,29 @@ impl Run<'_> {
             }
         });
         self.push("plastic-ggx0.1-eon", "eval-parts", t);
-        self.plastic_batch_parts(&layer);
+        self.batch_parts("plastic-ggx0.1-eon", layer.top(), layer.base(), false);
         black_box(sink);
     }
 
-    /// The least the plastic's batches compute, from its lobes' own batch
-    /// kernels run one after the other over the n elements (no layering, no
-    /// chunking). `eval-batch-parts`: the top's and the base's `eval_batch`
-    /// and the top's `directional_albedo_batch` at `ωo`.
-    /// `sample-batch-parts`: both lobes' `directional_albedo_batch` at `ωo`
-    /// (the picks), the cheaper lobe's `sample_batch` for every element
+    /// The least a layered material's batches compute, from its two lobes'
+    /// own batch kernels run one after the other over the n elements (no
+    /// layering, no chunking), as rows `eval-batch-parts` and
+    /// `sample-batch-parts` of `name`. `eval-batch-parts`: the top's and the
+    /// base's `eval_batch` and the top's `directional_albedo_batch` at `ωo`
+    /// (and at `ωi` where `read_i`: OpenPBR's diffuse term reads `E_s` at
+    /// both). `sample-batch-parts`: both lobes' `directional_albedo_batch` at
+    /// `ωo` (the picks), the cheaper lobe's `sample_batch` for every element
     /// (timed for each lobe, the faster kept), both lobes' `eval_batch` and
-    /// `pdf_batch` at the drawn directions. The bound of `eval_batch` and
-    /// `sample_batch` against the lobes' kernels.
-    fn plastic_batch_parts<T, B>(&mut self, layer: &Coated<T, B>)
+    /// `pdf_batch` at the drawn directions (and the top's albedo there where
+    /// `read_i`). The bound of `eval_batch` and `sample_batch` against the
+    /// lobes' kernels.
+    fn batch_parts<T, B>(&mut self, name: &'static str, top: &T, base: &B, read_i: bool)
     where
         T: Brdf<Spectrum = f32>,
         B: Brdf<Spectrum = f32>,
     {
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
         let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
-        let (top, base) = (layer.top(), layer.base());
         let (mut a, mut b, mut c) = (vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]);
         let mut sink = 0.0f32;
         let t = measure(n, mt, || {
@@ -690,9 +705,13 @@ impl Run<'_> {
             black_box(base).eval_batch(wi, wo, &mut b);
             black_box(top).directional_albedo_batch(wo, &mut c);
             sink += a.first().copied().unwrap_or(0.0) + b.first().copied().unwrap_or(0.0) + c[0];
+            if read_i {
+                black_box(top).directional_albedo_batch(wi, &mut c);
+                sink += c[0];
+            }
         });
-        self.push("plastic-ggx0.1-eon", "eval-batch-parts", t);
-        let mut drawn: Vec<Option<radiometry::BrdfSample<f32>>> = vec![None; n];
+        self.push(name, "eval-batch-parts", t);
+        let mut drawn: Vec<Option<BrdfSample<f32>>> = vec![None; n];
         let draw_top = measure(n, mt, || {
             black_box(top).sample_batch(wo, u, &mut drawn);
             sink += drawn.first().copied().flatten().map_or(0.0, |s| s.pdf);
@@ -714,8 +733,12 @@ impl Run<'_> {
             black_box(top).pdf_batch(&wi_s, wo, &mut e);
             black_box(base).pdf_batch(&wi_s, wo, &mut c);
             sink += a[0] + b[0] + d[0] + e[0] + c[0];
+            if read_i {
+                black_box(top).directional_albedo_batch(&wi_s, &mut c);
+                sink += c[0];
+            }
         });
-        self.push("plastic-ggx0.1-eon", "sample-batch-parts", draw + rest);
+        self.push(name, "sample-batch-parts", draw + rest);
         black_box(sink);
     }
 

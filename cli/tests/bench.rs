@@ -51,7 +51,16 @@ const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
             "sample-batch-parts",
         ],
     ),
-    ("openpbr-defaults", &["construct", "hit", "hit-prepared"]),
+    (
+        "openpbr-defaults",
+        &[
+            "construct",
+            "hit",
+            "hit-prepared",
+            "eval-batch-parts",
+            "sample-batch-parts",
+        ],
+    ),
     ("openpbr-all-layers", &["construct", "hit", "hit-prepared"]),
 ];
 
