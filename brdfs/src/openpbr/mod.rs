@@ -378,8 +378,16 @@ fn lobe_albedo<S: Spectrum>(lobe: &DielectricLobe<S>, ae: (f32, f32)) -> impl Fn
     let cells = lobe.fresnel.albedo_cells(lobe.distribution.alpha());
     move |mu| match cells {
         Some(c) => c.reader.albedo(mu),
-        None => DielectricAlbedoReader::new(ae.0, ae.1).albedo(mu),
+        None => unprepared_albedo(ae, mu),
     }
+}
+
+/// [`lobe_albedo`] of a lobe without its cells (not one the material builds),
+/// out of line so that the prepared read inlines into its callers.
+#[cold]
+#[inline(never)]
+fn unprepared_albedo(ae: (f32, f32), mu: f32) -> f32 {
+    DielectricAlbedoReader::new(ae.0, ae.1).albedo(mu)
 }
 
 /// The directions of one batch chunk (a multiple of the vector width).
