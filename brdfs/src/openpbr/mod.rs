@@ -714,17 +714,19 @@ impl<S: Spectrum> OpenPbr<S> {
         lobe_albedo(&self.spec, self.spec_ae)(mu)
     }
 
-    /// `(E_s(μ), E₁(μ))`: the specular lobe's albedo and the `F = 1`
-    /// albedo at its roughness (the metal's), from one read of `E₁` where
-    /// the lobe keeps its cells — each bit for bit its own read.
+    /// `(E_s(μ), E₁(μ))`: the specular lobe's albedo (0 with the layer off)
+    /// and the `F = 1` albedo at its roughness, the metal's (1 without a
+    /// metal), from one read of `E₁` where both are on and the lobe keeps
+    /// its cells — each bit for bit its own read.
     #[inline]
     fn spec_and_e1(&self, mu: f32) -> (f32, f32) {
+        let metal_e1 = |mu: f32| self.metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), mu));
+        if !self.on[SPEC] {
+            return (0.0, metal_e1(mu));
+        }
         match self.spec.fresnel.albedo_cells(self.spec.distribution.alpha()) {
-            Some(c) => c.reader.albedo_and_e1(mu),
-            None => (
-                self.e_spec(mu),
-                self.metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), mu)),
-            ),
+            Some(c) if self.metal.is_some() => c.reader.albedo_and_e1(mu),
+            _ => (self.e_spec(mu), metal_e1(mu)),
         }
     }
 
@@ -1145,26 +1147,20 @@ impl<S: Spectrum> OpenPbr<S> {
         }
         // E_s(μo), and E₁(μo) of the metal, read once for its loss and its
         // albedo (with the specular layer on, in the same read as E_s).
-        let metal_e1 = |mu: f32| {
-            self.metal
-                .as_ref()
-                .map_or(1.0, |metal| metal.e1.albedo(e1_table(), mu))
-        };
-        let metal_e1_o = match (self.on[SPEC], reads) {
-            (true, Some(r)) => {
-                view.spec_o = r.spec_o;
-                metal_e1(mu)
+        let metal_e1_o = match reads {
+            Some(r) => {
+                if self.on[SPEC] {
+                    view.spec_o = r.spec_o;
+                }
+                self.metal
+                    .as_ref()
+                    .map_or(1.0, |metal| metal.e1.albedo(e1_table(), mu))
             }
-            (true, None) if self.metal.is_some() => {
+            None => {
                 let (e_s, e1) = self.spec_and_e1(mu);
                 view.spec_o = e_s;
                 e1
             }
-            (true, None) => {
-                view.spec_o = self.e_spec(mu);
-                1.0
-            }
-            (false, _) => metal_e1(mu),
         };
         if self.metal.is_some() {
             view.metal_loss_o = (1.0 - metal_e1_o).clamp(0.0, 1.0);
@@ -1458,23 +1454,20 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     }
 
     /// `(E_s(μi), 1 − E₁(μi))`, what the value reads at `μi`: the view's
-    /// reads where `μi = μo`, else one read of `E₁` for both where the
-    /// specular layer and the metal are on (0 for a layer that is off).
+    /// reads where `μi = μo`, else [`OpenPbr::spec_and_e1`] (0 for a layer
+    /// that is off).
     #[inline]
     fn reads_at(&self, mu_i: f32) -> (f32, f32) {
-        let m = self.m;
         if mu_i == self.mu_o {
             return (self.spec_o, self.metal_loss_o);
         }
-        match (m.on[SPEC], &m.metal) {
-            (true, Some(_)) => {
-                let (e_s, e1) = m.spec_and_e1(mu_i);
-                (e_s, (1.0 - e1).clamp(0.0, 1.0))
-            }
-            (true, None) => (m.e_spec(mu_i), 0.0),
-            (false, Some(metal)) => (0.0, metal.loss(mu_i)),
-            (false, None) => (0.0, 0.0),
-        }
+        let (e_s, e1) = self.m.spec_and_e1(mu_i);
+        let loss = if self.m.metal.is_some() {
+            (1.0 - e1).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (e_s, loss)
     }
 
     /// The lobes' values at `ωi` with their layer weights, and the mixture
