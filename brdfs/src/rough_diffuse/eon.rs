@@ -101,6 +101,10 @@ impl<S: Spectrum> Eon<S> {
     /// g)`, `1 − E_FON = A σ (c₁ − g)⁺`.
     #[inline(always)]
     fn albedo_from_g(&self, g: f32) -> S {
+        if self.sigma == 0.0 {
+            // σ = 0: `E_FON = 1` and `ρ_ms (1 − E_FON) = 0`, the same bits.
+            return self.rho;
+        }
         let e_fon = self.a * (1.0 + self.sigma * g);
         let one_minus = self.a * self.sigma * (C1 - g).max(0.0);
         self.rho * e_fon + self.rho_ms * one_minus
@@ -161,6 +165,11 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
 
     #[inline(always)]
     fn eval_unit(&self, wi: Vec3, wo: Vec3) -> S {
+        if self.sigma == 0.0 {
+            // Lambert, `ρ/π`: with σ = 0 the terms below are `k_ss · 1 + 0 · ms`,
+            // the same bits (unit directions: `s/t` and `ms` are finite).
+            return self.k_ss;
+        }
         let s = s_term(wi, wo);
         let s_over_t = if s > 0.0 { s / t_term(wi, wo) } else { s };
         let ms = fon_deficit(wi.z) * fon_deficit(wo.z);
@@ -176,6 +185,9 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
 
     #[inline]
     fn albedo_at(&self, mu_o: f32) -> S {
+        if self.sigma == 0.0 {
+            return self.rho;
+        }
         self.albedo_from_g(g_over_pi(mu_o))
     }
 
@@ -193,6 +205,10 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
     fn unit_lanes(&self, wi: crate::simd::Dirs, wo: crate::simd::Dirs) -> Self::Lanes {
         use super::batch::{fon_deficit, max0, s_over_t};
         use crate::simd::Vf;
+        if self.sigma == 0.0 {
+            // Lambert, as in `eval_unit`: `k_ss · 1 + 0 · 0`, the same bits.
+            return (Vf::ONE, Vf::splat(0.0));
+        }
         let (pos, s, q) = s_over_t(wi, wo);
         let s_over_t = pos.select(q, s);
         let ms = fon_deficit(wi.z) * fon_deficit(wo.z);
@@ -240,7 +256,12 @@ impl<S: Spectrum> Brdf for Eon<S> {
                     (*m, *a) = (u.z, true);
                 }
             }
-            let g = super::batch::g_over_pi(Vf::from(mu)).to_array();
+            // σ = 0 does not read `G` (`albedo_from_g` returns ρ).
+            let g = if self.sigma == 0.0 {
+                [0.0; LANES]
+            } else {
+                super::batch::g_over_pi(Vf::from(mu)).to_array()
+            };
             for ((o, &g), &a) in o.iter_mut().zip(&g).zip(&above) {
                 *o = if a { self.albedo_from_g(g) } else { S::zero() };
             }

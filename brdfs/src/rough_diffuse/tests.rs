@@ -666,6 +666,38 @@ fn smoothness_and_lambert_limit() {
     }
 }
 
+/// EON's `σ = 0` shortcut (Lambert, `ρ/π`, and the albedo `ρ`) returns the
+/// bits of the general formulas at a `σ` whose terms round away (`10⁻³⁰`:
+/// `A = 1`, `σ s/t` and `k_ms · ms` below half an ulp), on random pairs and
+/// the edge pairs, `f32` and RGB.
+#[test]
+fn eon_sigma_zero_is_the_general_formula() {
+    for rho in [0.05f32, 0.5, 0.8, 1.0] {
+        let (flat, general) = (Eon::new(rho, 0.0).unwrap(), Eon::new(rho, 1e-30).unwrap());
+        for (wi, wo) in pairs() {
+            assert_eq!(
+                flat.eval(wi, wo).to_bits(),
+                general.eval(wi, wo).to_bits(),
+                "ρ {rho} {wi} {wo}"
+            );
+            assert_eq!(
+                flat.directional_albedo(wo).value.to_bits(),
+                general.directional_albedo(wo).value.to_bits(),
+                "ρ {rho} {wo}"
+            );
+        }
+    }
+    let rgb = Vec3::new(0.2, 0.5, 0.9);
+    let (flat, general) = (Eon::new(rgb, 0.0).unwrap(), Eon::new(rgb, 1e-30).unwrap());
+    for (wi, wo) in pairs() {
+        assert_eq!(flat.eval(wi, wo), general.eval(wi, wo));
+        assert_eq!(
+            flat.directional_albedo(wo).value,
+            general.directional_albedo(wo).value
+        );
+    }
+}
+
 /// RGB channels behave as three monochrome plugins.
 #[test]
 fn spectral_channels() {
