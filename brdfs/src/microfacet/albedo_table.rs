@@ -203,8 +203,25 @@ pub struct AlbedoReader {
     /// bits: every row below [`ALPHA_REF`]), so that one coordinate serves
     /// them all.
     shared: bool,
+    /// The table's roughness coordinate [`alpha_axis`]`(α)`, kept for the
+    /// other global tables on the same axis (`Ē₁`, the metal's sampler rows).
+    axis: f32,
     k2: [f32; 4],
     w: [f32; 4],
+}
+
+/// The roughness coordinate of the global GGX tables, `x = ∛((α −
+/// α_min)/(1 − α_min)) ∈ [0, 1]` with `α` clamped to `[α_min, 1]` (NaN →
+/// `α_min`, so `x = 0`): the `E₁` rows sit at `x = r/31`, as do `Ē₁` and
+/// the metal's sampler rows. One cube root per roughness serves them all.
+#[inline]
+pub(crate) fn alpha_axis(alpha: f32) -> f32 {
+    let alpha = if alpha > ALPHA_MIN {
+        alpha.min(1.0)
+    } else {
+        ALPHA_MIN
+    };
+    libm::cbrtf((alpha - ALPHA_MIN) / (1.0 - ALPHA_MIN))
 }
 
 /// `ρ(α_r)/α_r` per row `r` (see [`node_scale`]): row `r` is read at the
@@ -226,15 +243,22 @@ const ROW_SCALE: [f32; N_ALPHA] = {
 };
 
 impl AlbedoReader {
+    /// The roughness coordinate [`alpha_axis`] of this reader's `α`.
+    #[inline]
+    pub(crate) fn axis(&self) -> f32 {
+        self.axis
+    }
+
     /// The reader of `E(·, α)`; `α` is clamped to `[α_min, 1]` (NaN →
     /// `α_min`) as [`AlbedoTable::albedo`] clamps it.
     pub fn new(alpha: f32) -> Self {
+        let axis = alpha_axis(alpha);
         let alpha = if alpha > ALPHA_MIN {
             alpha.min(1.0)
         } else {
             ALPHA_MIN
         };
-        let (k, t) = cell(libm::cbrtf((alpha - ALPHA_MIN) / (1.0 - ALPHA_MIN)), N_ALPHA);
+        let (k, t) = cell(axis, N_ALPHA);
         let (t2, t3) = (t * t, t * t * t);
         let mut w = [
             0.5 * (-t + 2.0 * t2 - t3),
@@ -271,6 +295,7 @@ impl AlbedoReader {
         Self {
             row: first as u8,
             shared,
+            axis,
             k2,
             w,
         }

@@ -660,9 +660,16 @@ pub fn linear_fresnel_ratio(f0: f32, a: f32, moments: (f32, f32)) -> f32 {
 /// `tools/examples/e1_average.rs`). The normalisation of a Kulla–Conty
 /// multiple-scattering lobe built without integration.
 pub fn e1_average(alpha: f32) -> f32 {
+    e1_average_at(super::albedo_table::alpha_axis(alpha))
+}
+
+/// [`e1_average`] at the roughness coordinate `x =`
+/// [`alpha_axis`](super::albedo_table::alpha_axis)`(α)` (an
+/// [`AlbedoReader`]'s, so that a material reads both from one cube root).
+#[inline]
+pub(crate) fn e1_average_at(x: f32) -> f32 {
     use super::albedo_table::N_ALPHA;
-    let t = libm::cbrtf(((alpha - 1e-4) / (1.0 - 1e-4)).clamp(0.0, 1.0));
-    let (k, f) = cell_of(t * (N_ALPHA - 1) as f32, N_ALPHA);
+    let (k, f) = cell_of(x * (N_ALPHA - 1) as f32, N_ALPHA);
     let at = |k: usize| {
         super::e1_average_data::GGX_HC_E1_AVERAGE
             .get(k)
@@ -838,6 +845,39 @@ mod tests {
             fast > 1_000 && general > 1_000,
             "{fast} fast, {general} general readers"
         );
+    }
+
+    /// `Ē₁` and the metal sampler's row read from a reader's roughness
+    /// coordinate ([`AlbedoReader::axis`]) are bit for bit the reads from
+    /// `α` written out with their own cube roots: random `α`, the ends of
+    /// `[10⁻⁴, 1]`, outside it, and NaN.
+    #[test]
+    fn shared_axis_reads_the_same_bits() {
+        use super::super::ms_sampler::{row_index, row_index_at};
+        let direct = |alpha: f32| libm::cbrtf(((alpha - 1e-4) / (1.0 - 1e-4)).clamp(0.0, 1.0));
+        let mut u = uniforms(0x9e37_79b9_7f4a_7c15);
+        for n in 0..4_000 {
+            let alpha = match n % 10 {
+                0 => 1e-4,
+                1 => 1.0,
+                2 => 1.5,
+                3 => -0.25,
+                4 => f32::NAN,
+                5 => 0.0,
+                _ => (u() * u()).max(1e-5),
+            };
+            let x = AlbedoReader::new(alpha).axis();
+            let t = if alpha.is_nan() { 0.0 } else { direct(alpha) };
+            assert_eq!(x.to_bits(), t.to_bits(), "α {alpha}");
+            assert_eq!(
+                e1_average_at(x).to_bits(),
+                e1_average(alpha).to_bits(),
+                "α {alpha}"
+            );
+            assert_eq!(row_index_at(x), row_index(alpha), "α {alpha}");
+            let old_row = (libm::roundf(t * 31.0) as usize).min(31) as u8;
+            assert_eq!(row_index_at(x), old_row, "α {alpha}");
+        }
     }
 
     /// A batch's combined rows read in lanes return the scalar reader's bits

@@ -43,13 +43,15 @@ pub(crate) use data::GGX_HC_MS_ROWS;
 
 /// The index of the row nearest `α` in the table's coordinate
 /// `∛((α − α_min)/(1 − α_min))` (`α` clamped to `[α_min, 1]`, NaN → 0).
+#[cfg(test)]
 pub(crate) fn row_index(alpha: f32) -> u8 {
-    let a = super::MIN_ALPHA;
-    let x = if alpha > a {
-        libm::cbrtf(((alpha.min(1.0) - a) / (1.0 - a)).clamp(0.0, 1.0))
-    } else {
-        0.0
-    };
+    row_index_at(super::albedo_table::alpha_axis(alpha))
+}
+
+/// [`row_index`] at the coordinate `x =`
+/// [`alpha_axis`](super::albedo_table::alpha_axis)`(α)`.
+#[inline]
+pub(crate) fn row_index_at(x: f32) -> u8 {
     (libm::roundf(x * (N_ALPHA - 1) as f32) as usize).min(N_ALPHA - 1) as u8
 }
 

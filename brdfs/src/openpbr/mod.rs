@@ -228,8 +228,9 @@ impl<S: Spectrum> Metal<S> {
     /// that roughness (the specular lobe's, which the material shares).
     fn new(ggx: Ggx, f0: S, tint: S, e1: AlbedoReader) -> Self {
         let fresnel = F82Tint::from_valid(f0, tint);
-        let alpha = ggx.alpha();
-        let e_avg = crate::microfacet::fresnel_table::e1_average(alpha);
+        // Ē₁ and the sampler's row on the reader's roughness coordinate (one
+        // cube root for the three).
+        let e_avg = crate::microfacet::fresnel_table::e1_average_at(e1.axis());
         let loss = 1.0 - e_avg;
         // F82-tint's a per channel: F(μ̄) = t F_S(μ̄) at μ̄ = 1/7.
         let w_bar = 7_776.0 / 16_807.0;
@@ -254,7 +255,7 @@ impl<S: Spectrum> Metal<S> {
             ms_scale,
             f_ms,
             e1,
-            ms_row: crate::microfacet::ms_sampler::row_index(alpha),
+            ms_row: crate::microfacet::ms_sampler::row_index_at(e1.axis()),
         }
     }
 
