@@ -71,6 +71,18 @@ const S_EDGE: [f32; CELLS + 1] = {
     e
 };
 
+/// `1/(s_{j+1} − s_j)` per cell (the widths are exact; the reciprocals
+/// rounded once).
+const INV_WIDTH: [f32; CELLS] = {
+    let mut e = [0.0f32; CELLS];
+    let mut j = 0;
+    while j < CELLS {
+        e[j] = 1.0 / (S_EDGE[j + 1] - S_EDGE[j]);
+        j += 1;
+    }
+    e
+};
+
 /// Cell and fraction of `s ∈ [0, n − 1]` (clamped; NaN → 0).
 #[inline(always)]
 fn cell_of(s: f32, n: usize) -> (usize, f32) {
@@ -83,10 +95,15 @@ fn cell_of(s: f32, n: usize) -> (usize, f32) {
 /// blended with the ratio table's bilinear weights in `(√α, F0^¼)`
 /// (`√α` clamped to `[0.01, 1]`; `z = √|(η − 1)/(η + 1)|`, so `η < 1` uses
 /// the rows of `1/η`, a valid density of the same Fresnel strength), and
-/// their normalisation `1/(π T)`. Built in O(1) (68 multiply-adds).
+/// their normalisation `1/(π T)`, with the cells' cumulative masses for
+/// the draw. Built in O(1) (68 multiply-adds for the heights, 16 for the
+/// masses).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct TransmissionSampler {
     h: [f32; CELLS + 1],
+    /// `M_j = Σ_{i<j} m_i`, `m_i = (h_i + h_{i+1})(s_{i+1} − s_i)`: `M_0 = 0`,
+    /// `M_16 = 2T`.
+    cum: [f32; CELLS + 1],
     norm: f32,
 }
 
@@ -112,19 +129,23 @@ impl TransmissionSampler {
                 }
             }
         }
-        let mut total = 0.0f32;
+        let mut cum = [0.0f32; CELLS + 1];
+        let mut acc = 0.0f32;
         for j in 0..CELLS {
-            total += (Self::height_in(&h, j) + Self::height_in(&h, j + 1)) * 0.5 * (edge(j + 1) - edge(j));
+            acc += (Self::height_in(&h, j) + Self::height_in(&h, j + 1)) * (edge(j + 1) - edge(j));
+            cum[j + 1] = acc;
         }
+        let total = 0.5 * acc;
         let norm = if total > 0.0 && total.is_finite() {
             core::f32::consts::FRAC_1_PI / total
         } else {
             // Unreachable for the committed rows (every height ≥ 10⁻³ of its
             // row's top); the cosine lobe as a fallback.
             h = [1.0; CELLS + 1];
+            cum = core::array::from_fn(|j| 2.0 * edge(j));
             core::f32::consts::FRAC_1_PI
         };
-        Self { h, norm }
+        Self { h, cum, norm }
     }
 
     #[inline(always)]
@@ -137,41 +158,31 @@ impl TransmissionSampler {
         Self::height_in(&self.h, j)
     }
 
-    /// A direction drawn from the density with `u0, u1 ∈ [0, 1)`: the cell
-    /// `j` whose cumulative mass passes `u0 · Σ m`, `m_j = (h_j +
-    /// h_{j+1})(s_{j+1} − s_j)`, then `s = s_j + t (s_{j+1} − s_j)` from the
-    /// cell's linear density, `t = 2c/(h_j + √(h_j² + 2 d c))` (`d = h_{j+1}
-    /// − h_j`, `c` the mass left in the cell over `2 (s_{j+1} − s_j)`), and
-    /// `φ = 2π u1`.
+    /// A direction drawn from the density with `u0, u1 ∈ [0, 1)`: the last
+    /// cell `j ≤ 15` with `M_j ≤ u0 M_16`, then `s = s_j + t (s_{j+1} − s_j)`
+    /// from the cell's linear density, `t = q/(h_j + √(h_j² + d q))` (`d =
+    /// h_{j+1} − h_j`, `q = (u0 M_16 − M_j)/(s_{j+1} − s_j)`, twice the mass
+    /// left in the cell per unit `t`), and `φ = 2π u1`. Always inlined: the
+    /// draw sits between the picks and the pass over the lobes on a sample's
+    /// critical path.
+    #[inline(always)]
     pub(crate) fn sample(&self, u0: f32, u1: f32) -> Vec3 {
-        let mut masses = [0.0f32; CELLS];
-        let mut total = 0.0f32;
-        for (j, m) in masses.iter_mut().enumerate() {
-            *m = (self.height(j) + self.height(j + 1)) * (edge(j + 1) - edge(j));
-            total += *m;
-        }
-        let mut left = u0.clamp(0.0, 1.0) * total;
-        let mut j = CELLS - 1;
-        for (i, &m) in masses.iter().enumerate() {
-            if left < m {
-                j = i;
-                break;
-            }
-            left -= m;
-        }
+        let target = u0.clamp(0.0, 1.0) * self.cum[CELLS];
+        // The last j ≤ 15 with M_j ≤ target: M is non-decreasing, so it is the
+        // number of M_1..M_15 at or below it (16 independent comparisons, no
+        // chain of dependent steps: the draw sits on `sample`'s critical path).
+        let j: usize = self.cum[1..CELLS].iter().map(|&m| usize::from(m <= target)).sum();
+        let left = (target - self.cum.get(j).copied().unwrap_or(0.0)).max(0.0);
         let (h0, h1) = (self.height(j), self.height(j + 1));
         let (s0, s1) = (edge(j), edge(j + 1));
         let width = s1 - s0;
         // ∫₀ᵗ (h0 + d τ) dτ = c: the cell's mass per unit t is (h0 + h1)/2 and
-        // `left` counts it as (h0 + h1) · width.
-        let c = if width > 0.0 { left / (2.0 * width) } else { 0.0 };
+        // `left` counts it as (h0 + h1) · width, so 2c = left/width (`q`, from
+        // the stored reciprocal: one division fewer on the critical path).
+        let q = left * INV_WIDTH.get(j).copied().unwrap_or(0.0);
         let d = h1 - h0;
-        let den = h0 + libm::sqrtf((h0 * h0 + 2.0 * d * c).max(0.0));
-        let t = if den > 0.0 {
-            (2.0 * c / den).clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
+        let den = h0 + libm::sqrtf((h0 * h0 + d * q).max(0.0));
+        let t = if den > 0.0 { (q / den).clamp(0.0, 1.0) } else { 0.5 };
         let s = (s0 + t * width).clamp(0.0, 1.0);
         let sin_t = libm::sqrtf((1.0 - s).max(0.0));
         let (sn, cs) = sincos_turn(u1);

@@ -1201,10 +1201,19 @@ impl<S: Spectrum> OpenPbr<S> {
             .iter()
             .map(|s| if s.is_finite() { s.max(0.0) } else { 0.0 })
             .sum();
+        // One reciprocal for the six shares where it is finite (a normal
+        // `total`; a subnormal one divides): the picks sit on a sample's
+        // critical path.
+        let inv_total = if total >= f32::MIN_POSITIVE {
+            1.0 / total
+        } else {
+            0.0
+        };
         let mut acc = 0.0f32;
         for (c, s) in view.cdf.iter_mut().zip(share) {
             if total > 0.0 && total.is_finite() {
-                acc += (if s.is_finite() { s.max(0.0) } else { 0.0 }) / total;
+                let s = if s.is_finite() { s.max(0.0) } else { 0.0 };
+                acc += if inv_total > 0.0 { s * inv_total } else { s / total };
             }
             *c = acc;
         }
@@ -1446,7 +1455,14 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let wi = if u[0] < pu {
             square_to_uniform_hemisphere([(u[0] / pu).min(ONE_MINUS_EPSILON), u[1]])
         } else {
-            let v = if pu < 1.0 { (u[0] - pu) / (1.0 - pu) } else { 0.0 };
+            // `p_u = 0` (σ = 0, OpenPBR's default) skips the division: `u₀/1`.
+            let v = if pu <= 0.0 {
+                u[0]
+            } else if pu < 1.0 {
+                (u[0] - pu) / (1.0 - pu)
+            } else {
+                0.0
+            };
             self.m
                 .diffuse_sampler
                 .sample(v.clamp(0.0, ONE_MINUS_EPSILON), u[1])
