@@ -199,15 +199,10 @@ impl TransmissionSampler {
         }
         let mu = mu.min(1.0);
         let s = mu * mu;
-        // The cell of `s`: `16 √μ`, then the edges decide.
-        let mut j = ((libm::sqrtf(mu) * CELLS as f32) as usize).min(CELLS - 1);
-        if s < edge(j) && j > 0 {
-            j -= 1;
-        } else if s >= edge(j + 1) && j + 1 < CELLS {
-            j += 1;
-        }
-        let (s0, s1) = (edge(j), edge(j + 1));
-        let t = ((s - s0) / (s1 - s0)).clamp(0.0, 1.0);
+        // The cell of `s`: the number of inner edges `s_1..s_15` at or below
+        // it (independent comparisons against constants, no root, no branch).
+        let j: usize = S_EDGE[1..CELLS].iter().map(|&e| usize::from(e <= s)).sum();
+        let t = ((s - edge(j)) * INV_WIDTH.get(j).copied().unwrap_or(0.0)).clamp(0.0, 1.0);
         let (h0, h1) = (self.height(j), self.height(j + 1));
         mu * (h0 + t * (h1 - h0)) * self.norm
     }
