@@ -389,7 +389,13 @@ fn clamp_albedo<S: Spectrum>(e: S) -> S {
 /// normal incidence, `[0, 1]`) and `η` the coat's index (`≥ 1`). A channel
 /// of `C = 1` is exactly 1; where a refracted cosine is 0 (or NaN) the path
 /// is infinitely long and every other channel is 0. Finite, in `[0, 1]`.
+#[inline]
 pub fn coat_absorption<S: Spectrum>(color: S, eta: f32, mu_i: f32, mu_o: f32) -> S {
+    if (0..S::CHANNELS).all(|c| color.channel(c) >= 1.0) {
+        // A clear coat (OpenPBR's default colour): every channel is 1 on
+        // every path, the refracted cosines unread.
+        return S::splat(1.0);
+    }
     let refracted = |mu: f32| {
         let s2 = (1.0 - mu * mu).max(0.0) / (eta * eta);
         libm::sqrtf((1.0 - s2).max(0.0))

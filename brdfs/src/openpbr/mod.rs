@@ -126,7 +126,7 @@ use crate::microfacet::{
     MIN_ALPHA, Microfacet, MicrofacetDistribution,
 };
 use crate::rough_diffuse::Eon;
-use crate::sheen::{LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
+use crate::sheen::{LtcAt, LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
 use radiometry::batch::Vec3Soa;
 pub use radiometry::compose::Layering;
 use radiometry::glam::Vec3;
@@ -878,7 +878,7 @@ impl<S: Spectrum> OpenPbr<S> {
             } else {
                 let v = LobeValues {
                     fuzz: if self.on[FUZZ] {
-                        self.fuzz_eval(w, view.wo)
+                        view.fuzz_eval_pdf(w).0
                     } else {
                         S::zero()
                     },
@@ -973,7 +973,7 @@ impl<S: Spectrum> OpenPbr<S> {
                 METAL => None,
                 SPEC => Some(2),
                 FUZZ => {
-                    *w = self.fuzz_sample(vw.wo, uu).map(|s| s.wi);
+                    *w = vw.fuzz_direction(uu);
                     None
                 }
                 _ => {
@@ -1058,8 +1058,8 @@ impl<S: Spectrum> OpenPbr<S> {
                     } else {
                         let (fuzz, fuzz_d) = match (self.on[FUZZ], &self.fuzz) {
                             (false, _) => (S::zero(), None),
-                            (true, Some(f)) => {
-                                let (v, d) = f.eval_pdf(w, view.wo);
+                            (true, Some(_)) => {
+                                let (v, d) = view.fuzz_eval_pdf(w);
                                 (v, Some(d))
                             }
                             (true, None) => (self.fuzz_eval(w, view.wo), None),
@@ -1117,6 +1117,7 @@ impl<S: Spectrum> OpenPbr<S> {
             valid,
             mu_o: if valid { mu_o.min(1.0) } else { 0.0 },
             fuzz_o: 0.0,
+            fuzz_at: None,
             coat_o: 0.0,
             spec_o: 0.0,
             darkening: S::splat(1.0),
@@ -1130,7 +1131,13 @@ impl<S: Spectrum> OpenPbr<S> {
         let mu = view.mu_o;
         let p = &self.params;
         if self.on[FUZZ] {
-            view.fuzz_o = self.e_fuzz(mu);
+            // Energy mode: `E_F(μo)` is the `R` of the LTC's state at `ωo`
+            // (the same read), where that state holds one.
+            view.fuzz_at = self.fuzz.as_ref().map(|f| f.at(wo));
+            view.fuzz_o = match &view.fuzz_at {
+                Some(at) if at.is_above() => p.fuzz_weight * at.albedo_untinted(),
+                _ => self.e_fuzz(mu),
+            };
         }
         if self.on[COAT] {
             view.coat_o = reads.map_or_else(|| self.e_coat(mu), |r| r.coat_o);
@@ -1338,6 +1345,9 @@ pub struct OpenPbrView<'a, S: Spectrum> {
     mu_o: f32,
     /// `w_F E_F(μo)`, `E_C(μo)`, `E_s(μo)`.
     fuzz_o: f32,
+    /// The LTC fuzz's state at `ωo` (energy mode, fuzz on): its
+    /// coefficients at `μo` and `ωo`'s azimuth, read once per view.
+    fuzz_at: Option<LtcAt>,
     coat_o: f32,
     spec_o: f32,
     /// The coat darkening `D` per channel.
@@ -1352,6 +1362,36 @@ pub struct OpenPbrView<'a, S: Spectrum> {
 }
 
 impl<S: Spectrum> OpenPbrView<'_, S> {
+    /// The fuzz lobe's value and density at `wi` (`ωo` the view's): from
+    /// the LTC's state at `ωo` in the energy mode, else the lobe's own calls.
+    #[inline(always)]
+    fn fuzz_eval_pdf(&self, wi: Vec3) -> (S, f32) {
+        match (&self.m.fuzz, &self.fuzz_at) {
+            (Some(f), Some(at)) => f.eval_pdf_at(at, wi),
+            _ => (self.m.fuzz_eval(wi, self.wo), self.m.fuzz_pdf(wi, self.wo)),
+        }
+    }
+
+    /// The direction the fuzz lobe draws at `uu` (energy mode: from the
+    /// LTC's state at `ωo`, bit for bit the lobe's own draw; its value and
+    /// density come from the pass over every lobe).
+    #[inline]
+    fn fuzz_direction(&self, uu: [f32; 2]) -> Option<Vec3> {
+        match &self.fuzz_at {
+            Some(at) if at.is_above() => at.direction(uu),
+            _ => self.m.fuzz_sample(self.wo, uu).map(|s| s.wi),
+        }
+    }
+
+    /// The fuzz lobe's density at `wi` alone (as [`fuzz_eval_pdf`](Self::fuzz_eval_pdf)).
+    #[inline(always)]
+    fn fuzz_pdf_at(&self, wi: Vec3) -> f32 {
+        match (&self.m.fuzz, &self.fuzz_at) {
+            (Some(f), Some(at)) => f.eval_pdf_at(at, wi).1,
+            _ => self.m.fuzz_pdf(wi, self.wo),
+        }
+    }
+
     /// The fuzz's factor at `ωo` alone (energy mode: `1 − w_F E_F(μo)`).
     #[inline]
     fn fuzz_factor_o(&self, leaf: Leaf) -> f32 {
@@ -1414,7 +1454,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     }
 
     /// `U = (1 − w_C) + w_C D A(μi, μo) T_C(μi, μo)` per channel.
-    #[inline]
+    #[inline(always)]
     fn coat_factor(&self, mu_i: f32, leaf: Leaf) -> S {
         let m = self.m;
         if !m.on[COAT] {
@@ -1503,12 +1543,17 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let mut pdf = 0.0f32;
         let prob = |k: usize| self.prob(k);
         if m.on[FUZZ] {
-            match (&m.fuzz, want_value && want_pdf) {
-                // Energy mode, both wanted: the LTC's table read and frame once.
-                (Some(fuzz), true) => {
-                    let (v, d) = fuzz.eval_pdf(wi, wo);
-                    f += v * p.fuzz_weight;
-                    pdf += prob(FUZZ) * d;
+            match (&m.fuzz, &self.fuzz_at) {
+                // Energy mode: the LTC's state at ωo (table read and frame
+                // once per view), value and density in one pass.
+                (Some(fuzz), Some(at)) => {
+                    let (v, d) = fuzz.eval_pdf_at(at, wi);
+                    if want_value {
+                        f += v * p.fuzz_weight;
+                    }
+                    if want_pdf {
+                        pdf += prob(FUZZ) * d;
+                    }
                 }
                 _ => {
                     if want_value {
@@ -1577,12 +1622,11 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         if !self.valid || wi.z.is_nan() || wi.z <= 0.0 || !wi.is_finite() {
             return 0.0;
         }
-        let wo = self.wo;
         let mu_i = wi.z.min(1.0);
         let mut pdf = 0.0f32;
         let prob = |k: usize| self.prob(k);
         if m.on[FUZZ] {
-            pdf += prob(FUZZ) * fuzz_d.unwrap_or_else(|| m.fuzz_pdf(wi, wo));
+            pdf += prob(FUZZ) * fuzz_d.unwrap_or_else(|| self.fuzz_pdf_at(wi));
         }
         if m.on[COAT] {
             pdf += prob(COAT) * d[0];
@@ -1655,7 +1699,11 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let (k, uu) = self.pick(u);
         let wo = self.wo;
         let s = match k {
-            FUZZ => m.fuzz_sample(wo, uu),
+            FUZZ => self.fuzz_direction(uu).map(|wi| BrdfSample {
+                wi,
+                pdf: 0.0,
+                weight: S::zero(),
+            }),
             COAT => m.coat.sample(wo, uu),
             METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
             SPEC => m.spec.sample(wo, uu),

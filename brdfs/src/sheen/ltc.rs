@@ -201,17 +201,122 @@ impl<S: Spectrum> LtcSheen<S> {
         if c.a == 0.0 {
             return (0.0, 0.0);
         }
-        let (cos_o, sin_o) = azimuth(wo);
-        let x = cos_o * wi.x + sin_o * wi.y;
-        let y = cos_o * wi.y - sin_o * wi.x;
-        let u = c.a * x + c.b * wi.z;
-        let v = c.a * y;
-        // ≥ a²/(1 + a² + b²) ≥ 10⁻²³ (smallest singular value of M⁻¹): q ≤ 1.1/a ≤ 1.1·10¹¹.
-        let l2 = u * u + v * v + wi.z * wi.z;
-        let q = c.a / l2;
-        (c.r, q * q * FRAC_1_PI)
+        terms_in(c, azimuth(wo), wi)
     }
 
+    /// The lobe's state at one unit `ωo`: its coefficients at `μo` and
+    /// `ωo`'s azimuth, for a material that evaluates several `ωi` at one
+    /// view ([`eval_pdf_at`](Self::eval_pdf_at)).
+    #[inline]
+    pub(crate) fn at(&self, wo: Vec3) -> LtcAt {
+        let above = wo.z > 0.0 && is_unit(wo);
+        LtcAt {
+            wo,
+            above,
+            c: if above {
+                self.coefficients(wo.z)
+            } else {
+                LtcCoeffs::ZERO
+            },
+            azimuth: if above { azimuth(wo) } else { (1.0, 0.0) },
+        }
+    }
+
+    /// [`eval_pdf`](Self::eval_pdf) at `(wi, at.wo)`, bit for bit, from the
+    /// view's state (the table read and the azimuth done once per view).
+    #[inline]
+    pub(crate) fn eval_pdf_at(&self, at: &LtcAt, wi: Vec3) -> (S, f32) {
+        if !(at.above && is_unit(wi)) {
+            return self.eval_pdf(wi, at.wo);
+        }
+        let (r, d) = if wi.z > 0.0 && at.c.a != 0.0 {
+            terms_in(at.c, at.azimuth, wi)
+        } else {
+            (0.0, 0.0)
+        };
+        (self.color * (r * d), d * wi.z)
+    }
+}
+
+/// A [`LtcSheen`] at one `ωo` ([`LtcSheen::at`]): `ωo`, whether it is a
+/// unit direction above the horizon, and there the coefficients at `μo`
+/// and its azimuth `(cos φo, sin φo)`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LtcAt {
+    wo: Vec3,
+    above: bool,
+    c: LtcCoeffs,
+    azimuth: (f32, f32),
+}
+
+impl LtcAt {
+    /// Whether `ωo` is a unit direction above the horizon (else the state
+    /// holds no lobe and callers take the lobe's own paths).
+    #[inline]
+    pub(crate) fn is_above(&self) -> bool {
+        self.above
+    }
+
+    /// The direction [`Brdf::sample`] of the lobe draws at `u` from this
+    /// `ωo` (bit for bit its `wi`; the caller evaluates the density), or
+    /// `None` where there is no lobe or on the horizon.
+    #[inline]
+    pub(crate) fn direction(&self, u: [f32; 2]) -> Option<Vec3> {
+        if !self.above {
+            return None;
+        }
+        direction(self.c, self.azimuth, u)
+    }
+
+    /// `R(μo)`, the lobe's untinted albedo at `ωo` (0 unless `ωo` is a unit
+    /// direction above the horizon): [`LtcSheen::albedo_untinted`] of `μo`.
+    #[inline]
+    pub(crate) fn albedo_untinted(&self) -> f32 {
+        self.c.r
+    }
+}
+
+/// The direction `ω = M ω'/|M ω'|` the LTC of coefficients `c` at `ωo`'s
+/// azimuth draws at `u` (`ω'` cosine-weighted), or `None` where there is
+/// no lobe (`a = 0`) or on the horizon.
+#[inline(always)]
+fn direction(c: LtcCoeffs, (cos_o, sin_o): (f32, f32), u: [f32; 2]) -> Option<Vec3> {
+    if c.a == 0.0 {
+        return None;
+    }
+    let o = square_to_cosine_hemisphere(u);
+    // M ω' up to the factor 1/a (normalised away).
+    let x = o.x - c.b * o.z;
+    let y = o.y;
+    let z = c.a * o.z;
+    let v = Vec3::new(cos_o * x - sin_o * y, sin_o * x + cos_o * y, z);
+    // |v|² ≥ (a z')² + … ≥ 10⁻²⁴ unless z' = 0 (then z = 0: rejected below).
+    let l2 = v.length_squared();
+    if l2.is_nan() || l2 <= 0.0 {
+        return None;
+    }
+    let wi = v * (1.0 / libm::sqrtf(l2));
+    if wi.z.is_nan() || wi.z <= 0.0 {
+        return None;
+    }
+    Some(wi)
+}
+
+/// `(R, D(ωi)/cos θi)` from the coefficients `c` (`a > 0`) at `μo` and
+/// `ωo`'s azimuth, for unit `wi` above the horizon.
+#[inline(always)]
+fn terms_in(c: LtcCoeffs, (cos_o, sin_o): (f32, f32), wi: Vec3) -> (f32, f32) {
+    let x = cos_o * wi.x + sin_o * wi.y;
+    let y = cos_o * wi.y - sin_o * wi.x;
+    let u = c.a * x + c.b * wi.z;
+    let v = c.a * y;
+    // ≥ a²/(1 + a² + b²) ≥ 10⁻²³ (smallest singular value of M⁻¹): q ≤ 1.1/a ≤ 1.1·10¹¹.
+    let l2 = u * u + v * v + wi.z * wi.z;
+    let q = c.a / l2;
+    (c.r, q * q * FRAC_1_PI)
+}
+
+impl<S: Spectrum> LtcSheen<S> {
     /// `(f_r, pdf)` at once: [`Brdf::eval`] and [`Brdf::pdf`] bit for bit,
     /// the table read and the frame shared (a material that needs both at
     /// one direction, as a mixture's `sample` does).
@@ -270,25 +375,7 @@ impl<S: Spectrum> Brdf for LtcSheen<S> {
             return None;
         }
         let c = self.coefficients(wo_unit.z);
-        if c.a == 0.0 {
-            return None;
-        }
-        let o = square_to_cosine_hemisphere(u);
-        // M ω' up to the factor 1/a (normalised away).
-        let x = o.x - c.b * o.z;
-        let y = o.y;
-        let z = c.a * o.z;
-        let (cos_o, sin_o) = azimuth(wo_unit);
-        let v = Vec3::new(cos_o * x - sin_o * y, sin_o * x + cos_o * y, z);
-        // |v|² ≥ (a z')² + … ≥ 10⁻²⁴ unless z' = 0 (then z = 0: rejected below).
-        let l2 = v.length_squared();
-        if l2.is_nan() || l2 <= 0.0 {
-            return None;
-        }
-        let wi = v * (1.0 / libm::sqrtf(l2));
-        if wi.z.is_nan() || wi.z <= 0.0 {
-            return None;
-        }
+        let wi = direction(c, azimuth(wo_unit), u)?;
         let pdf = self.pdf(wi, wo);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
@@ -331,6 +418,50 @@ mod tests {
 
     /// `eval_pdf` is `(eval, pdf)` bit for bit, unit and non-unit directions,
     /// below the horizon included.
+    /// The lobe's state at one `ωo` evaluates and draws bit for bit as the
+    /// lobe's own calls: random unit and non-unit pairs, below the horizon,
+    /// grazing and zero directions, at four roughnesses.
+    #[test]
+    fn state_at_wo_is_the_lobes_calls() {
+        let mut u = crate::test_stream::uniforms(0x2545_f491_4f6c_dd1d);
+        let (mut drawn, mut prepared) = (0, 0);
+        for r in [0.0f32, 0.07, 0.5, 1.0] {
+            let s = LtcSheen::new(radiometry::glam::Vec3::new(0.9, 0.5, 0.2), r).unwrap();
+            for n in 0..3000 {
+                let mut dir = || {
+                    let v = Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0);
+                    match n % 7 {
+                        0 => v * 3.0,
+                        1 => Vec3::new(v.x, v.y, 1e-7).normalize_or(Vec3::Z),
+                        2 => Vec3::ZERO,
+                        _ => v.normalize_or(Vec3::Z),
+                    }
+                };
+                let (wi, wo) = (dir(), dir());
+                let at = s.at(wo);
+                prepared += usize::from(at.is_above());
+                let (v, p) = s.eval_pdf_at(&at, wi);
+                let (e, q) = s.eval_pdf(wi, wo);
+                assert!(
+                    v.to_array().map(f32::to_bits) == e.to_array().map(f32::to_bits),
+                    "{wi} {wo}"
+                );
+                assert_eq!(p.to_bits(), q.to_bits(), "{wi} {wo}");
+                if at.is_above() {
+                    let uu = [u(), u()];
+                    assert_eq!(
+                        at.direction(uu).map(|w| w.to_array().map(f32::to_bits)),
+                        s.sample(wo, uu).map(|x| x.wi.to_array().map(f32::to_bits)),
+                        "{wo} {uu:?}"
+                    );
+                    drawn += 1;
+                    assert_eq!(at.albedo_untinted().to_bits(), s.albedo_untinted(wo.z).to_bits());
+                }
+            }
+        }
+        assert!(prepared > 3000 && drawn > 3000, "{prepared} {drawn}");
+    }
+
     #[test]
     fn eval_pdf_is_eval_and_pdf() {
         let mut u = crate::test_stream::uniforms(0x51ed_2701_a3c4_9b1d);

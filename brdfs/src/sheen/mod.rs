@@ -68,5 +68,6 @@ mod ltc_table;
 pub use albedo_table::{MU_0, N_MU, N_R, SheenAlbedoTable, sheen_mu_coord, sheen_mu_node, sheen_r_node};
 pub use charlie::{Charlie, MAX_SHEEN_ROUGHNESS, MIN_SHEEN_ROUGHNESS};
 pub use lobe::Sheen;
+pub(crate) use ltc::LtcAt;
 pub use ltc::LtcSheen;
 pub use ltc_table::{LTC_MIN_A, LTC_N, LtcCoeffs, ltc_sheen_node};
