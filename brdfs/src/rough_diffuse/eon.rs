@@ -102,8 +102,9 @@ impl<S: Spectrum> Eon<S> {
     #[inline(always)]
     fn albedo_from_g(&self, g: f32) -> S {
         if self.sigma == 0.0 {
-            // σ = 0: `E_FON = 1` and `ρ_ms (1 − E_FON) = 0`, the same bits.
-            return self.rho;
+            // σ = 0: `E_FON = 1` and `ρ_ms (1 − E_FON) = +0`, the same bits
+            // (`+ 0` as the general form adds it: ρ = −0 gives +0).
+            return self.rho + S::zero();
         }
         let e_fon = self.a * (1.0 + self.sigma * g);
         let one_minus = self.a * self.sigma * (C1 - g).max(0.0);
@@ -166,9 +167,10 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
     #[inline(always)]
     fn eval_unit(&self, wi: Vec3, wo: Vec3) -> S {
         if self.sigma == 0.0 {
-            // Lambert, `ρ/π`: with σ = 0 the terms below are `k_ss · 1 + 0 · ms`,
-            // the same bits (unit directions: `s/t` and `ms` are finite).
-            return self.k_ss;
+            // Lambert, `ρ/π`: with σ = 0 the terms below are `k_ss · 1 + (+0)`
+            // (unit directions: `s/t` and `ms` are finite), the same bits — the
+            // `+ 0` included, which turns the `−0` of `ρ = −0` into `+0`.
+            return self.k_ss + S::zero();
         }
         let s = s_term(wi, wo);
         let s_over_t = if s > 0.0 { s / t_term(wi, wo) } else { s };
@@ -186,7 +188,7 @@ impl<S: Spectrum> RoughLobe for Eon<S> {
     #[inline]
     fn albedo_at(&self, mu_o: f32) -> S {
         if self.sigma == 0.0 {
-            return self.rho;
+            return self.albedo_from_g(0.0);
         }
         self.albedo_from_g(g_over_pi(mu_o))
     }

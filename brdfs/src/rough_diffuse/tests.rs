@@ -669,10 +669,11 @@ fn smoothness_and_lambert_limit() {
 /// EON's `σ = 0` shortcut (Lambert, `ρ/π`, and the albedo `ρ`) returns the
 /// bits of the general formulas at a `σ` whose terms round away (`10⁻³⁰`:
 /// `A = 1`, `σ s/t` and `k_ms · ms` below half an ulp), on random pairs and
-/// the edge pairs, `f32` and RGB.
+/// the edge pairs, `f32` (`ρ = −0` included: the general form's `+ 0` makes
+/// it `+0`) and RGB.
 #[test]
 fn eon_sigma_zero_is_the_general_formula() {
-    for rho in [0.05f32, 0.5, 0.8, 1.0] {
+    for rho in [-0.0f32, 0.0, 0.05, 0.5, 0.8, 1.0] {
         let (flat, general) = (Eon::new(rho, 0.0).unwrap(), Eon::new(rho, 1e-30).unwrap());
         for (wi, wo) in pairs() {
             assert_eq!(
