@@ -648,13 +648,23 @@ impl<S: Spectrum> OpenPbr<S> {
         // (only read under a coat).
         let (base_albedo_normal, k_r) = if w_c > 0.0 {
             let n = Vec3::Z;
-            let e_s1 = spec_e(1.0);
+            // E_s(1) and, with a metal, E₁(1) — in one read where the specular
+            // lobe keeps its cells (each bit for bit its own read).
+            let (e_s1, metal_e1) = match (&metal, spec.fresnel.albedo_cells(spec.distribution.alpha())) {
+                (Some(_), Some(c)) => {
+                    let (e_s, e1) = c.reader.albedo_and_e1(1.0);
+                    (e_s, e1)
+                }
+                _ => (
+                    spec_e(1.0),
+                    metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), 1.0)),
+                ),
+            };
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
                 // E₁(1), read once for the single scattering and the loss.
-                let e1 = x.e1.albedo(e1_table(), 1.0);
-                x.single_albedo_with(n, e1)
-                    + x.ms_scale * (core::f32::consts::PI * (1.0 - e1).clamp(0.0, 1.0))
+                x.single_albedo_with(n, metal_e1)
+                    + x.ms_scale * (core::f32::consts::PI * (1.0 - metal_e1).clamp(0.0, 1.0))
             });
             let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
             (
