@@ -383,6 +383,26 @@ fn lobe_albedo<S: Spectrum>(lobe: &DielectricLobe<S>, ae: (f32, f32)) -> impl Fn
     }
 }
 
+/// `(E_s(μ), E₁(μ))` of the specular lobe `spec` (`(α, η)` = `ae`) and of
+/// the metal at its roughness (1 without a metal): one read of `E₁` where
+/// there is a metal and the lobe keeps its cells, each bit for bit its own
+/// read ([`DielectricAlbedoReader::albedo_and_e1`]).
+#[inline(always)]
+fn spec_albedo_and_e1<S: Spectrum>(
+    spec: &DielectricLobe<S>,
+    ae: (f32, f32),
+    metal: Option<&Metal<S>>,
+    mu: f32,
+) -> (f32, f32) {
+    match (metal, spec.fresnel.albedo_cells(spec.distribution.alpha())) {
+        (Some(_), Some(c)) => c.reader.albedo_and_e1(mu),
+        _ => (
+            lobe_albedo(spec, ae)(mu),
+            metal.map_or(1.0, |x| x.e1.albedo(e1_table(), mu)),
+        ),
+    }
+}
+
 /// [`lobe_albedo`] of a lobe without its cells (not one the material builds),
 /// out of line so that the prepared read inlines into its callers.
 #[cold]
@@ -650,16 +670,7 @@ impl<S: Spectrum> OpenPbr<S> {
             let n = Vec3::Z;
             // E_s(1) and, with a metal, E₁(1) — in one read where the specular
             // lobe keeps its cells (each bit for bit its own read).
-            let (e_s1, metal_e1) = match (&metal, spec.fresnel.albedo_cells(spec.distribution.alpha())) {
-                (Some(_), Some(c)) => {
-                    let (e_s, e1) = c.reader.albedo_and_e1(1.0);
-                    (e_s, e1)
-                }
-                _ => (
-                    spec_e(1.0),
-                    metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), 1.0)),
-                ),
-            };
+            let (e_s1, metal_e1) = spec_albedo_and_e1(&spec, (a_s, eta_s), metal.as_ref(), 1.0);
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
                 // E₁(1), read once for the single scattering and the loss.
@@ -719,26 +730,19 @@ impl<S: Spectrum> OpenPbr<S> {
         self.layering
     }
 
-    /// `E_s(μ)`: the dielectric specular lobe's albedo.
-    #[inline]
-    fn e_spec(&self, mu: f32) -> f32 {
-        lobe_albedo(&self.spec, self.spec_ae)(mu)
-    }
-
     /// `(E_s(μ), E₁(μ))`: the specular lobe's albedo (0 with the layer off)
     /// and the `F = 1` albedo at its roughness, the metal's (1 without a
     /// metal), from one read of `E₁` where both are on and the lobe keeps
     /// its cells — each bit for bit its own read.
     #[inline]
     fn spec_and_e1(&self, mu: f32) -> (f32, f32) {
-        let metal_e1 = |mu: f32| self.metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), mu));
         if !self.on[SPEC] {
-            return (0.0, metal_e1(mu));
+            return (
+                0.0,
+                self.metal.as_ref().map_or(1.0, |x| x.e1.albedo(e1_table(), mu)),
+            );
         }
-        match self.spec.fresnel.albedo_cells(self.spec.distribution.alpha()) {
-            Some(c) if self.metal.is_some() => c.reader.albedo_and_e1(mu),
-            _ => (self.e_spec(mu), metal_e1(mu)),
-        }
+        spec_albedo_and_e1(&self.spec, self.spec_ae, self.metal.as_ref(), mu)
     }
 
     /// `E_C(μ)`: the coat lobe's albedo.
