@@ -335,6 +335,31 @@ impl AlbedoReader {
         acc.clamp(0.0, 1.0)
     }
 
+    /// [`albedo`](Self::albedo) at `μ = 1` (normal incidence), bit for bit:
+    /// there `s² = 0`, every row's `μ' = 1/√1 = 1` and `x = √1 = 1` exactly
+    /// (the tangent scalings `k_r` are finite), so the cell is the last one,
+    /// `(j, t) = (N_μ − 2, 1)`, whatever the reader — the roots and the
+    /// division the general read makes on the way are left out.
+    #[inline]
+    pub(crate) fn albedo_at_normal(&self, table: &AlbedoTable) -> f32 {
+        let first = usize::from(self.row);
+        let Some(rows) = table.values.get(first..first + 4) else {
+            return 0.0;
+        };
+        let (j, t) = (N_MU - 2, 1.0f32);
+        let acc = if self.shared {
+            self.shared_sum_in(rows, j, t)
+        } else {
+            let mut acc = 0.0f32;
+            for (row, &w) in rows.iter().zip(&self.w) {
+                let (a, b) = (row[j], row[j + 1]);
+                acc += w * (a + t * (b - a));
+            }
+            acc
+        };
+        acc.clamp(0.0, 1.0)
+    }
+
     /// Whether the four rows share one coordinate (see the field `shared`).
     #[inline]
     pub(crate) fn is_shared(&self) -> bool {
@@ -365,6 +390,12 @@ impl AlbedoReader {
     #[inline(always)]
     fn shared_sum(&self, rows: &[[f32; N_MU]], mu: f32, s2: f32) -> f32 {
         let (j, t) = self.shared_cell(mu, s2);
+        self.shared_sum_in(rows, j, t)
+    }
+
+    /// [`shared_sum`](Self::shared_sum) in the cell `(j, t)`.
+    #[inline(always)]
+    fn shared_sum_in(&self, rows: &[[f32; N_MU]], j: usize, t: f32) -> f32 {
         let node = |j: usize| {
             let mut acc = 0.0f32;
             for (row, &w) in rows.iter().zip(&self.w) {

@@ -270,6 +270,24 @@ impl DielectricAlbedoReader {
         ((e1 * self.ratio.ratio_outside(mu)).clamp(0.0, 1.0), e1)
     }
 
+    /// [`albedo_and_e1`](Self::albedo_and_e1) at `μ = 1` (normal
+    /// incidence), bit for bit, without the coordinates' roots and division
+    /// ([`AlbedoReader::albedo_at_normal`], [`DielectricRatioReader::ratio_at_normal`]).
+    #[inline]
+    pub(crate) fn albedo_and_e1_at_normal(&self) -> (f32, f32) {
+        let e1 = self
+            .e1
+            .albedo_at_normal(<Ggx as EnergyTable<HeightCorrelated>>::TABLE);
+        ((e1 * self.ratio.ratio_at_normal()).clamp(0.0, 1.0), e1)
+    }
+
+    /// [`albedo`](Self::albedo) at `μ = 1`, bit for bit (see
+    /// [`albedo_and_e1_at_normal`](Self::albedo_and_e1_at_normal)).
+    #[inline]
+    pub(crate) fn albedo_at_normal(&self) -> f32 {
+        self.albedo_and_e1_at_normal().0
+    }
+
     /// The reader of `E₁(·, α)` inside this one.
     #[inline]
     pub(crate) fn e1_reader(&self) -> &AlbedoReader {
@@ -485,6 +503,23 @@ impl DielectricRatioReader {
         (acc * (1.0 / 65535.0) + smooth).clamp(0.0, 1.0)
     }
 
+    /// [`ratio`](Self::ratio) at `μ = 1` (normal incidence), bit for bit:
+    /// for `η > 1` the `μ` cell of `x = √1 = 1` is the last one, `(j, f_x) =
+    /// (N_x − 2, 1)`, so the root is left out (`η < 1` reads the general way).
+    #[inline]
+    pub(crate) fn ratio_at_normal(&self) -> f32 {
+        if self.inside {
+            return self.ratio_inside(1.0);
+        }
+        let acc = self.outside_sum_in(FT_NX - 2, 1.0);
+        let smooth = if self.exact > 0.0 {
+            self.exact * smooth_fresnel(1.0, self.eta2m1, self.eta2)
+        } else {
+            0.0
+        };
+        (acc * (1.0 / 65535.0) + smooth).clamp(0.0, 1.0)
+    }
+
     /// `η > 1`: the corners' bilinear sum (table units) at `μ ∈ [0, 1]`,
     /// every corner at the same `x = √μ`: the corners summed at the cell's
     /// two nodes, then the chord between them,
@@ -498,6 +533,12 @@ impl DielectricRatioReader {
     #[inline(always)]
     fn outside_sum(&self, mu: f32) -> f32 {
         let (j, fx) = cell_of(libm::sqrtf(mu) * (FT_NX - 1) as f32, FT_NX);
+        self.outside_sum_in(j, fx)
+    }
+
+    /// [`outside_sum`](Self::outside_sum) in the `μ` cell `(j, f_x)`.
+    #[inline(always)]
+    fn outside_sum_in(&self, j: usize, fx: f32) -> f32 {
         let i = (self.base as usize).wrapping_add(j);
         // The corners (l, k), (l, k + 1), (l + 1, k), (l + 1, k + 1) sit
         // at offsets 0, NX, NA·NX and NA·NX + NX from the first; each is
@@ -629,19 +670,57 @@ pub fn dielectric_average(alpha: f32, eta: f32) -> f32 {
 /// The moments `(R5, R6) = (M5/E₁, M6/E₁)` at `μ`, `α` (bilinear in `(√μ,
 /// √α)`): the lobe's means of `(1 − c)⁵` and `c (1 − c)⁶`.
 pub fn fresnel_moments(mu: f32, alpha: f32) -> (f32, f32) {
-    let (k, fa) = alpha_coord(alpha);
-    let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
-    let read = |t: &[f32]| {
-        let at = |k: usize| {
-            let i = k.wrapping_mul(FT_NX).wrapping_add(j);
-            let a = t.get(i).copied().unwrap_or(0.0);
-            let b = t.get(i.wrapping_add(1)).copied().unwrap_or(0.0);
-            a + fx * (b - a)
+    MomentCell::new(alpha).moments(mu)
+}
+
+/// The roughness cell `(k, f_a)` of the moment tables at one `α`, for a lobe
+/// that reads [`fresnel_moments`] at many `μ` (the root and division of
+/// the roughness coordinate made once).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MomentCell {
+    k: u8,
+    fa: f32,
+}
+
+impl MomentCell {
+    /// The cell of `α` (clamped as [`fresnel_moments`] clamps it).
+    #[inline]
+    pub(crate) fn new(alpha: f32) -> Self {
+        let (k, fa) = alpha_coord(alpha);
+        // `k ≤ FT_NA − 2 = 30`.
+        Self { k: k as u8, fa }
+    }
+
+    /// [`fresnel_moments`] at `μ` for this cell's `α`, bit for bit.
+    #[inline]
+    pub(crate) fn moments(&self, mu: f32) -> (f32, f32) {
+        let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
+        self.moments_in(j, fx)
+    }
+
+    /// [`fresnel_moments`] at `μ = 1` (normal incidence), bit for bit: the
+    /// `μ` cell of `√1 = 1` is the last, `(N_x − 2, 1)`.
+    #[inline]
+    pub(crate) fn moments_at_normal(&self) -> (f32, f32) {
+        self.moments_in(FT_NX - 2, 1.0)
+    }
+
+    /// The moments in the `μ` cell `(j, f_x)`: bilinear in `(√μ, √α)`.
+    #[inline(always)]
+    fn moments_in(&self, j: usize, fx: f32) -> (f32, f32) {
+        let (k, fa) = (usize::from(self.k), self.fa);
+        let read = |t: &[f32]| {
+            let at = |k: usize| {
+                let i = k.wrapping_mul(FT_NX).wrapping_add(j);
+                let a = t.get(i).copied().unwrap_or(0.0);
+                let b = t.get(i.wrapping_add(1)).copied().unwrap_or(0.0);
+                a + fx * (b - a)
+            };
+            let a = at(k);
+            a + fa * (at(k.wrapping_add(1)) - a)
         };
-        let a = at(k);
-        a + fa * (at(k.wrapping_add(1)) - a)
-    };
-    (read(&data::MOMENT5), read(&data::MOMENT6))
+        (read(&data::MOMENT5), read(&data::MOMENT6))
+    }
 }
 
 /// The lobe's mean Fresnel factor `R_F = f0 + (1 − f0) R5 − a R6` of `F(c)
@@ -878,6 +957,75 @@ mod tests {
             let old_row = (libm::roundf(t * 31.0) as usize).min(31) as u8;
             assert_eq!(row_index_at(x), old_row, "α {alpha}");
         }
+    }
+
+    /// The reads at normal incidence without the coordinates' roots
+    /// (`*_at_normal`) are the general reads at `μ = 1` bit for bit: random
+    /// `α` on both sides of `α = 0.2` (rows sharing one coordinate or not)
+    /// and in the exact smooth row, the ends of `[10⁻⁴, 1]`, outside it and
+    /// NaN; random `η` above and below 1, `η = 1` and the index's ends.
+    #[test]
+    fn normal_incidence_reads_are_the_general_reads() {
+        let table = <Ggx as EnergyTable<HeightCorrelated>>::TABLE;
+        let mut u = uniforms(0x2545_f491_4f6c_dd1d);
+        let (mut shared, mut inside, mut exact) = (0, 0, 0);
+        for n in 0..6_000 {
+            let alpha = match n % 12 {
+                0 => 1e-4,
+                1 => 1.0,
+                2 => 0.2,
+                3 => 1.5,
+                4 => -0.25,
+                5 => f32::NAN,
+                6 => 2e-4 * u(),
+                _ => (u() * u()).max(1e-5),
+            };
+            let eta = match n % 7 {
+                0 => 1.0,
+                1 => MAX_ETA,
+                2 => 0.3 + 0.7 * u(),
+                _ => 1.0 + 3.0 * u(),
+            };
+            let r = DielectricAlbedoReader::new(alpha, eta);
+            let what = std::format!("α {alpha} η {eta}");
+            let (a, b) = (r.albedo_and_e1_at_normal(), r.albedo_and_e1(1.0));
+            assert_eq!(
+                (a.0.to_bits(), a.1.to_bits()),
+                (b.0.to_bits(), b.1.to_bits()),
+                "{what}"
+            );
+            assert_eq!(r.albedo_at_normal().to_bits(), r.albedo(1.0).to_bits(), "{what}");
+            let e1 = AlbedoReader::new(alpha);
+            assert_eq!(
+                e1.albedo_at_normal(table).to_bits(),
+                e1.albedo(table, 1.0).to_bits(),
+                "{what}"
+            );
+            let ratio = DielectricRatioReader::new(alpha, eta);
+            assert_eq!(
+                ratio.ratio_at_normal().to_bits(),
+                ratio.ratio(1.0).to_bits(),
+                "{what}"
+            );
+            let (m, f) = (
+                MomentCell::new(alpha).moments_at_normal(),
+                fresnel_moments(1.0, alpha),
+            );
+            assert_eq!(
+                (m.0.to_bits(), m.1.to_bits()),
+                (f.0.to_bits(), f.1.to_bits()),
+                "{what}"
+            );
+            shared += usize::from(e1.is_shared());
+            inside += usize::from(ratio.inside);
+            exact += usize::from(ratio.exact > 0.0);
+        }
+        // Every branch of the reads was taken.
+        assert!(
+            shared > 100 && inside > 100 && exact > 100,
+            "{shared} {inside} {exact}"
+        );
+        assert!(shared < 5_000, "{shared}");
     }
 
     /// A batch's combined rows read in lanes return the scalar reader's bits

@@ -119,7 +119,7 @@ mod tests;
 
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::AlbedoReader;
-use crate::microfacet::fresnel_table::{DielectricAlbedoReader, dielectric_average};
+use crate::microfacet::fresnel_table::{DielectricAlbedoReader, MomentCell, dielectric_average};
 use crate::microfacet::transmission_sampler::TransmissionSampler;
 use crate::microfacet::{
     Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
@@ -221,6 +221,9 @@ struct Metal<S: Spectrum> {
     e1: AlbedoReader,
     /// The row of the global sampler of the lobe (`microfacet::ms_sampler`).
     ms_row: u8,
+    /// The roughness cell of the Fresnel-moment tables (the single
+    /// scattering's albedo reads them at every view).
+    moments: MomentCell,
 }
 
 impl<S: Spectrum> Metal<S> {
@@ -256,6 +259,7 @@ impl<S: Spectrum> Metal<S> {
             f_ms,
             e1,
             ms_row: crate::microfacet::ms_sampler::row_index_at(e1.axis()),
+            moments: MomentCell::new(ggx.alpha()),
         }
     }
 
@@ -270,14 +274,29 @@ impl<S: Spectrum> Metal<S> {
         self.single_albedo_with(wo, self.e1.albedo(e1_table(), wo.z))
     }
 
-    /// [`single_albedo`](Self::single_albedo) with `E₁(μo)` already read.
+    /// [`single_albedo`](Self::single_albedo) with `E₁(μo)` already read
+    /// (the moments through the cell the metal keeps: bit for bit
+    /// [`fresnel_moments`](crate::microfacet::fresnel_table::fresnel_moments)).
     #[inline]
     fn single_albedo_with(&self, wo: Vec3, e1: f32) -> S {
-        use crate::microfacet::fresnel_table::{fresnel_moments, linear_fresnel_ratio};
+        self.single_albedo_from(wo, e1, |c| c.moments(wo.z))
+    }
+
+    /// [`single_albedo_with`](Self::single_albedo_with) at the normal,
+    /// bit for bit, without the moments' root ([`MomentCell::moments_at_normal`]).
+    #[inline]
+    fn single_albedo_at_normal(&self, e1: f32) -> S {
+        self.single_albedo_from(Vec3::Z, e1, |c| c.moments_at_normal())
+    }
+
+    /// `E₁(μo) R_F(μo)` per channel from `E₁(μo)` and the moments at `μo`
+    /// (`moments`, read through the metal's cell).
+    #[inline(always)]
+    fn single_albedo_from(&self, wo: Vec3, e1: f32, moments: impl Fn(&MomentCell) -> (f32, f32)) -> S {
+        use crate::microfacet::fresnel_table::linear_fresnel_ratio;
         match self.single.fresnel.form() {
             crate::microfacet::FresnelForm::Linear { f0, a } => {
-                let mu = wo.z;
-                let m = fresnel_moments(mu, self.single.distribution.alpha());
+                let m = moments(&self.moments);
                 S::from_fn(|c| (linear_fresnel_ratio(f0.channel(c), a.channel(c), m) * e1).clamp(0.0, 1.0))
             }
             _ => self.single.directional_albedo(wo).value,
@@ -399,6 +418,25 @@ fn spec_albedo_and_e1<S: Spectrum>(
         _ => (
             lobe_albedo(spec, ae)(mu),
             metal.map_or(1.0, |x| x.e1.albedo(e1_table(), mu)),
+        ),
+    }
+}
+
+/// [`spec_albedo_and_e1`] at `μ = 1` (normal incidence), bit for bit,
+/// without the coordinates' roots and division
+/// ([`DielectricAlbedoReader::albedo_and_e1_at_normal`]): the darkening's
+/// reads at construction.
+#[inline]
+fn spec_albedo_and_e1_at_normal<S: Spectrum>(
+    spec: &DielectricLobe<S>,
+    ae: (f32, f32),
+    metal: Option<&Metal<S>>,
+) -> (f32, f32) {
+    match (metal, spec.fresnel.albedo_cells(spec.distribution.alpha())) {
+        (Some(_), Some(c)) => c.reader.albedo_and_e1_at_normal(),
+        (_, cells) => (
+            cells.map_or_else(|| unprepared_albedo(ae, 1.0), |c| c.reader.albedo_at_normal()),
+            metal.map_or(1.0, |x| x.e1.albedo_at_normal(e1_table())),
         ),
     }
 }
@@ -670,11 +708,11 @@ impl<S: Spectrum> OpenPbr<S> {
             let n = Vec3::Z;
             // E_s(1) and, with a metal, E₁(1) — in one read where the specular
             // lobe keeps its cells (each bit for bit its own read).
-            let (e_s1, metal_e1) = spec_albedo_and_e1(&spec, (a_s, eta_s), metal.as_ref(), 1.0);
+            let (e_s1, metal_e1) = spec_albedo_and_e1_at_normal(&spec, (a_s, eta_s), metal.as_ref());
             let glossy = spec_color * e_s1 + diffuse.directional_albedo(n).value * (1.0 - e_s1);
             let metal_normal = metal.as_ref().map_or(S::zero(), |x| {
                 // E₁(1), read once for the single scattering and the loss.
-                x.single_albedo_with(n, metal_e1)
+                x.single_albedo_at_normal(metal_e1)
                     + x.ms_scale * (core::f32::consts::PI * (1.0 - metal_e1).clamp(0.0, 1.0))
             });
             let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
