@@ -227,12 +227,22 @@ impl DielectricAlbedoReader {
     /// The reader of `E_F(·, α, η)` (the arguments clamped as
     /// [`dielectric_albedo`] clamps them).
     pub fn new(alpha: f32, eta: f32) -> Self {
-        let (e1, ratio) = (AlbedoReader::new(alpha), DielectricRatioReader::new(alpha, eta));
-        Self {
+        Self::with_average(alpha, eta).0
+    }
+
+    /// The reader and [`dielectric_average`]`(α, η)`, bit for bit, from one
+    /// computation of the index and roughness cells (a prepared lobe keeps
+    /// both: [`DielectricCells`](super::prepared::DielectricCells)).
+    #[inline]
+    pub(crate) fn with_average(alpha: f32, eta: f32) -> (Self, f32) {
+        let (ratio, average) = DielectricRatioReader::with_average(alpha, eta);
+        let e1 = AlbedoReader::new(alpha);
+        let reader = Self {
             e1,
             ratio,
             fast: e1.is_shared() && !ratio.inside && ratio.exact == 0.0,
-        }
+        };
+        (reader, average)
     }
 
     /// `R(μ) = E_F/E₁` (see [`dielectric_ratio`]), in `[0, 1]`.
@@ -410,8 +420,16 @@ impl DielectricRatioReader {
     /// The reader of `R(·, α, η)` (the arguments clamped as
     /// [`dielectric_ratio`] clamps them).
     pub fn new(alpha: f32, eta: f32) -> Self {
+        Self::with_average(alpha, eta).0
+    }
+
+    /// The reader and [`dielectric_average`]`(α, η)`, bit for bit, from one
+    /// computation of the index and roughness cells.
+    #[inline]
+    pub(crate) fn with_average(alpha: f32, eta: f32) -> (Self, f32) {
         let (l, fz, inside) = index_coord(eta);
         let (k, fa) = alpha_coord(alpha);
+        let average = average_in((l, fz, inside), (k, fa));
         let nx = if inside { FT_NX_IN } else { FT_NX };
         let off = |l: usize, k: usize| l.wrapping_mul(FT_NA).wrapping_add(k).wrapping_mul(nx);
         let base = off(l, k) as u32;
@@ -460,7 +478,7 @@ impl DielectricRatioReader {
                 }
             }
         }
-        r
+        (r, average)
     }
 
     /// `x ∈ [0, 1]` of the `η < 1` table for both roughness rows (`k`,
@@ -646,8 +664,20 @@ fn smooth_fresnel(mu: f32, eta2m1: f32, eta2: f32) -> f32 {
 /// The hemispherical average `Ē(α, η) = 2∫₀¹ E_F(μ) μ dμ` of a GGX
 /// dielectric interface, bilinear in `(√α, F0^¼)`.
 pub fn dielectric_average(alpha: f32, eta: f32) -> f32 {
-    let (l, fz, inside) = index_coord(eta);
-    let (k, fa) = alpha_coord(alpha);
+    dielectric_average_inline(alpha, eta)
+}
+
+/// [`dielectric_average`], always inlined: at a constant `α` the
+/// roughness cell is computed at compile time.
+#[inline(always)]
+pub(crate) fn dielectric_average_inline(alpha: f32, eta: f32) -> f32 {
+    average_in(index_coord(eta), alpha_coord(alpha))
+}
+
+/// [`dielectric_average`] at the cells `(l, f_z, η < 1)` of the index
+/// ([`index_coord`]) and `(k, f_a)` of the roughness ([`alpha_coord`]).
+#[inline(always)]
+fn average_in((l, fz, inside): (usize, f32, bool), (k, fa): (usize, f32)) -> f32 {
     let table: &[f32] = if inside {
         &data::AVERAGE_IN
     } else {
@@ -960,7 +990,8 @@ mod tests {
     }
 
     /// The reads at normal incidence without the coordinates' roots
-    /// (`*_at_normal`) are the general reads at `μ = 1` bit for bit: random
+    /// (`*_at_normal`) are the general reads at `μ = 1` bit for bit, and the
+    /// average read with a reader's cells is [`dielectric_average`]: random
     /// `α` on both sides of `α = 0.2` (rows sharing one coordinate or not)
     /// and in the exact smooth row, the ends of `[10⁻⁴, 1]`, outside it and
     /// NaN; random `η` above and below 1, `η = 1` and the index's ends.
@@ -1016,6 +1047,14 @@ mod tests {
                 (f.0.to_bits(), f.1.to_bits()),
                 "{what}"
             );
+            // The average read with the reader's cells is the plain read.
+            let (with, average) = DielectricAlbedoReader::with_average(alpha, eta);
+            assert_eq!(
+                average.to_bits(),
+                dielectric_average(alpha, eta).to_bits(),
+                "{what}"
+            );
+            assert_eq!(with, r, "{what}");
             shared += usize::from(e1.is_shared());
             inside += usize::from(ratio.inside);
             exact += usize::from(ratio.exact > 0.0);

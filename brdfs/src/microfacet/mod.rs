@@ -653,7 +653,13 @@ where
         }
         match self.fresnel.form() {
             FresnelForm::Dielectric(eta) => {
-                Some(fresnel_table::dielectric_average(self.distribution.alpha(), eta))
+                let alpha = self.distribution.alpha();
+                // A prepared lobe read it with its cells (the same bits).
+                Some(
+                    self.fresnel
+                        .albedo_cells(alpha)
+                        .map_or_else(|| fresnel_table::dielectric_average(alpha, eta), |c| c.average),
+                )
             }
             _ => None,
         }

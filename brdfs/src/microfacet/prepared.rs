@@ -15,16 +15,21 @@ use super::fresnel_table::{DielectricAlbedoReader, dielectric_error};
 pub struct DielectricCells {
     pub(crate) alpha: f32,
     pub(crate) error: f32,
+    /// [`dielectric_average`](super::fresnel_table::dielectric_average) at
+    /// `(α, η)`, read with the same cells.
+    pub(crate) average: f32,
     pub(crate) reader: DielectricAlbedoReader,
 }
 
 impl DielectricCells {
     /// The cells of `E_F(·, α, η)`.
     pub(crate) fn new(alpha: f32, eta: f32) -> Self {
+        let (reader, average) = DielectricAlbedoReader::with_average(alpha, eta);
         Self {
             alpha,
             error: dielectric_error(alpha, eta),
-            reader: DielectricAlbedoReader::new(alpha, eta),
+            average,
+            reader,
         }
     }
 

@@ -119,7 +119,9 @@ mod tests;
 
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::AlbedoReader;
-use crate::microfacet::fresnel_table::{DielectricAlbedoReader, MomentCell, dielectric_average};
+use crate::microfacet::fresnel_table::{
+    DielectricAlbedoReader, MomentCell, dielectric_average, dielectric_average_inline,
+};
 use crate::microfacet::transmission_sampler::TransmissionSampler;
 use crate::microfacet::{
     Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
@@ -669,7 +671,11 @@ impl<S: Spectrum> OpenPbr<S> {
             lobe_albedo(&spec, (a_s, eta_s)),
             lobe_albedo(&coat, (a_c, coat_ior)),
         );
-        let spec_avg = dielectric_average(a_s, eta_s);
+        // Ē_s, read with the specular lobe's cells (the same bits).
+        let spec_avg = spec
+            .fresnel
+            .albedo_cells(a_s)
+            .map_or_else(|| dielectric_average(a_s, eta_s), |c| c.average);
         let coat_norm = if reciprocal && w_c > 0.0 {
             inv(1.0 - dielectric_average(a_c, coat_ior))
         } else {
@@ -715,7 +721,8 @@ impl<S: Spectrum> OpenPbr<S> {
                 x.single_albedo_at_normal(metal_e1)
                     + x.ms_scale * (core::f32::consts::PI * (1.0 - metal_e1).clamp(0.0, 1.0))
             });
-            let e_f_avg = dielectric_average(MIN_ALPHA, coat_ior);
+            // (Inlined: the roughness cell of the constant α is folded.)
+            let e_f_avg = dielectric_average_inline(MIN_ALPHA, coat_ior);
             (
                 metal_normal * (m * xi) + glossy * (1.0 - m),
                 1.0 - (1.0 - e_f_avg) / (coat_ior * coat_ior),
