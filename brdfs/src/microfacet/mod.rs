@@ -576,6 +576,56 @@ where
         (f, pdf)
     }
 
+    /// [`eval_pdf`](Self::eval_pdf) of this lobe and of the lobe with the
+    /// same distribution and shadowing and the Fresnel term `other`:
+    /// `(f_r, f_r', pdf)`, each value bit for bit its lobe's [`Brdf::eval`]
+    /// (0 unless `value`) and the density its [`Brdf::pdf`] (the same for
+    /// both; 0 unless `density`). The half vector, `D(h)`, the visibility
+    /// and the density are computed once — for a material with two lobes of
+    /// one roughness (OpenPBR's metal and dielectric specular lobes).
+    #[inline]
+    pub(crate) fn eval_pdf_pair<F2>(
+        &self,
+        other: &F2,
+        wi: Vec3,
+        wo: Vec3,
+        value: bool,
+        density: bool,
+    ) -> (F::Spectrum, F::Spectrum, f32)
+    where
+        F2: Fresnel<Spectrum = F::Spectrum>,
+    {
+        let zero = F::Spectrum::zero();
+        if !value {
+            return (zero, zero, if density { self.pdf(wi, wo) } else { 0.0 });
+        }
+        let (wi, wo) = if is_unit(wi) && is_unit(wo) {
+            (wi, wo)
+        } else {
+            match unitize_pair(wi, wo) {
+                Some(p) => p,
+                None => return (zero, zero, 0.0),
+            }
+        };
+        let Some(h) = Half::of(wi, wo) else {
+            return (zero, zero, 0.0);
+        };
+        let (dn, dd) = self.distribution.d_ratio(h.hz2, h.hxy2);
+        let ao = self.area(wo);
+        let pdf = if density {
+            d_quotient(dn, dd, 4.0 * ao)
+        } else {
+            0.0
+        };
+        let inv_v = G::inverse_visibility(wi.z, self.area(wi), wo.z, ao);
+        let s = d_quotient(dn, dd, inv_v);
+        if s == 0.0 {
+            return (zero, zero, pdf);
+        }
+        let c = h.cos_theta_d();
+        (self.fresnel.eval(c) * s, other.eval(c) * s, pdf)
+    }
+
     /// `f_r = D(h) V F(cos θd)` for unit `wi`, `wo` (the straight-line part
     /// of `eval`), with the visibility `V = G2/(4 cos θi cos θo)`.
     #[inline(always)]

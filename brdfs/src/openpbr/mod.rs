@@ -966,11 +966,16 @@ impl<S: Spectrum> OpenPbr<S> {
         if self.on[COAT] {
             self.coat.pdf_batch(wi_u, wo_u, &mut dc);
         }
-        if let Some(metal) = &self.metal {
-            metal.single.pdf_batch(wi_u, wo_u, &mut dm);
-        }
         if self.on[SPEC] {
             self.spec.pdf_batch(wi_u, wo_u, &mut ds);
+        }
+        if let Some(metal) = &self.metal {
+            // The metal's density is the specular lobe's (one roughness).
+            if self.on[SPEC] {
+                dm = ds;
+            } else {
+                metal.single.pdf_batch(wi_u, wo_u, &mut dm);
+            }
         }
         let dens = dc.iter().zip(&dm).zip(&ds);
         let reads = coat_o.iter().zip(&spec_o).zip(&diffuse);
@@ -1095,15 +1100,20 @@ impl<S: Spectrum> OpenPbr<S> {
             self.coat.eval_batch(wi_u, wo_u, &mut fc);
             self.coat.pdf_batch(wi_u, wo_u, &mut dc);
         }
-        if let Some(metal) = &self.metal {
-            metal.single.eval_batch(wi_u, wo_u, &mut fm);
-            metal.single.pdf_batch(wi_u, wo_u, &mut dm);
-        }
         if self.on[SPEC] {
             self.spec.eval_batch(wi_u, wo_u, &mut fs);
             self.spec.pdf_batch(wi_u, wo_u, &mut ds);
             self.diffuse.eval_batch(wi_u, wo_u, &mut fd);
             r.spec.chunk(&mu_i, &mut es_i);
+        }
+        if let Some(metal) = &self.metal {
+            metal.single.eval_batch(wi_u, wo_u, &mut fm);
+            // The metal's density is the specular lobe's (one roughness).
+            if self.on[SPEC] {
+                dm = ds;
+            } else {
+                metal.single.pdf_batch(wi_u, wo_u, &mut dm);
+            }
         }
         for (k, o) in out.iter_mut().enumerate() {
             *o = match (
@@ -1643,8 +1653,24 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         } else {
             (0.0, 0.0)
         };
+        // The metal and the dielectric specular lobe share the specular
+        // roughness: where both are on, one pass of the microfacet terms
+        // serves both (each value and density bit for bit its lobe's).
+        let spec_pair = match &m.metal {
+            Some(metal) if m.on[SPEC] => {
+                Some(
+                    metal
+                        .single
+                        .eval_pdf_pair(&m.spec.fresnel, wi, wo, want_value, want_pdf),
+                )
+            }
+            _ => None,
+        };
         if let Some(metal) = &m.metal {
-            let (v, d) = metal.single.eval_pdf(wi, wo, want_value, want_pdf);
+            let (v, d) = match spec_pair {
+                Some((v, _, d)) => (v, d),
+                None => metal.single.eval_pdf(wi, wo, want_value, want_pdf),
+            };
             if want_value {
                 let ms = metal.ms_scale * (metal_loss_i * self.metal_loss_o);
                 f += (v + ms) * under_s * (p.base_metalness * m.xi);
@@ -1655,7 +1681,10 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         if m.on[SPEC] {
             let dielectric = 1.0 - p.base_metalness;
-            let (v, d) = m.spec.eval_pdf(wi, wo, want_value, want_pdf);
+            let (v, d) = match spec_pair {
+                Some((_, v, d)) => (v, d),
+                None => m.spec.eval_pdf(wi, wo, want_value, want_pdf),
+            };
             if want_value {
                 f += v * p.specular_color * under_s * dielectric;
                 // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
