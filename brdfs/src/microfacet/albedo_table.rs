@@ -251,6 +251,7 @@ impl AlbedoReader {
 
     /// The reader of `E(·, α)`; `α` is clamped to `[α_min, 1]` (NaN →
     /// `α_min`) as [`AlbedoTable::albedo`] clamps it.
+    #[inline(always)]
     pub fn new(alpha: f32) -> Self {
         let axis = alpha_axis(alpha);
         let alpha = if alpha > ALPHA_MIN {

@@ -233,7 +233,7 @@ impl DielectricAlbedoReader {
     /// The reader and [`dielectric_average`]`(α, η)`, bit for bit, from one
     /// computation of the index and roughness cells (a prepared lobe keeps
     /// both: [`DielectricCells`](super::prepared::DielectricCells)).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn with_average(alpha: f32, eta: f32) -> (Self, f32) {
         let (ratio, average) = DielectricRatioReader::with_average(alpha, eta);
         let e1 = AlbedoReader::new(alpha);
@@ -425,7 +425,7 @@ impl DielectricRatioReader {
 
     /// The reader and [`dielectric_average`]`(α, η)`, bit for bit, from one
     /// computation of the index and roughness cells.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn with_average(alpha: f32, eta: f32) -> (Self, f32) {
         let (l, fz, inside) = index_coord(eta);
         let (k, fa) = alpha_coord(alpha);

@@ -23,6 +23,7 @@ pub struct DielectricCells {
 
 impl DielectricCells {
     /// The cells of `E_F(·, α, η)`.
+    #[inline]
     pub(crate) fn new(alpha: f32, eta: f32) -> Self {
         let (reader, average) = DielectricAlbedoReader::with_average(alpha, eta);
         Self {
