@@ -371,7 +371,7 @@ pub fn default_average_albedo<B: Brdf + ?Sized>(b: &B) -> B::Spectrum {
         let mut s = B::Spectrum::zero();
         for (x, w) in X.iter().zip(W) {
             for mu in [0.5 * (1.0 - x), 0.5 * (1.0 + x)] {
-                let wo = Vec3::new(libm::sqrtf((1.0 - mu * mu).max(0.0)), 0.0, mu);
+                let wo = Vec3::new(crate::math::sqrtf((1.0 - mu * mu).max(0.0)), 0.0, mu);
                 let e = b.directional_albedo(wo).value;
                 s += e.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 }) * (w * mu);
             }

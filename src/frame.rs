@@ -153,7 +153,7 @@ pub fn half_vector(wi: Vec3, wo: Vec3) -> Option<Vec3> {
     if !(sum2 > 1e-14 && len2 > 1e-14 && len2.is_finite()) {
         return None;
     }
-    let h = h / libm::sqrtf(len2);
+    let h = h / crate::math::sqrtf(len2);
     Some(if h.z < 0.0 { -h } else { h })
 }
 
@@ -211,7 +211,7 @@ pub fn half_vector_sum(wi: Vec3, wo: Vec3) -> (Vec3, f32) {
 pub fn try_normalize(w: Vec3) -> Option<Vec3> {
     let l2 = w.length_squared();
     if l2 > 0.0 && l2.is_finite() {
-        Some(w / libm::sqrtf(l2))
+        Some(w / crate::math::sqrtf(l2))
     } else {
         None
     }

@@ -4,11 +4,43 @@
 //! never panic. `f32` functions use `libm`, so they are identical with and
 //! without `std`.
 
+/// `√x` with IEEE 754 rounding: bit for bit `libm::sqrtf` (NaN for `x < 0`,
+/// `±0`, `+∞` and NaN pass through), compiled to the target's own
+/// square-root instruction in the target's own encoding.
+///
+/// On x86 `libm::sqrtf` is inline assembly of the legacy-SSE `sqrtss`. In a
+/// build with AVX enabled (`-C target-cpu=native`, `x86-64-v3`) the compiler
+/// encodes everything else as VEX, and on Intel cores each legacy-SSE
+/// instruction that runs while the upper halves of the vector registers are
+/// dirty pays an SSE/AVX transition: OpenPBR's `sample`, whose draw takes
+/// three roots after vector code, ran 3× slower in such a build on an Intel
+/// Xeon than in the portable one (`docs/performance.md`). Here x86 goes through
+/// `_mm_sqrt_ss` (via `safe_arch`), which the compiler encodes as `vsqrtss`
+/// when AVX is on and as `sqrtss` otherwise; other targets call `libm::sqrtf`.
+///
+/// ```
+/// use radiometry::math::sqrtf;
+/// assert_eq!(sqrtf(2.25), 1.5);
+/// assert_eq!(sqrtf(2.0).to_bits(), libm::sqrtf(2.0).to_bits());
+/// assert!(sqrtf(-1.0).is_nan());
+/// ```
+#[inline(always)]
+pub fn sqrtf(x: f32) -> f32 {
+    #[cfg(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse"))]
+    {
+        safe_arch::get_f32_from_m128_s(safe_arch::sqrt_m128_s(safe_arch::set_m128_s(x)))
+    }
+    #[cfg(not(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse")))]
+    {
+        libm::sqrtf(x)
+    }
+}
+
 /// `sqrt(max(x, 0))`: a square root that returns 0 instead of NaN for
 /// slightly negative arguments produced by rounding.
 #[inline]
 pub fn safe_sqrt(x: f32) -> f32 {
-    libm::sqrtf(x.max(0.0))
+    sqrtf(x.max(0.0))
 }
 
 /// `acos` with its argument clamped to `[-1, 1]`.
@@ -259,6 +291,35 @@ mod tests {
     fn one_minus_epsilon_is_largest_below_one() {
         const { assert!(ONE_MINUS_EPSILON < 1.0) };
         assert_eq!(f32::from_bits(ONE_MINUS_EPSILON.to_bits() + 1), 1.0);
+    }
+
+    /// `sqrtf` is `libm::sqrtf` bit for bit on every 61st `f32` bit
+    /// pattern (both signs, zeros, subnormals, infinities, NaNs) and on the
+    /// specials themselves.
+    #[test]
+    fn sqrtf_is_libms_bits() {
+        let specials = [
+            0.0f32,
+            -0.0,
+            f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            1.0,
+            2.0,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -1.0,
+        ];
+        let sweep = (0..=u32::MAX / 61).map(|k| f32::from_bits(k.wrapping_mul(61)));
+        for x in specials.into_iter().chain(sweep) {
+            assert_eq!(
+                sqrtf(x).to_bits(),
+                libm::sqrtf(x).to_bits(),
+                "x = {x:e} ({:#x})",
+                x.to_bits()
+            );
+        }
     }
 
     #[test]

@@ -42,7 +42,7 @@
 //! **Bit-identical kernels.** The kernels perform the *same* IEEE-754
 //! operations as the scalar code, in the same order: `+ − × ÷ √`,
 //! comparisons and selects, all correctly rounded in `wide`'s vectors and in
-//! scalar `f32` / `libm::sqrtf`; no fused multiply–add, no reciprocal
+//! scalar `f32` / [`radiometry::math::sqrtf`] (bit for bit `libm::sqrtf`); no fused multiply–add, no reciprocal
 //! estimates. The transcendentals are bit-exact vector ports of the
 //! functions the scalar code calls — of `libm`: `expf` (FreeBSD `e_expf.c`), `log1pf`
 //! (`s_log1pf.c`), `powf` (`e_powf.c`), `logf` (`e_logf.c`), `expm1f` (`s_expm1f.c`)
@@ -132,10 +132,12 @@
 //! [`LANES`] is 16 exactly when `avx512f` is compiled in, else 8.
 //!
 //! Per-lane scalar code inside a kernel (the table reads of `Tabulated`)
-//! does not call `libm::sqrtf`: on x86 that is a legacy-SSE `sqrtss` in
-//! inline assembly, which between AVX instructions, with the upper register
-//! state dirty, pays an SSE/AVX transition on Intel cores. The kernels take
-//! those roots in vector form (the same correctly rounded values).
+//! takes its roots in vector form, one instruction for every lane (the same
+//! correctly rounded values). The crate's scalar root is
+//! [`radiometry::math::sqrtf`], which the compiler encodes in the target's
+//! own form: `libm::sqrtf` is a legacy-SSE `sqrtss` in inline assembly on
+//! x86, which between AVX instructions, with the upper register state dirty,
+//! pays an SSE/AVX transition on Intel cores.
 //!
 //! No `unsafe` code: only `wide`'s safe API, so the crate keeps
 //! `#![forbid(unsafe_code)]`.

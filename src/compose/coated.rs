@@ -398,7 +398,7 @@ pub fn coat_absorption<S: Spectrum>(color: S, eta: f32, mu_i: f32, mu_o: f32) ->
     }
     let refracted = |mu: f32| {
         let s2 = (1.0 - mu * mu).max(0.0) / (eta * eta);
-        libm::sqrtf((1.0 - s2).max(0.0))
+        crate::math::sqrtf((1.0 - s2).max(0.0))
     };
     let (ti, to) = (refracted(mu_i), refracted(mu_o));
     if (ti.is_nan() || ti <= 0.0) || (to.is_nan() || to <= 0.0) {

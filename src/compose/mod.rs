@@ -264,7 +264,7 @@ pub fn albedo_by_sampling<B: Brdf + ?Sized>(b: &B, wo: Vec3) -> Albedo<B::Spectr
     let m = mean.average();
     // Two-pass sample variance of the channel averages, over 16 · 15.
     let var = averages.iter().map(|a| (a - m) * (a - m)).sum::<f32>() / (16.0 * 15.0);
-    let error = libm::sqrtf(var);
+    let error = crate::math::sqrtf(var);
     Albedo {
         value: mean,
         error: if error.is_finite() { error } else { 0.0 },

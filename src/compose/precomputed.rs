@@ -68,7 +68,7 @@ impl<B: IsotropicBrdf> Precomputed<B> {
         for (k, e) in table.iter_mut().enumerate() {
             let x = k as f32 / (NODES - 1) as f32;
             let mu = (x * x).max(1e-6);
-            let s = libm::sqrtf((1.0 - mu * mu).max(0.0));
+            let s = crate::math::sqrtf((1.0 - mu * mu).max(0.0));
             let a = lobe.directional_albedo(Vec3::new(s, 0.0, mu));
             *e = a.value.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 });
             if a.error.is_finite() {
@@ -140,7 +140,7 @@ impl<B: Brdf> Brdf for Precomputed<B> {
         if mu.is_nan() || mu <= 0.0 {
             return Albedo::zero();
         }
-        let x = libm::sqrtf(mu.min(1.0)) * (NODES - 1) as f32;
+        let x = crate::math::sqrtf(mu.min(1.0)) * (NODES - 1) as f32;
         let i = (x as usize).min(NODES - 2);
         let f = (x - i as f32).clamp(0.0, 1.0);
         match (self.table.get(i), self.table.get(i + 1)) {

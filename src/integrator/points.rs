@@ -120,9 +120,9 @@ pub(crate) fn jitter_grid(n: u32) -> (u32, u32) {
 #[inline]
 pub(crate) fn square_to_cosine_hemisphere_polar(u: [f32; 2]) -> Vec3 {
     let u0 = u[0].clamp(0.0, 1.0);
-    let r = libm::sqrtf(u0);
+    let r = crate::math::sqrtf(u0);
     let (s, c) = crate::math::sincos_turn(u[1].clamp(0.0, 1.0));
-    let z = libm::sqrtf((1.0 - u0).max(0.0));
+    let z = crate::math::sqrtf((1.0 - u0).max(0.0));
     Vec3::new(r * c, r * s, z)
 }
 

@@ -37,7 +37,7 @@ pub fn standard_normal<G: Rng + ?Sized>(rng: &mut G) -> f32 {
     let u1 = uniform_open0(rng);
     let u2 = uniform(rng);
     // cos 2πu₂ by `sincos_turn` (turns, `f32` only; `libm::cosf` computes in `f64`).
-    libm::sqrtf(-2.0 * libm::logf(u1)) * crate::math::sincos_turn(u2).1
+    crate::math::sqrtf(-2.0 * libm::logf(u1)) * crate::math::sincos_turn(u2).1
 }
 
 /// Mean above which [`poisson`] switches from inversion to PTRS.

@@ -117,7 +117,7 @@ fn sigmoid(x: f32) -> f32 {
     if x.abs() > 1e18 {
         return if x > 0.0 { 1.0 } else { 0.0 };
     }
-    (0.5 + x / (2.0 * libm::sqrtf(1.0 + x * x))).clamp(0.0, 1.0)
+    (0.5 + x / (2.0 * crate::math::sqrtf(1.0 + x * x))).clamp(0.0, 1.0)
 }
 
 impl SigmoidSpectrum {

@@ -320,11 +320,11 @@ fn reduce_xyz(r: &SampledSpectrum<N_CIE>) -> [f32; 3] {
 /// member inside the conductor's domain (`η ∈ [2·10⁻³, 998]`, `k < 10³`).
 fn fit_eta_k(r: f32, h: f32) -> (f32, f32) {
     let r = r.clamp(1e-4, 0.996);
-    let sr = libm::sqrtf(r);
+    let sr = radiometry::math::sqrtf(r);
     let at = |g: f32| {
         let n = g * (1.0 - r) / (1.0 + r) + (1.0 - g) * (1.0 + sr) / (1.0 - sr);
         let k2 = (r * (n + 1.0) * (n + 1.0) - (n - 1.0) * (n - 1.0)) / (1.0 - r);
-        (n, libm::sqrtf(k2.max(0.0)))
+        (n, radiometry::math::sqrtf(k2.max(0.0)))
     };
     let f_bar = |g: f32| {
         let (n, k) = at(g);

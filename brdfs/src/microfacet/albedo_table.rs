@@ -415,11 +415,11 @@ impl AlbedoReader {
     fn shared_cell(&self, mu: f32, s2: f32) -> (usize, f32) {
         let d = mu * mu + self.k2[0] * s2;
         let q = if d > 0.0 {
-            (mu / libm::sqrtf(d)).min(1.0)
+            (mu / radiometry::math::sqrtf(d)).min(1.0)
         } else {
             0.0
         };
-        let (j, t) = cell(libm::sqrtf(q), N_MU);
+        let (j, t) = cell(radiometry::math::sqrtf(q), N_MU);
         (j, if j == 0 { t * t } else { t })
     }
 
@@ -576,7 +576,7 @@ pub fn node_scale(alpha: f32) -> f32 {
 pub(crate) fn rescale_mu(mu: f32, s2: f32, k2: f32) -> f32 {
     let d = mu * mu + k2 * s2;
     if d > 0.0 {
-        (mu / libm::sqrtf(d)).min(1.0)
+        (mu / radiometry::math::sqrtf(d)).min(1.0)
     } else {
         0.0
     }
@@ -589,7 +589,11 @@ pub(crate) fn rescale_mu(mu: f32, s2: f32, k2: f32) -> f32 {
 /// `10⁻⁴` for GGX `α = 1` — and a chord in `√μ` would overstate it).
 #[inline(always)]
 pub(crate) fn lerp_row(row: &[f32; N_MU], mu: f32) -> f32 {
-    let x = if mu > 0.0 { libm::sqrtf(mu.min(1.0)) } else { 0.0 };
+    let x = if mu > 0.0 {
+        radiometry::math::sqrtf(mu.min(1.0))
+    } else {
+        0.0
+    };
     let (j, t) = cell(x, N_MU);
     let t = if j == 0 { t * t } else { t };
     let (a, b) = (row[j], row[j + 1]);

@@ -247,7 +247,7 @@ impl MicrofacetDistribution for Beckmann {
         let wo = unitize(wo).unwrap_or(Vec3::Z);
         let (u0, u1) = (clamp01(u[0]), clamp01(u[1]));
         // The azimuth of the stretched direction is that of ωo.
-        let rxy = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
+        let rxy = radiometry::math::sqrtf(wo.x * wo.x + wo.y * wo.y);
         let (cos_p, sin_p) = if rxy > 0.0 {
             let inv = 1.0 / rxy;
             (wo.x * inv, wo.y * inv)
@@ -284,7 +284,7 @@ impl Beckmann {
     #[inline(never)]
     fn slope_x_tail(a: f32, wo: Vec3, u: f32) -> f32 {
         let v = unitize(Vec3::new(a * wo.x, a * wo.y, wo.z.abs())).unwrap_or(Vec3::Z);
-        let sin_t = libm::sqrtf(v.x * v.x + v.y * v.y).min(1.0);
+        let sin_t = radiometry::math::sqrtf(v.x * v.x + v.y * v.y).min(1.0);
         Self::sample_slope_x(v.z, sin_t, u)
     }
 }
@@ -340,7 +340,7 @@ mod tests {
             let thetas = (0..=24).map(|k| k as f64 / 24.0 * core::f64::consts::FRAC_PI_2);
             for theta in thetas.chain(near_grazing) {
                 let wo = Vec3::new(libm::sin(theta) as f32, 0.0, libm::cos(theta) as f32);
-                let rxy = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
+                let rxy = radiometry::math::sqrtf(wo.x * wo.x + wo.y * wo.y);
                 // The stretched direction, normalised, in f64 for the reference.
                 let (sx64, cz64) = (alpha as f64 * wo.x as f64, wo.z as f64);
                 let n = (sx64 * sx64 + cz64 * cz64).sqrt();

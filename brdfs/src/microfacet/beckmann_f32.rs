@@ -229,7 +229,7 @@ pub(crate) fn a_lambda_rational<T: F32Arith>(a: T) -> T {
 /// Finite and `≥ cos θ` for finite input; ≤ 3 ulp from the exact value.
 #[inline(always)]
 pub(crate) fn area(alpha: f32, cos_theta: f32, sin2: f32) -> f32 {
-    let alpha_s = alpha * libm::sqrtf(sin2);
+    let alpha_s = alpha * radiometry::math::sqrtf(sin2);
     let a = cos_theta / alpha_s;
     // Also `alpha_s = 0` (a = +∞, or NaN for 0/0).
     if a >= AREA_CUT || a.is_nan() {

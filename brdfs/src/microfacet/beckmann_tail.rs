@@ -101,7 +101,7 @@ impl Beckmann {
         // L₀ = ln(2C(0)/(u 2C(b))) ≥ 0; the product in f64 cannot leave the
         // normal range even for subnormal u.
         let l0 = (-ln64(u as f64 * total2 as f64 * inv_c0 as f64) as f32).max(0.0);
-        let mut x = -libm::sqrtf(l0);
+        let mut x = -radiometry::math::sqrtf(l0);
         if c > 0.0 {
             // −L₀/g'(0), g'(0) = 2c/(√π 2C(0)); NaN (0·∞) is ignored by max.
             x = x.max(-l0 * (0.5 * SQRT_PI * c0 / c));
@@ -148,15 +148,15 @@ impl Beckmann {
             if q > 0.0 && q < 2.0 {
                 let z = erfcinv(q);
                 let zs = z * s;
-                x = x.min(z - s / (libm::sqrtf(c * c + zs * zs) + c - zs));
+                x = x.min(z - s / (radiometry::math::sqrtf(c * c + zs * zs) + c - zs));
             }
         }
         let mut keep_start = false;
         if b < MAX_SLOPE {
             // b = cot θ, s > 0: endpoint bounds.
             let eb = exp_neg_sq(b);
-            let xe = (b - libm::sqrtf(SQRT_PI * gs / (s * eb))).max(0.0);
-            x = x.min(b - libm::sqrtf(SQRT_PI * gs / (s * exp_neg_sq(xe))));
+            let xe = (b - radiometry::math::sqrtf(SQRT_PI * gs / (s * eb))).max(0.0);
+            x = x.min(b - radiometry::math::sqrtf(SQRT_PI * gs / (s * exp_neg_sq(xe))));
             // Near b, `G = E + e^{−x²}(c erfcx(x) − s/√π)` cancels terms of
             // size ~`E + e^{−b²}s/√π`: a target below a few ε of that is
             // beyond the resolution of `G` (a step on a `G` of unresolved

@@ -566,18 +566,18 @@ impl Cx {
     /// vector kernel, which made the conductor 8× slower than Schlick.)
     #[inline]
     fn sqrt(self) -> Cx {
-        let r = libm::sqrtf(self.norm2());
+        let r = radiometry::math::sqrtf(self.norm2());
         if r == 0.0 {
             return Cx { re: 0.0, im: 0.0 };
         }
         if self.re >= 0.0 {
-            let t = libm::sqrtf(0.5 * (r + self.re));
+            let t = radiometry::math::sqrtf(0.5 * (r + self.re));
             Cx {
                 re: t,
                 im: self.im / (2.0 * t),
             }
         } else {
-            let t = libm::sqrtf(0.5 * (r - self.re));
+            let t = radiometry::math::sqrtf(0.5 * (r - self.re));
             Cx {
                 re: self.im.abs() / (2.0 * t),
                 im: libm::copysignf(t, self.im),

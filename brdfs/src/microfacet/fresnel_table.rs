@@ -103,7 +103,7 @@ fn cell_of(s: f32, n: usize) -> (usize, f32) {
 /// The roughness coordinate: `(√α − 0.01)/0.99 · 31`.
 #[inline(always)]
 fn alpha_coord(alpha: f32) -> (usize, f32) {
-    let t = libm::sqrtf(alpha.clamp(1e-4, 1.0));
+    let t = radiometry::math::sqrtf(alpha.clamp(1e-4, 1.0));
     cell_of((t - 0.01) / 0.99 * (FT_NA - 1) as f32, FT_NA)
 }
 
@@ -119,7 +119,7 @@ fn alpha_node_f32(k: usize) -> f32 {
 #[inline(always)]
 fn index_coord(eta: f32) -> (usize, f32, bool) {
     let r = ((eta - 1.0) / (eta + 1.0)).abs();
-    let z = libm::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
+    let z = radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
     let inside = eta < 1.0;
     let nz = if inside { FT_NZ_IN } else { FT_NZ };
     let (l, f) = cell_of(z * (nz - 1) as f32, nz);
@@ -132,16 +132,16 @@ fn index_coord(eta: f32) -> (usize, f32, bool) {
 fn mu_coord(mu: f32, inside: bool, eta: f32, alpha: f32) -> f32 {
     let mu = mu.clamp(0.0, 1.0);
     if !inside {
-        return libm::sqrtf(mu);
+        return radiometry::math::sqrtf(mu);
     }
-    let mc = libm::sqrtf((1.0 - eta * eta).max(0.0));
+    let mc = radiometry::math::sqrtf((1.0 - eta * eta).max(0.0));
     let w = (alpha * eta).max(1e-4);
     let side = |d: f32, span: f32| {
         if span <= 0.0 {
             return 0.0;
         }
         let d = d.max(0.0).min(span); // (no `clamp`: its bound assertion is a panic path)
-        0.3 * libm::sqrtf(d / span) + 0.7 * libm::asinhf(d / w) / libm::asinhf(span / w)
+        0.3 * radiometry::math::sqrtf(d / span) + 0.7 * libm::asinhf(d / w) / libm::asinhf(span / w)
     };
     if mu <= mc {
         0.5 - 0.5 * side(mc - mu, mc)
@@ -461,7 +461,7 @@ impl DielectricRatioReader {
             r.w[2] = 0.0;
         }
         if inside {
-            let mc = libm::sqrtf((1.0 - eta * eta).max(0.0));
+            let mc = radiometry::math::sqrtf((1.0 - eta * eta).max(0.0));
             r.mc = mc;
             for (i, kk) in [k, k + 1].into_iter().enumerate() {
                 let wk = (alpha_node_f32(kk) * eta).max(1e-4);
@@ -496,7 +496,7 @@ impl DielectricRatioReader {
             return [0.5; 2];
         }
         let d = d.max(0.0).min(span);
-        let root = 0.3 * libm::sqrtf(d / span);
+        let root = 0.3 * radiometry::math::sqrtf(d / span);
         let x = |i: usize| {
             let (inv_w, [n_lo, n_hi]) = (self.inv_w[i & 1], self.norm[i & 1]);
             let side = root + 0.7 * libm::asinhf(d * inv_w) * if below { n_lo } else { n_hi };
@@ -550,7 +550,7 @@ impl DielectricRatioReader {
     /// this read bit for bit).
     #[inline(always)]
     fn outside_sum(&self, mu: f32) -> f32 {
-        let (j, fx) = cell_of(libm::sqrtf(mu) * (FT_NX - 1) as f32, FT_NX);
+        let (j, fx) = cell_of(radiometry::math::sqrtf(mu) * (FT_NX - 1) as f32, FT_NX);
         self.outside_sum_in(j, fx)
     }
 
@@ -648,9 +648,9 @@ fn smooth_fresnel(mu: f32, eta2m1: f32, eta2: f32) -> f32 {
         return 0.0;
     }
     let mu = mu.clamp(0.0, 1.0);
-    let eta = libm::sqrtf(eta2);
+    let eta = radiometry::math::sqrtf(eta2);
     // μt² = (η² − 1 + μ²)/η², free of the cancellation of 1 − (1 − μ²)/η².
-    let mt = libm::sqrtf(((eta2m1 + mu * mu) / eta2).max(0.0));
+    let mt = radiometry::math::sqrtf(((eta2m1 + mu * mu) / eta2).max(0.0));
     let dp = eta * mu + mt;
     let ds = mu + eta * mt;
     if dp <= 0.0 || ds <= 0.0 {
@@ -724,7 +724,10 @@ impl MomentCell {
     /// [`fresnel_moments`] at `μ` for this cell's `α`, bit for bit.
     #[inline]
     pub(crate) fn moments(&self, mu: f32) -> (f32, f32) {
-        let (j, fx) = cell_of(libm::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32, FT_NX);
+        let (j, fx) = cell_of(
+            radiometry::math::sqrtf(mu.clamp(0.0, 1.0)) * (FT_NX - 1) as f32,
+            FT_NX,
+        );
         self.moments_in(j, fx)
     }
 

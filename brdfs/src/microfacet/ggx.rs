@@ -110,7 +110,7 @@ impl MicrofacetDistribution for Ggx {
     fn lambda_tan2(&self, tan2: f32) -> f32 {
         let x = self.alpha * self.alpha * tan2;
         if x < f32::INFINITY {
-            x / (2.0 * (1.0 + libm::sqrtf(1.0 + x)))
+            x / (2.0 * (1.0 + radiometry::math::sqrtf(1.0 + x)))
         } else {
             f32::INFINITY
         }
@@ -122,7 +122,7 @@ impl MicrofacetDistribution for Ggx {
     #[inline(always)]
     fn projected_area(&self, cos_theta: f32, sin2: f32) -> f32 {
         let a2 = self.alpha * self.alpha;
-        0.5 * (cos_theta + libm::sqrtf(cos_theta * cos_theta + a2 * sin2))
+        0.5 * (cos_theta + radiometry::math::sqrtf(cos_theta * cos_theta + a2 * sin2))
     }
 
     /// `G1 = 1/(1 + Λ) = 2 / (1 + sqrt(1 + α² tan²θ))` (Walter et al. 2007,
@@ -131,7 +131,7 @@ impl MicrofacetDistribution for Ggx {
     fn g1_tan2(&self, tan2: f32) -> f32 {
         let x = self.alpha * self.alpha * tan2;
         if x < f32::INFINITY {
-            2.0 / (1.0 + libm::sqrtf(1.0 + x))
+            2.0 / (1.0 + radiometry::math::sqrtf(1.0 + x))
         } else {
             0.0
         }

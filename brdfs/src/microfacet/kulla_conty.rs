@@ -177,7 +177,7 @@ where
             if !(t > 0.0 && t < 1.0) {
                 return None;
             }
-            let tx = if j == 0 { libm::sqrtf(t) } else { t };
+            let tx = if j == 0 { radiometry::math::sqrtf(t) } else { t };
             let x = (j as f32 + tx) / (N_MU - 1) as f32;
             let m = x * x;
             Some(rescale_mu(m, (1.0 - m) * (1.0 + m), inv_r2))
@@ -271,7 +271,7 @@ impl<D, G, F: Fresnel> KullaConty<D, G, F> {
         // its cdf `(h₀ t + (h₁ − h₀) t²/2) / ((h₀ + h₁)/2) = r` solved in the
         // cancellation-free form `t = r (h₀ + h₁) / (h₀ + √((1 − r) h₀² + r h₁²))`.
         let (h0, h1) = (self.dens[j], self.dens[j + 1]);
-        let den = h0 + libm::sqrtf(((1.0 - r) * h0 * h0 + r * h1 * h1).max(0.0));
+        let den = h0 + radiometry::math::sqrtf(((1.0 - r) * h0 * h0 + r * h1 * h1).max(0.0));
         let t = if den > 0.0 {
             (r * (h0 + h1) / den).clamp(0.0, 1.0)
         } else {
@@ -279,9 +279,9 @@ impl<D, G, F: Fresnel> KullaConty<D, G, F> {
         };
         let (a, b) = (self.mu_sq[j], self.mu_sq[j + 1]);
         let m2 = (a + t * (b - a)).clamp(0.0, 1.0);
-        let sin_t = libm::sqrtf(1.0 - m2);
+        let sin_t = radiometry::math::sqrtf(1.0 - m2);
         let (s, c) = sincos_turn(u1);
-        Vec3::new(sin_t * c, sin_t * s, libm::sqrtf(m2))
+        Vec3::new(sin_t * c, sin_t * s, radiometry::math::sqrtf(m2))
     }
 
     /// The lobe sampler's solid-angle density `μ L(μ²) / (π T)` at

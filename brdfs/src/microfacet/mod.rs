@@ -161,7 +161,11 @@ pub trait MicrofacetDistribution {
     /// [`d`](Self::d) (exact for an isotropic distribution).
     #[inline]
     fn d_cos2(&self, cos2: f32, sin2: f32) -> f32 {
-        self.d(Vec3::new(libm::sqrtf(sin2), 0.0, libm::sqrtf(cos2)))
+        self.d(Vec3::new(
+            radiometry::math::sqrtf(sin2),
+            0.0,
+            radiometry::math::sqrtf(cos2),
+        ))
     }
 
     /// `D` of the direction of a nonzero vector `h` that need not be unit,
@@ -216,7 +220,7 @@ pub trait MicrofacetDistribution {
     #[inline]
     fn lambda_tan2(&self, tan2: f32) -> f32 {
         if tan2 < f32::INFINITY {
-            self.lambda(Vec3::new(libm::sqrtf(tan2.max(0.0)), 0.0, 1.0))
+            self.lambda(Vec3::new(radiometry::math::sqrtf(tan2.max(0.0)), 0.0, 1.0))
         } else {
             f32::INFINITY
         }
@@ -292,7 +296,7 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
         return Some(w);
     }
     if (1e-30..=1e30).contains(&l2) {
-        return Some(w * (1.0 / libm::sqrtf(l2)));
+        return Some(w * (1.0 / radiometry::math::sqrtf(l2)));
     }
     let s = w.abs().max_element();
     if !(s > 0.0 && s.is_finite()) {
@@ -301,7 +305,7 @@ pub(crate) fn unitize(w: Vec3) -> Option<Vec3> {
     let v = w / s;
     let l2 = v.length_squared();
     if l2 > 0.0 && l2.is_finite() {
-        Some(v * (1.0 / libm::sqrtf(l2)))
+        Some(v * (1.0 / radiometry::math::sqrtf(l2)))
     } else {
         None
     }
@@ -493,7 +497,7 @@ impl Half {
     /// can round to 0 in one order and not in the other.
     #[inline(always)]
     fn cos_theta_d(&self) -> f32 {
-        (0.5 * libm::sqrtf(self.len2)).min(1.0)
+        (0.5 * radiometry::math::sqrtf(self.len2)).min(1.0)
     }
 }
 
@@ -728,7 +732,7 @@ where
         // The lobe is isotropic: average at the azimuth φo = 0, so that the
         // stratified points (fixed in the local frame) give the same value
         // for every rotation of `wo` about the normal.
-        let wo = Vec3::new(libm::sqrtf((1.0 - wo.z * wo.z).max(0.0)), 0.0, wo.z);
+        let wo = Vec3::new(radiometry::math::sqrtf((1.0 - wo.z * wo.z).max(0.0)), 0.0, wo.z);
         let mut sum = F::Spectrum::zero();
         let mut weight = 0.0f32;
         let mut lo = F::Spectrum::splat(f32::INFINITY);

@@ -87,9 +87,9 @@ impl MsRow {
         };
         let (a, b) = (self.at_mu_sq(j), self.at_mu_sq(j + 1));
         let m2 = (a + t * (b - a)).clamp(0.0, 1.0);
-        let sin_t = libm::sqrtf(1.0 - m2);
+        let sin_t = radiometry::math::sqrtf(1.0 - m2);
         let (s, c) = sincos_turn(u1);
-        Vec3::new(sin_t * c, sin_t * s, libm::sqrtf(m2))
+        Vec3::new(sin_t * c, sin_t * s, radiometry::math::sqrtf(m2))
     }
 
     /// The solid-angle density `μ v_j / (π T)` of [`sample`](Self::sample)

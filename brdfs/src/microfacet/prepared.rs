@@ -64,7 +64,7 @@ mod tests {
 
     /// A direction at `μ = cos θ` and azimuth `φ` (unit to rounding).
     fn dir(mu: f32, phi: f32) -> Vec3 {
-        let s = libm::sqrtf((1.0 - mu * mu).max(0.0));
+        let s = radiometry::math::sqrtf((1.0 - mu * mu).max(0.0));
         Vec3::new(s * libm::cosf(phi), s * libm::sinf(phi), mu)
     }
 

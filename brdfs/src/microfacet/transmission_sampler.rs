@@ -110,10 +110,10 @@ pub(crate) struct TransmissionSampler {
 impl TransmissionSampler {
     /// The sampler of `(1 − E_F(μ, α, η)) μ` (see the module docs).
     pub(crate) fn new(alpha: f32, eta: f32) -> Self {
-        let t = libm::sqrtf(alpha.clamp(1e-4, 1.0));
+        let t = radiometry::math::sqrtf(alpha.clamp(1e-4, 1.0));
         let (k, fa) = cell_of((t - 0.01) / 0.99 * (N_A - 1) as f32, N_A);
         let r = ((eta - 1.0) / (eta + 1.0)).abs();
-        let z = libm::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
+        let z = radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
         let (l, fz) = cell_of(z * (N_Z - 1) as f32, N_Z);
         let corners = [
             (l * N_A + k, (1.0 - fz) * (1.0 - fa)),
@@ -181,12 +181,12 @@ impl TransmissionSampler {
         // the stored reciprocal: one division fewer on the critical path).
         let q = left * INV_WIDTH.get(j).copied().unwrap_or(0.0);
         let d = h1 - h0;
-        let den = h0 + libm::sqrtf((h0 * h0 + d * q).max(0.0));
+        let den = h0 + radiometry::math::sqrtf((h0 * h0 + d * q).max(0.0));
         let t = if den > 0.0 { (q / den).clamp(0.0, 1.0) } else { 0.5 };
         let s = (s0 + t * width).clamp(0.0, 1.0);
-        let sin_t = libm::sqrtf((1.0 - s).max(0.0));
+        let sin_t = radiometry::math::sqrtf((1.0 - s).max(0.0));
         let (sn, cs) = sincos_turn(u1);
-        Vec3::new(sin_t * cs, sin_t * sn, libm::sqrtf(s))
+        Vec3::new(sin_t * cs, sin_t * sn, radiometry::math::sqrtf(s))
     }
 
     /// The solid-angle density of [`sample`](Self::sample) at `μ = cos θ`:

@@ -550,7 +550,7 @@ pub fn modulated_ior(eta: f32, xi: f32) -> f32 {
         return 1.0;
     }
     let scaled = (xi.max(0.0) * f0).min(1.0);
-    let eps = libm::sqrtf(scaled).copysign(eta - 1.0);
+    let eps = radiometry::math::sqrtf(scaled).copysign(eta - 1.0);
     ((1.0 + eps) / (1.0 - eps)).clamp(crate::microfacet::MIN_ETA, MAX_ETA)
 }
 
@@ -623,7 +623,7 @@ impl<S: Spectrum> OpenPbr<S> {
         // r'_s = lerp(r_s, min(1, r_s⁴ + 2 r_c⁴)^¼, w_C).
         let r_s = if w_c > 0.0 {
             let q = |r: f32| (r * r) * (r * r);
-            let rough = libm::sqrtf(libm::sqrtf((q(r_s) + 2.0 * q(r_c)).min(1.0)));
+            let rough = radiometry::math::sqrtf(radiometry::math::sqrtf((q(r_s) + 2.0 * q(r_c)).min(1.0)));
             r_s + w_c * (rough - r_s)
         } else {
             r_s
@@ -1334,13 +1334,13 @@ fn unit(w: Vec3) -> Vec3 {
 #[inline(never)]
 fn renormalise(w: Vec3, l2: f32) -> Vec3 {
     if l2.is_finite() && l2 > 0.0 {
-        let s = w / libm::sqrtf(l2);
+        let s = w / radiometry::math::sqrtf(l2);
         if s.is_finite() { s } else { Vec3::ZERO }
     } else {
         let m = w.abs().max_element();
         if m.is_finite() && m > 0.0 {
             let s = w / m;
-            s / libm::sqrtf(s.length_squared())
+            s / radiometry::math::sqrtf(s.length_squared())
         } else {
             Vec3::ZERO
         }

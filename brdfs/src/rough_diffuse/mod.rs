@@ -194,7 +194,7 @@ const TWO_OVER_3PI: f32 = 0.212_206_59;
 pub(crate) fn g_over_pi(mu: f32) -> f32 {
     let mu = mu.clamp(0.0, 1.0);
     let sin2 = (1.0 - mu) * (1.0 + mu);
-    let sin = libm::sqrtf(sin2);
+    let sin = radiometry::math::sqrtf(sin2);
     let theta = libm::acosf(mu);
     let g = sin * (theta - sin * mu) + (2.0 / 3.0) * sin * (mu * (1.0 + sin + sin2) / (1.0 + sin) - 1.0);
     g * FRAC_1_PI
@@ -233,7 +233,7 @@ pub fn fon_albedo(mu: f32, sigma: f32) -> f32 {
 #[inline]
 pub(crate) fn qon_h(mu: f32) -> f32 {
     let mu = mu.clamp(0.0, 1.0);
-    let sin = libm::sqrtf((1.0 - mu) * (1.0 + mu));
+    let sin = radiometry::math::sqrtf((1.0 - mu) * (1.0 + mu));
     g_over_pi(mu) + TWO_OVER_3PI * sin
 }
 

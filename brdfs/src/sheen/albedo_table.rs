@@ -147,7 +147,7 @@ impl SheenAlbedoTable {
             MIN_SHEEN_ROUGHNESS
         };
         let s = sheen_mu_coord(mu);
-        let tr = libm::sqrtf((r - MIN_SHEEN_ROUGHNESS) / (1.0 - MIN_SHEEN_ROUGHNESS));
+        let tr = radiometry::math::sqrtf((r - MIN_SHEEN_ROUGHNESS) / (1.0 - MIN_SHEEN_ROUGHNESS));
         let (j, u) = cell(s, N_MU);
         let (k, v) = cell(tr, N_R);
         let row = |k: usize| {

@@ -103,7 +103,7 @@ impl Charlie {
         // there d(μ e^{L(μ)})/dμ = 0 up to the term d μ* (|d μ*| < 3·10⁻⁴).
         let [a, b, cc, _, _] = c.fit;
         let k = a * cc - 2.0; // ≥ 2.25 for every r ∈ [0, 1]
-        let y = 0.5 * (k - libm::sqrtf(k * k - 4.0));
+        let y = 0.5 * (k - radiometry::math::sqrtf(k * k - 4.0));
         c.mu_star = libm::powf(y / b, 1.0 / cc);
         c.mu_lambda_star = c.mu_star * libm::expf(c.l(c.mu_star));
         Ok(c)

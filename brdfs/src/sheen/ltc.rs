@@ -108,7 +108,7 @@ pub struct LtcSheen<S: Spectrum = f32> {
 fn azimuth(w: Vec3) -> (f32, f32) {
     let r2 = w.x * w.x + w.y * w.y;
     if r2 >= 1e-30 {
-        let inv = 1.0 / libm::sqrtf(r2);
+        let inv = 1.0 / radiometry::math::sqrtf(r2);
         (w.x * inv, w.y * inv)
     } else {
         azimuth_cold(w)
@@ -125,7 +125,7 @@ fn azimuth_cold(w: Vec3) -> (f32, f32) {
         return (1.0, 0.0);
     }
     let (x, y) = (w.x / m, w.y / m);
-    let inv = 1.0 / libm::sqrtf(x * x + y * y);
+    let inv = 1.0 / radiometry::math::sqrtf(x * x + y * y);
     (x * inv, y * inv)
 }
 
@@ -295,7 +295,7 @@ fn direction(c: LtcCoeffs, (cos_o, sin_o): (f32, f32), u: [f32; 2]) -> Option<Ve
     if l2.is_nan() || l2 <= 0.0 {
         return None;
     }
-    let wi = v * (1.0 / libm::sqrtf(l2));
+    let wi = v * (1.0 / radiometry::math::sqrtf(l2));
     if wi.z.is_nan() || wi.z <= 0.0 {
         return None;
     }

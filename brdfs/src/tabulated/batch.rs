@@ -101,9 +101,8 @@ impl<S: Spectrum> Kernel for Eval<'_, '_, S> {
         let theta_d = atan2_squares(ee, hh);
         let a = atan2_squares(y2, x2);
         let phi_d = neg.select(Vf::splat(PI) - a, a);
-        // √θh of the index map for all lanes at once (`lookup` takes it with
-        // `libm::sqrtf`, a legacy-SSE `sqrtss` on x86: between AVX-512
-        // instructions that is a transition per lane on Intel cores).
+        // √θh of the index map for all lanes at once (one vector root where
+        // `lookup` takes one scalar root per lane).
         let (rh, td, pd) = (theta_h.sqrt().to_array(), theta_d.to_array(), phi_d.to_array());
         let ok = above.to_bitmask();
         for (k, o) in out.iter_mut().enumerate() {

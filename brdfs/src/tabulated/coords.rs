@@ -149,7 +149,7 @@ fn coords_below(a: Vec3, b: Vec3) -> Option<(f32, f32, f32)> {
     let g = h / m;
     let e = a - b;
     let s = g.x * g.x + g.y * g.y;
-    let theta_h = atan2_r(libm::sqrtf(s), g.z);
+    let theta_h = atan2_r(radiometry::math::sqrtf(s), g.z);
     let (_, _, phi_d) = coords_above(g, g.length_squared(), e);
     let ee = e.x * e.x + e.y * e.y + e.z * e.z;
     let theta_d = atan2_squares(Vec4::splat(ee), Vec4::splat(h.length_squared())).x;
@@ -159,7 +159,7 @@ fn coords_below(a: Vec3, b: Vec3) -> Option<(f32, f32, f32)> {
 /// `(θh, θd, φd)` of unit `a` and `b = −a` (no half vector) with `h = +Z`:
 /// `θd` the polar angle of `a`, `φd` its folded azimuth, `θh = 0`.
 pub(crate) fn coords_opposite(a: Vec3) -> (f32, f32, f32) {
-    let theta_d = atan2_r(libm::sqrtf(a.x * a.x + a.y * a.y), a.z);
+    let theta_d = atan2_r(radiometry::math::sqrtf(a.x * a.x + a.y * a.y), a.z);
     let (_, _, phi_d) = coords_above(Vec3::Z, 1.0, a);
     (0.0, theta_d, phi_d)
 }

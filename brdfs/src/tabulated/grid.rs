@@ -305,14 +305,12 @@ impl CellMap {
     /// for bit (`a·0 + b·1 = b = b·1 + c·0` for finite values).
     #[inline(always)]
     pub(crate) fn cells(&self, theta_h: f32, theta_d: f32, phi_d: f32) -> Cells {
-        self.cells_root(libm::sqrtf(theta_h), theta_d, phi_d)
+        self.cells_root(radiometry::math::sqrtf(theta_h), theta_d, phi_d)
     }
 
     /// [`cells`](Self::cells) from `√θh` instead of `θh` (the vector
     /// kernel takes the roots of all its lanes in one instruction: the same
-    /// correctly rounded value as `sqrtf`, and no legacy-SSE `sqrtss` — the
-    /// encoding of `libm::sqrtf` on x86 — between the kernel's AVX
-    /// instructions).
+    /// correctly rounded value as `sqrtf`).
     #[inline(always)]
     pub(crate) fn cells_root(&self, root_theta_h: f32, theta_d: f32, phi_d: f32) -> Cells {
         let u = Vec4::new(root_theta_h, theta_d, phi_d, 0.0) * self.scale;

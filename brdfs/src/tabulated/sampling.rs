@@ -334,7 +334,7 @@ impl<'a> HalfVectorDistribution<'a> {
         if len2.is_nan() || len2 <= 1e-30 {
             return cos_part;
         }
-        let h = h * (1.0 / libm::sqrtf(len2));
+        let h = h * (1.0 / radiometry::math::sqrtf(len2));
         let dot = wo.dot(h);
         if dot.is_nan() || dot <= 0.0 {
             return cos_part;
@@ -408,7 +408,7 @@ impl<'a> HalfVectorDistribution<'a> {
         };
         // Invert the linear density (1 − t) a + t b on [0, 1] (stable root).
         let (a, b) = (at(self.density, k), at(self.density, k + 1));
-        let den = a + libm::sqrtf(((1.0 - xi) * a * a + xi * b * b).max(0.0));
+        let den = a + radiometry::math::sqrtf(((1.0 - xi) * a * a + xi * b * b).max(0.0));
         let t = if den > 0.0 {
             (xi * (a + b) / den).clamp(0.0, 1.0)
         } else {
@@ -416,7 +416,7 @@ impl<'a> HalfVectorDistribution<'a> {
         };
         let (v0, v1) = (at(self.edges, k), at(self.edges, k + 1));
         let v = v0 + t * (v1 - v0);
-        let sin_t = libm::sqrtf((v * (2.0 - v)).max(0.0));
+        let sin_t = radiometry::math::sqrtf((v * (2.0 - v)).max(0.0));
         let (sp, cp) = radiometry::math::sincos_turn(u[1]);
         Vec3::new(sin_t * cp, sin_t * sp, 1.0 - v)
     }
