@@ -23,8 +23,8 @@ use radiometry::compose::Coated;
 use radiometry::glam::Vec3;
 use radiometry::{Brdf, BrdfSample};
 use radiometry_brdfs::{
-    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, Ggx, HeightCorrelated, Lambertian, Microfacet,
-    ModifiedPhong, NoFresnel, OpenPbr, OpenPbrParams, Schlick, Separable,
+    Beckmann, BlinnPhong, Conductor, Dielectric, Eon, Ggx, HeightCorrelated, Lambertian, Layering,
+    Microfacet, ModifiedPhong, NoFresnel, OpenPbr, OpenPbrParams, Schlick, Separable,
 };
 use std::hint::black_box;
 use std::io::IsTerminal;
@@ -51,10 +51,13 @@ Plugins (F = 1 unless a Fresnel term is named):
   plastic-ggx0.1-eon           coated(GGX α 0.1 dielectric η 1.5, Eon ρ 0.8 σ 0.5): radiometry::compose::Coated (f32)
   openpbr-defaults             OpenPbr with OpenPBR Surface's default parameters (f32)
   openpbr-all-layers           OpenPbr, every layer on: metalness 0.5, coat 1 (r 0.2), fuzz 1 (f32)
+  openpbr-defaults-reciprocal  the defaults in the reciprocal layering (Layering::Reciprocal) (f32)
+  openpbr-all-layers-reciprocal
+                               every layer on, reciprocal layering (f32)
   openpbr-defaults-rgb         OpenPbr<Vec3> with OpenPBR Surface's default parameters (Vec3)
   spec-openpbr-red-rgb         the spec grammar's RGB run-time BRDF (AnyBrdfRgb, one virtual call per
                                element or batch) of openpbr(base_color=rgb(0.8, 0.1, 0.1)) (Vec3)
-  (both OpenPbr rows also time the paths construct — OpenPbr::new with a roughness from u per
+  (the four f32 OpenPbr rows also time construct — OpenPbr::with_layering with a roughness from u per
   element — hit — construct + eval + sample + pdf at the sampled direction, a renderer's whole
   hit with textured parameters — and hit-prepared — the same hit through one OpenPbr::prepare view,
   as Adobe's prepare + eval + sample + pdf; the plastic's row construct for Coated::new, hit and
@@ -497,13 +500,20 @@ impl Run<'_> {
             fuzz_weight: 1.0,
             ..OpenPbrParams::default()
         };
-        for (name, params) in [
-            ("openpbr-defaults", OpenPbrParams::<f32>::default()),
-            ("openpbr-all-layers", all_layers),
+        let (energy, reciprocal) = (Layering::EnergyConserving, Layering::Reciprocal);
+        for (name, params, layering) in [
+            ("openpbr-defaults", OpenPbrParams::<f32>::default(), energy),
+            ("openpbr-all-layers", all_layers, energy),
+            (
+                "openpbr-defaults-reciprocal",
+                OpenPbrParams::<f32>::default(),
+                reciprocal,
+            ),
+            ("openpbr-all-layers-reciprocal", all_layers, reciprocal),
         ] {
             if self.wanted(name) {
-                self.plugin(name, &OpenPbr::new(params).expect(BAD));
-                self.material_hit(name, params);
+                self.plugin(name, &OpenPbr::with_layering(params, layering).expect(BAD));
+                self.material_hit(name, params, layering);
             }
         }
         if self.wanted("openpbr-defaults") {
@@ -537,7 +547,7 @@ impl Run<'_> {
     /// The construct and hit paths of an `OpenPbr` (see [`AFTER_HELP`]): a
     /// renderer that builds the material at every hit from textured
     /// parameters (here `specular_roughness` from `u[k][0]`).
-    fn material_hit(&mut self, name: &'static str, params: OpenPbrParams<f32>) {
+    fn material_hit(&mut self, name: &'static str, params: OpenPbrParams<f32>, layering: Layering) {
         const BAD: &str = "bench plugin parameters are valid";
         let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
         let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
@@ -548,14 +558,14 @@ impl Run<'_> {
         let mut sink = 0.0f32;
         let t = measure(n, mt, || {
             for k in 0..n {
-                let m = OpenPbr::new(black_box(with(k))).expect(BAD);
+                let m = OpenPbr::with_layering(black_box(with(k)), layering).expect(BAD);
                 sink += black_box(&m).params().specular_roughness;
             }
         });
         self.push(name, "construct", t);
         let t = measure(n, mt, || {
             for k in 0..n {
-                let m = OpenPbr::new(black_box(with(k))).expect(BAD);
+                let m = OpenPbr::with_layering(black_box(with(k)), layering).expect(BAD);
                 let (i, o) = (wi[k], wo[k]);
                 sink += m.eval(i, o);
                 if let Some(s) = m.sample(o, u[k]) {
@@ -569,7 +579,7 @@ impl Run<'_> {
         // calls it, and as Adobe's `openpbr_prepare` is timed.
         let t = measure(n, mt, || {
             for k in 0..n {
-                let m = OpenPbr::new(black_box(with(k))).expect(BAD);
+                let m = OpenPbr::with_layering(black_box(with(k)), layering).expect(BAD);
                 let view = m.prepare(wo[k]);
                 sink += view.eval(wi[k]);
                 if let Some(s) = view.sample(u[k]) {

@@ -15,7 +15,7 @@ fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-const PLUGINS: [&str; 17] = [
+const PLUGINS: [&str; 19] = [
     "lambertian",
     "modified-phong-n100",
     "blinn-phong-n100",
@@ -31,11 +31,13 @@ const PLUGINS: [&str; 17] = [
     "plastic-ggx0.1-eon",
     "openpbr-defaults",
     "openpbr-all-layers",
+    "openpbr-defaults-reciprocal",
+    "openpbr-all-layers-reciprocal",
     "openpbr-defaults-rgb",
     "spec-openpbr-red-rgb",
 ];
 /// The materials' extra paths (construction at every hit, a whole hit, the same through one prepared view).
-const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
+const MATERIAL_PATHS: [(&str, &[&str]); 5] = [
     (
         "plastic-ggx0.1-eon",
         &[
@@ -62,6 +64,14 @@ const MATERIAL_PATHS: [(&str, &[&str]); 3] = [
         ],
     ),
     ("openpbr-all-layers", &["construct", "hit", "hit-prepared"]),
+    (
+        "openpbr-defaults-reciprocal",
+        &["construct", "hit", "hit-prepared"],
+    ),
+    (
+        "openpbr-all-layers-reciprocal",
+        &["construct", "hit", "hit-prepared"],
+    ),
 ];
 
 /// Extra paths of plugin `p`.
