@@ -15,8 +15,9 @@
 /// dirty pays an SSE/AVX transition: OpenPBR's `sample`, whose draw takes
 /// three roots after vector code, ran 3× slower in such a build on an Intel
 /// Xeon than in the portable one (`docs/performance.md`). Here x86 goes through
-/// `_mm_sqrt_ss` (via `safe_arch`), which the compiler encodes as `vsqrtss`
-/// when AVX is on and as `sqrtss` otherwise; other targets call `libm::sqrtf`.
+/// `_mm_sqrt_ss` (via `safe_arch`) where AVX is on, which the compiler encodes
+/// as `vsqrtss`; without AVX (the portable x86-64 build, where every
+/// instruction is legacy SSE) and on other targets it calls `libm::sqrtf`.
 ///
 /// ```
 /// use radiometry::math::sqrtf;
@@ -26,11 +27,11 @@
 /// ```
 #[inline(always)]
 pub fn sqrtf(x: f32) -> f32 {
-    #[cfg(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse"))]
+    #[cfg(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "avx"))]
     {
         safe_arch::get_f32_from_m128_s(safe_arch::sqrt_m128_s(safe_arch::set_m128_s(x)))
     }
-    #[cfg(not(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "sse")))]
+    #[cfg(not(all(any(target_arch = "x86", target_arch = "x86_64"), target_feature = "avx")))]
     {
         libm::sqrtf(x)
     }
