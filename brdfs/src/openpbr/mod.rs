@@ -681,32 +681,36 @@ impl<S: Spectrum> OpenPbr<S> {
         } else {
             1.0
         };
-        let fuzz_norm = if reciprocal && w_f > 0.0 {
+        // Reciprocal mode: `Ē_F` and the joint normalisations `2∫ Π t μ dμ` by
+        // 8-point Gauss–Legendre in μ, each layer's albedo read once per node.
+        let (fuzz_norm, joint_norm) = if reciprocal {
+            let nodes = gauss_legendre_nodes();
             let t = SheenAlbedoTable::get();
-            // Ē_F = 2∫E μ dμ by 8-point Gauss–Legendre in μ (8 table reads).
-            inv(1.0 - gauss_legendre_average(|mu| w_f * t.albedo(mu, r_f)))
-        } else {
-            1.0
-        };
-        let joint_norm = if reciprocal {
-            let t = SheenAlbedoTable::get();
-            let t_f = |mu: f32| {
-                if w_f > 0.0 {
-                    1.0 - w_f * t.albedo(mu, r_f)
-                } else {
-                    1.0
-                }
+            // `w_F E_F(μ)` (the fuzz's table reads) and `t = 1 − E` of each layer
+            // present (`t = 1` for a layer that is off).
+            let e_f = nodes.map(|mu| if w_f > 0.0 { w_f * t.albedo(mu, r_f) } else { 0.0 });
+            let t_f = e_f.map(|e| if w_f > 0.0 { 1.0 - e } else { 1.0 });
+            let t_s = nodes.map(|mu| 1.0 - spec_e(mu));
+            let t_c = nodes.map(|mu| if w_c > 0.0 { 1.0 - coat_e(mu) } else { 1.0 });
+            let at = |k: usize| (t_f[k], t_s[k], t_c[k]);
+            let fuzz_norm = if w_f > 0.0 {
+                inv(1.0 - gauss_legendre_sum(e_f))
+            } else {
+                1.0
             };
-            let t_s = |mu: f32| 1.0 - spec_e(mu);
-            let t_c = |mu: f32| {
-                if w_c > 0.0 { 1.0 - coat_e(mu) } else { 1.0 }
-            };
-            [
-                inv(gauss_legendre_average(|mu| t_f(mu) * t_s(mu))),
-                inv(gauss_legendre_average(|mu| t_f(mu) * t_c(mu) * t_s(mu))),
-            ]
+            let joint = [
+                inv(gauss_legendre_sum(core::array::from_fn(|k| {
+                    let (f, s, _) = at(k);
+                    f * s
+                }))),
+                inv(gauss_legendre_sum(core::array::from_fn(|k| {
+                    let (f, s, c) = at(k);
+                    f * c * s
+                }))),
+            ];
+            (fuzz_norm, joint)
         } else {
-            [1.0, 1.0]
+            (1.0, [1.0, 1.0])
         };
         // Coat darkening (§"Darkening"): E_b at normal incidence, K_r, r_b
         // (only read under a coat).
@@ -1348,14 +1352,31 @@ fn renormalise(w: Vec3, l2: f32) -> Vec3 {
 }
 
 /// `2∫₀¹ e(μ) μ dμ` by 8-point Gauss–Legendre.
-fn gauss_legendre_average(e: impl Fn(f32) -> f32) -> f32 {
-    const X: [f32; 4] = [0.183_434_65, 0.525_532_4, 0.796_666_5, 0.960_289_9];
-    const W: [f32; 4] = [0.362_683_78, 0.313_706_65, 0.222_381_03, 0.101_228_54];
-    let mut s = 0.0;
-    for (x, w) in X.iter().zip(W) {
-        for mu in [0.5 * (1.0 - x), 0.5 * (1.0 + x)] {
-            s += 0.5 * w * 2.0 * mu * e(mu);
+/// The abscissae and weights of 4-point Gauss–Legendre on `[−1, 1]`
+/// (positive half), mapped to `μ ∈ [0, 1]` as `½(1 ∓ x)`.
+const GL_X: [f32; 4] = [0.183_434_65, 0.525_532_4, 0.796_666_5, 0.960_289_9];
+const GL_W: [f32; 4] = [0.362_683_78, 0.313_706_65, 0.222_381_03, 0.101_228_54];
+
+/// The eight nodes `μ_k` of [`gauss_legendre_sum`], in its order.
+#[inline]
+fn gauss_legendre_nodes() -> [f32; 8] {
+    core::array::from_fn(|k| {
+        let x = GL_X[k / 2];
+        if k % 2 == 0 {
+            0.5 * (1.0 - x)
+        } else {
+            0.5 * (1.0 + x)
         }
+    })
+}
+
+/// `2∫₀¹ e(μ) μ dμ` from `e` at the [nodes](gauss_legendre_nodes),
+/// `Σ_k ½ w_k · 2 μ_k e(μ_k)` in the nodes' order, clamped to `[0, 1]`.
+#[inline]
+fn gauss_legendre_sum(e: [f32; 8]) -> f32 {
+    let mut s = 0.0;
+    for (k, (mu, v)) in gauss_legendre_nodes().into_iter().zip(e).enumerate() {
+        s += 0.5 * GL_W[k / 2] * 2.0 * mu * v;
     }
     s.clamp(0.0, 1.0)
 }

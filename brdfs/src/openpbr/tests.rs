@@ -512,3 +512,63 @@ fn reciprocal_mode_is_reciprocal_and_keeps_energy_bounded() {
         }
     }
 }
+
+/// The reciprocal mode's normalisations — `1/(1 − Ē_F)` and the joint
+/// `1/(2∫ Π t μ dμ)` of the two coverage parts — are the 8-point
+/// Gauss–Legendre sums written out (each integrand evaluated at each node by
+/// its own reads, the nodes in order) bit for bit, for random parameters
+/// with each layer on and off.
+#[test]
+fn reciprocal_normalisations_are_the_quadrature_written_out() {
+    let x = [0.183_434_65f32, 0.525_532_4, 0.796_666_5, 0.960_289_9];
+    let w = [0.362_683_78f32, 0.313_706_65, 0.222_381_03, 0.101_228_54];
+    let written_out = |e: &dyn Fn(f32) -> f32| {
+        let mut s = 0.0f32;
+        for (x, w) in x.iter().zip(w) {
+            for mu in [0.5 * (1.0 - x), 0.5 * (1.0 + x)] {
+                s += 0.5 * w * 2.0 * mu * e(mu);
+            }
+        }
+        s.clamp(0.0, 1.0)
+    };
+    let mut u = crate::test_stream::uniforms(0x3c6e_f372_fe94_f82b);
+    for n in 0..200 {
+        let on = |v: f32, k: usize| if (n >> k) & 1 == 0 { 0.0 } else { v };
+        let p = OpenPbrParams::<f32> {
+            specular_roughness: u(),
+            specular_ior: 1.0 + 2.0 * u(),
+            coat_weight: on(u(), 0),
+            coat_roughness: u(),
+            coat_ior: 1.0 + 2.0 * u(),
+            fuzz_weight: on(u(), 1),
+            fuzz_roughness: u(),
+            base_metalness: u(),
+            ..OpenPbrParams::default()
+        };
+        let m = OpenPbr::with_layering(p, Layering::Reciprocal).unwrap();
+        let t = SheenAlbedoTable::get();
+        let r_f = p.fuzz_roughness.max(MIN_SHEEN_ROUGHNESS);
+        let (w_f, w_c) = (p.fuzz_weight, p.coat_weight);
+        let e_s = |mu: f32| lobe_albedo(&m.spec, m.spec_ae)(mu);
+        let e_c = |mu: f32| lobe_albedo(&m.coat, m.coat_ae)(mu);
+        let t_f = |mu: f32| {
+            if w_f > 0.0 {
+                1.0 - w_f * t.albedo(mu, r_f)
+            } else {
+                1.0
+            }
+        };
+        let t_c = |mu: f32| if w_c > 0.0 { 1.0 - e_c(mu) } else { 1.0 };
+        let fuzz_norm = if w_f > 0.0 {
+            inv(1.0 - written_out(&|mu| w_f * t.albedo(mu, r_f)))
+        } else {
+            1.0
+        };
+        let joint = [
+            inv(written_out(&|mu| t_f(mu) * (1.0 - e_s(mu)))),
+            inv(written_out(&|mu| t_f(mu) * t_c(mu) * (1.0 - e_s(mu)))),
+        ];
+        assert_eq!(m.fuzz_norm.to_bits(), fuzz_norm.to_bits(), "{p:?}");
+        assert_eq!(m.joint_norm.map(f32::to_bits), joint.map(f32::to_bits), "{p:?}");
+    }
+}
