@@ -1260,7 +1260,7 @@ impl<S: Spectrum> OpenPbr<S> {
         if self.on[COAT] {
             share[COAT] = a_f * p.coat_weight * view.coat_o;
         }
-        let under = |leaf| (view.coat_factor(mu, leaf) * view.fuzz_factor_o(leaf)).average();
+        let under = |leaf| (view.coat_factor(mu, view.layers_o(), leaf) * view.fuzz_factor_o(leaf)).average();
         let u_s = under(Leaf::Specular);
         if let Some(metal) = &self.metal {
             let w = u_s * p.base_metalness * self.xi;
@@ -1397,6 +1397,14 @@ fn through(leaf: Leaf, ti: f32, to: f32, inv_avg: f32) -> f32 {
     }
 }
 
+/// The layers' albedos at one cosine that the reciprocal mode's factors
+/// read: `w_F E_F(μ)` and `E_C(μ)` (0 for a layer that is off).
+#[derive(Clone, Copy, Debug)]
+struct LayersAt {
+    fuzz: f32,
+    coat: f32,
+}
+
 /// The two kinds of base lobe the reciprocal mode normalises apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Leaf {
@@ -1482,28 +1490,46 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
     }
 
+    /// The layers' albedos at `μo` ([`LayersAt`]): the view's own.
+    #[inline(always)]
+    fn layers_o(&self) -> LayersAt {
+        LayersAt {
+            fuzz: self.fuzz_o,
+            coat: self.coat_o,
+        }
+    }
+
+    /// The layers' albedos at `μi` that the reciprocal mode's factors read
+    /// ([`LayersAt`]), each read once per pass: the view's where `μi = μo`
+    /// (and in the energy mode, whose factors read none at `μi`), 0 for a
+    /// layer that is off.
+    #[inline]
+    fn layers_at(&self, mu_i: f32) -> LayersAt {
+        let m = self.m;
+        if m.layering == Layering::EnergyConserving || mu_i == self.mu_o {
+            return self.layers_o();
+        }
+        LayersAt {
+            fuzz: if m.on[FUZZ] { m.e_fuzz(mu_i) } else { 0.0 },
+            coat: if m.on[COAT] { m.e_coat(mu_i) } else { 0.0 },
+        }
+    }
+
     /// The fuzz's factor at `ωo` alone (energy mode: `1 − w_F E_F(μo)`).
     #[inline]
     fn fuzz_factor_o(&self, leaf: Leaf) -> f32 {
-        self.fuzz_factor(self.mu_o, leaf)
+        self.fuzz_factor(self.layers_o(), leaf)
     }
 
-    /// The fuzz's factor for `(μi, μo)`.
+    /// The fuzz's factor for `(μi, μo)`, `at` the layers' albedos at `μi`.
     #[inline]
-    fn fuzz_factor(&self, mu_i: f32, leaf: Leaf) -> f32 {
+    fn fuzz_factor(&self, at: LayersAt, leaf: Leaf) -> f32 {
         if !self.m.on[FUZZ] {
             return 1.0;
         }
         match self.m.layering {
             Layering::EnergyConserving => 1.0 - self.fuzz_o,
-            Layering::Reciprocal => {
-                let ti = if mu_i == self.mu_o {
-                    1.0 - self.fuzz_o
-                } else {
-                    1.0 - self.m.e_fuzz(mu_i)
-                };
-                through(leaf, ti, 1.0 - self.fuzz_o, self.m.fuzz_norm)
-            }
+            Layering::Reciprocal => through(leaf, 1.0 - at.fuzz, 1.0 - self.fuzz_o, self.m.fuzz_norm),
         }
     }
 
@@ -1513,19 +1539,17 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     /// coverage part — exact for a Lambertian body under any stack of clear
     /// layers (`∫ Π t(μi) t(μo)/N · ρ/π · μi dωi = ρ Π t(μo)`).
     #[inline]
-    fn diffuse_factor(&self, mu_i: f32, es_i: f32) -> S {
+    fn diffuse_factor(&self, mu_i: f32, at: LayersAt, es_i: f32) -> S {
         let m = self.m;
         let ts = (1.0 - es_i) * (1.0 - self.spec_o);
         match m.layering {
             Layering::EnergyConserving => {
-                self.coat_factor(mu_i, Leaf::Diffuse)
-                    * (self.fuzz_factor(mu_i, Leaf::Diffuse) * ts * m.inv_spec_avg)
+                self.coat_factor(mu_i, at, Leaf::Diffuse)
+                    * (self.fuzz_factor(at, Leaf::Diffuse) * ts * m.inv_spec_avg)
             }
             Layering::Reciprocal => {
-                let same = mu_i == self.mu_o;
                 let tf = if m.on[FUZZ] {
-                    let fi = if same { self.fuzz_o } else { m.e_fuzz(mu_i) };
-                    (1.0 - fi) * (1.0 - self.fuzz_o)
+                    (1.0 - at.fuzz) * (1.0 - self.fuzz_o)
                 } else {
                     1.0
                 };
@@ -1534,8 +1558,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                     return bare;
                 }
                 let w_c = m.params.coat_weight;
-                let ci = if same { self.coat_o } else { m.e_coat(mu_i) };
-                let tc = (1.0 - ci) * (1.0 - self.coat_o);
+                let tc = (1.0 - at.coat) * (1.0 - self.coat_o);
                 let coated =
                     m.absorption(mu_i, self.mu_o) * self.darkening * (ts * tf * tc * m.joint_norm[1] * w_c);
                 coated + bare * (1.0 - w_c)
@@ -1545,7 +1568,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
 
     /// `U = (1 − w_C) + w_C D A(μi, μo) T_C(μi, μo)` per channel.
     #[inline(always)]
-    fn coat_factor(&self, mu_i: f32, leaf: Leaf) -> S {
+    fn coat_factor(&self, mu_i: f32, at: LayersAt, leaf: Leaf) -> S {
         let m = self.m;
         if !m.on[COAT] {
             return S::splat(1.0);
@@ -1553,14 +1576,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         let w_c = m.params.coat_weight;
         let t = match m.layering {
             Layering::EnergyConserving => 1.0 - self.coat_o,
-            Layering::Reciprocal => {
-                let ti = if mu_i == self.mu_o {
-                    1.0 - self.coat_o
-                } else {
-                    1.0 - m.e_coat(mu_i)
-                };
-                through(leaf, ti, 1.0 - self.coat_o, m.coat_norm)
-            }
+            Layering::Reciprocal => through(leaf, 1.0 - at.coat, 1.0 - self.coat_o, m.coat_norm),
         };
         let a = m.absorption(mu_i, self.mu_o);
         (a * self.darkening * (w_c * t)).map(|v| v + (1.0 - w_c))
@@ -1655,17 +1671,23 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
                 }
             }
         }
+        // The layers' albedos at μi (reciprocal mode), read once for the pass.
+        let at = if want_value {
+            self.layers_at(mu_i)
+        } else {
+            self.layers_o()
+        };
         if m.on[COAT] {
             let (v, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
             if want_value {
-                f += v * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
+                f += v * (self.fuzz_factor(at, Leaf::Specular) * p.coat_weight);
             }
             if want_pdf {
                 pdf += prob(COAT) * d;
             }
         }
         let under_s = if want_value && (m.on[METAL] || m.on[SPEC]) {
-            self.coat_factor(mu_i, Leaf::Specular) * self.fuzz_factor(mu_i, Leaf::Specular)
+            self.coat_factor(mu_i, at, Leaf::Specular) * self.fuzz_factor(at, Leaf::Specular)
         } else {
             S::zero()
         };
@@ -1709,7 +1731,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             if want_value {
                 f += v * p.specular_color * under_s * dielectric;
                 // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
-                f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, es_i) * dielectric;
+                f += m.diffuse.eval(wi, wo) * self.diffuse_factor(mu_i, at, es_i) * dielectric;
             }
             if want_pdf {
                 pdf += prob(SPEC) * d + prob(DIFFUSE) * self.diffuse_pdf(mu_i);
@@ -1766,11 +1788,12 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         if m.on[FUZZ] {
             f += v.fuzz * p.fuzz_weight;
         }
+        let at = self.layers_at(mu_i);
         if m.on[COAT] {
-            f += v.coat * (self.fuzz_factor(mu_i, Leaf::Specular) * p.coat_weight);
+            f += v.coat * (self.fuzz_factor(at, Leaf::Specular) * p.coat_weight);
         }
         let under_s = if m.on[METAL] || m.on[SPEC] {
-            self.coat_factor(mu_i, Leaf::Specular) * self.fuzz_factor(mu_i, Leaf::Specular)
+            self.coat_factor(mu_i, at, Leaf::Specular) * self.fuzz_factor(at, Leaf::Specular)
         } else {
             S::zero()
         };
@@ -1782,7 +1805,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             let dielectric = 1.0 - p.base_metalness;
             f += v.spec * p.specular_color * under_s * dielectric;
             // Kelemen: (1 − E_s(μi))(1 − E_s(μo))/(1 − Ē_s).
-            f += v.diffuse * self.diffuse_factor(mu_i, v.es_i) * dielectric;
+            f += v.diffuse * self.diffuse_factor(mu_i, at, v.es_i) * dielectric;
         }
         f.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 })
     }
@@ -1959,9 +1982,10 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             e += m.fuzz_albedo(wo) * p.fuzz_weight;
         }
         if m.on[COAT] {
-            e += S::splat(self.fuzz_factor(mu, Leaf::Specular) * p.coat_weight * self.coat_o);
+            e += S::splat(self.fuzz_factor(self.layers_o(), Leaf::Specular) * p.coat_weight * self.coat_o);
         }
-        let under_s = self.coat_factor(mu, Leaf::Specular) * self.fuzz_factor(mu, Leaf::Specular);
+        let o = self.layers_o();
+        let under_s = self.coat_factor(mu, o, Leaf::Specular) * self.fuzz_factor(o, Leaf::Specular);
         if let Some(metal) = m.metal.as_ref().filter(|_| m.on[METAL]) {
             let ms = metal.f_ms * self.metal_loss_o;
             e += (metal.single_albedo(wo) + ms) * under_s * (p.base_metalness * m.xi);
@@ -1969,7 +1993,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         if m.on[SPEC] {
             let d = 1.0 - p.base_metalness;
             e += p.specular_color * under_s * (d * self.spec_o);
-            let under_d = self.coat_factor(mu, Leaf::Diffuse) * self.fuzz_factor(mu, Leaf::Diffuse);
+            let under_d = self.coat_factor(mu, o, Leaf::Diffuse) * self.fuzz_factor(o, Leaf::Diffuse);
             e += m.diffuse.directional_albedo(wo).value * under_d * (d * (1.0 - self.spec_o));
         }
         Albedo {
