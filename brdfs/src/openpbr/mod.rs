@@ -692,22 +692,18 @@ impl<S: Spectrum> OpenPbr<S> {
             let t_f = e_f.map(|e| if w_f > 0.0 { 1.0 - e } else { 1.0 });
             let t_s = nodes.map(|mu| 1.0 - spec_e(mu));
             let t_c = nodes.map(|mu| if w_c > 0.0 { 1.0 - coat_e(mu) } else { 1.0 });
-            let at = |k: usize| (t_f[k], t_s[k], t_c[k]);
             let fuzz_norm = if w_f > 0.0 {
                 inv(1.0 - gauss_legendre_sum(e_f))
             } else {
                 1.0
             };
-            let joint = [
-                inv(gauss_legendre_sum(core::array::from_fn(|k| {
-                    let (f, s, _) = at(k);
-                    f * s
-                }))),
-                inv(gauss_legendre_sum(core::array::from_fn(|k| {
-                    let (f, s, c) = at(k);
-                    f * c * s
-                }))),
-            ];
+            // `t_F t_s` and `t_F t_C t_s` at each node (zipped, not indexed).
+            let (mut bare, mut coated) = ([0.0f32; 8], [0.0f32; 8]);
+            for ((((b, c), f), s), t) in bare.iter_mut().zip(&mut coated).zip(t_f).zip(t_s).zip(t_c) {
+                *b = f * s;
+                *c = f * t * s;
+            }
+            let joint = [inv(gauss_legendre_sum(bare)), inv(gauss_legendre_sum(coated))];
             (fuzz_norm, joint)
         } else {
             (1.0, [1.0, 1.0])
@@ -1357,26 +1353,33 @@ fn renormalise(w: Vec3, l2: f32) -> Vec3 {
 const GL_X: [f32; 4] = [0.183_434_65, 0.525_532_4, 0.796_666_5, 0.960_289_9];
 const GL_W: [f32; 4] = [0.362_683_78, 0.313_706_65, 0.222_381_03, 0.101_228_54];
 
-/// The eight nodes `μ_k` of [`gauss_legendre_sum`], in its order.
+/// The eight nodes `μ_k` of [`gauss_legendre_sum`], in its order: `½(1 −
+/// x)`, `½(1 + x)` for each abscissa (no indexing: no panic path).
 #[inline]
 fn gauss_legendre_nodes() -> [f32; 8] {
-    core::array::from_fn(|k| {
-        let x = GL_X[k / 2];
-        if k % 2 == 0 {
-            0.5 * (1.0 - x)
-        } else {
-            0.5 * (1.0 + x)
-        }
-    })
+    let [a, b, c, d] = GL_X;
+    [
+        0.5 * (1.0 - a),
+        0.5 * (1.0 + a),
+        0.5 * (1.0 - b),
+        0.5 * (1.0 + b),
+        0.5 * (1.0 - c),
+        0.5 * (1.0 + c),
+        0.5 * (1.0 - d),
+        0.5 * (1.0 + d),
+    ]
 }
 
 /// `2∫₀¹ e(μ) μ dμ` from `e` at the [nodes](gauss_legendre_nodes),
 /// `Σ_k ½ w_k · 2 μ_k e(μ_k)` in the nodes' order, clamped to `[0, 1]`.
 #[inline]
 fn gauss_legendre_sum(e: [f32; 8]) -> f32 {
+    let nodes = gauss_legendre_nodes();
     let mut s = 0.0;
-    for (k, (mu, v)) in gauss_legendre_nodes().into_iter().zip(e).enumerate() {
-        s += 0.5 * GL_W[k / 2] * 2.0 * mu * v;
+    for ((mu, v), w) in nodes.chunks_exact(2).zip(e.chunks_exact(2)).zip(GL_W) {
+        for (mu, v) in mu.iter().zip(v) {
+            s += 0.5 * w * 2.0 * mu * v;
+        }
     }
     s.clamp(0.0, 1.0)
 }
