@@ -512,13 +512,7 @@ impl DielectricRatioReader {
         if self.inside {
             return self.ratio_inside(mu);
         }
-        let acc = self.outside_sum(mu);
-        let smooth = if self.exact > 0.0 {
-            self.exact * smooth_fresnel(mu, self.eta2m1, self.eta2)
-        } else {
-            0.0
-        };
-        (acc * (1.0 / 65535.0) + smooth).clamp(0.0, 1.0)
+        self.outside_ratio(self.outside_sum(mu), mu)
     }
 
     /// [`ratio`](Self::ratio) at `μ = 1` (normal incidence), bit for bit:
@@ -529,9 +523,15 @@ impl DielectricRatioReader {
         if self.inside {
             return self.ratio_inside(1.0);
         }
-        let acc = self.outside_sum_in(FT_NX - 2, 1.0);
+        self.outside_ratio(self.outside_sum_in(FT_NX - 2, 1.0), 1.0)
+    }
+
+    /// `η > 1`: the ratio from the corners' sum `acc` (table units) at `μ`,
+    /// plus the exact smooth-interface row's share where there is one.
+    #[inline(always)]
+    fn outside_ratio(&self, acc: f32, mu: f32) -> f32 {
         let smooth = if self.exact > 0.0 {
-            self.exact * smooth_fresnel(1.0, self.eta2m1, self.eta2)
+            self.exact * smooth_fresnel(mu, self.eta2m1, self.eta2)
         } else {
             0.0
         };
