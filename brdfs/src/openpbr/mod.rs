@@ -1273,25 +1273,27 @@ impl<S: Spectrum> OpenPbr<S> {
                     .unwrap_or_else(|| self.diffuse.directional_albedo(wo).value)
                     .average();
         }
-        let total: f32 = share
-            .iter()
-            .map(|s| if s.is_finite() { s.max(0.0) } else { 0.0 })
-            .sum();
-        // One reciprocal for the six shares where it is finite (a normal
-        // `total`; a subnormal one divides): the picks sit on a sample's
-        // critical path.
-        let inv_total = if total >= f32::MIN_POSITIVE {
-            1.0 / total
-        } else {
-            0.0
-        };
+        // The running sums of the shares (negative and non-finite ones as 0),
+        // then each divided by the total at once: no chain of normalised
+        // additions after the reciprocal (the picks sit on a sample's
+        // critical path).
         let mut acc = 0.0f32;
-        for (c, s) in view.cdf.iter_mut().zip(share) {
-            if total > 0.0 && total.is_finite() {
-                let s = if s.is_finite() { s.max(0.0) } else { 0.0 };
-                acc += if inv_total > 0.0 { s * inv_total } else { s / total };
+        let mut running = [0.0f32; LOBES];
+        for (r, s) in running.iter_mut().zip(share) {
+            acc += if s.is_finite() { s.max(0.0) } else { 0.0 };
+            *r = acc;
+        }
+        let total = acc;
+        if total >= f32::MIN_POSITIVE && total.is_finite() {
+            let inv_total = 1.0 / total;
+            for (c, r) in view.cdf.iter_mut().zip(running) {
+                *c = r * inv_total;
             }
-            *c = acc;
+        } else if total > 0.0 {
+            // A subnormal total divides (its reciprocal overflows).
+            for (c, r) in view.cdf.iter_mut().zip(running) {
+                *c = r / total;
+            }
         }
         if !(total > 0.0 && total.is_finite()) {
             // Nothing reflects: the diffuse lobe's sampler (its value is 0).
