@@ -1030,6 +1030,8 @@ impl<S: Spectrum> OpenPbr<S> {
             if !vw.valid {
                 continue;
             }
+            // The diffuse map's polar part ahead of the pick, as `sample` draws it.
+            let polar_part = self.on[SPEC].then(|| self.diffuse_sampler.polar(v[1]));
             let (lobe, uu) = vw.pick(v);
             let group = match lobe {
                 COAT => Some(0),
@@ -1041,7 +1043,7 @@ impl<S: Spectrum> OpenPbr<S> {
                     None
                 }
                 _ => {
-                    *w = vw.direction_of(lobe, uu);
+                    *w = vw.direction_with(lobe, uu, polar_part);
                     None
                 }
             };
