@@ -1043,7 +1043,7 @@ impl<S: Spectrum> OpenPbr<S> {
                     None
                 }
                 _ => {
-                    *w = vw.direction_with(lobe, uu, polar_part);
+                    *w = vw.direction_of(lobe, uu, polar_part);
                     None
                 }
             };
@@ -1869,7 +1869,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             COAT => m.coat.sample(wo, uu),
             METAL => m.metal.as_ref().and_then(|x| x.single.sample(wo, uu)),
             SPEC => m.spec.sample(wo, uu),
-            _ => self.direction_with(k, uu, polar_part).map(|wi| BrdfSample {
+            _ => self.direction_of(k, uu, polar_part).map(|wi| BrdfSample {
                 wi,
                 pdf: 0.0,
                 weight: S::zero(),
@@ -1913,16 +1913,11 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
     /// The direction the metal's multiple-scattering lobe (`k =
     /// METAL_MS`) or the diffuse lobe (any other `k` outside the GGX lobes and
     /// the fuzz) draws at `uu`: the direction alone, its value and density
-    /// come from the pass over every lobe.
+    /// come from the pass over every lobe. `polar_part`: the diffuse map's
+    /// polar part where the caller drew it ahead of the pick
+    /// ([`diffuse_direction`](Self::diffuse_direction)).
     #[inline]
-    fn direction_of(&self, k: usize, uu: [f32; 2]) -> Option<Vec3> {
-        self.direction_with(k, uu, None)
-    }
-
-    /// [`direction_of`](Self::direction_of), with the diffuse map's polar
-    /// part where the caller drew it already ([`diffuse_direction`](Self::diffuse_direction)).
-    #[inline]
-    fn direction_with(&self, k: usize, uu: [f32; 2], polar_part: Option<(f32, f32)>) -> Option<Vec3> {
+    fn direction_of(&self, k: usize, uu: [f32; 2], polar_part: Option<(f32, f32)>) -> Option<Vec3> {
         if k == METAL_MS {
             self.m.metal.as_ref().and_then(|x| {
                 let wi = x.ms_sample(polar_first(uu));
