@@ -1313,9 +1313,9 @@ impl<S: Spectrum> OpenPbr<S> {
 /// The pick's `u₀` waits for the picks (the layers' albedos at `ωo`); `u₁`
 /// does not. With `u₁` on the polar angle — the maps' cell search, roots and
 /// division — only the azimuth's sine and cosine wait for the pick, and the
-/// polar part runs beside the picks (OpenPBR defaults: `sample` 1.17× faster
-/// than with `u₀` on the polar angle). The GGX lobes' visible-normal draw
-/// already takes its azimuth from `u₀`. Each map is measure-preserving
+/// polar part runs beside the picks: a mispredicted pick (random `u`) no
+/// longer exposes it (`docs/performance.md`). The GGX lobes' visible-normal
+/// draw already takes its azimuth from `u₀`. Each map is measure-preserving
 /// either way, so the densities are unchanged.
 #[inline(always)]
 fn polar_first(u: [f32; 2]) -> [f32; 2] {
