@@ -1276,7 +1276,7 @@ impl<S: Spectrum> OpenPbr<S> {
                     .average();
         }
         // The running sums of the shares (negative and non-finite ones as 0),
-        // then each divided by the total at once: no chain of normalised
+        // then each times one reciprocal of the total: no chain of normalised
         // additions after the reciprocal (the picks sit on a sample's
         // critical path).
         let mut acc = 0.0f32;

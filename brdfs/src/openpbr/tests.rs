@@ -572,3 +572,58 @@ fn reciprocal_normalisations_are_the_quadrature_written_out() {
         assert_eq!(m.joint_norm.map(f32::to_bits), joint.map(f32::to_bits), "{p:?}");
     }
 }
+
+/// The diffuse lobe's maps and the metal's multiple-scattering lobe take the
+/// polar angle from `u₁` alone and the azimuth from the pick's rescaled `u₀`
+/// (`polar_first`; what lets `sample` draw the polar part before the pick):
+/// at one `u₁`, every `u₀` that picks the diffuse lobe gives the same `cos θi`
+/// bit for bit, and the azimuth still turns with `u₀`; and `sample` draws
+/// what its component's map draws at the rescaled `u₀`.
+#[test]
+fn polar_angle_of_the_diffuse_draw_is_u1_alone() {
+    for sigma in [0.0f32, 0.7] {
+        let m = OpenPbr::new(OpenPbrParams::<f32> {
+            base_diffuse_roughness: sigma,
+            ..OpenPbrParams::default()
+        })
+        .unwrap();
+        for (theta, u1) in [(10.0f32, 0.31f32), (50.0, 0.77), (80.0, 0.05)] {
+            let wo = dir(theta, 0.4);
+            let view = m.prepare(wo);
+            // The diffuse lobe is the last: its interval ends at 1. Split at the
+            // uniform share p_u, each of its two components keeps its own polar map.
+            let c = OpenPbrView::<f32>::COMPONENTS;
+            let (w_u, w_t) = (view.component_weight(c - 2), view.component_weight(c - 1));
+            assert!(w_t > 0.1, "{theta}°: transmission-shaped weight {w_t}");
+            let lo = 1.0 - w_t;
+            let mut seen = std::vec::Vec::new();
+            for f in [0.1f32, 0.35, 0.6, 0.85] {
+                let u0 = lo + f * w_t;
+                let s = view.sample([u0, u1]).unwrap();
+                let comp = view.sample_component(c - 1, [f, u1]).unwrap();
+                assert!(
+                    (s.wi - comp).length() < 1e-5,
+                    "{theta}°, u₀ {u0}: {:?} vs {comp:?}",
+                    s.wi
+                );
+                seen.push(s.wi);
+            }
+            for w in &seen {
+                assert_eq!(
+                    w.z.to_bits(),
+                    seen[0].z.to_bits(),
+                    "σ {sigma}, {theta}°: {seen:?}"
+                );
+            }
+            assert!(
+                (seen[0] - seen[2]).length() > 1e-3,
+                "the azimuth does not turn: {seen:?}"
+            );
+            if w_u > 0.0 {
+                // The uniform component: cos θi = u₁ (its map's polar coordinate).
+                let s = view.sample([lo - 0.5 * w_u, u1]).unwrap();
+                assert_eq!(s.wi.z, u1, "σ {sigma}, {theta}°: {:?}", s.wi);
+            }
+        }
+    }
+}
