@@ -1030,8 +1030,7 @@ impl<S: Spectrum> OpenPbr<S> {
             if !vw.valid {
                 continue;
             }
-            // The diffuse map's polar part ahead of the pick, as `sample` draws it.
-            let polar_part = self.on[SPEC].then(|| self.diffuse_sampler.polar(v[1]));
+            let polar_part = vw.diffuse_polar(v);
             let (lobe, uu) = vw.pick(v);
             let group = match lobe {
                 COAT => Some(0),
@@ -1288,16 +1287,11 @@ impl<S: Spectrum> OpenPbr<S> {
         let total = acc;
         if total >= f32::MIN_POSITIVE && total.is_finite() {
             let inv_total = 1.0 / total;
-            for (c, r) in view.cdf.iter_mut().zip(running) {
-                *c = r * inv_total;
-            }
-        } else if total > 0.0 {
+            view.cdf = running.map(|r| r * inv_total);
+        } else if total > 0.0 && total.is_finite() {
             // A subnormal total divides (its reciprocal overflows).
-            for (c, r) in view.cdf.iter_mut().zip(running) {
-                *c = r / total;
-            }
-        }
-        if !(total > 0.0 && total.is_finite()) {
+            view.cdf = running.map(|r| r / total);
+        } else {
             // Nothing reflects: the diffuse lobe's sampler (its value is 0).
             view.cdf = [0.0, 0.0, 0.0, 0.0, 0.0, 1.0];
         }
@@ -1615,6 +1609,15 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         pu * (0.5 * core::f32::consts::FRAC_1_PI) + (1.0 - pu) * self.m.diffuse_sampler.pdf(mu_i)
     }
 
+    /// The diffuse lobe's transmission-shaped polar part at the sample
+    /// point `u` — from `u₁` alone ([`polar_first`]), so that `sample` and
+    /// `sample_batch` draw it ahead of the pick — or `None` where the lobe is
+    /// off.
+    #[inline(always)]
+    fn diffuse_polar(&self, u: [f32; 2]) -> Option<(f32, f32)> {
+        self.m.on[SPEC].then(|| self.m.diffuse_sampler.polar(u[1]))
+    }
+
     /// The direction the diffuse lobe draws at `u`, or `None` on the
     /// horizon: `u₀` picks the component (`u₀ < p_u`: the uniform
     /// hemisphere, else the transmission-shaped lobe) and, rescaled to it,
@@ -1855,9 +1858,7 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
             return None;
         }
         let m = self.m;
-        // The diffuse lobe's transmission-shaped polar part, from `u₁` alone
-        // ([`polar_first`]): drawn ahead of the pick, it does not wait for it.
-        let polar_part = m.on[SPEC].then(|| m.diffuse_sampler.polar(u[1]));
+        let polar_part = self.diffuse_polar(u);
         let (k, uu) = self.pick(u);
         let wo = self.wo;
         let s = match k {
