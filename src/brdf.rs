@@ -360,6 +360,40 @@ pub trait Brdf {
     {
         self
     }
+
+    /// Hidden hook (not a stable API): [`eval`](Brdf::eval) of directions
+    /// the caller has [checked](crate::frame::is_checked) — both unit length
+    /// to within `4ε` (`|‖w‖² − 1| ≤ 4ε`) and strictly above the horizon —
+    /// the same bits, without the lobe's own tests of its input. For a layer
+    /// that tests once for both its lobes ([`compose::Coated`](crate::compose::Coated)).
+    /// Default: `eval`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> Self::Spectrum {
+        self.eval(wi, wo)
+    }
+
+    /// Hidden hook (not a stable API): [`pdf`](Brdf::pdf) of
+    /// [checked](crate::frame::is_checked) directions, as
+    /// [`eval_checked`](Brdf::eval_checked) is `eval`'s. Default: `pdf`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.pdf(wi, wo)
+    }
+
+    /// Hidden hook (not a stable API): [`directional_albedo`](Brdf::directional_albedo)'s
+    /// value at a `wo` unit to within `4ε` and strictly above the horizon,
+    /// each channel clamped to `[0, 1]` (non-finite → 0): what a layer reads
+    /// of its top at every call. Default: that clamp of
+    /// `directional_albedo(wo).value`.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn albedo_checked(&self, wo: Vec3) -> Self::Spectrum {
+        self.directional_albedo(wo)
+            .value
+            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
+    }
 }
 
 /// The default [`Brdf::average_albedo`]: 8-point Gauss–Legendre in `μ` over
@@ -462,6 +496,18 @@ impl<B: Brdf + ?Sized> Brdf for &B {
     }
     fn average_albedo(&self) -> Self::Spectrum {
         (**self).average_albedo()
+    }
+    #[inline(always)]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> Self::Spectrum {
+        (**self).eval_checked(wi, wo)
+    }
+    #[inline(always)]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        (**self).pdf_checked(wi, wo)
+    }
+    #[inline(always)]
+    fn albedo_checked(&self, wo: Vec3) -> Self::Spectrum {
+        (**self).albedo_checked(wo)
     }
 }
 

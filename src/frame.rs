@@ -19,6 +19,25 @@ pub fn cos_theta(w: Vec3) -> f32 {
     w.z
 }
 
+/// Whether `w` is unit length to within `4ε`, `|‖w‖² − 1| ≤ 4ε`, and
+/// strictly above the horizon (`cos θ > 0`): the input the straight-line
+/// formulas of the crate's lobes take as it is (the tolerance within which
+/// `radiometry-brdfs` leaves a direction unnormalised). False for NaN and
+/// infinite components.
+///
+/// ```
+/// use radiometry::frame::is_checked;
+/// use radiometry::glam::Vec3;
+/// assert!(is_checked(Vec3::new(0.6, 0.0, 0.8)));
+/// assert!(!is_checked(Vec3::new(0.6, 0.0, -0.8))); // below the horizon
+/// assert!(!is_checked(Vec3::new(0.0, 0.0, 2.0))); // not unit
+/// assert!(!is_checked(Vec3::new(f32::NAN, 0.0, 1.0)));
+/// ```
+#[inline(always)]
+pub fn is_checked(w: Vec3) -> bool {
+    (w.length_squared() - 1.0).abs() <= 4.0 * f32::EPSILON && w.z > 0.0
+}
+
 /// `cos² θ`.
 #[inline]
 pub fn cos2_theta(w: Vec3) -> f32 {

@@ -5,6 +5,7 @@
 //! `Cargo.toml` sets `autotests = false` and names this file as the only test target.
 
 mod batch;
+mod checked;
 mod kulla_conty;
 mod ltc_sheen;
 mod microfacet_albedo;

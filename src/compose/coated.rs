@@ -7,7 +7,7 @@ use super::{
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
-use crate::frame::cos_theta;
+use crate::frame::{cos_theta, is_checked};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
@@ -144,10 +144,16 @@ where
         Ok(self)
     }
 
-    /// The top's albedo at `ω`, each channel clamped to `[0, 1]` (NaN → 0).
+    /// The top's albedo at `ω`, each channel clamped to `[0, 1]` (NaN → 0);
+    /// through the top's checked read ([`Brdf::albedo_checked`], the same
+    /// value) where `ω` is [checked](is_checked).
     #[inline]
     fn top_albedo(&self, w: Vec3) -> S {
-        clamp_albedo(self.top.directional_albedo(w).value)
+        if is_checked(w) {
+            self.top.albedo_checked(w)
+        } else {
+            clamp_albedo(self.top.directional_albedo(w).value)
+        }
     }
 
     /// `to[k] = t(ωo,k) = 1 − E_T(ωo,k)` for a chunk of view directions,
@@ -349,6 +355,15 @@ where
     #[inline]
     pub fn eval(&self, wi: Vec3) -> S {
         let (l, wo) = (self.layer, self.wo);
+        if is_checked(wi) && is_checked(wo) {
+            return l.layer_with(
+                wi,
+                wo,
+                l.top.eval_checked(wi, wo),
+                l.base.eval_checked(wi, wo),
+                || self.to,
+            );
+        }
         if !Coated::<T, B>::both_above(wi, wo) {
             return S::zero();
         }
@@ -360,6 +375,9 @@ where
     #[inline]
     pub fn pdf(&self, wi: Vec3) -> f32 {
         let (l, wo) = (self.layer, self.wo);
+        if is_checked(wi) && is_checked(wo) {
+            return mixture_pdf(self.pick, l.top.pdf_checked(wi, wo), l.base.pdf_checked(wi, wo));
+        }
         mixture_pdf(self.pick, l.top.pdf(wi, wo), l.base.pdf(wi, wo))
     }
 
@@ -440,8 +458,14 @@ where
 {
     type Spectrum = S;
 
+    /// Both directions [checked](is_checked) once for both lobes and the
+    /// top's albedo (their checked paths: the same bits); the general path
+    /// otherwise.
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        if is_checked(wi) && is_checked(wo) {
+            return self.eval_checked(wi, wo);
+        }
         if !Self::both_above(wi, wo) {
             return S::zero();
         }
@@ -600,9 +624,27 @@ where
         self.prepare(wo).sample(u)
     }
 
+    /// Checked once for both lobes where both directions are, as
+    /// [`eval`](Brdf::eval).
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if is_checked(wi) && is_checked(wo) {
+            return self.pdf_checked(wi, wo);
+        }
         let p = self.pick_probability(wo);
         mixture_pdf(p, self.top.pdf(wi, wo), self.base.pdf(wi, wo))
+    }
+
+    #[inline]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> S {
+        let to = self.top.albedo_checked(wo).map(|e| 1.0 - e);
+        let (ft, fb) = (self.top.eval_checked(wi, wo), self.base.eval_checked(wi, wo));
+        self.layer_with(wi, wo, ft, fb, || to)
+    }
+
+    #[inline]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        let p = self.pick_with(wo, wo.z, self.top.albedo_checked(wo));
+        mixture_pdf(p, self.top.pdf_checked(wi, wo), self.base.pdf_checked(wi, wo))
     }
 
     /// `false`: `τ` reads the top's albedo, which the plugins take from

@@ -6,6 +6,7 @@ use super::{
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
+use crate::frame::is_checked;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
@@ -99,15 +100,27 @@ where
     /// The mixture density at pick probability `p`; one expression for
     /// `sample` and `pdf`. With `w = 0` (`p = 0`) or `w = 1` (`p = 1`) the
     /// unused lobe's density is not computed (its term is `0 · pdf = 0`).
+    /// Through the lobes' checked densities ([`Brdf::pdf_checked`], the
+    /// same bits) where both directions are [checked](is_checked).
     #[inline]
     fn density(&self, p: f32, wi: Vec3, wo: Vec3) -> f32 {
+        if is_checked(wi) && is_checked(wo) {
+            self.density_of(p, || self.a.pdf_checked(wi, wo), || self.b.pdf_checked(wi, wo))
+        } else {
+            self.density_of(p, || self.a.pdf(wi, wo), || self.b.pdf(wi, wo))
+        }
+    }
+
+    /// [`density`](Self::density) from the lobes' densities `pa`, `pb`.
+    #[inline(always)]
+    fn density_of(&self, p: f32, pa: impl FnOnce() -> f32, pb: impl FnOnce() -> f32) -> f32 {
         if self.w == 0.0 {
-            return mixture_pdf(p, 0.0, self.b.pdf(wi, wo));
+            return mixture_pdf(p, 0.0, pb());
         }
         if self.w == 1.0 {
-            return mixture_pdf(p, self.a.pdf(wi, wo), 0.0);
+            return mixture_pdf(p, pa(), 0.0);
         }
-        mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+        mixture_pdf(p, pa(), pb())
     }
 }
 
@@ -119,8 +132,13 @@ where
 {
     type Spectrum = S;
 
+    /// Through the lobes' checked paths ([`eval_checked`](Brdf::eval_checked))
+    /// where both directions are [checked](is_checked) (the same bits).
     #[inline]
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        if is_checked(wi) && is_checked(wo) {
+            return self.eval_checked(wi, wo);
+        }
         // `w = 0` or `1` leave one lobe: the formula's value (`0 · f + 1 · g
         // = g` for finite `f`) without evaluating the other.
         if self.w == 0.0 {
@@ -130,6 +148,23 @@ where
             return self.a.eval(wi, wo);
         }
         saturate(self.a.eval(wi, wo) * self.w + self.b.eval(wi, wo) * (1.0 - self.w))
+    }
+
+    #[inline]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> S {
+        if self.w == 0.0 {
+            return self.b.eval_checked(wi, wo);
+        }
+        if self.w == 1.0 {
+            return self.a.eval_checked(wi, wo);
+        }
+        saturate(self.a.eval_checked(wi, wo) * self.w + self.b.eval_checked(wi, wo) * (1.0 - self.w))
+    }
+
+    #[inline]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        let p = self.pick_probability(wo);
+        self.density_of(p, || self.a.pdf_checked(wi, wo), || self.b.pdf_checked(wi, wo))
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {

@@ -80,6 +80,16 @@ impl<B: Brdf<Spectrum = S>, S: Spectrum> Brdf for Scaled<B, S> {
         self.lobe.pdf(wi, wo)
     }
 
+    #[inline]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> S {
+        self.lobe.eval_checked(wi, wo) * self.scale
+    }
+
+    #[inline]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.lobe.pdf_checked(wi, wo)
+    }
+
     /// The lobe's own batch kernel, scaled.
     fn eval_batch(&self, wi: &[Vec3], wo: &[Vec3], out: &mut [S]) {
         self.lobe.eval_batch(wi, wo, out);

@@ -6,6 +6,7 @@ use super::{
 };
 use crate::batch::Vec3Soa;
 use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
+use crate::frame::is_checked;
 use crate::spectrum::Spectrum;
 use glam::Vec3;
 
@@ -70,6 +71,18 @@ where
             self.b.directional_albedo(wo).value.average(),
         )
     }
+
+    /// The mixture density with pick probability `p`, through the lobes'
+    /// checked densities ([`Brdf::pdf_checked`], the same bits) where both
+    /// directions are [checked](is_checked).
+    #[inline]
+    fn density(&self, p: f32, wi: Vec3, wo: Vec3) -> f32 {
+        if is_checked(wi) && is_checked(wo) {
+            mixture_pdf(p, self.a.pdf_checked(wi, wo), self.b.pdf_checked(wi, wo))
+        } else {
+            mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+        }
+    }
 }
 
 impl<A, B, S> Brdf for Sum<A, B>
@@ -81,20 +94,37 @@ where
     type Spectrum = S;
 
     #[inline]
+    /// Through the lobes' checked paths ([`eval_checked`](Brdf::eval_checked))
+    /// where both directions are [checked](is_checked) (the same bits).
     fn eval(&self, wi: Vec3, wo: Vec3) -> S {
+        if is_checked(wi) && is_checked(wo) {
+            return self.eval_checked(wi, wo);
+        }
         saturate(self.a.eval(wi, wo) + self.b.eval(wi, wo))
+    }
+
+    #[inline]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> S {
+        saturate(self.a.eval_checked(wi, wo) + self.b.eval_checked(wi, wo))
     }
 
     fn sample(&self, wo: Vec3, u: [f32; 2]) -> Option<BrdfSample<S>> {
         let p = self.pick_probability(wo);
         let wi = pick_and_sample(p, u, |v| self.a.sample(wo, v), |v| self.b.sample(wo, v))?;
-        let pdf = mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo));
-        finish_sample(wi, self.eval(wi, wo), pdf)
+        finish_sample(wi, self.eval(wi, wo), self.density(p, wi, wo))
     }
 
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        let p = self.pick_probability(wo);
-        mixture_pdf(p, self.a.pdf(wi, wo), self.b.pdf(wi, wo))
+        self.density(self.pick_probability(wo), wi, wo)
+    }
+
+    #[inline]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        mixture_pdf(
+            self.pick_probability(wo),
+            self.a.pdf_checked(wi, wo),
+            self.b.pdf_checked(wi, wo),
+        )
     }
 
     /// The lobes' own batch kernels, summed (equal to [`eval`](Brdf::eval)

@@ -934,6 +934,32 @@ where
         }
     }
 
+    /// `eval`'s straight-line path (no unit test).
+    #[inline(always)]
+    fn eval_checked(&self, wi: Vec3, wo: Vec3) -> F::Spectrum {
+        self.eval_unit(wi, wo)
+    }
+
+    /// `pdf`'s straight-line path (no unit test).
+    #[inline(always)]
+    fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.pdf_unit(wi, wo)
+    }
+
+    /// A prepared dielectric lobe's read at `μo = ωo.z` (no unit test, no
+    /// horizon branch); otherwise the table read of `directional_albedo`.
+    #[inline(always)]
+    fn albedo_checked(&self, wo: Vec3) -> F::Spectrum {
+        if let Some(cells) = self.fresnel.albedo_cells(self.distribution.alpha())
+            && self.reads_ggx_height_correlated()
+        {
+            return F::Spectrum::splat(clamp01(cells.reader.albedo(wo.z)));
+        }
+        self.tabulated_albedo(wo.x, wo.y, wo.z)
+            .value
+            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
+    }
+
     /// With the `simd` feature, GGX with either shadowing–masking variant
     /// (any Fresnel term) uses a vector kernel ([`crate::simd`]) that
     /// returns exactly the bits [`Brdf::eval`] returns; other combinations

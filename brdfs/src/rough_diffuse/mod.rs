@@ -90,6 +90,18 @@
 /// methods, bit for bit); without it, the trait's scalar loops.
 macro_rules! rough_batch_methods {
     () => {
+        /// `eval`'s straight-line formula (no unit or horizon test).
+        #[inline(always)]
+        fn eval_checked(&self, wi: Vec3, wo: Vec3) -> S {
+            super::RoughLobe::eval_unit(self, wi, wo)
+        }
+
+        /// `pdf`'s mixture density (no unit or horizon test).
+        #[inline(always)]
+        fn pdf_checked(&self, wi: Vec3, wo: Vec3) -> f32 {
+            super::pdf_unit(self, wi, wo)
+        }
+
         /// Two components, in the order of [`Brdf::sample`]'s pick
         /// (`u₀ < p_u`): the uniform hemisphere (0, weight `p_u`) and the
         /// cosine-weighted one (1, weight `1 − p_u`).
@@ -332,6 +344,13 @@ pub(crate) fn pdf<L: RoughLobe>(l: &L, wi: Vec3, wo: Vec3) -> f32 {
     if wi.z <= 0.0 || wo.z <= 0.0 {
         return 0.0;
     }
+    pdf_unit(l, wi, wo)
+}
+
+/// [`pdf`] of unit directions above the horizon:
+/// `(1 − p_u) cos θi/π + p_u/(2π)`.
+#[inline(always)]
+pub(crate) fn pdf_unit<L: RoughLobe>(l: &L, wi: Vec3, wo: Vec3) -> f32 {
     let p_u = p_uniform(l.uniform_weight(), wo.z);
     (1.0 - p_u) * (wi.z * FRAC_1_PI) + p_u * (0.5 * FRAC_1_PI)
 }
