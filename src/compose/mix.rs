@@ -111,6 +111,20 @@ where
         }
     }
 
+    /// `sat(w f_A + (1 − w) f_B)` from the lobes' values `fa`, `fb`. `w = 0`
+    /// or `1` leave one lobe: the formula's value (`0 · f + 1 · g = g` for
+    /// finite `f`) without evaluating the other.
+    #[inline(always)]
+    fn value_of(&self, fa: impl FnOnce() -> S, fb: impl FnOnce() -> S) -> S {
+        if self.w == 0.0 {
+            return fb();
+        }
+        if self.w == 1.0 {
+            return fa();
+        }
+        saturate(fa() * self.w + fb() * (1.0 - self.w))
+    }
+
     /// [`density`](Self::density) from the lobes' densities `pa`, `pb`.
     #[inline(always)]
     fn density_of(&self, p: f32, pa: impl FnOnce() -> f32, pb: impl FnOnce() -> f32) -> f32 {
@@ -139,26 +153,12 @@ where
         if is_checked(wi) && is_checked(wo) {
             return self.eval_checked(wi, wo);
         }
-        // `w = 0` or `1` leave one lobe: the formula's value (`0 · f + 1 · g
-        // = g` for finite `f`) without evaluating the other.
-        if self.w == 0.0 {
-            return self.b.eval(wi, wo);
-        }
-        if self.w == 1.0 {
-            return self.a.eval(wi, wo);
-        }
-        saturate(self.a.eval(wi, wo) * self.w + self.b.eval(wi, wo) * (1.0 - self.w))
+        self.value_of(|| self.a.eval(wi, wo), || self.b.eval(wi, wo))
     }
 
     #[inline]
     fn eval_checked(&self, wi: Vec3, wo: Vec3) -> S {
-        if self.w == 0.0 {
-            return self.b.eval_checked(wi, wo);
-        }
-        if self.w == 1.0 {
-            return self.a.eval_checked(wi, wo);
-        }
-        saturate(self.a.eval_checked(wi, wo) * self.w + self.b.eval_checked(wi, wo) * (1.0 - self.w))
+        self.value_of(|| self.a.eval_checked(wi, wo), || self.b.eval_checked(wi, wo))
     }
 
     #[inline]
