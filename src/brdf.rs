@@ -390,10 +390,15 @@ pub trait Brdf {
     #[doc(hidden)]
     #[inline(always)]
     fn albedo_checked(&self, wo: Vec3) -> Self::Spectrum {
-        self.directional_albedo(wo)
-            .value
-            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
+        clamp_albedo(self.directional_albedo(wo).value)
     }
+}
+
+/// An albedo with each channel clamped to `[0, 1]` (non-finite → 0): how
+/// the layers and the default average read a lobe's albedo.
+#[inline]
+pub(crate) fn clamp_albedo<S: Spectrum>(e: S) -> S {
+    e.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
 }
 
 /// The default [`Brdf::average_albedo`]: 8-point Gauss–Legendre in `μ` over
@@ -407,7 +412,7 @@ pub fn default_average_albedo<B: Brdf + ?Sized>(b: &B) -> B::Spectrum {
             for mu in [0.5 * (1.0 - x), 0.5 * (1.0 + x)] {
                 let wo = Vec3::new(crate::math::sqrtf((1.0 - mu * mu).max(0.0)), 0.0, mu);
                 let e = b.directional_albedo(wo).value;
-                s += e.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 }) * (w * mu);
+                s += clamp_albedo(e) * (w * mu);
             }
         }
         s

@@ -6,7 +6,7 @@ use super::{
     pick_and_sample, pick_first, pick_u, reciprocal_through, saturate, soa_chunks, soa_dirs,
 };
 use crate::batch::Vec3Soa;
-use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf};
+use crate::brdf::{Albedo, Brdf, BrdfSample, IsotropicBrdf, clamp_albedo};
 use crate::frame::{cos_theta, is_checked};
 use crate::spectrum::Spectrum;
 use glam::Vec3;
@@ -390,12 +390,6 @@ where
     }
 }
 
-/// An albedo with each channel clamped to `[0, 1]` (NaN → 0).
-#[inline]
-fn clamp_albedo<S: Spectrum>(e: S) -> S {
-    e.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 })
-}
-
 /// A coat's absorption on the way in and out, OpenPBR Surface 1.1
 /// §"Coat — view-dependent absorption":
 ///
@@ -676,9 +670,7 @@ where
             return Albedo::zero();
         }
         let top = self.top.directional_albedo(wo);
-        let et = top
-            .value
-            .map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 });
+        let et = clamp_albedo(top.value);
         let eb = self.base.directional_albedo(wo);
         let upper = et.map(|e| 1.0 - e) * eb.value;
         let est = upper * self.absorption(mu, mu);
