@@ -34,7 +34,9 @@
 //! linear density in closed form.
 //!
 //! Dimensions: `[TransmissionRow; 32 × 32]`, index `32 l + k`; each row
-//! `h: [u16; 17]`, `65535 ×` the height over the row's largest (34 KiB).
+//! `h: [u16; 17]`, `65535 ×` the height over the row's largest (34 KiB);
+//! beside them, derived from them at compile time, each row's cumulative
+//! cell masses (`ROW_MASSES`, `[[f32; 17]; 32 × 32]`, 68 KiB).
 //! The unit test `rows_are_the_transmission_of_the_table` recomputes every
 //! row from the albedo tables bit for bit (and with
 //! `RADIOMETRY_REGENERATE=1` writes `transmission_sampler/data.rs`).
@@ -91,18 +93,46 @@ fn cell_of(s: f32, n: usize) -> (usize, f32) {
     (i, (s - i as f32).clamp(0.0, 1.0))
 }
 
+/// The cumulative masses of each committed row in the row's own units,
+/// `M_j = Σ_{i<j} (q_i + q_{i+1})/65535 · (s_{i+1} − s_i)` (`q` the row's
+/// stored heights; `M_0 = 0`, `M_16` twice the row's total), summed in `f32`
+/// in that order at compile time from [`TRANSMISSION_ROWS`]. Dimensions
+/// `[[f32; 17]; 32 × 32]` (68 KiB), index `32 l + k` as the rows. A
+/// sampler's masses are the same bilinear blend of its four corners'
+/// ([`TransmissionSampler::new`]): the masses are linear in the heights.
+static ROW_MASSES: [[f32; CELLS + 1]; N_Z * N_A] = {
+    let mut out = [[0.0f32; CELLS + 1]; N_Z * N_A];
+    let mut r = 0;
+    while r < N_Z * N_A {
+        let q = &TRANSMISSION_ROWS[r].h;
+        let mut acc = 0.0f32;
+        let mut j = 0;
+        while j < CELLS {
+            let h0 = q[j] as f32 * (1.0 / 65535.0);
+            let h1 = q[j + 1] as f32 * (1.0 / 65535.0);
+            acc += (h0 + h1) * (S_EDGE[j + 1] - S_EDGE[j]);
+            out[r][j + 1] = acc;
+            j += 1;
+        }
+        r += 1;
+    }
+    out
+};
+
 /// The sampler of one `(α, η)`: the heights of the four surrounding rows,
 /// blended with the ratio table's bilinear weights in `(√α, F0^¼)`
 /// (`√α` clamped to `[0.01, 1]`; `z = √|(η − 1)/(η + 1)|`, so `η < 1` uses
 /// the rows of `1/η`, a valid density of the same Fresnel strength), and
-/// their normalisation `1/(π T)`, with the cells' cumulative masses for
-/// the draw. Built in O(1) (68 multiply-adds for the heights, 16 for the
-/// masses).
+/// the cells' cumulative masses for the draw and the normalisation `1/(π
+/// T)`, blended the same way from the corners' [`ROW_MASSES`]. Built in
+/// O(1) with no chain of dependent sums: 68 multiply-adds for the heights,
+/// 68 for the masses (a running sum of the blended heights would be 16
+/// additions, each waiting for the last).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct TransmissionSampler {
     h: [f32; CELLS + 1],
     /// `M_j = Σ_{i<j} m_i`, `m_i = (h_i + h_{i+1})(s_{i+1} − s_i)`: `M_0 = 0`,
-    /// `M_16 = 2T`.
+    /// `M_16 = 2T` — the corners' [`ROW_MASSES`] blended.
     cum: [f32; CELLS + 1],
     norm: f32,
 }
@@ -115,35 +145,41 @@ impl TransmissionSampler {
         let r = ((eta - 1.0) / (eta + 1.0)).abs();
         let z = radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
         let (l, fz) = cell_of(z * (N_Z - 1) as f32, N_Z);
-        let corners = [
-            (l * N_A + k, (1.0 - fz) * (1.0 - fa)),
-            (l * N_A + k + 1, (1.0 - fz) * fa),
-            ((l + 1) * N_A + k, fz * (1.0 - fa)),
-            ((l + 1) * N_A + k + 1, fz * fa),
-        ];
+        let w = [(1.0 - fz) * (1.0 - fa), (1.0 - fz) * fa, fz * (1.0 - fa), fz * fa];
+        let sampler = Self::blend(l * N_A + k, w);
+        if sampler.norm > 0.0 {
+            sampler
+        } else {
+            // Unreachable for the committed rows (every height ≥ 10⁻³ of its
+            // row's top, so every total is positive); the first row (η = 1:
+            // the cosine lobe) as a fallback.
+            Self::blend(0, [1.0, 0.0, 0.0, 0.0])
+        }
+    }
+
+    /// The four corners from `row` (`(l, k)`, `(l, k + 1)`, `(l + 1, k)`,
+    /// `(l + 1, k + 1)`) blended with weights `w`: heights and cumulative
+    /// masses (`norm` 0 where the total is not positive and finite).
+    #[inline(always)]
+    fn blend(row: usize, w: [f32; 4]) -> Self {
         let mut h = [0.0f32; CELLS + 1];
-        for (i, w) in corners {
-            if let Some(row) = TRANSMISSION_ROWS.get(i) {
-                for (x, &q) in h.iter_mut().zip(&row.h) {
-                    *x += w * (q as f32 * (1.0 / 65535.0));
+        let mut cum = [0.0f32; CELLS + 1];
+        for (i, &wc) in [row, row + 1, row + N_A, row + N_A + 1].iter().zip(&w) {
+            if let (Some(r), Some(m)) = (TRANSMISSION_ROWS.get(*i), ROW_MASSES.get(*i)) {
+                for (x, &q) in h.iter_mut().zip(&r.h) {
+                    *x += wc * (q as f32 * (1.0 / 65535.0));
+                }
+                for (x, &q) in cum.iter_mut().zip(m) {
+                    *x += wc * q;
                 }
             }
         }
-        let mut cum = [0.0f32; CELLS + 1];
-        let mut acc = 0.0f32;
-        for j in 0..CELLS {
-            acc += (Self::height_in(&h, j) + Self::height_in(&h, j + 1)) * (edge(j + 1) - edge(j));
-            cum[j + 1] = acc;
-        }
-        let total = 0.5 * acc;
+        // `M_16 = 2T`.
+        let total = cum[CELLS];
         let norm = if total > 0.0 && total.is_finite() {
-            core::f32::consts::FRAC_1_PI / total
+            2.0 * core::f32::consts::FRAC_1_PI / total
         } else {
-            // Unreachable for the committed rows (every height ≥ 10⁻³ of its
-            // row's top); the cosine lobe as a fallback.
-            h = [1.0; CELLS + 1];
-            cum = core::array::from_fn(|j| 2.0 * edge(j));
-            core::f32::consts::FRAC_1_PI
+            0.0
         };
         Self { h, cum, norm }
     }
@@ -183,12 +219,13 @@ impl TransmissionSampler {
     /// (the azimuth comes from `u1` alone).
     #[inline(always)]
     pub(crate) fn polar(&self, u0: f32) -> (f32, f32) {
-        let target = u0.clamp(0.0, 1.0) * self.cum[CELLS];
+        let cum = &self.cum;
+        let target = u0.clamp(0.0, 1.0) * cum[CELLS];
         // The last j ≤ 15 with M_j ≤ target: M is non-decreasing, so it is the
         // number of M_1..M_15 at or below it (16 independent comparisons, no
         // chain of dependent steps: the draw sits on `sample`'s critical path).
-        let j: usize = self.cum[1..CELLS].iter().map(|&m| usize::from(m <= target)).sum();
-        let left = (target - self.cum.get(j).copied().unwrap_or(0.0)).max(0.0);
+        let j: usize = cum[1..CELLS].iter().map(|&m| usize::from(m <= target)).sum();
+        let left = (target - cum.get(j).copied().unwrap_or(0.0)).max(0.0);
         let (h0, h1) = (self.height(j), self.height(j + 1));
         let (s0, s1) = (edge(j), edge(j + 1));
         let width = s1 - s0;
