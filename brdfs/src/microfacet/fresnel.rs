@@ -359,6 +359,18 @@ impl Dielectric {
     pub fn eta(&self) -> f32 {
         self.eta
     }
+
+    /// This term with `cells` as its prepared albedo cells: what
+    /// [`Fresnel::with_albedo_cells`] builds, for a caller that computed the
+    /// ratio table's cells once for several tables
+    /// ([`DielectricCells::new_in`]).
+    #[inline(always)]
+    pub(crate) fn with_cells(self, cells: DielectricCells) -> Self {
+        Self {
+            cells: Some(cells),
+            ..self
+        }
+    }
 }
 
 impl Fresnel for Dielectric {

@@ -126,6 +126,37 @@ fn index_coord(eta: f32) -> (usize, f32, bool) {
     (l, f, inside)
 }
 
+/// The ratio table's cells of one `(α, η)`: the index cell `(l, f_z, η <
+/// 1)` ([`index_coord`]: `z = √|(η − 1)/(η + 1)|`) and the roughness cell
+/// `(k, f_a)` ([`alpha_coord`]: `(√α − 0.01)/0.99 · 31`). Computed once,
+/// they serve every table on the same grid: the dielectric readers, the
+/// average `Ē`, and the diffuse sampler's rows
+/// ([`TransmissionSampler`](super::transmission_sampler)), which sit at the
+/// `η > 1` table's nodes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RatioCells {
+    pub(crate) index: (usize, f32, bool),
+    pub(crate) alpha: (usize, f32),
+}
+
+impl RatioCells {
+    /// The cells of `(α, η)` (clamped as [`dielectric_ratio`] clamps them).
+    #[inline(always)]
+    pub(crate) fn new(alpha: f32, eta: f32) -> Self {
+        Self {
+            index: index_coord(eta),
+            alpha: alpha_coord(alpha),
+        }
+    }
+
+    /// [`dielectric_average`]`(α', η)` at another roughness `α'` and this
+    /// index, bit for bit (the index cell reused).
+    #[inline(always)]
+    pub(crate) fn average_at(&self, alpha: f32) -> f32 {
+        average_in(self.index, alpha_coord(alpha))
+    }
+}
+
 /// The `μ` coordinate `x ∈ [0, 1]` of a table (see the module docs).
 #[cfg(test)]
 #[inline(always)]
@@ -235,7 +266,15 @@ impl DielectricAlbedoReader {
     /// both: [`DielectricCells`](super::prepared::DielectricCells)).
     #[inline(always)]
     pub(crate) fn with_average(alpha: f32, eta: f32) -> (Self, f32) {
-        let (ratio, average) = DielectricRatioReader::with_average(alpha, eta);
+        Self::with_average_in(RatioCells::new(alpha, eta), alpha, eta)
+    }
+
+    /// [`with_average`](Self::with_average) from the ratio table's cells of
+    /// `(α, η)` computed once ([`RatioCells::new`]), for a material whose
+    /// other tables read the same cells.
+    #[inline(always)]
+    pub(crate) fn with_average_in(cells: RatioCells, alpha: f32, eta: f32) -> (Self, f32) {
+        let (ratio, average) = DielectricRatioReader::with_average_in(cells, eta);
         let e1 = AlbedoReader::new(alpha);
         let reader = Self {
             e1,
@@ -427,8 +466,15 @@ impl DielectricRatioReader {
     /// computation of the index and roughness cells.
     #[inline(always)]
     pub(crate) fn with_average(alpha: f32, eta: f32) -> (Self, f32) {
-        let (l, fz, inside) = index_coord(eta);
-        let (k, fa) = alpha_coord(alpha);
+        Self::with_average_in(RatioCells::new(alpha, eta), eta)
+    }
+
+    /// [`with_average`](Self::with_average) from the cells of `(α, η)`
+    /// ([`RatioCells::new`]).
+    #[inline(always)]
+    pub(crate) fn with_average_in(cells: RatioCells, eta: f32) -> (Self, f32) {
+        let (l, fz, inside) = cells.index;
+        let (k, fa) = cells.alpha;
         let average = average_in((l, fz, inside), (k, fa));
         let nx = if inside { FT_NX_IN } else { FT_NX };
         let off = |l: usize, k: usize| l.wrapping_mul(FT_NA).wrapping_add(k).wrapping_mul(nx);

@@ -5,7 +5,7 @@
 //! They live in the lobe's [`Dielectric`](super::Dielectric) term (the one
 //! Fresnel term the ratio tables read), so that no other lobe grows.
 
-use super::fresnel_table::{DielectricAlbedoReader, dielectric_error};
+use super::fresnel_table::{DielectricAlbedoReader, RatioCells, dielectric_error};
 
 /// The cells of a GGX (height-correlated `G2`) dielectric lobe's albedo
 /// `E_F(μ) = E₁(μ) R(μ)` at roughness `alpha`, with the error the full read
@@ -25,7 +25,14 @@ impl DielectricCells {
     /// The cells of `E_F(·, α, η)`.
     #[inline]
     pub(crate) fn new(alpha: f32, eta: f32) -> Self {
-        let (reader, average) = DielectricAlbedoReader::with_average(alpha, eta);
+        Self::new_in(RatioCells::new(alpha, eta), alpha, eta)
+    }
+
+    /// [`new`](Self::new) from the ratio table's cells of `(α, η)`
+    /// computed once, bit for bit.
+    #[inline(always)]
+    pub(crate) fn new_in(cells: RatioCells, alpha: f32, eta: f32) -> Self {
+        let (reader, average) = DielectricAlbedoReader::with_average_in(cells, alpha, eta);
         Self {
             alpha,
             error: dielectric_error(alpha, eta),
@@ -88,6 +95,48 @@ mod tests {
             );
         }
         assert_eq!((a.error, a.is_bound), (b.error, b.is_bound), "{what} ωo {wo}");
+    }
+
+    /// Cells built from the ratio table's cells computed once
+    /// ([`DielectricCells::new_in`], as `OpenPbr` builds its dielectric
+    /// lobes) are the cells [`DielectricCells::new`] builds — reader,
+    /// average, error, roughness — and the shared index cell's average at
+    /// another roughness is [`dielectric_average`] there, bit for bit.
+    #[test]
+    fn cells_from_shared_cells_are_new() {
+        use super::super::fresnel_table::{RatioCells, dielectric_average};
+        let mut u = uniforms(0x5EED_CE11_0000_0002);
+        for n in 0..4_000 {
+            let alpha = match n % 10 {
+                0 => 1e-4,
+                1 => 1.0,
+                _ => (u() * u()).max(1e-4),
+            };
+            let eta = match n % 5 {
+                0 => 1.0,
+                1 => 0.2 + 0.79 * u(),
+                _ => 1.0 + 3.0 * u(),
+            };
+            let cells = RatioCells::new(alpha, eta);
+            let (a, b) = (
+                super::DielectricCells::new_in(cells, alpha, eta),
+                super::DielectricCells::new(alpha, eta),
+            );
+            assert_eq!(a.reader, b.reader, "α {alpha} η {eta}");
+            assert_eq!(
+                (a.alpha.to_bits(), a.average.to_bits(), a.error.to_bits()),
+                (b.alpha.to_bits(), b.average.to_bits(), b.error.to_bits()),
+                "α {alpha} η {eta}"
+            );
+            let other = (u() * u()).max(1e-4);
+            for a2 in [crate::microfacet::MIN_ALPHA, other] {
+                assert_eq!(
+                    cells.average_at(a2).to_bits(),
+                    dielectric_average(a2, eta).to_bits(),
+                    "α' {a2} η {eta}"
+                );
+            }
+        }
     }
 
     /// Prepared lobes against the full read on random `(α, η, μ)` (the

@@ -41,6 +41,7 @@
 //! row from the albedo tables bit for bit (and with
 //! `RADIOMETRY_REGENERATE=1` writes `transmission_sampler/data.rs`).
 
+use super::fresnel_table::RatioCells;
 use radiometry::glam::Vec3;
 use radiometry::math::sincos_turn;
 
@@ -145,6 +146,26 @@ impl TransmissionSampler {
         let r = ((eta - 1.0) / (eta + 1.0)).abs();
         let z = radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
         let (l, fz) = cell_of(z * (N_Z - 1) as f32, N_Z);
+        Self::at_cells((l, fz), (k, fa))
+    }
+
+    /// [`new`](Self::new) from the ratio table's cells of `(α, η)` where a
+    /// dielectric reader computed them ([`RatioCells`]), bit for bit: for
+    /// `η ≥ 1` they are this sampler's cells (the rows sit at the `η > 1`
+    /// table's nodes); `η < 1` computes its own (the rows of `1/η`).
+    #[inline(always)]
+    pub(crate) fn from_cells(cells: &RatioCells, alpha: f32, eta: f32) -> Self {
+        let (l, fz, inside) = cells.index;
+        if inside {
+            return Self::new(alpha, eta);
+        }
+        Self::at_cells((l, fz), cells.alpha)
+    }
+
+    /// The sampler of the index cell `(l, f_z)` and roughness cell `(k,
+    /// f_a)`.
+    #[inline(always)]
+    fn at_cells((l, fz): (usize, f32), (k, fa): (usize, f32)) -> Self {
         let w = [(1.0 - fz) * (1.0 - fa), (1.0 - fz) * fa, fz * (1.0 - fa), fz * fa];
         let sampler = Self::blend(l * N_A + k, w);
         if sampler.norm > 0.0 {
@@ -348,6 +369,39 @@ mod tests {
         assert_eq!(rows.len(), TRANSMISSION_ROWS.len());
         for (i, r) in rows.iter().enumerate() {
             assert_eq!(r, &TRANSMISSION_ROWS[i], "row {i}");
+        }
+    }
+
+    /// A sampler built from a dielectric reader's cells
+    /// ([`TransmissionSampler::from_cells`], as `OpenPbr` builds its diffuse
+    /// sampler) is the sampler [`TransmissionSampler::new`] builds, field
+    /// for field: at random `(α, η)` on both sides of 1, at the table's
+    /// nodes and ends, and at `η = 1`.
+    #[test]
+    fn sampler_from_shared_cells_is_new() {
+        let mut u = crate::test_stream::uniforms(0x7A11_CE11_5EED_0001);
+        for n in 0..4_000 {
+            let alpha = match n % 10 {
+                0 => 1e-4,
+                1 => 1.0,
+                2 => {
+                    let t = 0.01 + 0.99 * (n % 32) as f32 / 31.0;
+                    t * t
+                }
+                _ => (u() * u()).max(1e-4),
+            };
+            let eta = match n % 7 {
+                0 => 1.0,
+                1 => 0.2 + 0.79 * u(),
+                2 => 1e3,
+                _ => 1.0 + 3.0 * u(),
+            };
+            let cells = RatioCells::new(alpha, eta);
+            assert_eq!(
+                TransmissionSampler::from_cells(&cells, alpha, eta),
+                TransmissionSampler::new(alpha, eta),
+                "α {alpha} η {eta}"
+            );
         }
     }
 

@@ -120,8 +120,9 @@ mod tests;
 use crate::error::{BrdfError, check_range};
 use crate::microfacet::AlbedoReader;
 use crate::microfacet::fresnel_table::{
-    DielectricAlbedoReader, MomentCell, dielectric_average, dielectric_average_inline,
+    DielectricAlbedoReader, MomentCell, RatioCells, dielectric_average, dielectric_average_inline,
 };
+use crate::microfacet::prepared::DielectricCells;
 use crate::microfacet::transmission_sampler::TransmissionSampler;
 use crate::microfacet::{
     Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
@@ -633,7 +634,18 @@ impl<S: Spectrum> OpenPbr<S> {
         let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
         // The dielectric lobes keep their albedo's table cells (the reader of
         // `E_s`, `E_C`: `Brdf::with_prepared_albedo`); the coat's only when on.
-        let spec = Microfacet::new(ggx_s, Achromatic::new(Dielectric::new(eta_s)?)).with_prepared_albedo();
+        // One computation of the ratio table's cells of `(α_s, η_s)` serves the
+        // lobe's albedo cells and the diffuse sampler's rows (the same grid);
+        // the cells are `with_prepared_albedo`'s, bit for bit.
+        let spec_cells = RatioCells::new(ggx_s.alpha(), eta_s);
+        let spec = Microfacet::new(
+            ggx_s,
+            Achromatic::new(Dielectric::new(eta_s)?.with_cells(DielectricCells::new_in(
+                spec_cells,
+                ggx_s.alpha(),
+                eta_s,
+            ))),
+        );
         // The metal shares the specular lobe's roughness, so its `E₁` reader
         // is the one inside the specular lobe's cells.
         let metal = (m > 0.0 && xi > 0.0).then(|| {
@@ -645,14 +657,18 @@ impl<S: Spectrum> OpenPbr<S> {
             Metal::new(ggx_s, rho, spec_color, e1)
         });
         let diffuse = Eon::new(rho, sigma)?;
-        let diffuse_sampler = TransmissionSampler::new(a_s, eta_s);
+        let diffuse_sampler = TransmissionSampler::from_cells(&spec_cells, a_s, eta_s);
         let a_c = alpha(r_c);
-        let coat = Microfacet::new(Ggx::new(a_c)?, Achromatic::new(Dielectric::new(coat_ior)?));
-        let coat = if w_c > 0.0 {
-            coat.with_prepared_albedo()
-        } else {
-            coat
+        let ggx_c = Ggx::new(a_c)?;
+        // The coat's cells (only when on) serve its lobe's albedo cells and the
+        // darkening's `Ē` at the smallest roughness.
+        let coat_cells = (w_c > 0.0).then(|| RatioCells::new(ggx_c.alpha(), coat_ior));
+        let coat_fresnel = Dielectric::new(coat_ior)?;
+        let coat_fresnel = match coat_cells {
+            Some(c) => coat_fresnel.with_cells(DielectricCells::new_in(c, ggx_c.alpha(), coat_ior)),
+            None => coat_fresnel,
         };
+        let coat = Microfacet::new(ggx_c, Achromatic::new(coat_fresnel));
         let reciprocal = layering == Layering::Reciprocal;
         // Only the fuzz lobe of this mode, and only when the fuzz is on.
         let fuzz = if w_f > 0.0 && !reciprocal {
@@ -722,7 +738,10 @@ impl<S: Spectrum> OpenPbr<S> {
                     + x.ms_scale * (core::f32::consts::PI * (1.0 - metal_e1).clamp(0.0, 1.0))
             });
             // (Inlined: the roughness cell of the constant α is folded.)
-            let e_f_avg = dielectric_average_inline(MIN_ALPHA, coat_ior);
+            let e_f_avg = coat_cells.map_or_else(
+                || dielectric_average_inline(MIN_ALPHA, coat_ior),
+                |c| c.average_at(MIN_ALPHA),
+            );
             (
                 metal_normal * (m * xi) + glossy * (1.0 - m),
                 1.0 - (1.0 - e_f_avg) / (coat_ior * coat_ior),
