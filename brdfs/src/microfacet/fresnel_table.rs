@@ -762,7 +762,14 @@ impl MomentCell {
     /// The cell of `α` (clamped as [`fresnel_moments`] clamps it).
     #[inline]
     pub(crate) fn new(alpha: f32) -> Self {
-        let (k, fa) = alpha_coord(alpha);
+        Self::at(alpha_coord(alpha))
+    }
+
+    /// The cell `(k, f_a)` of [`alpha_coord`] (the ratio table's roughness
+    /// cell, [`RatioCells::alpha`], on the same grid): [`new`](Self::new)
+    /// where a reader of the same `α` computed it.
+    #[inline(always)]
+    pub(crate) fn at((k, fa): (usize, f32)) -> Self {
         // `k ≤ FT_NA − 2 = 30`.
         Self { k: k as u8, fa }
     }

@@ -100,7 +100,8 @@ mod tests {
     /// Cells built from the ratio table's cells computed once
     /// ([`DielectricCells::new_in`], as `OpenPbr` builds its dielectric
     /// lobes) are the cells [`DielectricCells::new`] builds — reader,
-    /// average, error, roughness — and the shared index cell's average at
+    /// average, error, roughness —, their roughness cell is the metal's
+    /// Fresnel-moment cell, and the shared index cell's average at
     /// another roughness is [`dielectric_average`] there, bit for bit.
     #[test]
     fn cells_from_shared_cells_are_new() {
@@ -127,6 +128,11 @@ mod tests {
                 (a.alpha.to_bits(), a.average.to_bits(), a.error.to_bits()),
                 (b.alpha.to_bits(), b.average.to_bits(), b.error.to_bits()),
                 "α {alpha} η {eta}"
+            );
+            assert_eq!(
+                super::super::fresnel_table::MomentCell::at(cells.alpha),
+                super::super::fresnel_table::MomentCell::new(alpha),
+                "α {alpha}"
             );
             let other = (u() * u()).max(1e-4);
             for a2 in [crate::microfacet::MIN_ALPHA, other] {

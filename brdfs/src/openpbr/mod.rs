@@ -231,8 +231,10 @@ struct Metal<S: Spectrum> {
 
 impl<S: Spectrum> Metal<S> {
     /// The metal at `ggx`'s roughness; `e1` is the reader of `E₁(·, α)` at
-    /// that roughness (the specular lobe's, which the material shares).
-    fn new(ggx: Ggx, f0: S, tint: S, e1: AlbedoReader) -> Self {
+    /// that roughness (the specular lobe's, which the material shares) and
+    /// `moments` the Fresnel-moment tables' cell of `α` (the specular
+    /// lobe's ratio-table cell: the same grid).
+    fn new(ggx: Ggx, f0: S, tint: S, e1: AlbedoReader, moments: MomentCell) -> Self {
         let fresnel = F82Tint::from_valid(f0, tint);
         // Ē₁ and the sampler's row on the reader's roughness coordinate (one
         // cube root for the three).
@@ -262,7 +264,7 @@ impl<S: Spectrum> Metal<S> {
             f_ms,
             e1,
             ms_row: crate::microfacet::ms_sampler::row_index_at(e1.axis()),
-            moments: MomentCell::new(ggx.alpha()),
+            moments,
         }
     }
 
@@ -654,7 +656,7 @@ impl<S: Spectrum> OpenPbr<S> {
                 .fresnel
                 .albedo_cells(a)
                 .map_or_else(|| AlbedoReader::new(a), |c| *c.reader.e1_reader());
-            Metal::new(ggx_s, rho, spec_color, e1)
+            Metal::new(ggx_s, rho, spec_color, e1, MomentCell::at(spec_cells.alpha))
         });
         let diffuse = Eon::new(rho, sigma)?;
         let diffuse_sampler = TransmissionSampler::from_cells(&spec_cells, a_s, eta_s);
