@@ -36,7 +36,7 @@
 //! Dimensions: `[TransmissionRow; 32 × 32]`, index `32 l + k`; each row
 //! `h: [u16; 17]`, `65535 ×` the height over the row's largest (34 KiB);
 //! beside them, derived from them at compile time, each row's cumulative
-//! cell masses (`ROW_MASSES`, `[[f32; 17]; 32 × 32]`, 68 KiB).
+//! cell masses (`ROWS_F32`, `[[f32; 17]; 32 × 32]`, 68 KiB).
 //! The unit test `rows_are_the_transmission_of_the_table` recomputes every
 //! row from the albedo tables bit for bit (and with
 //! `RADIOMETRY_REGENERATE=1` writes `transmission_sampler/data.rs`).
@@ -94,25 +94,39 @@ fn cell_of(s: f32, n: usize) -> (usize, f32) {
     (i, (s - i as f32).clamp(0.0, 1.0))
 }
 
-/// The cumulative masses of each committed row in the row's own units,
-/// `M_j = Σ_{i<j} (q_i + q_{i+1})/65535 · (s_{i+1} − s_i)` (`q` the row's
-/// stored heights; `M_0 = 0`, `M_16` twice the row's total), summed in `f32`
-/// in that order at compile time from [`TRANSMISSION_ROWS`]. Dimensions
-/// `[[f32; 17]; 32 × 32]` (68 KiB), index `32 l + k` as the rows. A
-/// sampler's masses are the same bilinear blend of its four corners'
-/// ([`TransmissionSampler::new`]): the masses are linear in the heights.
-static ROW_MASSES: [[f32; CELLS + 1]; N_Z * N_A] = {
-    let mut out = [[0.0f32; CELLS + 1]; N_Z * N_A];
+/// One committed row in `f32`: its heights `h_j = q_j/65535` and cumulative
+/// masses `M_j = Σ_{i<j} (h_i + h_{i+1}) (s_{i+1} − s_i)` (`M_0 = 0`, `M_16`
+/// twice the row's total), summed in that order.
+struct RowF32 {
+    h: [f32; CELLS + 1],
+    m: [f32; CELLS + 1],
+}
+
+/// [`TRANSMISSION_ROWS`] in `f32` with their cumulative masses, derived at
+/// compile time: dimensions `[RowF32; 32 × 32]` (136 KiB), index `32 l + k`
+/// as the rows. A sampler blends its four corners' heights and masses with
+/// the same weights ([`TransmissionSampler::new`]): the masses are linear
+/// in the heights, so no running sum is left for construction.
+static ROWS_F32: [RowF32; N_Z * N_A] = {
+    let mut out = [const {
+        RowF32 {
+            h: [0.0; CELLS + 1],
+            m: [0.0; CELLS + 1],
+        }
+    }; N_Z * N_A];
     let mut r = 0;
     while r < N_Z * N_A {
         let q = &TRANSMISSION_ROWS[r].h;
-        let mut acc = 0.0f32;
         let mut j = 0;
+        while j <= CELLS {
+            out[r].h[j] = q[j] as f32 * (1.0 / 65535.0);
+            j += 1;
+        }
+        let mut acc = 0.0f32;
+        j = 0;
         while j < CELLS {
-            let h0 = q[j] as f32 * (1.0 / 65535.0);
-            let h1 = q[j + 1] as f32 * (1.0 / 65535.0);
-            acc += (h0 + h1) * (S_EDGE[j + 1] - S_EDGE[j]);
-            out[r][j + 1] = acc;
+            acc += (out[r].h[j] + out[r].h[j + 1]) * (S_EDGE[j + 1] - S_EDGE[j]);
+            out[r].m[j + 1] = acc;
             j += 1;
         }
         r += 1;
@@ -125,7 +139,7 @@ static ROW_MASSES: [[f32; CELLS + 1]; N_Z * N_A] = {
 /// (`√α` clamped to `[0.01, 1]`; `z = √|(η − 1)/(η + 1)|`, so `η < 1` uses
 /// the rows of `1/η`, a valid density of the same Fresnel strength), and
 /// the cells' cumulative masses for the draw and the normalisation `1/(π
-/// T)`, blended the same way from the corners' [`ROW_MASSES`]. Built in
+/// T)`, blended the same way from the corners' [`ROWS_F32`]. Built in
 /// O(1) with no chain of dependent sums: 68 multiply-adds for the heights,
 /// 68 for the masses (a running sum of the blended heights would be 16
 /// additions, each waiting for the last).
@@ -133,7 +147,7 @@ static ROW_MASSES: [[f32; CELLS + 1]; N_Z * N_A] = {
 pub(crate) struct TransmissionSampler {
     h: [f32; CELLS + 1],
     /// `M_j = Σ_{i<j} m_i`, `m_i = (h_i + h_{i+1})(s_{i+1} − s_i)`: `M_0 = 0`,
-    /// `M_16 = 2T` — the corners' [`ROW_MASSES`] blended.
+    /// `M_16 = 2T` — the corners' [`ROWS_F32`] blended.
     cum: [f32; CELLS + 1],
     norm: f32,
 }
@@ -186,11 +200,11 @@ impl TransmissionSampler {
         let mut h = [0.0f32; CELLS + 1];
         let mut cum = [0.0f32; CELLS + 1];
         for (i, &wc) in [row, row + 1, row + N_A, row + N_A + 1].iter().zip(&w) {
-            if let (Some(r), Some(m)) = (TRANSMISSION_ROWS.get(*i), ROW_MASSES.get(*i)) {
+            if let Some(r) = ROWS_F32.get(*i) {
                 for (x, &q) in h.iter_mut().zip(&r.h) {
-                    *x += wc * (q as f32 * (1.0 / 65535.0));
+                    *x += wc * q;
                 }
-                for (x, &q) in cum.iter_mut().zip(m) {
+                for (x, &q) in cum.iter_mut().zip(&r.m) {
                     *x += wc * q;
                 }
             }
