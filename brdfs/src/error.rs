@@ -100,17 +100,72 @@ impl fmt::Display for BrdfError {
 impl core::error::Error for BrdfError {}
 
 /// Checks `min ≤ value ≤ max` (and finiteness), naming the parameter.
+///
+/// A value in range passes two comparisons when the bounds are finite (a
+/// NaN is in no range, and a finite range holds no infinity); the error is
+/// built out of line.
+#[inline]
 pub fn check_range(name: &'static str, value: f32, min: f32, max: f32) -> Result<f32, BrdfError> {
+    let finite_bounds = min.is_finite() && max.is_finite();
+    if value >= min && value <= max && (finite_bounds || value.is_finite()) {
+        return Ok(value);
+    }
+    Err(range_error(name, value, min, max))
+}
+
+/// The error [`check_range`] returns for `value`: not finite, else out of
+/// `[min, max]`.
+#[cold]
+#[inline(never)]
+fn range_error(name: &'static str, value: f32, min: f32, max: f32) -> BrdfError {
     if !value.is_finite() {
-        return Err(BrdfError::NotFinite { name });
+        return BrdfError::NotFinite { name };
     }
-    if value < min || value > max {
-        return Err(BrdfError::OutOfRange {
-            name,
-            value,
-            min,
-            max,
-        });
+    BrdfError::OutOfRange {
+        name,
+        value,
+        min,
+        max,
     }
-    Ok(value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{BrdfError, check_range};
+
+    /// The error kinds of every input class: in range (the bounds
+    /// included), below, above, NaN and both infinities, for finite bounds
+    /// and for an unbounded side (where `∞` is in range but not finite).
+    #[test]
+    fn check_range_names_each_failure() {
+        let name = "p";
+        for (min, max) in [(0.0, 1.0), (1.0, f32::INFINITY), (f32::NEG_INFINITY, 0.0)] {
+            for v in [min, max, 0.5 * (min + max), 0.0, 1.0] {
+                if v.is_finite() && (min..=max).contains(&v) {
+                    assert_eq!(check_range(name, v, min, max), Ok(v), "{v} in [{min}, {max}]");
+                }
+            }
+            for v in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+                assert_eq!(
+                    check_range(name, v, min, max),
+                    Err(BrdfError::NotFinite { name }),
+                    "{v} in [{min}, {max}]"
+                );
+            }
+            for v in [min - 1.0, max + 1.0, -2.0, 2.0] {
+                if v.is_finite() && !(min..=max).contains(&v) {
+                    assert_eq!(
+                        check_range(name, v, min, max),
+                        Err(BrdfError::OutOfRange {
+                            name,
+                            value: v,
+                            min,
+                            max
+                        }),
+                        "{v} in [{min}, {max}]"
+                    );
+                }
+            }
+        }
+    }
 }
