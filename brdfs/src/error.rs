@@ -100,33 +100,19 @@ impl fmt::Display for BrdfError {
 impl core::error::Error for BrdfError {}
 
 /// Checks `min ≤ value ≤ max` (and finiteness), naming the parameter.
-///
-/// A value in range passes two comparisons when the bounds are finite (a
-/// NaN is in no range, and a finite range holds no infinity); the error is
-/// built out of line.
-#[inline]
 pub fn check_range(name: &'static str, value: f32, min: f32, max: f32) -> Result<f32, BrdfError> {
-    let finite_bounds = min.is_finite() && max.is_finite();
-    if value >= min && value <= max && (finite_bounds || value.is_finite()) {
-        return Ok(value);
-    }
-    Err(range_error(name, value, min, max))
-}
-
-/// The error [`check_range`] returns for `value`: not finite, else out of
-/// `[min, max]`.
-#[cold]
-#[inline(never)]
-fn range_error(name: &'static str, value: f32, min: f32, max: f32) -> BrdfError {
     if !value.is_finite() {
-        return BrdfError::NotFinite { name };
+        return Err(BrdfError::NotFinite { name });
     }
-    BrdfError::OutOfRange {
-        name,
-        value,
-        min,
-        max,
+    if value < min || value > max {
+        return Err(BrdfError::OutOfRange {
+            name,
+            value,
+            min,
+            max,
+        });
     }
+    Ok(value)
 }
 
 #[cfg(test)]
