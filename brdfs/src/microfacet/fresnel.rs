@@ -355,6 +355,12 @@ impl Dielectric {
         })
     }
 
+    /// The term of an `η` the caller has checked (in `[1e-3, 1e3]`).
+    #[inline(always)]
+    pub(crate) fn from_valid(eta: f32) -> Self {
+        Dielectric { eta, cells: None }
+    }
+
     /// The relative index of refraction `η`.
     pub fn eta(&self) -> f32 {
         self.eta

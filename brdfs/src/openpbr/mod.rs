@@ -538,9 +538,10 @@ fn view_cosine(w: Vec3) -> f32 {
     if valid { w.z.min(1.0) } else { 0.0 }
 }
 
-/// `α = max(r², 10⁻⁴)`.
+/// `α = r²` clamped to `[10⁻⁴, 1]` (the clamp at 1 only catches a
+/// roughened `r` that rounds above 1).
 fn alpha(r: f32) -> f32 {
-    (r * r).max(MIN_ALPHA)
+    (r * r).clamp(MIN_ALPHA, 1.0)
 }
 
 /// OpenPBR eq. 26: the index whose `F0` is `ξ F0(η)` (`ξ` capped at
@@ -653,7 +654,9 @@ impl<S: Spectrum> OpenPbr<S> {
             r_s
         };
         let a_s = alpha(r_s);
-        let ggx_s = Ggx::new(a_s)?;
+        // Every lobe's parameter below is in its domain by construction (the
+        // material's own checks above): the lobes are built without theirs.
+        let ggx_s = Ggx::from_valid(a_s);
         let eta_s = modulated_ior(specular_ior_ratio(ior, coat_ior, w_c), xi);
         // The dielectric lobes keep their albedo's table cells (the reader of
         // `E_s`, `E_C`: `Brdf::with_prepared_albedo`); the coat's only when on.
@@ -663,7 +666,7 @@ impl<S: Spectrum> OpenPbr<S> {
         let spec_cells = RatioCells::new(ggx_s.alpha(), eta_s);
         let spec = Microfacet::new(
             ggx_s,
-            Achromatic::new(Dielectric::new(eta_s)?.with_cells(DielectricCells::new_in(
+            Achromatic::new(Dielectric::from_valid(eta_s).with_cells(DielectricCells::new_in(
                 spec_cells,
                 ggx_s.alpha(),
                 eta_s,
@@ -679,14 +682,14 @@ impl<S: Spectrum> OpenPbr<S> {
                 .map_or_else(|| AlbedoReader::new(a), |c| *c.reader.e1_reader());
             Metal::new(ggx_s, rho, spec_color, e1, MomentCell::at(spec_cells.alpha))
         });
-        let diffuse = Eon::new(rho, sigma)?;
+        let diffuse = Eon::from_valid(rho, sigma);
         let diffuse_sampler = TransmissionSampler::from_cells(&spec_cells, a_s, eta_s);
         let a_c = alpha(r_c);
-        let ggx_c = Ggx::new(a_c)?;
+        let ggx_c = Ggx::from_valid(a_c);
         // The coat's cells (only when on) serve its lobe's albedo cells and the
         // darkening's `Ē` at the smallest roughness.
         let coat_cells = (w_c > 0.0).then(|| RatioCells::new(ggx_c.alpha(), coat_ior));
-        let coat_fresnel = Dielectric::new(coat_ior)?;
+        let coat_fresnel = Dielectric::from_valid(coat_ior);
         let coat_fresnel = match coat_cells {
             Some(c) => coat_fresnel.with_cells(DielectricCells::new_in(c, ggx_c.alpha(), coat_ior)),
             None => coat_fresnel,
@@ -695,7 +698,7 @@ impl<S: Spectrum> OpenPbr<S> {
         let reciprocal = layering == Layering::Reciprocal;
         // Only the fuzz lobe of this mode, and only when the fuzz is on.
         let fuzz = if w_f > 0.0 && !reciprocal {
-            Some(LtcSheen::new(fuzz_color, r_f)?)
+            Some(LtcSheen::from_valid(fuzz_color, r_f))
         } else {
             None
         };

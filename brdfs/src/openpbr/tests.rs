@@ -627,3 +627,64 @@ fn polar_angle_of_the_diffuse_draw_is_u1_alone() {
         }
     }
 }
+
+/// The lobes a material builds without their own checks (`from_valid`) get
+/// parameters inside those checks' domains: on random valid parameters
+/// (each at its bounds too), every lobe's checked constructor accepts what
+/// the material gave the unchecked one, and builds the same lobe.
+#[test]
+fn unchecked_lobes_get_parameters_their_checks_accept() {
+    let mut u = crate::test_stream::uniforms(0x0c4e_cced_10be_0505);
+    let mut pick = |k: usize| match k % 4 {
+        0 => 0.0,
+        1 => 1.0,
+        _ => u(),
+    };
+    for n in 0..3_000 {
+        let p = OpenPbrParams::<f32> {
+            base_weight: pick(n),
+            base_color: pick(n / 2),
+            base_metalness: pick(n / 3),
+            base_diffuse_roughness: pick(n / 5),
+            specular_weight: pick(n / 7),
+            specular_roughness: pick(n / 11),
+            specular_ior: 1.0 + 3.0 * pick(n / 13),
+            coat_weight: pick(n / 17),
+            coat_roughness: pick(n / 19),
+            coat_ior: 1.0 + 3.0 * pick(n / 23),
+            fuzz_weight: pick(n / 29),
+            fuzz_roughness: pick(n / 31),
+            ..OpenPbrParams::default()
+        };
+        let m = OpenPbr::new(p).unwrap_or_else(|e| panic!("{p:?}: {e}"));
+        let (a_s, eta_s) = m.spec_ae;
+        let (a_c, eta_c) = m.coat_ae;
+        assert_eq!(
+            Ggx::new(a_s).map(|g| g.alpha()),
+            Ok(m.spec.distribution.alpha()),
+            "{p:?}"
+        );
+        assert_eq!(
+            Ggx::new(a_c).map(|g| g.alpha()),
+            Ok(m.coat.distribution.alpha()),
+            "{p:?}"
+        );
+        assert!(
+            Dielectric::new(eta_s).is_ok() && Dielectric::new(eta_c).is_ok(),
+            "{p:?}"
+        );
+        let rho = p.base_color * p.base_weight;
+        assert_eq!(
+            Eon::new(rho, p.base_diffuse_roughness).as_ref(),
+            Ok(&m.diffuse),
+            "{p:?}"
+        );
+        if let Some(f) = &m.fuzz {
+            assert_eq!(
+                LtcSheen::new(p.fuzz_color, p.fuzz_roughness).as_ref(),
+                Ok(f),
+                "{p:?}"
+            );
+        }
+    }
+}

@@ -129,19 +129,26 @@ impl<S: Spectrum> Eon<S> {
             check_range("rho", rho.channel(i), 0.0, 1.0)?;
         }
         let sigma = check_range("sigma", sigma, 0.0, 1.0)?;
+        Ok(Self::from_valid(rho, sigma))
+    }
+
+    /// The lobe of a `ρ` and `σ` the caller has checked (each in `[0, 1]`):
+    /// a material built at every hit from parameters it validated.
+    #[inline(always)]
+    pub(crate) fn from_valid(rho: S, sigma: f32) -> Self {
         let a = 1.0 / (1.0 + C1 * sigma);
         let mean = a * (1.0 + C2 * sigma);
         let loss = a * sigma * C1_MINUS_C2; // 1 − Ē_FON
         // ρ_ms = ρ² Ē/(1 − ρ(1 − Ē)); the denominator is ≥ Ē ≥ 0.776.
         let rho_ms = rho.map(|r| r * r * mean / (1.0 - r * loss));
-        Ok(Self {
+        Self {
             rho,
             sigma,
             a,
             k_ss: rho * (a * FRAC_1_PI),
             rho_ms,
             k_ms: rho_ms * (a * sigma * FRAC_1_PI / C1_MINUS_C2),
-        })
+        }
     }
 
     /// The single-scattering albedo colour ρ.

@@ -141,13 +141,20 @@ impl<S: Spectrum> LtcSheen<S> {
             check_range("color", color.channel(i), 0.0, 1.0)?;
         }
         let roughness = check_range("roughness", roughness, 0.0, 1.0)?;
+        Ok(Self::from_valid(color, roughness))
+    }
+
+    /// The lobe of a colour and roughness the caller has checked (each in
+    /// `[0, 1]`): a material built at every hit from parameters it validated.
+    #[inline(always)]
+    pub(crate) fn from_valid(color: S, roughness: f32) -> Self {
         let (row, row_weight) = cell(roughness);
-        Ok(Self {
+        Self {
             color,
             roughness,
             row,
             row_weight,
-        })
+        }
     }
 
     /// The colour `C`.
