@@ -118,12 +118,31 @@ fn alpha_node_f32(k: usize) -> f32 {
 /// `η < 1`.
 #[inline(always)]
 fn index_coord(eta: f32) -> (usize, f32, bool) {
-    let r = ((eta - 1.0) / (eta + 1.0)).abs();
-    let z = radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
+    let z = index_z(eta);
     let inside = eta < 1.0;
     let nz = if inside { FT_NZ_IN } else { FT_NZ };
     let (l, f) = cell_of(z * (nz - 1) as f32, nz);
     (l, f, inside)
+}
+
+/// `z = √|(η − 1)/(η + 1)|`, capped at 1 (1 where not finite).
+#[inline(always)]
+fn index_z(eta: f32) -> f32 {
+    let r = ((eta - 1.0) / (eta + 1.0)).abs();
+    radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 })
+}
+
+/// The cells of `(α, η)` on the `η > 1` table's grid whichever side of 1
+/// `η` lies (`η < 1` at the node of `1/η`, the same `z`): the index cell
+/// `(l, f_z)` and the roughness cell `(k, f_a)` — the rows of the diffuse
+/// sampler ([`TransmissionSampler`](super::transmission_sampler)), which
+/// sit at that table's nodes. For `η ≥ 1` they are [`RatioCells::new`]'s.
+#[inline(always)]
+pub(crate) fn outside_cells(alpha: f32, eta: f32) -> ((usize, f32), (usize, f32)) {
+    (
+        cell_of(index_z(eta) * (FT_NZ - 1) as f32, FT_NZ),
+        alpha_coord(alpha),
+    )
 }
 
 /// The ratio table's cells of one `(α, η)`: the index cell `(l, f_z, η <

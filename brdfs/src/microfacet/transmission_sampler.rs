@@ -41,7 +41,7 @@
 //! row from the albedo tables bit for bit (and with
 //! `RADIOMETRY_REGENERATE=1` writes `transmission_sampler/data.rs`).
 
-use super::fresnel_table::RatioCells;
+use super::fresnel_table::{RatioCells, outside_cells};
 use radiometry::glam::Vec3;
 use radiometry::math::sincos_turn;
 
@@ -85,14 +85,6 @@ const INV_WIDTH: [f32; CELLS] = {
     }
     e
 };
-
-/// Cell and fraction of `s ∈ [0, n − 1]` (clamped; NaN → 0).
-#[inline(always)]
-fn cell_of(s: f32, n: usize) -> (usize, f32) {
-    let s = if s > 0.0 { s.min((n - 1) as f32) } else { 0.0 };
-    let i = (s as usize).min(n - 2);
-    (i, (s - i as f32).clamp(0.0, 1.0))
-}
 
 /// One committed row in `f32`: its heights `h_j = q_j/65535` and cumulative
 /// masses `M_j = Σ_{i<j} (h_i + h_{i+1}) (s_{i+1} − s_i)` (`M_0 = 0`, `M_16`
@@ -155,12 +147,8 @@ pub(crate) struct TransmissionSampler {
 impl TransmissionSampler {
     /// The sampler of `(1 − E_F(μ, α, η)) μ` (see the module docs).
     pub(crate) fn new(alpha: f32, eta: f32) -> Self {
-        let t = radiometry::math::sqrtf(alpha.clamp(1e-4, 1.0));
-        let (k, fa) = cell_of((t - 0.01) / 0.99 * (N_A - 1) as f32, N_A);
-        let r = ((eta - 1.0) / (eta + 1.0)).abs();
-        let z = radiometry::math::sqrtf(if r.is_finite() { r.min(1.0) } else { 1.0 });
-        let (l, fz) = cell_of(z * (N_Z - 1) as f32, N_Z);
-        Self::at_cells((l, fz), (k, fa))
+        let (index, roughness) = outside_cells(alpha, eta);
+        Self::at_cells(index, roughness)
     }
 
     /// [`new`](Self::new) from the ratio table's cells of `(α, η)` where a
