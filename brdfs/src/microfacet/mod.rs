@@ -57,6 +57,7 @@ mod fresnel;
 pub mod fresnel_table;
 mod fresnel_table_data;
 mod ggx;
+pub(crate) mod ggx_pair;
 mod kulla_conty;
 pub(crate) mod ms_sampler;
 #[doc(hidden)]

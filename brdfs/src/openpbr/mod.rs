@@ -122,11 +122,12 @@ use crate::microfacet::AlbedoReader;
 use crate::microfacet::fresnel_table::{
     DielectricAlbedoReader, MomentCell, RatioCells, dielectric_average, dielectric_average_inline,
 };
+use crate::microfacet::ggx_pair::{GgxPairTerms, dielectric_pair, ggx_pair};
 use crate::microfacet::prepared::DielectricCells;
 use crate::microfacet::transmission_sampler::TransmissionSampler;
 use crate::microfacet::{
     Achromatic, AlbedoTable, Dielectric, EnergyTable, F82Tint, Fresnel, Ggx, HeightCorrelated, MAX_ETA,
-    MIN_ALPHA, Microfacet, MicrofacetDistribution,
+    MIN_ALPHA, Microfacet, MicrofacetDistribution, is_unit,
 };
 use crate::rough_diffuse::Eon;
 use crate::sheen::{LtcAt, LtcSheen, MIN_SHEEN_ROUGHNESS, Sheen, SheenAlbedoTable};
@@ -808,6 +809,26 @@ impl<S: Spectrum> OpenPbr<S> {
             r_b,
             coat_f0: f0_of(coat_ior),
         })
+    }
+
+    /// The GGX terms of the coat and of the specular roughness at the unit
+    /// pair `(wi, wo)` side by side ([`ggx_pair`]), and with `value` their
+    /// dielectric Fresnel factors `[F_C, F_s]` at `cos θd`
+    /// ([`dielectric_pair`]; `[0, 0]` without). Out of line: the pass of a
+    /// material without a coat does not carry it.
+    #[inline(never)]
+    fn coat_pair(&self, wi: Vec3, wo: Vec3, value: bool) -> (GgxPairTerms, [f32; 2]) {
+        let t = ggx_pair(
+            [self.coat.distribution.alpha(), self.spec.distribution.alpha()],
+            wi,
+            wo,
+        );
+        let f = if value {
+            dielectric_pair([self.coat_ae.1, self.spec_ae.1], t.cos_d)
+        } else {
+            [0.0; 2]
+        };
+        (t, f)
     }
 
     /// The parameters it was built from.
@@ -1752,8 +1773,34 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         } else {
             self.layers_o()
         };
+        // With the coat and a lobe of the specular roughness both on, their
+        // GGX terms side by side in vector lanes, and the two dielectric
+        // Fresnel factors likewise (each lane bit for bit its lobe's own
+        // term, `microfacet::ggx_pair`); the lobes' own calls otherwise and
+        // for a pair not unit to within 4ε (their cold paths).
+        let zero = S::zero();
+        let (lanes, fresnel) =
+            if m.on[COAT] && (m.metal.is_some() || m.on[SPEC]) && is_unit(wi) && is_unit(wo) {
+                let (t, f) = m.coat_pair(wi, wo, want_value);
+                (Some(t), f)
+            } else {
+                (None, [0.0; 2])
+            };
+        // Lane `k`'s `(s, pdf)` as the lobe's `eval_pdf` masks them.
+        let lane = |t: &GgxPairTerms, k: usize| {
+            (
+                if want_value { t.s[k] } else { 0.0 },
+                if want_pdf { t.pdf[k] } else { 0.0 },
+            )
+        };
         if m.on[COAT] {
-            let (v, d) = m.coat.eval_pdf(wi, wo, want_value, want_pdf);
+            let (v, d) = match &lanes {
+                Some(t) => {
+                    let (s, d) = lane(t, 0);
+                    (if s == 0.0 { zero } else { S::splat(fresnel[0]) * s }, d)
+                }
+                None => m.coat.eval_pdf(wi, wo, want_value, want_pdf),
+            };
             if want_value {
                 f += v * (self.fuzz_factor(at, Leaf::Specular) * p.coat_weight);
             }
@@ -1775,19 +1822,40 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         // roughness: where both are on, one pass of the microfacet terms
         // serves both (each value and density bit for bit its lobe's).
         let spec_pair = match &m.metal {
-            Some(metal) if m.on[SPEC] => {
-                Some(
-                    metal
-                        .single
-                        .eval_pdf_pair(&m.spec.fresnel, wi, wo, want_value, want_pdf),
-                )
-            }
+            Some(metal) if m.on[SPEC] => Some(match &lanes {
+                Some(t) => {
+                    let (s, d) = lane(t, 1);
+                    if s == 0.0 {
+                        (zero, zero, d)
+                    } else {
+                        (
+                            metal.single.fresnel.eval(t.cos_d) * s,
+                            S::splat(fresnel[1]) * s,
+                            d,
+                        )
+                    }
+                }
+                None => metal
+                    .single
+                    .eval_pdf_pair(&m.spec.fresnel, wi, wo, want_value, want_pdf),
+            }),
             _ => None,
         };
         if let Some(metal) = &m.metal {
-            let (v, d) = match spec_pair {
-                Some((v, _, d)) => (v, d),
-                None => metal.single.eval_pdf(wi, wo, want_value, want_pdf),
+            let (v, d) = match (spec_pair, &lanes) {
+                (Some((v, _, d)), _) => (v, d),
+                (None, Some(t)) => {
+                    let (s, d) = lane(t, 1);
+                    (
+                        if s == 0.0 {
+                            zero
+                        } else {
+                            metal.single.fresnel.eval(t.cos_d) * s
+                        },
+                        d,
+                    )
+                }
+                (None, None) => metal.single.eval_pdf(wi, wo, want_value, want_pdf),
             };
             if want_value {
                 let ms = metal.ms_scale * (metal_loss_i * self.metal_loss_o);
@@ -1799,9 +1867,13 @@ impl<S: Spectrum> OpenPbrView<'_, S> {
         }
         if m.on[SPEC] {
             let dielectric = 1.0 - p.base_metalness;
-            let (v, d) = match spec_pair {
-                Some((_, v, d)) => (v, d),
-                None => m.spec.eval_pdf(wi, wo, want_value, want_pdf),
+            let (v, d) = match (spec_pair, &lanes) {
+                (Some((_, v, d)), _) => (v, d),
+                (None, Some(t)) => {
+                    let (s, d) = lane(t, 1);
+                    (if s == 0.0 { zero } else { S::splat(fresnel[1]) * s }, d)
+                }
+                (None, None) => m.spec.eval_pdf(wi, wo, want_value, want_pdf),
             };
             if want_value {
                 f += v * p.specular_color * under_s * dielectric;
