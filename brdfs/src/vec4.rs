@@ -1,6 +1,7 @@
 //! Four-lane helpers on `glam::Vec4` for scalar hot paths that work on a
 //! few independent values at once (the three angles of the `Tabulated`
-//! coordinates, the channels of a conductor's Fresnel term).
+//! coordinates, the channels of a conductor's Fresnel term, OpenPBR's two
+//! GGX roughnesses in `microfacet::ggx_pair`).
 
 use radiometry::glam::Vec4;
 
