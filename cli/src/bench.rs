@@ -72,7 +72,10 @@ Plugins (F = 1 unless a Fresnel term is named):
   sample-batch-parts, the same for a sample batch (both lobes' albedo batches, the cheaper lobe's
   sample_batch, both eval_batch and pdf_batch at the drawn directions): the least the batches
   compute with these kernels; openpbr-defaults has the same two rows from its specular and EON
-  lobes, with the specular albedo batch at ωi too)
+  lobes, with the specular albedo batch at ωi too, and eval-parts and sample-parts: plain loops of
+  those two lobes' eval (and sample, pdf) with the specular layer's bare albedo reads at ωo and
+  ωi, the diffuse term weighted by Kelemen's factor and the lobe picked in proportion to its
+  albedo at ωo: the least the formula computes per eval and per sample)
 
 Paths, each at n = 4096 (in cache) and n = 2^20 (streaming from memory; not with --quick):
   eval            for k { out[k] = brdf.eval(wi[k], wo[k]) }      the loop a renderer writes
@@ -527,6 +530,7 @@ impl Run<'_> {
             .with_prepared_albedo();
             let diffuse = Eon::new(0.8f32, 0.0).expect(BAD);
             self.batch_parts("openpbr-defaults", &spec, &diffuse, true);
+            self.scalar_parts("openpbr-defaults", &spec, &diffuse, (0.09, 1.5));
         }
         // Colour: the typed OpenPbr<Vec3> and the spec grammar's RGB
         // run-time BRDF (a boxed trait object) of a red OpenPBR.
@@ -756,6 +760,59 @@ impl Run<'_> {
             }
         });
         self.push(name, "sample-batch-parts", draw + rest);
+        black_box(sink);
+    }
+
+    /// The least a dielectric layer over a diffuse lobe computes per call, as
+    /// plain loops of the two lobes' public calls and the specular layer's
+    /// bare albedo reader (`(α, η)` = `ae`), rows `eval-parts` and
+    /// `sample-parts` of `name`. `eval-parts`: `f = f_s + f_d (1 − E_s(μi))
+    /// (1 − E_s(μo))/(1 − Ē_s)` (Kelemen). `sample-parts`: the pick ∝ each
+    /// lobe's albedo at `ωo` (`E_s(μo)` and `(1 − E_s(μo)) E_d(ωo)`), the
+    /// picked lobe's own `sample`, then `f` and the mixture pdf at the drawn
+    /// direction and the weight `f cos θi/pdf`. The bound of `eval` and
+    /// `sample` against the formula itself.
+    fn scalar_parts<T, B>(&mut self, name: &'static str, top: &T, base: &B, ae: (f32, f32))
+    where
+        T: Brdf<Spectrum = f32>,
+        B: Brdf<Spectrum = f32>,
+    {
+        use radiometry_brdfs::microfacet::fresnel_table::{DielectricAlbedoReader, dielectric_average};
+        let (n, mt, inputs) = (self.n, self.min_time, self.inputs);
+        let (wi, wo, u) = (inputs.wi(n), inputs.wo(n), &inputs.u[..n]);
+        let reader = DielectricAlbedoReader::new(ae.0, ae.1);
+        let inv_avg = 1.0 / (1.0 - dielectric_average(ae.0, ae.1));
+        let mut sink = 0.0f32;
+        let t = measure(n, mt, || {
+            for (&i, &o) in wi.iter().zip(wo) {
+                let r = black_box(&reader);
+                let (eo, ei) = (r.albedo(o.z), r.albedo(i.z));
+                sink += black_box(top).eval(i, o) + black_box(base).eval(i, o) * ((1.0 - ei) * (1.0 - eo) * inv_avg);
+            }
+        });
+        self.push(name, "eval-parts", t);
+        let t = measure(n, mt, || {
+            for (&o, &[u0, u1]) in wo.iter().zip(u) {
+                let (r, top, base) = (black_box(&reader), black_box(top), black_box(base));
+                let eo = r.albedo(o.z);
+                let diffuse = (1.0 - eo) * base.directional_albedo(o).value;
+                let ps = eo / (eo + diffuse);
+                let drawn = if u0 < ps {
+                    top.sample(o, [u0 / ps, u1])
+                } else {
+                    base.sample(o, [((u0 - ps) / (1.0 - ps)).min(0.999_999_94), u1])
+                };
+                if let Some(i) = drawn.map(|s| s.wi) {
+                    let ei = r.albedo(i.z);
+                    let f = top.eval(i, o) + base.eval(i, o) * ((1.0 - ei) * (1.0 - eo) * inv_avg);
+                    let pdf = ps * top.pdf(i, o) + (1.0 - ps) * base.pdf(i, o);
+                    if pdf > 0.0 {
+                        sink += f * (i.z / pdf);
+                    }
+                }
+            }
+        });
+        self.push(name, "sample-parts", t);
         black_box(sink);
     }
 
