@@ -787,7 +787,8 @@ impl Run<'_> {
             for (&i, &o) in wi.iter().zip(wo) {
                 let r = black_box(&reader);
                 let (eo, ei) = (r.albedo(o.z), r.albedo(i.z));
-                sink += black_box(top).eval(i, o) + black_box(base).eval(i, o) * ((1.0 - ei) * (1.0 - eo) * inv_avg);
+                sink += black_box(top).eval(i, o)
+                    + black_box(base).eval(i, o) * ((1.0 - ei) * (1.0 - eo) * inv_avg);
             }
         });
         self.push(name, "eval-parts", t);

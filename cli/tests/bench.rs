@@ -61,6 +61,8 @@ const MATERIAL_PATHS: [(&str, &[&str]); 5] = [
             "hit-prepared",
             "eval-batch-parts",
             "sample-batch-parts",
+            "eval-parts",
+            "sample-parts",
         ],
     ),
     ("openpbr-all-layers", &["construct", "hit", "hit-prepared"]),
