@@ -9,7 +9,7 @@
 //! is bit for bit that lobe's `eval`/`pdf` term:
 //!
 //! ```text
-//! A(ω)  = ½ (cos θ + √(cos²θ + α² sin²θ))                 (Heitz 2014, eq. 86)
+//! A(ω)  = cos θ (1 + Λ) = ½ (cos θ + √(cos²θ + α² sin²θ))  (Λ: Heitz 2014, eq. 86)
 //! D     = (α² |h|⁴) / (π (α² h_z² + h_x² + h_y²)²)        (Walter et al. 2007, eq. 33)
 //! 1/V   = 4 ((cos θo Ai + cos θi Ao) − cos θi cos θo)      (Heitz 2014, eq. 99)
 //! s     = D V,   pdf = D/(4 A(ωo))
